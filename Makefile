@@ -1,0 +1,84 @@
+# cfe2d - build, run and test. `make help` lists the targets.
+
+FC       ?= gfortran
+ifeq ($(FC),f77)
+FC       := gfortran
+endif
+BUILD    ?= build
+OPTFLAGS ?= -O2 -march=x86-64 -mtune=generic
+DBGFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -fcheck=all -g -fbacktrace -O0
+FFLAGS   ?= $(OPTFLAGS)
+LAPACK   ?= -llapack -lblas
+PYTHON   ?= python3
+
+OBJDIR := $(BUILD)/obj
+MODDIR := $(BUILD)/mod
+
+# Program modules in dependency order (see the explicit rules below).
+MODULES := kinds messages strings deck_input model deck_parser materials \
+           element_types plane_elements cfe_element element_library skyline \
+           ordering contact assembly listing analysis
+OBJS := $(MODULES:%=$(OBJDIR)/%.o)
+
+TESTS := test_elements test_skyline test_cfe
+
+.PHONY: all debug run check bench deps clean help
+all: bin/cfe2d
+
+help:
+	@echo "make            build bin/cfe2d (optimised)"
+	@echo "make debug      build with -std=f2008 -Wall -fcheck=all -g -fbacktrace"
+	@echo "make run        install what is missing, then run the main example"
+	@echo "make check      install what is missing, build, run every test"
+	@echo "make deps       install compilers, libraries, gmsh and Python packages"
+
+bin/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o | bin
+	$(FC) $(FFLAGS) -o $@ $^ $(LAPACK)
+
+debug:
+	$(MAKE) BUILD=build-debug FFLAGS="$(DBGFLAGS)" bin/cfe2d
+
+bin $(OBJDIR) $(MODDIR) $(BUILD)/tests:
+	mkdir -p $@
+
+$(OBJDIR)/%.o: src/%.f90 | $(OBJDIR) $(MODDIR)
+	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
+
+$(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) | $(BUILD)/tests
+	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(OBJS) $(LAPACK)
+
+# Explicit module dependencies: an object depends on the objects of the
+# modules it uses (their .mod files are written alongside).
+$(OBJDIR)/messages.o:
+$(OBJDIR)/strings.o: $(OBJDIR)/kinds.o
+$(OBJDIR)/deck_input.o: $(OBJDIR)/strings.o $(OBJDIR)/messages.o
+$(OBJDIR)/model.o: $(OBJDIR)/kinds.o
+$(OBJDIR)/deck_parser.o: $(OBJDIR)/kinds.o $(OBJDIR)/strings.o $(OBJDIR)/deck_input.o $(OBJDIR)/model.o
+$(OBJDIR)/materials.o: $(OBJDIR)/kinds.o
+$(OBJDIR)/element_types.o: $(OBJDIR)/kinds.o
+$(OBJDIR)/plane_elements.o: $(OBJDIR)/element_types.o $(OBJDIR)/materials.o
+$(OBJDIR)/cfe_element.o: $(OBJDIR)/element_types.o $(OBJDIR)/plane_elements.o
+$(OBJDIR)/element_library.o: $(OBJDIR)/plane_elements.o $(OBJDIR)/cfe_element.o
+$(OBJDIR)/skyline.o: $(OBJDIR)/kinds.o
+$(OBJDIR)/ordering.o:
+$(OBJDIR)/contact.o: $(OBJDIR)/model.o $(OBJDIR)/element_types.o
+$(OBJDIR)/assembly.o: $(OBJDIR)/model.o $(OBJDIR)/contact.o $(OBJDIR)/element_library.o \
+                      $(OBJDIR)/skyline.o $(OBJDIR)/ordering.o
+$(OBJDIR)/listing.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o \
+                     $(OBJDIR)/assembly.o $(OBJDIR)/messages.o
+$(OBJDIR)/analysis.o: $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/skyline.o \
+                      $(OBJDIR)/listing.o $(OBJDIR)/messages.o
+$(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o
+
+deps:
+	bash scripts/install-deps.sh
+
+run: deps bin/cfe2d
+	$(PYTHON) scripts/run_main.py
+
+check: deps
+	$(MAKE) bin/cfe2d $(TESTS:%=$(BUILD)/tests/%)
+	$(PYTHON) tests/run_tests.py --build $(BUILD)
+
+clean:
+	rm -rf build build-debug bin

@@ -1,0 +1,320 @@
+!> The driver of a run: steps, increments, prescribed values and loads at
+!> each increment, and the contact status iteration (penalty switching) of
+!> section 5 of the paper with increment bisection when it does not settle.
+module analysis
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use kinds, only: dp
+  use model
+  use contact, only: contact_set_t, contact_search
+  use assembly, only: dofmap_t, number_dofs, assemble, internal_forces
+  use skyline, only: skyline_t, sky_factor, sky_solve
+  use listing, only: listing_t, write_step_header, write_increment, write_iteration, write_text, &
+                     contact_results_t, contact_results
+  use messages, only: fatal
+  implicit none
+  private
+  public :: run_analysis, amplitude_value
+
+contains
+
+  !> Piecewise-linear tabular amplitude, constant beyond its ends.
+  pure real(dp) function amplitude_value(a, t)
+    type(amplitude_t), intent(in) :: a
+    real(dp), intent(in) :: t
+    integer :: k, n
+    n = size(a%t)
+    if (t <= a%t(1)) then
+      amplitude_value = a%a(1)
+    else if (t >= a%t(n)) then
+      amplitude_value = a%a(n)
+    else
+      do k = 2, n
+        if (t <= a%t(k)) exit
+      end do
+      amplitude_value = a%a(k - 1) + (a%a(k) - a%a(k - 1)) * (t - a%t(k - 1)) / (a%t(k) - a%t(k - 1))
+    end if
+  end function amplitude_value
+
+  subroutine run_analysis(m, lst, quiet)
+    type(model_t), intent(in) :: m
+    type(listing_t), intent(in) :: lst
+    logical, intent(in) :: quiet
+    real(dp), allocatable :: u(:, :), fext(:, :), fint(:, :), rf(:, :)
+    real(dp), allocatable :: bc_start(:, :), bc_target(:, :), ld_start(:, :), ld_target(:, :)
+    integer, allocatable :: bc_amp(:, :), bc_set(:, :), ld_amp(:, :), set_ids(:)
+    logical, allocatable :: presc(:, :)
+    real(dp), allocatable :: rhs(:), set_sums(:, :)
+    type(contact_set_t) :: cs
+    type(dofmap_t) :: dm
+    type(skyline_t) :: k
+    integer :: is, i, ninc, inc, j, nset
+    real(dp) :: total_time, period
+    character(len=:), allocatable :: last_changed
+
+    allocate(u(2, m%nn), fext(2, m%nn), fint(2, m%nn), rf(2, m%nn), presc(2, m%nn), &
+             bc_start(2, m%nn), bc_target(2, m%nn), ld_start(2, m%nn), ld_target(2, m%nn), &
+             bc_amp(2, m%nn), bc_set(2, m%nn), ld_amp(2, m%nn))
+    u = 0.0_dp
+    fext = 0.0_dp
+    presc = .false.
+    bc_target = 0.0_dp
+    bc_set = 0
+    ld_target = 0.0_dp
+    ld_amp = 0
+    ! Small deformation: one search on the initial configuration.
+    call contact_search(m, m%x, cs)
+    total_time = 0.0_dp
+
+    do is = 1, size(m%steps)
+      associate(st => m%steps(is))
+        ! Dofs held from earlier steps stay where they are.
+        bc_start = u
+        where (presc) bc_target = u
+        bc_amp = 0
+        if (st%new_bcs) then
+          presc = .false.
+          bc_set = 0
+        end if
+        do j = 1, size(m%model_bcs)
+          call prescribe(m%model_bcs(j), .true.)
+        end do
+        do j = 1, size(st%bcs)
+          call prescribe(st%bcs(j), .false.)
+        end do
+        ld_start = fext
+        ld_amp = 0
+        if (st%new_loads) then
+          ld_start = 0.0_dp
+          ld_target = 0.0_dp
+        else
+          ld_target = fext
+        end if
+        do j = 1, size(st%loads)
+          ld_target(st%loads(j)%dof, st%loads(j)%node) = st%loads(j)%value
+          ld_amp(st%loads(j)%dof, st%loads(j)%node) = st%loads(j)%amp
+        end do
+        call prescribed_sets()
+
+        call number_dofs(m, cs, presc, m%ordering == ordering_rcm, dm, k)
+        if (allocated(rhs)) deallocate(rhs)
+        allocate(rhs(dm%neq))
+        call write_step_header(lst, is, m, dm%neq, count(presc), k%nnz, cs)
+        period = st%period
+        ninc = nint(period / st%dt)
+        inc = 0
+        do i = 1, ninc
+          call advance(is, period * (i - 1) / ninc, period * i / ninc, 0)
+        end do
+        total_time = total_time + period
+      end associate
+    end do
+
+  contains
+
+    subroutine prescribe(bc, immediate)
+      type(bc_t), intent(in) :: bc
+      logical, intent(in) :: immediate
+      presc(bc%dof, bc%node) = .true.
+      bc_target(bc%dof, bc%node) = bc%value
+      bc_amp(bc%dof, bc%node) = bc%amp
+      if (bc%set > 0) bc_set(bc%dof, bc%node) = bc%set
+      if (immediate) bc_start(bc%dof, bc%node) = bc%value
+    end subroutine prescribe
+
+    !> Node sets named by active boundary conditions, for reaction sums.
+    subroutine prescribed_sets()
+      integer :: a, d, s
+      logical, allocatable :: used(:)
+      allocate(used(size(m%nsets)))
+      used = .false.
+      do a = 1, m%nn
+        do d = 1, 2
+          s = bc_set(d, a)
+          if (presc(d, a) .and. s > 0) used(s) = .true.
+        end do
+      end do
+      set_ids = pack([(s, s = 1, size(m%nsets))], used)
+      nset = size(set_ids)
+      if (allocated(set_sums)) deallocate(set_sums)
+      allocate(set_sums(2, nset))
+    end subroutine prescribed_sets
+
+    !> Prescribed displacements and loads at step time t.
+    subroutine values_at(is, t)
+      integer, intent(in) :: is
+      real(dp), intent(in) :: t
+      integer :: a, d
+      real(dp) :: ramp
+      ramp = t / m%steps(is)%period
+      do a = 1, m%nn
+        do d = 1, 2
+          u(d, a) = 0.0_dp
+          if (presc(d, a)) then
+            if (bc_amp(d, a) > 0) then
+              u(d, a) = bc_target(d, a) * amp_at(bc_amp(d, a), t)
+            else
+              u(d, a) = bc_start(d, a) + (bc_target(d, a) - bc_start(d, a)) * ramp
+            end if
+          end if
+          if (ld_amp(d, a) > 0) then
+            fext(d, a) = ld_target(d, a) * amp_at(ld_amp(d, a), t)
+          else
+            fext(d, a) = ld_start(d, a) + (ld_target(d, a) - ld_start(d, a)) * ramp
+          end if
+        end do
+      end do
+    end subroutine values_at
+
+    real(dp) function amp_at(ia, t)
+      integer, intent(in) :: ia
+      real(dp), intent(in) :: t
+      if (m%amplitudes(ia)%time == amp_total_time) then
+        amp_at = amplitude_value(m%amplitudes(ia), total_time + t)
+      else
+        amp_at = amplitude_value(m%amplitudes(ia), t)
+      end if
+    end function amp_at
+
+    !> Takes the solution from step time t0 to t1; bisects when the contact
+    !> status does not settle.
+    recursive subroutine advance(is, t0, t1, level)
+      integer, intent(in) :: is, level
+      real(dp), intent(in) :: t0, t1
+      logical, allocatable :: saved(:)
+      logical :: ok
+      integer :: iters
+      allocate(saved(cs%n))
+      saved = cs%c(1:cs%n)%closed
+      call solve_at(is, t1, ok, iters)
+      if (ok) then
+        inc = inc + 1
+        call report(is, t1, iters)
+        return
+      end if
+      cs%c(1:cs%n)%closed = saved
+      if (level >= m%max_cutbacks) then
+        call write_text(lst, 'contact status did not settle; nodes still switching:' // last_changed)
+        call fatal('contact status did not settle in step ' // itoa(is) // ' at time ' // rtoa(t1) // &
+          ' after ' // itoa(level) // ' bisections; nodes still switching:' // last_changed)
+      end if
+      call write_text(lst, 'contact status did not settle: increment bisected')
+      call advance(is, t0, 0.5_dp * (t0 + t1), level + 1)
+      call advance(is, 0.5_dp * (t0 + t1), t1, level + 1)
+    end subroutine advance
+
+    subroutine solve_at(is, t, ok, it)
+      integer, intent(in) :: is
+      real(dp), intent(in) :: t
+      logical, intent(out) :: ok
+      integer, intent(out) :: it
+      integer :: bad, a, d, c, nchanged
+      real(dp) :: resid, ref
+      logical :: closed
+      ok = .false.
+      do it = 1, m%contact_max_iter
+        call values_at(is, t)
+        call assemble(m, cs, u, fext, dm, k, rhs)
+        call sky_factor(k, bad)
+        if (bad > 0) call fatal('singular stiffness at node ' // itoa(m%node_id(dm%node_of_eq(bad))) // &
+          ', dof ' // itoa(dm%dof_of_eq(bad)) // ' (missing boundary condition?)' // contact_hint())
+        call sky_solve(k, rhs)
+        do a = 1, m%nn
+          do d = 1, 2
+            if (dm%eq(d, a) > 0) u(d, a) = rhs(dm%eq(d, a))
+          end do
+        end do
+        call internal_forces(m, cs, u, fint)
+        ! Penalty switching: a compressive normal force (negative gap)
+        ! closes the CFE, a tensile one opens it.
+        nchanged = 0
+        last_changed = ''
+        do c = 1, cs%n
+          closed = cs%c(c)%gap < 0.0_dp
+          if (closed .neqv. cs%c(c)%closed) then
+            nchanged = nchanged + 1
+            if (nchanged <= 20) last_changed = last_changed // ' ' // itoa(m%node_id(cs%c(c)%slave))
+            cs%c(c)%closed = closed
+          end if
+        end do
+        if (nchanged > 0) call internal_forces(m, cs, u, fint)
+        rf = fint - fext
+        resid = 0.0_dp
+        ref = 0.0_dp
+        do a = 1, m%nn
+          do d = 1, 2
+            if (dm%eq(d, a) > 0) then
+              resid = resid + rf(d, a)**2
+            else
+              ref = ref + rf(d, a)**2
+            end if
+          end do
+        end do
+        ref = max(sqrt(ref), norm2(fext), sum(abs(cs%c(1:cs%n)%force)), tiny(1.0_dp))
+        resid = sqrt(resid) / ref
+        if (cs%n > 0) call write_iteration(lst, it, nchanged, count(cs%c(1:cs%n)%closed), resid, &
+                                           changed_text(nchanged))
+        if (nchanged == 0 .and. resid < m%contact_tolerance) then
+          ok = .true.
+          return
+        end if
+      end do
+      it = it - 1
+    end subroutine solve_at
+
+    function changed_text(n) result(s)
+      integer, intent(in) :: n
+      character(len=:), allocatable :: s
+      s = ''
+      if (n > 0) s = ' (nodes' // last_changed // merge(' ...', '    ', n > 20) // ')'
+    end function changed_text
+
+    function contact_hint() result(s)
+      character(len=:), allocatable :: s
+      s = ''
+      if (cs%n > 0) s = '; a body held only by open contact has no stiffness: give it a support, ' // &
+        'start it in contact, or raise OPEN PENALTY on *CONTACT PAIR'
+    end function contact_hint
+
+    subroutine report(is, t, iters)
+      integer, intent(in) :: is, iters
+      real(dp), intent(in) :: t
+      integer :: s, q, ip
+      real(dp) :: force
+      type(contact_results_t) :: cr
+      do s = 1, nset
+        set_sums(:, s) = 0.0_dp
+        do q = 1, size(m%nsets(set_ids(s))%items)
+          set_sums(:, s) = set_sums(:, s) + rf(:, m%nsets(set_ids(s))%items(q))
+        end do
+      end do
+      call write_increment(lst, m, is, inc, t, total_time + t, iters, u, rf, cs, set_sums, set_ids)
+      force = 0.0_dp
+      do ip = 1, size(m%pairs)
+        call contact_results(m, cs, ip, cr)
+        force = force + cr%total
+      end do
+      if (.not. quiet) then
+        write(output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es12.5)') 'step ', is, '  increment ', inc, &
+          '  time ', total_time + t, '  iterations ', iters, '  closed ', count(cs%c(1:cs%n)%closed), &
+          '  contact force ', force
+        flush(output_unit)
+      end if
+    end subroutine report
+  end subroutine run_analysis
+
+  function itoa(k) result(s)
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write(buf, '(i0)') k
+    s = trim(buf)
+  end function itoa
+
+  function rtoa(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write(buf, '(es12.5)') x
+    s = trim(adjustl(buf))
+  end function rtoa
+end module analysis

@@ -1,0 +1,84 @@
+!> cfe2d: reads a keyword deck, runs its steps and writes the listing.
+program cfe2d
+  use kinds, only: program_version
+  use model, only: model_t
+  use deck_parser, only: read_model
+  use listing, only: listing_t, open_listing, write_header
+  use analysis, only: run_analysis
+  use messages, only: fatal, terminate
+  implicit none
+  character(len=4096) :: arg
+  character(len=:), allocatable :: deck, outdir, job, base
+  type(model_t) :: m
+  type(listing_t) :: lst
+  logical :: quiet
+  integer :: i, k
+
+  deck = ''
+  outdir = ''
+  quiet = .false.
+  i = 1
+  do while (i <= command_argument_count())
+    call get_command_argument(i, arg)
+    select case (trim(arg))
+    case ('-h', '--help')
+      call usage()
+      call terminate(0)
+    case ('-v', '--version')
+      print '(a)', 'cfe2d ' // program_version
+      call terminate(0)
+    case ('-q', '--quiet')
+      quiet = .true.
+    case ('-o', '--output-dir')
+      i = i + 1
+      if (i > command_argument_count()) call fatal('--output-dir needs a directory')
+      call get_command_argument(i, arg)
+      outdir = trim(arg)
+    case default
+      if (arg(1:1) == '-') call fatal('unknown option "' // trim(arg) // '" (see cfe2d --help)')
+      if (len(deck) > 0) call fatal('only one deck per run')
+      deck = trim(arg)
+    end select
+    i = i + 1
+  end do
+  if (len(deck) == 0) then
+    call usage()
+    call fatal('no deck given')
+  end if
+
+  ! Job name: the deck without its directory and .inp extension.
+  k = index(deck, '/', back=.true.)
+  base = deck(k + 1:)
+  if (len(base) > 4) then
+    if (base(len(base) - 3:) == '.inp' .or. base(len(base) - 3:) == '.INP') base = base(1:len(base) - 4)
+  end if
+  if (len(outdir) > 0) then
+    job = outdir // '/' // base
+  else
+    job = deck(1:k) // base
+  end if
+
+  call read_model(deck, m)
+  if (size(m%pairs) > 0) then
+    call open_listing(job // '.out', job // '_contact.csv', lst)
+  else
+    call open_listing(job // '.out', '', lst)
+  end if
+  call write_header(lst, m)
+  call run_analysis(m, lst, quiet)
+  call terminate(0)
+
+contains
+
+  subroutine usage()
+    print '(a)', 'usage: cfe2d [options] deck.inp'
+    print '(a)', ''
+    print '(a)', 'Runs the keyword deck and writes <job>.out (listing) and, with contact,'
+    print '(a)', '<job>_contact.csv, next to the deck or in --output-dir.'
+    print '(a)', ''
+    print '(a)', '  -o, --output-dir DIR   write the results into DIR'
+    print '(a)', '  -q, --quiet            no progress lines'
+    print '(a)', '  -h, --help             this text'
+    print '(a)', '  -v, --version          program version'
+  end subroutine usage
+end program cfe2d

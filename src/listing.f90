@@ -1,0 +1,319 @@
+!> The text listing <job>.out and the machine-readable contact table
+!> <job>_contact.csv. Every block of the listing starts with a line
+!> "--- NAME key=value ...", then one header line of column names, then
+!> rows; increments are framed by "=== INCREMENT ..." and "=== END".
+module listing
+  use kinds, only: dp, program_version
+  use model
+  use materials, only: von_mises
+  use contact, only: contact_set_t
+  use assembly, only: stress_recovery
+  use messages, only: register_unit_to_close, fatal
+  implicit none
+  private
+  public :: listing_t, open_listing, write_header, write_step_header, write_increment, &
+            write_iteration, write_text, contact_results_t, contact_results
+
+  type :: listing_t
+    integer :: unit = -1
+    integer :: csv = -1
+  end type listing_t
+
+  !> Contact results of one pair, slave and master side, for the listing
+  !> and the table.
+  type :: contact_results_t
+    integer, allocatable :: slave_cfe(:)       ! CFE index of each slave row
+    integer, allocatable :: master_node(:)
+    real(dp), allocatable :: master_force(:), master_area(:)
+    real(dp) :: total = 0.0_dp, resultant(2) = 0.0_dp, max_pen = 0.0_dp
+    integer :: nclosed = 0
+  end type contact_results_t
+
+  character(len=*), parameter :: fr = '(es15.6)'
+
+contains
+
+  subroutine open_listing(path, csv_path, lst)
+    character(len=*), intent(in) :: path, csv_path
+    type(listing_t), intent(out) :: lst
+    integer :: ios
+    open(newunit=lst%unit, file=path, status='replace', action='write', iostat=ios)
+    if (ios /= 0) call fatal('cannot write the listing "' // path // '"')
+    call register_unit_to_close(lst%unit)
+    if (len(csv_path) > 0) then
+      open(newunit=lst%csv, file=csv_path, status='replace', action='write', iostat=ios)
+      if (ios /= 0) call fatal('cannot write the contact table "' // csv_path // '"')
+      call register_unit_to_close(lst%csv)
+      write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure'
+    end if
+  end subroutine open_listing
+
+  subroutine write_text(lst, text)
+    type(listing_t), intent(in) :: lst
+    character(len=*), intent(in) :: text
+    write(lst%unit, '(a)') text
+    flush(lst%unit)
+  end subroutine write_text
+
+  subroutine write_header(lst, m)
+    type(listing_t), intent(in) :: lst
+    type(model_t), intent(in) :: m
+    integer :: nsolid, u
+    u = lst%unit
+    nsolid = count(m%etype >= et_cps3)
+    write(u, '(a)') 'cfe2d ' // program_version // ' - 2D contact with coupling finite elements'
+    write(u, '(a)') '--- MODEL'
+    write(u, '(a)') 'item value'
+    write(u, '(a)') 'deck ' // m%deck_name
+    write(u, '(a)') 'heading ' // m%heading
+    write(u, '(a,i0)') 'nodes ', m%nn
+    write(u, '(a,i0)') 'elements ', m%ne
+    write(u, '(a,i0)') 'solid_elements ', nsolid
+    write(u, '(a,i0)') 'dofs ', 2 * m%nn
+    write(u, '(a,i0)') 'materials ', size(m%materials)
+    write(u, '(a,i0)') 'contact_pairs ', size(m%pairs)
+    write(u, '(a,i0)') 'steps ', size(m%steps)
+    write(u, '(a)') 'solver skyline LDL^T'
+    if (m%ordering == ordering_rcm) then
+      write(u, '(a)') 'ordering RCM'
+    else
+      write(u, '(a)') 'ordering none'
+    end if
+    flush(u)
+  end subroutine write_header
+
+  subroutine write_step_header(lst, istep, m, neq, nprescribed, profile, cs)
+    type(listing_t), intent(in) :: lst
+    integer, intent(in) :: istep, neq, nprescribed
+    type(model_t), intent(in) :: m
+    integer(8), intent(in) :: profile
+    type(contact_set_t), intent(in) :: cs
+    integer :: u, k
+    u = lst%unit
+    write(u, '(a)') ''
+    write(u, '(a,i0,a)') '--- STEP step=', istep, ' name=' // trim(m%steps(istep)%name)
+    write(u, '(a)') 'item value'
+    write(u, '(a,i0)') 'equations ', neq
+    write(u, '(a,i0)') 'prescribed_dofs ', nprescribed
+    write(u, '(a,i0)') 'profile ', profile
+    write(u, '(a,es12.5)') 'time_period ', m%steps(istep)%period
+    write(u, '(a,i0)') 'increments ', nint(m%steps(istep)%period / m%steps(istep)%dt)
+    write(u, '(a,i0)') 'coupling_elements ', cs%n
+    if (size(cs%uncoupled) > 0) then
+      write(u, '(a)') '--- UNCOUPLED SLAVE NODES (no master segment under them)'
+      write(u, '(a)') 'pair node'
+      do k = 1, size(cs%uncoupled)
+        write(u, '(i0,1x,i0)') cs%uncoupled_pair(k), m%node_id(cs%uncoupled(k))
+      end do
+    end if
+    flush(u)
+  end subroutine write_step_header
+
+  subroutine write_iteration(lst, it, nchanged, nclosed, resid, changed_nodes)
+    type(listing_t), intent(in) :: lst
+    integer, intent(in) :: it, nchanged, nclosed
+    real(dp), intent(in) :: resid
+    character(len=*), intent(in) :: changed_nodes
+    write(lst%unit, '(a,i0,a,i0,a,i0,a,es10.3,a)') 'contact iteration ', it, ': status changes ', &
+      nchanged, ', closed ', nclosed, ', out-of-balance ', resid, trim(changed_nodes)
+  end subroutine write_iteration
+
+  !> Slave rows and the master-side forces a pair's CFEs produce. Each CFE
+  !> force goes to the master edge nodes with the weights N_i(X_C).
+  subroutine contact_results(m, cs, ip, r)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip
+    type(contact_results_t), intent(out) :: r
+    integer :: k, j, a, b, nm
+    integer, allocatable :: pos(:)
+    real(dp) :: len, f
+    associate(ms => m%surfaces(m%pairs(ip)%master_surface))
+      r%slave_cfe = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == ip)
+      r%master_node = ms%nodes
+      nm = size(ms%nodes)
+      allocate(r%master_force(nm), r%master_area(nm), pos(m%nn))
+      pos = 0
+      do k = 1, nm
+        pos(ms%nodes(k)) = k
+      end do
+      r%master_force = 0.0_dp
+      r%master_area = 0.0_dp
+      do j = 1, size(ms%elem)
+        call edge_nodes(m, ms%elem(j), ms%edge(j), a, b)
+        len = norm2(m%x(:, b) - m%x(:, a))
+        f = 0.5_dp * len * m%sections(m%elem_section(ms%elem(j)))%thickness
+        r%master_area(pos(a)) = r%master_area(pos(a)) + f
+        r%master_area(pos(b)) = r%master_area(pos(b)) + f
+      end do
+      do j = 1, size(r%slave_cfe)
+        associate(c => cs%c(r%slave_cfe(j)))
+          call edge_nodes(m, c%elem, c%edge, a, b)
+          ! compressive force counted positive
+          r%master_force(pos(a)) = r%master_force(pos(a)) - (1.0_dp - c%t) * c%force
+          r%master_force(pos(b)) = r%master_force(pos(b)) - c%t * c%force
+          r%total = r%total - c%force
+          r%resultant = r%resultant + c%force * c%normal
+          if (c%closed) then
+            r%nclosed = r%nclosed + 1
+            r%max_pen = max(r%max_pen, -c%gap)
+          end if
+        end associate
+      end do
+    end associate
+  end subroutine contact_results
+
+  subroutine write_increment(lst, m, istep, inc, t, ttot, iters, u, rf, cs, set_sums, set_ids)
+    type(listing_t), intent(in) :: lst
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: istep, inc, iters
+    real(dp), intent(in) :: t, ttot
+    real(dp), intent(in) :: u(:, :), rf(:, :)
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: set_sums(:, :)
+    integer, intent(in) :: set_ids(:)
+    integer :: ir, k, un, e, ip, nsel
+    integer, allocatable :: nip(:), sel(:)
+    real(dp), allocatable :: sig_ip(:, :, :), eps_ip(:, :, :), sig_node(:, :)
+    logical :: need_stress
+    type(contact_results_t) :: cr
+    un = lst%unit
+    write(un, '(a)') ''
+    write(un, '(a,i0,a,i0,a,es14.7,a,es14.7,a,i0,a)') '=== INCREMENT step=', istep, ' increment=', inc, &
+      ' time=', t, ' total_time=', ttot, ' iterations=', iters, ' ==='
+    associate(reqs => m%steps(istep)%requests)
+      need_stress = .false.
+      do ir = 1, size(reqs)
+        if (.not. reqs(ir)%to_file .and. (reqs(ir)%s .or. reqs(ir)%e)) need_stress = .true.
+      end do
+      if (need_stress) then
+        allocate(nip(m%ne), sig_ip(4, 4, m%ne), eps_ip(3, 4, m%ne), sig_node(4, m%nn))
+        call stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node)
+      end if
+      do ir = 1, size(reqs)
+        if (reqs(ir)%to_file) cycle
+        if (reqs(ir)%nodal) then
+          if (reqs(ir)%set > 0) then
+            sel = m%nsets(reqs(ir)%set)%items
+          else
+            sel = [(k, k = 1, m%nn)]
+          end if
+          nsel = size(sel)
+          if (reqs(ir)%u) then
+            call block_head('NODE U', reqs(ir)%set, .true., 'node U1 U2')
+            do k = 1, nsel
+              write(un, '(i10,2es15.6)') m%node_id(sel(k)), u(:, sel(k))
+            end do
+          end if
+          if (reqs(ir)%rf) then
+            call block_head('NODE RF', reqs(ir)%set, .true., 'node RF1 RF2')
+            do k = 1, nsel
+              write(un, '(i10,2es15.6)') m%node_id(sel(k)), rf(:, sel(k))
+            end do
+          end if
+          if (reqs(ir)%s) then
+            call block_head('NODE S', reqs(ir)%set, .true., 'node S11 S22 S33 S12 MISES')
+            do k = 1, nsel
+              write(un, '(i10,5es15.6)') m%node_id(sel(k)), sig_node(:, sel(k)), von_mises(sig_node(:, sel(k)))
+            end do
+          end if
+        else
+          if (reqs(ir)%set > 0) then
+            sel = m%elsets(reqs(ir)%set)%items
+          else
+            sel = [(k, k = 1, m%ne)]
+          end if
+          if (reqs(ir)%s) then
+            call block_head('ELEMENT S', reqs(ir)%set, .false., 'element ip S11 S22 S33 S12 MISES')
+            do k = 1, size(sel)
+              e = sel(k)
+              do ip = 1, nip(e)
+                write(un, '(i10,i4,5es15.6)') m%elem_id(e), ip, sig_ip(:, ip, e), von_mises(sig_ip(:, ip, e))
+              end do
+            end do
+          end if
+          if (reqs(ir)%e) then
+            call block_head('ELEMENT E', reqs(ir)%set, .false., 'element ip E11 E22 E12')
+            do k = 1, size(sel)
+              e = sel(k)
+              do ip = 1, nip(e)
+                write(un, '(i10,i4,3es15.6)') m%elem_id(e), ip, eps_ip(:, ip, e)
+              end do
+            end do
+          end if
+        end if
+      end do
+    end associate
+    if (size(set_ids) > 0) then
+      write(un, '(a)') '--- REACTIONS (sum over each prescribed node set)'
+      write(un, '(a)') 'set RF1 RF2'
+      do k = 1, size(set_ids)
+        write(un, '(a,2es15.6)') trim(m%nsets(set_ids(k))%name), set_sums(:, k)
+      end do
+    end if
+    do ip = 1, size(m%pairs)
+      call contact_results(m, cs, ip, cr)
+      call write_contact(ip, cr)
+    end do
+    write(un, '(a)') '=== END INCREMENT'
+    flush(un)
+    if (lst%csv >= 0) flush(lst%csv)
+
+  contains
+
+    subroutine block_head(name, set, nodal, cols)
+      character(len=*), intent(in) :: name, cols
+      integer, intent(in) :: set
+      logical, intent(in) :: nodal
+      character(len=:), allocatable :: sname
+      sname = 'ALL'
+      if (set > 0) then
+        if (nodal) then
+          sname = trim(m%nsets(set)%name)
+        else
+          sname = trim(m%elsets(set)%name)
+        end if
+      end if
+      write(un, '(a)') '--- ' // name // ' set=' // sname
+      write(un, '(a)') cols
+    end subroutine block_head
+
+    subroutine write_contact(ipair, r)
+      integer, intent(in) :: ipair
+      type(contact_results_t), intent(in) :: r
+      integer :: j, nd
+      real(dp) :: xs(2), p
+      character(len=6) :: st
+      write(un, '(a,i0,a)') '--- CONTACT SLAVE pair=', ipair, ' surface=' // &
+        trim(m%surfaces(m%pairs(ipair)%slave_surface)%name)
+      write(un, '(a)') 'node x y gap state force area pressure'
+      do j = 1, size(r%slave_cfe)
+        associate(c => cs%c(r%slave_cfe(j)))
+          xs = m%x(:, c%slave) + u(:, c%slave)
+          st = 'OPEN'
+          if (c%closed) st = 'CLOSED'
+          write(un, '(i10,3es15.6,1x,a6,3es15.6)') m%node_id(c%slave), xs, c%gap, st, -c%force, c%area, &
+            -c%force / c%area
+          if (lst%csv >= 0) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",slave,",i0,",",es15.8,",",es15.8,",",&
+            &es15.8,",",a,",",es15.8,",",es15.8)') istep, inc, ttot, ipair, m%node_id(c%slave), xs, c%gap, &
+            trim(st), -c%force, -c%force / c%area
+        end associate
+      end do
+      write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', ipair, ' surface=' // &
+        trim(m%surfaces(m%pairs(ipair)%master_surface)%name)
+      write(un, '(a)') 'node x y force area pressure'
+      do j = 1, size(r%master_node)
+        nd = r%master_node(j)
+        xs = m%x(:, nd) + u(:, nd)
+        p = 0.0_dp
+        if (r%master_area(j) > 0.0_dp) p = r%master_force(j) / r%master_area(j)
+        write(un, '(i10,5es15.6)') m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
+        if (lst%csv >= 0) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",master,",i0,",",es15.8,",",es15.8,&
+          &",0,-,",es15.8,",",es15.8)') istep, inc, ttot, ipair, m%node_id(nd), xs, r%master_force(j), p
+      end do
+      write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', ipair
+      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
+      write(un, '(i10,4es15.6)') r%nclosed, r%total, r%resultant, r%max_pen
+    end subroutine write_contact
+  end subroutine write_increment
+end module listing

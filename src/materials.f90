@@ -1,0 +1,46 @@
+!> Isotropic linear elasticity in the two plane states.
+module materials
+  use kinds, only: dp
+  implicit none
+  private
+  public :: elastic_matrix, out_of_plane_stress, von_mises
+
+contains
+
+  !> Stress-strain matrix for (eps11, eps22, gamma12).
+  pure function elastic_matrix(e, nu, plane_strain) result(d)
+    real(dp), intent(in) :: e, nu
+    logical, intent(in) :: plane_strain
+    real(dp) :: d(3, 3), c
+    d = 0.0_dp
+    if (plane_strain) then
+      c = e / ((1.0_dp + nu) * (1.0_dp - 2.0_dp * nu))
+      d(1, 1) = c * (1.0_dp - nu)
+      d(2, 2) = d(1, 1)
+      d(1, 2) = c * nu
+      d(3, 3) = c * (1.0_dp - 2.0_dp * nu) / 2.0_dp
+    else
+      c = e / (1.0_dp - nu**2)
+      d(1, 1) = c
+      d(2, 2) = c
+      d(1, 2) = c * nu
+      d(3, 3) = c * (1.0_dp - nu) / 2.0_dp
+    end if
+    d(2, 1) = d(1, 2)
+  end function elastic_matrix
+
+  !> sigma33: zero in plane stress, nu*(s11+s22) in plane strain.
+  pure real(dp) function out_of_plane_stress(s11, s22, nu, plane_strain)
+    real(dp), intent(in) :: s11, s22, nu
+    logical, intent(in) :: plane_strain
+    out_of_plane_stress = 0.0_dp
+    if (plane_strain) out_of_plane_stress = nu * (s11 + s22)
+  end function out_of_plane_stress
+
+  !> von Mises stress of (s11, s22, s33, s12).
+  pure real(dp) function von_mises(s)
+    real(dp), intent(in) :: s(4)
+    von_mises = sqrt(0.5_dp * ((s(1) - s(2))**2 + (s(2) - s(3))**2 + (s(3) - s(1))**2) &
+                     + 3.0_dp * s(4)**2)
+  end function von_mises
+end module materials

@@ -1,0 +1,212 @@
+!> The analysis model as read from the deck: mesh, sets, surfaces,
+!> materials, sections, amplitudes, steps and contact pairs. Everything is
+!> stored with internal (1..n) indices; user ids are kept for output.
+module model
+  use kinds, only: dp, name_len
+  implicit none
+  private
+  public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
+            bc_t, cload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
+            et_none, et_t3d2, et_cps3, et_cpe3, et_cps4, et_cpe4, &
+            et_name, et_nodes, et_is_solid, et_plane_strain, &
+            surf_element, surf_node, solver_skyline, ordering_rcm, ordering_none, &
+            amp_step_time, amp_total_time, find_name, edge_nodes, append_int
+
+  ! Element type codes; the Abaqus names map onto these in the deck reader.
+  integer, parameter :: et_none = 0, et_t3d2 = 1, et_cps3 = 2, et_cpe3 = 3, &
+                        et_cps4 = 4, et_cpe4 = 5
+  integer, parameter :: surf_element = 1, surf_node = 2
+  integer, parameter :: solver_skyline = 1
+  integer, parameter :: ordering_none = 0, ordering_rcm = 1
+  integer, parameter :: amp_step_time = 1, amp_total_time = 2
+
+  !> Where something was defined in the deck: for errors found after reading.
+  type :: src_t
+    integer :: line = 0   ! index into deck%lines
+  end type src_t
+
+  type :: node_set_t
+    character(len=name_len) :: name = ''
+    integer, allocatable :: items(:)
+  end type node_set_t
+
+  type :: elem_set_t
+    character(len=name_len) :: name = ''
+    integer, allocatable :: items(:)
+  end type elem_set_t
+
+  !> An element-based surface is a list of solid-element edges (element,
+  !> local edge number); a node-based surface is a list of nodes.
+  type :: surface_t
+    character(len=name_len) :: name = ''
+    integer :: kind = surf_element
+    integer, allocatable :: elem(:), edge(:)
+    integer, allocatable :: nodes(:)
+  end type surface_t
+
+  type :: material_t
+    character(len=name_len) :: name = ''
+    logical :: has_elastic = .false.
+    real(dp) :: e = 0.0_dp, nu = 0.0_dp
+    type(src_t) :: src
+  end type material_t
+
+  type :: section_t
+    integer :: elset = 0
+    character(len=name_len) :: material_name = ''
+    integer :: material = 0
+    real(dp) :: thickness = 1.0_dp
+    type(src_t) :: src
+  end type section_t
+
+  !> One prescribed dof. set is the node set it came from (0 for a single
+  !> node), used to sum reactions per prescribed set.
+  type :: bc_t
+    integer :: node = 0, dof = 0, set = 0, amp = 0
+    real(dp) :: value = 0.0_dp
+  end type bc_t
+
+  type :: cload_t
+    integer :: node = 0, dof = 0, amp = 0
+    real(dp) :: value = 0.0_dp
+  end type cload_t
+
+  type :: amplitude_t
+    character(len=name_len) :: name = ''
+    integer :: time = amp_step_time
+    real(dp), allocatable :: t(:), a(:)
+  end type amplitude_t
+
+  !> *NODE PRINT / *EL PRINT / *NODE FILE / *EL FILE: a set (0 = all) and
+  !> the quantities asked for.
+  type :: request_t
+    logical :: nodal = .true.
+    logical :: to_file = .false.
+    integer :: set = 0
+    logical :: u = .false., rf = .false., s = .false., e = .false., cstress = .false.
+  end type request_t
+
+  type :: step_t
+    character(len=name_len) :: name = ''
+    real(dp) :: dt = 1.0_dp, period = 1.0_dp
+    integer :: max_inc = 1000
+    logical :: new_bcs = .false., new_loads = .false.
+    type(bc_t), allocatable :: bcs(:)
+    type(cload_t), allocatable :: loads(:)
+    type(request_t), allocatable :: requests(:)
+    type(src_t) :: src
+  end type step_t
+
+  !> A slave (node set or surface) coupled to a master element surface.
+  type :: contact_pair_t
+    integer :: slave_surface = 0, master_surface = 0
+    real(dp) :: penalty = -1.0_dp         ! < 0: automatic
+    real(dp) :: open_ratio = 1.0e-9_dp    ! open penalty / closed penalty
+    logical :: nodal = .false.            ! penalty given per node, not per area
+    real(dp) :: search_distance = -1.0_dp ! < 0: automatic
+    logical :: update_search = .false.
+    type(src_t) :: src
+  end type contact_pair_t
+
+  type :: model_t
+    character(len=:), allocatable :: heading, deck_name
+    integer :: nn = 0, ne = 0
+    integer, allocatable :: node_id(:), elem_id(:)
+    real(dp), allocatable :: x(:, :)                  ! (2, nn)
+    integer, allocatable :: etype(:), conn(:, :)      ! conn(4, ne)
+    integer, allocatable :: elem_section(:)
+    type(src_t), allocatable :: elem_src(:)
+    integer, allocatable :: node_index(:), elem_index(:)  ! user id -> internal, 0 if none
+    type(node_set_t), allocatable :: nsets(:)
+    type(elem_set_t), allocatable :: elsets(:)
+    type(surface_t), allocatable :: surfaces(:)
+    type(material_t), allocatable :: materials(:)
+    type(section_t), allocatable :: sections(:)
+    type(amplitude_t), allocatable :: amplitudes(:)
+    type(bc_t), allocatable :: model_bcs(:)
+    type(step_t), allocatable :: steps(:)
+    type(contact_pair_t), allocatable :: pairs(:)
+    integer :: solver = solver_skyline
+    integer :: ordering = ordering_rcm
+    real(dp) :: contact_tolerance = 1.0e-8_dp
+    integer :: contact_max_iter = 30
+    integer :: max_cutbacks = 5
+  end type model_t
+
+contains
+
+  pure function et_name(et) result(s)
+    integer, intent(in) :: et
+    character(len=4) :: s
+    select case (et)
+    case (et_t3d2); s = 'T3D2'
+    case (et_cps3); s = 'CPS3'
+    case (et_cpe3); s = 'CPE3'
+    case (et_cps4); s = 'CPS4'
+    case (et_cpe4); s = 'CPE4'
+    case default; s = '????'
+    end select
+  end function et_name
+
+  pure integer function et_nodes(et)
+    integer, intent(in) :: et
+    select case (et)
+    case (et_t3d2); et_nodes = 2
+    case (et_cps3, et_cpe3); et_nodes = 3
+    case (et_cps4, et_cpe4); et_nodes = 4
+    case default; et_nodes = 0
+    end select
+  end function et_nodes
+
+  pure logical function et_is_solid(et)
+    integer, intent(in) :: et
+    et_is_solid = et_nodes(et) >= 3
+  end function et_is_solid
+
+  pure logical function et_plane_strain(et)
+    integer, intent(in) :: et
+    et_plane_strain = et == et_cpe3 .or. et == et_cpe4
+  end function et_plane_strain
+
+  !> Nodes of local edge k of a solid element, counter-clockwise (Abaqus
+  !> face Sk runs from node k to node k+1).
+  pure subroutine edge_nodes(m, e, k, a, b)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e, k
+    integer, intent(out) :: a, b
+    integer :: nen
+    nen = et_nodes(m%etype(e))
+    a = m%conn(k, e)
+    b = m%conn(mod(k, nen) + 1, e)
+  end subroutine edge_nodes
+
+  !> Index of a name in a list of names (case already folded), 0 if absent.
+  pure integer function find_name(names, name)
+    character(len=*), intent(in) :: names(:)
+    character(len=*), intent(in) :: name
+    integer :: i
+    find_name = 0
+    do i = 1, size(names)
+      if (names(i) == name) then
+        find_name = i
+        return
+      end if
+    end do
+  end function find_name
+
+  !> Append to a growable integer buffer holding n items.
+  pure subroutine append_int(buf, n, v)
+    integer, allocatable, intent(inout) :: buf(:)
+    integer, intent(inout) :: n
+    integer, intent(in) :: v
+    integer, allocatable :: tmp(:)
+    if (.not. allocated(buf)) allocate(buf(64))
+    if (n == size(buf)) then
+      allocate(tmp(2 * max(n, 32)))
+      tmp(1:n) = buf(1:n)
+      call move_alloc(tmp, buf)
+    end if
+    n = n + 1
+    buf(n) = v
+  end subroutine append_int
+end module model
