@@ -55,6 +55,15 @@ contains
     flush(lst%unit)
   end subroutine write_text
 
+  !> A real without blanks, for key=value fields.
+  function real_text(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    write(buf, '(es15.8)') x
+    s = trim(adjustl(buf))
+  end function real_text
+
   subroutine write_header(lst, m)
     type(listing_t), intent(in) :: lst
     type(model_t), intent(in) :: m
@@ -179,8 +188,8 @@ contains
     type(contact_results_t) :: cr
     un = lst%unit
     write(un, '(a)') ''
-    write(un, '(a,i0,a,i0,a,es14.7,a,es14.7,a,i0,a)') '=== INCREMENT step=', istep, ' increment=', inc, &
-      ' time=', t, ' total_time=', ttot, ' iterations=', iters, ' ==='
+    write(un, '(a,i0,a,i0,a,i0,a)') '=== INCREMENT step=', istep, ' increment=', inc, &
+      ' time=' // real_text(t) // ' total_time=' // real_text(ttot) // ' iterations=', iters, ' ==='
     associate(reqs => m%steps(istep)%requests)
       need_stress = .false.
       do ir = 1, size(reqs)

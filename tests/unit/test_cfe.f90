@@ -1,0 +1,114 @@
+!> The coupling finite element at element level (eqs. 3-10): symmetry and
+!> rank of K_e, F_int = K_e D_e + B_e^T C [[U]]_0, K_e as the derivative of
+!> F_int, and [[U]] equal to the current slave-to-X_C vector.
+program test_cfe
+  use kinds, only: dp
+  use element_types, only: elem_in_t, elem_out_t, kind_cfe, kind_quad4, kind_tri3
+  use element_library, only: element_routine
+  use cfe_element, only: cfe_b_matrix
+  use plane_elements, only: quad4_shape, tri3_shape
+  implicit none
+  integer :: nfail = 0
+  call check('CFE on Q4 master', kind_quad4, 4, [0.3_dp, 1.0_dp])
+  call check('CFE on T3 master', kind_tri3, 3, [0.35_dp, 0.65_dp])
+  if (nfail > 0) stop 1
+
+contains
+
+  subroutine report(name, ok, detail)
+    character(len=*), intent(in) :: name, detail
+    logical, intent(in) :: ok
+    if (ok) then
+      print '(a)', 'PASS ' // name
+    else
+      print '(a)', 'FAIL ' // name // ': ' // detail
+      nfail = nfail + 1
+    end if
+  end subroutine report
+
+  subroutine check(name, mkind, nm, xi)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: mkind, nm
+    real(dp), intent(in) :: xi(2)
+    type(elem_in_t) :: ein, ep, em
+    type(elem_out_t) :: eout, op, om
+    real(dp) :: b(2, 2 * (nm + 1)), c(2, 2), f_expect(10), kfd(10, 10), err, h, n(4), dn(2, 4)
+    real(dp) :: xc(2), uc(2), jump_geo(2), theta
+    character(len=120) :: msg
+    integer :: nd, j, i
+    ein%kind = kind_cfe
+    ein%master_kind = mkind
+    ein%nen = nm + 1
+    ein%xi = xi
+    ! A tilted master edge: outward normal at 30 degrees from -y.
+    theta = 0.5235987755982988_dp
+    ein%normal = [sin(theta), -cos(theta)]
+    ein%penalty = 3.7e9_dp
+    ! Master nodes (nodes 2..nm+1) and their displacements.
+    ein%xy(:, 2:nm + 1) = reshape([0.0_dp, 0.0_dp, 1.1_dp, 0.1_dp, 1.0_dp, 0.9_dp, -0.1_dp, 1.0_dp], [2, 4])
+    nd = 2 * (nm + 1)
+    do i = 1, nd
+      ein%ue(i) = 1.0e-4_dp * sin(1.3_dp * i)
+    end do
+    if (mkind == kind_quad4) then
+      call quad4_shape(xi(1), xi(2), n, dn)
+    else
+      call tri3_shape(xi(1), xi(2), n(1:3), dn(:, 1:3))
+    end if
+    xc = matmul(ein%xy(:, 2:nm + 1), n(1:nm))
+    ein%gap0 = 2.0e-4_dp * ein%normal + [1.0e-5_dp, 0.0_dp]
+    ein%xy(:, 1) = xc + ein%gap0
+    call element_routine(ein, eout)
+
+    err = maxval(abs(eout%ke(1:nd, 1:nd) - transpose(eout%ke(1:nd, 1:nd)))) / maxval(abs(eout%ke))
+    write(msg, '(a,es9.2)') 'relative asymmetry ', err
+    call report(name // ': K_e symmetric (eq. 10)', err < 1.0e-15_dp, msg)
+
+    ! eq. (9)
+    call cfe_b_matrix(ein, b)
+    do j = 1, 2
+      do i = 1, 2
+        c(i, j) = ein%penalty * ein%normal(i) * ein%normal(j)
+      end do
+    end do
+    f_expect(1:nd) = matmul(eout%ke(1:nd, 1:nd), ein%ue(1:nd)) + matmul(transpose(b), matmul(c, ein%gap0))
+    err = maxval(abs(eout%fe(1:nd) - f_expect(1:nd))) / maxval(abs(f_expect(1:nd)))
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report(name // ': F_int = K_e D_e + B_e^T C [[U]]_0 (eq. 9)', err < 1.0e-13_dp, msg)
+
+    ! K_e as the central-difference derivative of F_int.
+    h = 1.0e-7_dp
+    do j = 1, nd
+      ep = ein
+      em = ein
+      ep%ue(j) = ep%ue(j) + h
+      em%ue(j) = em%ue(j) - h
+      call element_routine(ep, op)
+      call element_routine(em, om)
+      kfd(1:nd, j) = (op%fe(1:nd) - om%fe(1:nd)) / (2.0_dp * h)
+    end do
+    err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / maxval(abs(eout%ke))
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report(name // ': K_e equals dF_int/dD_e by finite differences', err < 1.0e-6_dp, msg)
+
+    ! [[U]] of eq. (8) is the current vector from X_C (moved with the master)
+    ! to the slave node; its normal part is the gap, and the force is c*gap.
+    uc = matmul(reshape(ein%ue(3:nd), [2, nm]), n(1:nm))
+    jump_geo = (ein%xy(:, 1) + ein%ue(1:2)) - (xc + uc)
+    err = maxval(abs(eout%jump - jump_geo)) / maxval(abs(jump_geo))
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report(name // ': [[U]] = B_e D_e + [[U]]_0 is the slave-to-X_C vector (eq. 8)', err < 1.0e-12_dp, msg)
+    err = abs(eout%normal_force - ein%penalty * dot_product(ein%normal, jump_geo)) / abs(eout%normal_force)
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report(name // ': normal force = penalty * normal gap', err < 1.0e-12_dp, msg)
+
+    ! Only the normal direction is stiff: K_e has rank one, and a tangential
+    ! slide of the slave node costs no force.
+    ep = ein
+    ep%ue(1:2) = ep%ue(1:2) + 1.0e-3_dp * [cos(theta), sin(theta)]
+    call element_routine(ep, op)
+    err = maxval(abs(op%fe(1:nd) - eout%fe(1:nd))) / maxval(abs(eout%fe(1:nd)))
+    write(msg, '(a,es9.2)') 'relative force change ', err
+    call report(name // ': frictionless (tangential slide changes no force)', err < 1.0e-9_dp, msg)
+  end subroutine check
+end program test_cfe
