@@ -12,11 +12,12 @@ program cfe2d
   type(model_t) :: m
   type(listing_t) :: lst
   logical :: quiet
-  integer :: i, k
+  integer :: i, k, ios, digits
 
   deck = ''
   outdir = ''
   quiet = .false.
+  digits = 7
   i = 1
   do while (i <= command_argument_count())
     call get_command_argument(i, arg)
@@ -29,6 +30,12 @@ program cfe2d
       call terminate(0)
     case ('-q', '--quiet')
       quiet = .true.
+    case ('-d', '--digits')
+      i = i + 1
+      if (i > command_argument_count()) call fatal('--digits needs a number')
+      call get_command_argument(i, arg)
+      read(arg, *, iostat=ios) digits
+      if (ios /= 0 .or. digits < 3 .or. digits > 17) call fatal('--digits needs a number from 3 to 17')
     case ('-o', '--output-dir')
       i = i + 1
       if (i > command_argument_count()) call fatal('--output-dir needs a directory')
@@ -60,9 +67,9 @@ program cfe2d
 
   call read_model(deck, m)
   if (size(m%pairs) > 0) then
-    call open_listing(job // '.out', job // '_contact.csv', lst)
+    call open_listing(job // '.out', job // '_contact.csv', digits, lst)
   else
-    call open_listing(job // '.out', '', lst)
+    call open_listing(job // '.out', '', digits, lst)
   end if
   call write_header(lst, m)
   call run_analysis(m, lst, quiet)
@@ -77,6 +84,7 @@ contains
     print '(a)', '<job>_contact.csv, next to the deck or in --output-dir.'
     print '(a)', ''
     print '(a)', '  -o, --output-dir DIR   write the results into DIR'
+    print '(a)', '  -d, --digits N         significant digits of reals in the listing (default 7)'
     print '(a)', '  -q, --quiet            no progress lines'
     print '(a)', '  -h, --help             this text'
     print '(a)', '  -v, --version          program version'

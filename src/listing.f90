@@ -17,6 +17,7 @@ module listing
   type :: listing_t
     integer :: unit = -1
     integer :: csv = -1
+    integer :: digits = 7      ! significant digits of listed reals
   end type listing_t
 
   !> Contact results of one pair, slave and master side, for the listing
@@ -29,14 +30,15 @@ module listing
     integer :: nclosed = 0
   end type contact_results_t
 
-  character(len=*), parameter :: fr = '(es15.6)'
 
 contains
 
-  subroutine open_listing(path, csv_path, lst)
+  subroutine open_listing(path, csv_path, digits, lst)
     character(len=*), intent(in) :: path, csv_path
+    integer, intent(in) :: digits
     type(listing_t), intent(out) :: lst
     integer :: ios
+    lst%digits = digits
     open(newunit=lst%unit, file=path, status='replace', action='write', iostat=ios)
     if (ios /= 0) call fatal('cannot write the listing "' // path // '"')
     call register_unit_to_close(lst%unit)
@@ -54,6 +56,26 @@ contains
     write(lst%unit, '(a)') text
     flush(lst%unit)
   end subroutine write_text
+
+  !> Edit descriptor of one listed real: digits significant digits.
+  function efmt(lst) result(f)
+    type(listing_t), intent(in) :: lst
+    character(len=:), allocatable :: f
+    character(len=16) :: buf
+    write(buf, '(a,i0,a,i0)') 'es', lst%digits + 8, '.', lst%digits - 1
+    f = trim(buf)
+  end function efmt
+
+  !> Row format: leading descriptors, then n reals.
+  function rowfmt(lst, lead, n) result(f)
+    type(listing_t), intent(in) :: lst
+    character(len=*), intent(in) :: lead
+    integer, intent(in) :: n
+    character(len=:), allocatable :: f
+    character(len=8) :: buf
+    write(buf, '(i0)') n
+    f = '(' // lead // ',' // trim(buf) // efmt(lst) // ')'
+  end function rowfmt
 
   !> A real without blanks, for key=value fields.
   function real_text(x) result(s)
@@ -211,19 +233,19 @@ contains
           if (reqs(ir)%u) then
             call block_head('NODE U', reqs(ir)%set, .true., 'node U1 U2')
             do k = 1, nsel
-              write(un, '(i10,2es15.6)') m%node_id(sel(k)), u(:, sel(k))
+              write(un, rowfmt(lst, 'i10', 2)) m%node_id(sel(k)), u(:, sel(k))
             end do
           end if
           if (reqs(ir)%rf) then
             call block_head('NODE RF', reqs(ir)%set, .true., 'node RF1 RF2')
             do k = 1, nsel
-              write(un, '(i10,2es15.6)') m%node_id(sel(k)), rf(:, sel(k))
+              write(un, rowfmt(lst, 'i10', 2)) m%node_id(sel(k)), rf(:, sel(k))
             end do
           end if
           if (reqs(ir)%s) then
             call block_head('NODE S', reqs(ir)%set, .true., 'node S11 S22 S33 S12 MISES')
             do k = 1, nsel
-              write(un, '(i10,5es15.6)') m%node_id(sel(k)), sig_node(:, sel(k)), von_mises(sig_node(:, sel(k)))
+              write(un, rowfmt(lst, 'i10', 5)) m%node_id(sel(k)), sig_node(:, sel(k)), von_mises(sig_node(:, sel(k)))
             end do
           end if
         else
@@ -237,7 +259,7 @@ contains
             do k = 1, size(sel)
               e = sel(k)
               do ip = 1, nip(e)
-                write(un, '(i10,i4,5es15.6)') m%elem_id(e), ip, sig_ip(:, ip, e), von_mises(sig_ip(:, ip, e))
+                write(un, rowfmt(lst, 'i10,i4', 5)) m%elem_id(e), ip, sig_ip(:, ip, e), von_mises(sig_ip(:, ip, e))
               end do
             end do
           end if
@@ -246,7 +268,7 @@ contains
             do k = 1, size(sel)
               e = sel(k)
               do ip = 1, nip(e)
-                write(un, '(i10,i4,3es15.6)') m%elem_id(e), ip, eps_ip(:, ip, e)
+                write(un, rowfmt(lst, 'i10,i4', 3)) m%elem_id(e), ip, eps_ip(:, ip, e)
               end do
             end do
           end if
@@ -257,7 +279,7 @@ contains
       write(un, '(a)') '--- REACTIONS (sum over each prescribed node set)'
       write(un, '(a)') 'set RF1 RF2'
       do k = 1, size(set_ids)
-        write(un, '(a,2es15.6)') trim(m%nsets(set_ids(k))%name), set_sums(:, k)
+        write(un, rowfmt(lst, 'a', 2)) trim(m%nsets(set_ids(k))%name), set_sums(:, k)
       end do
     end if
     do ip = 1, size(m%pairs)
@@ -301,7 +323,7 @@ contains
           xs = m%x(:, c%slave) + u(:, c%slave)
           st = 'OPEN'
           if (c%closed) st = 'CLOSED'
-          write(un, '(i10,3es15.6,1x,a6,3es15.6)') m%node_id(c%slave), xs, c%gap, st, -c%force, c%area, &
+          write(un, '(i10,3' // efmt(lst) // ',1x,a6,3' // efmt(lst) // ')') m%node_id(c%slave), xs, c%gap, st, -c%force, c%area, &
             -c%force / c%area
           if (lst%csv >= 0) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",slave,",i0,",",es15.8,",",es15.8,",",&
             &es15.8,",",a,",",es15.8,",",es15.8)') istep, inc, ttot, ipair, m%node_id(c%slave), xs, c%gap, &
@@ -316,13 +338,13 @@ contains
         xs = m%x(:, nd) + u(:, nd)
         p = 0.0_dp
         if (r%master_area(j) > 0.0_dp) p = r%master_force(j) / r%master_area(j)
-        write(un, '(i10,5es15.6)') m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
+        write(un, rowfmt(lst, 'i10', 5)) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
         if (lst%csv >= 0) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",master,",i0,",",es15.8,",",es15.8,&
           &",0,-,",es15.8,",",es15.8)') istep, inc, ttot, ipair, m%node_id(nd), xs, r%master_force(j), p
       end do
       write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', ipair
       write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
-      write(un, '(i10,4es15.6)') r%nclosed, r%total, r%resultant, r%max_pen
+      write(un, rowfmt(lst, 'i10', 4)) r%nclosed, r%total, r%resultant, r%max_pen
     end subroutine write_contact
   end subroutine write_increment
 end module listing

@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""The test runner of `make check`.
+
+Runs the Fortran unit-test programs (each prints PASS/FAIL lines) and every
+function named test_* in tests/test_*.py (a test fails by raising), then
+prints one line per test and the closing line "N passed, N failed".
+A module may also define cases() yielding (name, callable) pairs.
+"""
+import argparse
+import importlib
+import os
+import subprocess
+import sys
+import time
+import traceback
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+
+from helpers import Skip  # noqa: E402
+
+UNIT_PROGRAMS = ["test_elements", "test_skyline", "test_cfe"]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default="build")
+    ap.add_argument("-k", default="", help="run only tests whose name contains this")
+    args = ap.parse_args()
+    passed = failed = skipped = 0
+
+    def record(name, status, detail=""):
+        nonlocal passed, failed, skipped
+        if args.k and args.k not in name:
+            return
+        if status == "PASS":
+            passed += 1
+        elif status == "SKIP":
+            skipped += 1
+        else:
+            failed += 1
+        print(f"{status} {name}" + (f": {detail}" if detail else ""), flush=True)
+
+    for prog in UNIT_PROGRAMS:
+        exe = os.path.join(ROOT, args.build, "tests", prog)
+        if not os.path.exists(exe):
+            record(prog, "FAIL", f"{exe} was not built")
+            continue
+        r = subprocess.run([exe], capture_output=True, text=True)
+        seen = 0
+        for line in r.stdout.splitlines():
+            if line.startswith("PASS ") or line.startswith("FAIL "):
+                status, rest = line.split(" ", 1)
+                name, detail = rest, ""
+                if status == "FAIL":
+                    name, _, detail = rest.rpartition(": ")
+                record(f"{prog}: {name}", status, detail)
+                seen += 1
+        if seen == 0 or (r.returncode != 0 and "FAIL" not in r.stdout):
+            record(prog, "FAIL", f"exit {r.returncode}: {r.stderr.strip()[:300]}")
+
+    for fname in sorted(os.listdir(HERE)):
+        if not (fname.startswith("test_") and fname.endswith(".py")):
+            continue
+        mod = importlib.import_module(fname[:-3])
+        tests = [(f"{fname[:-3]}: {n}", getattr(mod, n)) for n in dir(mod)
+                 if n.startswith("test_") and callable(getattr(mod, n))]
+        tests.sort(key=lambda t: getattr(t[1], "__code__", None).co_firstlineno
+                   if hasattr(t[1], "__code__") else 0)
+        if hasattr(mod, "cases"):
+            tests += [(f"{fname[:-3]}: {n}", f) for n, f in mod.cases()]
+        for name, fn in tests:
+            if args.k and args.k not in name:
+                continue
+            t0 = time.time()
+            try:
+                fn()
+            except Skip as e:
+                record(name, "SKIP", str(e))
+            except AssertionError as e:
+                record(name, "FAIL", str(e) or traceback.format_exc(limit=2))
+            except Exception:
+                record(name, "FAIL", traceback.format_exc(limit=3))
+            else:
+                record(name, "PASS", f"{time.time() - t0:.1f}s" if time.time() - t0 > 5 else "")
+
+    line = f"{passed} passed, {failed} failed"
+    if skipped:
+        line += f", {skipped} skipped"
+    print(line)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
