@@ -208,19 +208,26 @@ contains
       logical, intent(out) :: ok
       integer, intent(out) :: it
       integer :: bad, a, d, c, nchanged
-      real(dp) :: resid, ref
+      real(dp) :: resid, ref, kmax
       logical :: closed
       ok = .false.
+      call values_at(is, t)
+      ! Newton iterations on the piecewise-linear system: each solves
+      ! K du = f_ext - f_int(u) with the current contact status. With an
+      ! unchanged status the next pass only removes round-off.
       do it = 1, m%contact_max_iter
-        call values_at(is, t)
         call assemble(m, cs, u, fext, dm, k, rhs)
+        kmax = 0.0_dp
+        do a = 1, dm%neq
+          kmax = max(kmax, abs(k%a(k%ptr(a + 1) - 1)))
+        end do
         call sky_factor(k, bad)
         if (bad > 0) call fatal('singular stiffness at node ' // itoa(m%node_id(dm%node_of_eq(bad))) // &
           ', dof ' // itoa(dm%dof_of_eq(bad)) // ' (missing boundary condition?)' // contact_hint())
         call sky_solve(k, rhs)
         do a = 1, m%nn
           do d = 1, 2
-            if (dm%eq(d, a) > 0) u(d, a) = rhs(dm%eq(d, a))
+            if (dm%eq(d, a) > 0) u(d, a) = u(d, a) + rhs(dm%eq(d, a))
           end do
         end do
         call internal_forces(m, cs, u, fint)
@@ -249,7 +256,12 @@ contains
             end if
           end do
         end do
-        ref = max(sqrt(ref), norm2(fext), sum(abs(cs%c(1:cs%n)%force)), tiny(1.0_dp))
+        ! Force scale: loads, reactions, contact forces, and (for a body
+        ! that only moves rigidly) the stiffness times the displacement
+        ! scaled to a strain of 1e-6, so that round-off is not mistaken
+        ! for an out-of-balance force.
+        ref = max(sqrt(ref), norm2(fext), sum(abs(cs%c(1:cs%n)%force)), &
+                  1.0e-6_dp * kmax * maxval(abs(u)), tiny(1.0_dp))
         resid = sqrt(resid) / ref
         if (cs%n > 0) call write_iteration(lst, it, nchanged, count(cs%c(1:cs%n)%closed), resid, &
                                            changed_text(nchanged))

@@ -178,8 +178,7 @@ contains
   end subroutine element_eqs
 
   !> Stiffness into k and the out-of-balance force f_ext - f_int(u) into
-  !> rhs (free equations). With u = prescribed values and zero free dofs,
-  !> k du = rhs gives the free displacements: the total (linear) form.
+  !> rhs (free equations): k du = rhs corrects the free displacements.
   subroutine assemble(m, cs, u, fext, dm, k, rhs)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs

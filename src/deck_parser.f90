@@ -1109,7 +1109,7 @@ contains
     end if
     c%penalty = param_real(p, kw, 'PENALTY', -1.0_dp)
     if (has_param(kw, 'PENALTY') .and. c%penalty <= 0.0_dp) call err(p, 'PENALTY must be positive')
-    c%open_ratio = param_real(p, kw, 'OPEN PENALTY', 1.0e-9_dp)
+    c%open_ratio = param_real(p, kw, 'OPEN PENALTY', 1.0e-12_dp)
     if (c%open_ratio < 0.0_dp .or. c%open_ratio >= 1.0_dp) call err(p, 'OPEN PENALTY (a ratio) must lie in [0, 1)')
     c%nodal = has_param(kw, 'NODAL')
     if (c%nodal .and. .not. has_param(kw, 'PENALTY')) call err(p, 'NODAL needs PENALTY=')

@@ -15,8 +15,9 @@ module listing
             write_iteration, write_text, contact_results_t, contact_results
 
   type :: listing_t
-    integer :: unit = -1
-    integer :: csv = -1
+    integer :: unit = 0
+    integer :: csv = 0
+    logical :: has_csv = .false.
     integer :: digits = 7      ! significant digits of listed reals
   end type listing_t
 
@@ -46,6 +47,7 @@ contains
       open(newunit=lst%csv, file=csv_path, status='replace', action='write', iostat=ios)
       if (ios /= 0) call fatal('cannot write the contact table "' // csv_path // '"')
       call register_unit_to_close(lst%csv)
+      lst%has_csv = .true.
       write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure'
     end if
   end subroutine open_listing
@@ -288,7 +290,7 @@ contains
     end do
     write(un, '(a)') '=== END INCREMENT'
     flush(un)
-    if (lst%csv >= 0) flush(lst%csv)
+    if (lst%has_csv) flush(lst%csv)
 
   contains
 
@@ -325,7 +327,7 @@ contains
           if (c%closed) st = 'CLOSED'
           write(un, '(i10,3' // efmt(lst) // ',1x,a6,3' // efmt(lst) // ')') m%node_id(c%slave), xs, c%gap, st, -c%force, c%area, &
             -c%force / c%area
-          if (lst%csv >= 0) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",slave,",i0,",",es15.8,",",es15.8,",",&
+          if (lst%has_csv) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",slave,",i0,",",es15.8,",",es15.8,",",&
             &es15.8,",",a,",",es15.8,",",es15.8)') istep, inc, ttot, ipair, m%node_id(c%slave), xs, c%gap, &
             trim(st), -c%force, -c%force / c%area
         end associate
@@ -339,7 +341,7 @@ contains
         p = 0.0_dp
         if (r%master_area(j) > 0.0_dp) p = r%master_force(j) / r%master_area(j)
         write(un, rowfmt(lst, 'i10', 5)) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
-        if (lst%csv >= 0) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",master,",i0,",",es15.8,",",es15.8,&
+        if (lst%has_csv) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",master,",i0,",",es15.8,",",es15.8,&
           &",0,-,",es15.8,",",es15.8)') istep, inc, ttot, ipair, m%node_id(nd), xs, r%master_force(j), p
       end do
       write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', ipair

@@ -16,7 +16,9 @@ module messages
     end subroutine c_exit
   end interface
 
-  integer :: open_units(8) = -1
+  ! newunit= numbers are negative, so a count marks the used slots.
+  integer :: open_units(8) = 0
+  integer :: n_open = 0
 
 contains
 
@@ -24,24 +26,18 @@ contains
   !> that completed increments survive a later failure.
   subroutine register_unit_to_close(unit)
     integer, intent(in) :: unit
-    integer :: i
-    do i = 1, size(open_units)
-      if (open_units(i) < 0) then
-        open_units(i) = unit
-        return
-      end if
-    end do
+    if (n_open == size(open_units)) return
+    n_open = n_open + 1
+    open_units(n_open) = unit
   end subroutine register_unit_to_close
 
   subroutine terminate(status)
     integer, intent(in) :: status
     integer :: i
     logical :: opened
-    do i = 1, size(open_units)
-      if (open_units(i) >= 0) then
-        inquire(unit=open_units(i), opened=opened)
-        if (opened) close(open_units(i))
-      end if
+    do i = 1, n_open
+      inquire(unit=open_units(i), opened=opened)
+      if (opened) close(open_units(i))
     end do
     flush(output_unit)
     flush(error_unit)

@@ -101,7 +101,7 @@ module model
   type :: contact_pair_t
     integer :: slave_surface = 0, master_surface = 0
     real(dp) :: penalty = -1.0_dp         ! < 0: automatic
-    real(dp) :: open_ratio = 1.0e-9_dp    ! open penalty / closed penalty
+    real(dp) :: open_ratio = 1.0e-12_dp   ! open penalty / closed penalty
     logical :: nodal = .false.            ! penalty given per node, not per area
     real(dp) :: search_distance = -1.0_dp ! < 0: automatic
     logical :: update_search = .false.

@@ -1,0 +1,159 @@
+"""CFE contact against closed-form answers: two blocks with an initial gap
+and non-matching meshes, pressed and released (issue: contact (a)-(e))."""
+from decks import grid, node_lines, quad_lines
+from helpers import rel_err, run_deck
+
+E, NU, W, H1, H2, G0 = 1000.0, 0.3, 1.0, 1.0, 1.0, 0.01
+NX1, NY1, NX2, NY2 = 5, 5, 7, 4
+
+
+def blocks_deck(steps, pair_params="", lower_load=False):
+    """Lower block (master) on the ground, upper block (slave) G0 above it.
+    steps: list of *STEP bodies."""
+    n1, ids1, q1 = grid(NX1, NY1, 0.0, W, 0.0, H1)
+    n2, ids2, q2 = grid(NX2, NY2, 0.0, W, H1 + G0, H1 + G0 + H2, first_node=1001)
+    nodes = {**n1, **n2}
+    top1 = [ids1[i, NY1] for i in range(NX1 + 1)]
+    bottom1 = [ids1[i, 0] for i in range(NX1 + 1)]
+    bottom2 = [ids2[i, 0] for i in range(NX2 + 1)]
+    top2 = [ids2[i, NY2] for i in range(NX2 + 1)]
+    # element faces S3 (node 3 -> 4) of the lower block's top row
+    top_elems = [NX1 * (NY1 - 1) + i + 1 for i in range(NX1)]
+    body = "".join(steps)
+    return f"""*HEADING
+two blocks, gap {G0}
+*NODE, NSET=ALLN
+{node_lines(nodes)}*ELEMENT, TYPE=CPS4, ELSET=LOWER
+{quad_lines(q1, 1)}*ELEMENT, TYPE=CPS4, ELSET=UPPER
+{quad_lines(q2, 1001)}*NSET, NSET=GROUND
+{", ".join(map(str, bottom1))}
+*NSET, NSET=ANCHOR
+{bottom1[0]}
+*NSET, NSET=SLAVE
+{", ".join(map(str, bottom2))}
+*NSET, NSET=TOP
+{", ".join(map(str, top2))}
+*NSET, NSET=TOPLEFT
+{top2[0]}
+*ELSET, ELSET=LOWERTOP
+{", ".join(map(str, top_elems))}
+*SURFACE, NAME=MASTER
+LOWERTOP, S3
+*MATERIAL, NAME=M
+*ELASTIC
+{E}, {NU}
+*SOLID SECTION, ELSET=LOWER, MATERIAL=M
+*SOLID SECTION, ELSET=UPPER, MATERIAL=M
+*CONTACT PAIR{pair_params}
+SLAVE, MASTER
+*BOUNDARY
+GROUND, 2, 2
+ANCHOR, 1, 1
+TOPLEFT, 1, 1
+{body}"""
+
+
+def push_step(d, incs=1):
+    return f"""*STEP
+*STATIC
+{1.0 / incs}, 1.0
+*BOUNDARY
+TOP, 2, 2, {-d}
+*NODE PRINT, NSET=TOP
+U
+*EL PRINT, ELSET=UPPER
+S
+*END STEP
+"""
+
+
+def series_pressure(d):
+    return E * (d - G0) / (H1 + H2)
+
+
+def contact_blocks(inc, pair=1):
+    return inc.block("CONTACT SLAVE", pair=pair), inc.block("CONTACT MASTER", pair=pair), \
+        inc.block("CONTACT SUMMARY", pair=pair)
+
+
+def test_blocks_apart_no_force_no_stress():
+    d = 0.5 * G0
+    run = run_deck("contact_apart", blocks_deck([push_step(d)])).ok()
+    inc = run.listing.increments[-1]
+    slave, master, summ = contact_blocks(inc)
+    assert all(s == "OPEN" for s in slave["state"]), slave["state"]
+    scale = E * G0 / (H1 + H2)
+    assert max(abs(slave["pressure"])) < 1e-6 * scale, max(abs(slave["pressure"]))
+    assert max(abs(inc.block("ELEMENT S", set="UPPER")["S22"])) < 1e-6 * scale
+
+
+def test_blocks_pressed_uniform_series_spring_pressure():
+    d = 3 * G0
+    run = run_deck("contact_pressed", blocks_deck([push_step(d, 2)])).ok()
+    inc = run.listing.increments[-1]
+    slave, master, summ = contact_blocks(inc)
+    p = series_pressure(d)
+    assert all(s == "CLOSED" for s in slave["state"]), slave["state"]
+    err_s = max(abs(slave["pressure"] - p)) / p
+    assert err_s < 0.005, f"slave pressure error {err_s:.4f}"
+    err_m = max(abs(master["pressure"] - p)) / p
+    assert err_m < 0.05, f"master pressure error {err_m:.4f}"
+    s22 = inc.block("ELEMENT S", set="UPPER")["S22"]
+    assert max(abs(s22 + p)) / p < 0.005
+    assert rel_err(summ["total_force"][0], p * W) < 1e-3
+
+
+def test_unloading_opens_every_cfe():
+    d = 3 * G0
+    back = push_step(d, 2).replace(f"TOP, 2, 2, {-d}", "TOP, 2, 2, 0.0")
+    run = run_deck("contact_unload", blocks_deck([push_step(d, 2), back])).ok()
+    last = run.listing.increments[-1]
+    slave, master, summ = contact_blocks(last)
+    assert all(s == "OPEN" for s in slave["state"])
+    assert abs(summ["total_force"][0]) < 1e-9 * series_pressure(d) * W
+    assert max(abs(last.block("NODE U", set="TOP")["U2"])) < 1e-12
+    assert max(abs(last.block("ELEMENT S", set="UPPER")["S22"])) < 1e-6 * series_pressure(d)
+
+
+def test_switch_at_sign_change_of_normal_force():
+    for factor, closed in ((0.999, False), (1.001, True)):
+        run = run_deck("contact_switch", blocks_deck([push_step(factor * G0)])).ok()
+        slave, _, summ = contact_blocks(run.listing.increments[-1])
+        states = set(slave["state"])
+        assert states == {"CLOSED" if closed else "OPEN"}, (factor, states)
+        if closed:
+            assert rel_err(summ["total_force"][0], series_pressure(factor * G0) * W) < 0.01
+
+
+def test_penalty_insensitivity_two_decades():
+    d = 3 * G0
+    # The automatic rule: 1000 E / h per unit area, h = smallest adjacent edge.
+    auto = 1000 * E / (W / NX2)
+    pressures = []
+    for factor in (1, 10, 100):
+        run = run_deck("contact_penalty", blocks_deck([push_step(d)], f", PENALTY={factor * auto}")).ok()
+        slave, _, _ = contact_blocks(run.listing.increments[-1])
+        pressures.append(slave["pressure"].mean())
+    change = (max(pressures) - min(pressures)) / max(pressures)
+    assert change < 0.005, f"pressures {pressures}"
+
+
+def test_body_held_only_by_contact_is_solved():
+    """Force-driven upper block with an initial gap: no NaN, the right answer."""
+    load = 2.0
+    n = NX2 + 1
+    step = f"""*STEP
+*STATIC
+*CLOAD
+TOP, 2, {-load / n}
+*NODE PRINT, NSET=TOP
+U
+*END STEP
+"""
+    deck = blocks_deck([step])
+    run = run_deck("contact_force_driven", deck)
+    assert "NaN" not in open(run.listing_path).read()
+    run.ok()
+    slave, _, summ = contact_blocks(run.listing.increments[-1])
+    assert rel_err(summ["total_force"][0], load) < 1e-6, summ["total_force"]
+    assert max(abs(slave["pressure"] - load / W)) / (load / W) < 0.02
