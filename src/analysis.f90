@@ -50,6 +50,10 @@ contains
     integer :: is, i, ninc, inc, j, nset
     real(dp) :: total_time, period
     character(len=:), allocatable :: last_changed
+    logical :: factor_valid
+    logical, allocatable :: factor_states(:)
+    integer :: nfactor
+    real(dp) :: kmax
 
     allocate(u(2, m%nn), fext(2, m%nn), fint(2, m%nn), rf(2, m%nn), presc(2, m%nn), &
              bc_start(2, m%nn), bc_target(2, m%nn), ld_start(2, m%nn), ld_target(2, m%nn), &
@@ -63,6 +67,10 @@ contains
     ld_amp = 0
     ! Small deformation: one search on the initial configuration.
     call contact_search(m, m%x, cs)
+    allocate(factor_states(cs%n))
+    factor_valid = .false.
+    nfactor = 0
+    kmax = 0.0_dp
     total_time = 0.0_dp
 
     do is = 1, size(m%steps)
@@ -96,6 +104,7 @@ contains
         call prescribed_sets()
 
         call number_dofs(m, cs, presc, m%ordering == ordering_rcm, dm, k)
+        factor_valid = .false.
         if (allocated(rhs)) deallocate(rhs)
         allocate(rhs(dm%neq))
         call write_step_header(lst, is, m, dm%neq, count(presc), k%nnz, cs)
@@ -208,22 +217,31 @@ contains
       logical, intent(out) :: ok
       integer, intent(out) :: it
       integer :: bad, a, d, c, nchanged
-      real(dp) :: resid, ref, kmax
-      logical :: closed
+      real(dp) :: resid, ref
+      logical :: closed, refactor
       ok = .false.
       call values_at(is, t)
       ! Newton iterations on the piecewise-linear system: each solves
       ! K du = f_ext - f_int(u) with the current contact status. With an
       ! unchanged status the next pass only removes round-off.
       do it = 1, m%contact_max_iter
-        call assemble(m, cs, u, fext, dm, k, rhs)
-        kmax = 0.0_dp
-        do a = 1, dm%neq
-          kmax = max(kmax, abs(k%a(k%ptr(a + 1) - 1)))
-        end do
-        call sky_factor(k, bad)
-        if (bad > 0) call fatal('singular stiffness at node ' // itoa(m%node_id(dm%node_of_eq(bad))) // &
-          ', dof ' // itoa(dm%dof_of_eq(bad)) // ' (missing boundary condition?)' // contact_hint())
+        ! The stiffness depends only on the contact status: its factor is
+        ! kept while the status is the one it was made for.
+        refactor = .not. factor_valid
+        if (.not. refactor) refactor = any(factor_states .neqv. cs%c(1:cs%n)%closed)
+        call assemble(m, cs, u, fext, dm, k, rhs, refactor)
+        if (refactor) then
+          kmax = 0.0_dp
+          do a = 1, dm%neq
+            kmax = max(kmax, abs(k%a(k%ptr(a + 1) - 1)))
+          end do
+          call sky_factor(k, bad)
+          if (bad > 0) call fatal('singular stiffness at node ' // itoa(m%node_id(dm%node_of_eq(bad))) // &
+            ', dof ' // itoa(dm%dof_of_eq(bad)) // ' (missing boundary condition?)' // contact_hint())
+          factor_states = cs%c(1:cs%n)%closed
+          factor_valid = .true.
+          nfactor = nfactor + 1
+        end if
         call sky_solve(k, rhs)
         do a = 1, m%nn
           do d = 1, 2

@@ -179,17 +179,18 @@ contains
 
   !> Stiffness into k and the out-of-balance force f_ext - f_int(u) into
   !> rhs (free equations): k du = rhs corrects the free displacements.
-  subroutine assemble(m, cs, u, fext, dm, k, rhs)
+  subroutine assemble(m, cs, u, fext, dm, k, rhs, with_k)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     real(dp), intent(in) :: u(:, :), fext(:, :)
     type(dofmap_t), intent(in) :: dm
     type(skyline_t), intent(inout) :: k
     real(dp), intent(out) :: rhs(:)
+    logical, intent(in) :: with_k    ! .false.: only the right-hand side
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, i, j, nodes(max_en), gi, gj
-    call sky_zero(k)
+    if (with_k) call sky_zero(k)
     rhs = 0.0_dp
     do i = 1, m%nn
       do j = 1, 2
@@ -208,6 +209,7 @@ contains
         gi = dm%eq(2 - mod(i, 2), nodes((i + 1) / 2))
         if (gi == 0) cycle
         rhs(gi) = rhs(gi) - eout%fe(i)
+        if (.not. with_k) cycle
         do j = i, eout%ndof
           gj = dm%eq(2 - mod(j, 2), nodes((j + 1) / 2))
           if (gj == 0) cycle

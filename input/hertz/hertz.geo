@@ -6,11 +6,11 @@
 //
 // Parameters (gmsh -setnumber NAME VALUE):
 //   h       element size at the contact (mm)          default 0.1
-//   ratio   cylinder size / plate size at the contact  default 0.6
+//   ratio   cylinder size / plate size at the contact  default 0.5
 //   Lp      plate half width (mm)                      default 40
 //   Hp      plate depth (mm)                           default 40
 //   quads   1 = quadrilaterals, 0 = triangles          default 1
-DefineConstant[ h = 0.1, ratio = 0.6, Lp = 40, Hp = 40, quads = 1 ];
+DefineConstant[ h = 0.1, ratio = 0.5, Lp = 40, Hp = 40, quads = 1 ];
 R = 10;
 g0 = 0.1;
 far = R / 4;      // element size far from the contact
@@ -44,33 +44,53 @@ Line(13) = {10, 11};
 Curve Loop(2) = {10, 11, 12, 13};
 Plane Surface(2) = {2};
 
-// grading: fine within `zone` of the contact point, coarser away from it
+// grading: the size grows from h/2 at the contact point to h at 1.3 mm
+// (the half-width at the peak load), stays h out to `zone`, then grows to
+// `far`. Fields 1-5: plate; 11-15: cylinder (sizes times `ratio`).
 Field[1] = Distance;
 Field[1].PointsList = {5};
 Field[2] = Threshold;
 Field[2].InField = 1;
-Field[2].SizeMin = h;
-Field[2].SizeMax = far;
-Field[2].DistMin = zone;
-Field[2].DistMax = 2 * R;
-Field[3] = Distance;
-Field[3].PointsList = {12};
-Field[4] = Threshold;
-Field[4].InField = 3;
-Field[4].SizeMin = ratio * h;
-Field[4].SizeMax = far;
-Field[4].DistMin = zone;
-Field[4].DistMax = R;
+Field[2].SizeMin = 0.5 * 1 * h;
+Field[2].SizeMax = 1 * h;
+Field[2].DistMin = 0;
+Field[2].DistMax = 1.3;
+Field[3] = Threshold;
+Field[3].InField = 1;
+Field[3].SizeMin = 1 * h;
+Field[3].SizeMax = far;
+Field[3].DistMin = zone;
+Field[3].DistMax = 2 * R;
+Field[4] = MathEval;
+Field[4].F = Sprintf("F2 + F3 - %g", 1 * h);
 Field[5] = Restrict;
-Field[5].InField = 2;
+Field[5].InField = 4;
 Field[5].SurfacesList = {1};
 Field[5].CurvesList = {1, 2, 3, 4, 5, 6};
-Field[6] = Restrict;
-Field[6].InField = 4;
-Field[6].SurfacesList = {2};
-Field[6].CurvesList = {10, 11, 12, 13};
+
+Field[11] = Distance;
+Field[11].PointsList = {12};
+Field[12] = Threshold;
+Field[12].InField = 11;
+Field[12].SizeMin = 0.5 * ratio * h;
+Field[12].SizeMax = ratio * h;
+Field[12].DistMin = 0;
+Field[12].DistMax = 1.3;
+Field[13] = Threshold;
+Field[13].InField = 11;
+Field[13].SizeMin = ratio * h;
+Field[13].SizeMax = far;
+Field[13].DistMin = zone;
+Field[13].DistMax = R;
+Field[14] = MathEval;
+Field[14].F = Sprintf("F12 + F13 - %g", ratio * h);
+Field[15] = Restrict;
+Field[15].InField = 14;
+Field[15].SurfacesList = {2};
+Field[15].CurvesList = {10, 11, 12, 13};
+
 Field[7] = Min;
-Field[7].FieldsList = {5, 6};
+Field[7].FieldsList = {5, 15};
 Background Field = 7;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromPoints = 0;
