@@ -17,7 +17,7 @@ MODDIR := $(BUILD)/mod
 # Program modules in dependency order (see the explicit rules below).
 MODULES := kinds messages strings deck_input model deck_parser materials \
            element_types plane_elements cfe_element element_library skyline \
-           ordering contact assembly listing analysis
+           ordering contact assembly listing results_gmsh analysis
 OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
 TESTS := test_elements test_skyline test_cfe
@@ -64,11 +64,11 @@ $(OBJDIR)/ordering.o:
 $(OBJDIR)/contact.o: $(OBJDIR)/model.o $(OBJDIR)/element_types.o
 $(OBJDIR)/assembly.o: $(OBJDIR)/model.o $(OBJDIR)/contact.o $(OBJDIR)/element_library.o \
                       $(OBJDIR)/skyline.o $(OBJDIR)/ordering.o
-$(OBJDIR)/listing.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o \
-                     $(OBJDIR)/assembly.o $(OBJDIR)/messages.o
+$(OBJDIR)/listing.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o
+$(OBJDIR)/results_gmsh.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o
 $(OBJDIR)/analysis.o: $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/skyline.o \
-                      $(OBJDIR)/listing.o $(OBJDIR)/messages.o
-$(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o
+                      $(OBJDIR)/listing.o $(OBJDIR)/results_gmsh.o $(OBJDIR)/messages.o
+$(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o
 
 deps:
 	bash scripts/install-deps.sh

@@ -6,7 +6,8 @@ module analysis
   use kinds, only: dp
   use model
   use contact, only: contact_set_t, contact_search
-  use assembly, only: dofmap_t, number_dofs, assemble, internal_forces
+  use assembly, only: dofmap_t, number_dofs, assemble, internal_forces, stress_recovery
+  use results_gmsh, only: result_file_t, write_result_views
   use skyline, only: skyline_t, sky_factor, sky_solve
   use listing, only: listing_t, write_step_header, write_increment, write_iteration, write_text, &
                      contact_results_t, contact_results
@@ -35,9 +36,10 @@ contains
     end if
   end function amplitude_value
 
-  subroutine run_analysis(m, lst, quiet)
+  subroutine run_analysis(m, lst, res, quiet)
     type(model_t), intent(in) :: m
     type(listing_t), intent(in) :: lst
+    type(result_file_t), intent(inout) :: res    ! written when res%open
     logical, intent(in) :: quiet
     real(dp), allocatable :: u(:, :), fext(:, :), fint(:, :), rf(:, :)
     real(dp), allocatable :: bc_start(:, :), bc_target(:, :), ld_start(:, :), ld_target(:, :)
@@ -308,21 +310,71 @@ contains
     subroutine report(is, t, iters)
       integer, intent(in) :: is, iters
       real(dp), intent(in) :: t
-      integer :: s, q, ip
+      integer :: s, q, ip, j, e
       real(dp) :: force
       type(contact_results_t) :: cr
+      type(request_t) :: fnode, felem
+      integer, allocatable :: nip(:)
+      real(dp), allocatable :: sig_ip(:, :, :), eps_ip(:, :, :), sig_node(:, :), sig_elem(:, :), pres(:)
+      logical, allocatable :: has_pres(:)
+      allocate(nip(m%ne), sig_ip(4, 4, m%ne), eps_ip(3, 4, m%ne), sig_node(4, m%nn), sig_elem(4, m%ne))
+      ! Requests to file of this step, merged into one nodal and one element set of views.
+      fnode%u = .false.
+      felem%s = .false.
+      do q = 1, size(m%steps(is)%requests)
+        associate(r => m%steps(is)%requests(q))
+          if (.not. r%to_file) cycle
+          if (r%nodal) then
+            fnode%u = fnode%u .or. r%u
+            fnode%rf = fnode%rf .or. r%rf
+            fnode%s = fnode%s .or. r%s
+            fnode%cstress = fnode%cstress .or. r%cstress
+          else
+            felem%s = felem%s .or. r%s
+          end if
+        end associate
+      end do
+      if (any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e)) then
+        call stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node)
+      else
+        nip = 0
+        sig_ip = 0.0_dp
+        eps_ip = 0.0_dp
+        sig_node = 0.0_dp
+      end if
       do s = 1, nset
         set_sums(:, s) = 0.0_dp
         do q = 1, size(m%nsets(set_ids(s))%items)
           set_sums(:, s) = set_sums(:, s) + rf(:, m%nsets(set_ids(s))%items(q))
         end do
       end do
-      call write_increment(lst, m, is, inc, t, total_time + t, iters, u, rf, cs, set_sums, set_ids)
+      call write_increment(lst, m, is, inc, t, total_time + t, iters, u, rf, cs, set_sums, set_ids, &
+                           nip, sig_ip, eps_ip, sig_node)
       force = 0.0_dp
+      allocate(pres(m%nn), has_pres(m%nn))
+      pres = 0.0_dp
+      has_pres = .false.
       do ip = 1, size(m%pairs)
         call contact_results(m, cs, ip, cr)
         force = force + cr%total
+        do j = 1, size(cr%slave_cfe)
+          associate(c => cs%c(cr%slave_cfe(j)))
+            pres(c%slave) = -c%force / c%area
+            has_pres(c%slave) = .true.
+          end associate
+        end do
+        do j = 1, size(cr%master_node)
+          if (cr%master_area(j) > 0.0_dp) pres(cr%master_node(j)) = cr%master_force(j) / cr%master_area(j)
+          has_pres(cr%master_node(j)) = .true.
+        end do
       end do
+      if (res%open .and. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s)) then
+        do e = 1, m%ne
+          sig_elem(:, e) = 0.0_dp
+          if (nip(e) > 0) sig_elem(:, e) = sum(sig_ip(:, 1:nip(e), e), dim=2) / nip(e)
+        end do
+        call write_result_views(res, m, fnode, felem, total_time + t, u, rf, sig_node, sig_elem, pres, has_pres)
+      end if
       if (.not. quiet) then
         write(output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es12.5)') 'step ', is, '  increment ', inc, &
           '  time ', total_time + t, '  iterations ', iters, '  closed ', count(cs%c(1:cs%n)%closed), &

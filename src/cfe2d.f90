@@ -5,12 +5,14 @@ program cfe2d
   use deck_parser, only: read_model
   use listing, only: listing_t, open_listing, write_header
   use analysis, only: run_analysis
+  use results_gmsh, only: result_file_t, open_result_file
   use messages, only: fatal, terminate
   implicit none
   character(len=4096) :: arg
   character(len=:), allocatable :: deck, outdir, job, base
   type(model_t) :: m
   type(listing_t) :: lst
+  type(result_file_t) :: res
   logical :: quiet
   integer :: i, k, ios, digits
 
@@ -72,16 +74,27 @@ program cfe2d
     call open_listing(job // '.out', '', digits, lst)
   end if
   call write_header(lst, m)
-  call run_analysis(m, lst, quiet)
+  if (any_file_request(m)) call open_result_file(job // '.msh', m, res)
+  call run_analysis(m, lst, res, quiet)
   call terminate(0)
 
 contains
+
+  logical function any_file_request(m)
+    type(model_t), intent(in) :: m
+    integer :: s
+    any_file_request = .false.
+    do s = 1, size(m%steps)
+      if (any(m%steps(s)%requests%to_file)) any_file_request = .true.
+    end do
+  end function any_file_request
 
   subroutine usage()
     print '(a)', 'usage: cfe2d [options] deck.inp'
     print '(a)', ''
     print '(a)', 'Runs the keyword deck and writes <job>.out (listing) and, with contact,'
-    print '(a)', '<job>_contact.csv, next to the deck or in --output-dir.'
+    print '(a)', '<job>_contact.csv, and with *NODE FILE or *EL FILE the gmsh result file'
+    print '(a)', '<job>.msh, next to the deck or in --output-dir.'
     print '(a)', ''
     print '(a)', '  -o, --output-dir DIR   write the results into DIR'
     print '(a)', '  -d, --digits N         significant digits of reals in the listing (default 7)'

@@ -7,7 +7,6 @@ module listing
   use model
   use materials, only: von_mises
   use contact, only: contact_set_t
-  use assembly, only: stress_recovery
   use messages, only: register_unit_to_close, fatal
   implicit none
   private
@@ -196,7 +195,8 @@ contains
     end associate
   end subroutine contact_results
 
-  subroutine write_increment(lst, m, istep, inc, t, ttot, iters, u, rf, cs, set_sums, set_ids)
+  subroutine write_increment(lst, m, istep, inc, t, ttot, iters, u, rf, cs, set_sums, set_ids, &
+                             nip, sig_ip, eps_ip, sig_node)
     type(listing_t), intent(in) :: lst
     type(model_t), intent(in) :: m
     integer, intent(in) :: istep, inc, iters
@@ -205,24 +205,16 @@ contains
     type(contact_set_t), intent(in) :: cs
     real(dp), intent(in) :: set_sums(:, :)
     integer, intent(in) :: set_ids(:)
+    integer, intent(in) :: nip(:)                 ! stresses: see stress_recovery
+    real(dp), intent(in) :: sig_ip(:, :, :), eps_ip(:, :, :), sig_node(:, :)
     integer :: ir, k, un, e, ip, nsel
-    integer, allocatable :: nip(:), sel(:)
-    real(dp), allocatable :: sig_ip(:, :, :), eps_ip(:, :, :), sig_node(:, :)
-    logical :: need_stress
+    integer, allocatable :: sel(:)
     type(contact_results_t) :: cr
     un = lst%unit
     write(un, '(a)') ''
     write(un, '(a,i0,a,i0,a,i0,a)') '=== INCREMENT step=', istep, ' increment=', inc, &
       ' time=' // real_text(t) // ' total_time=' // real_text(ttot) // ' iterations=', iters, ' ==='
     associate(reqs => m%steps(istep)%requests)
-      need_stress = .false.
-      do ir = 1, size(reqs)
-        if (.not. reqs(ir)%to_file .and. (reqs(ir)%s .or. reqs(ir)%e)) need_stress = .true.
-      end do
-      if (need_stress) then
-        allocate(nip(m%ne), sig_ip(4, 4, m%ne), eps_ip(3, 4, m%ne), sig_node(4, m%nn))
-        call stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node)
-      end if
       do ir = 1, size(reqs)
         if (reqs(ir)%to_file) cycle
         if (reqs(ir)%nodal) then

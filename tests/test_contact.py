@@ -1,13 +1,20 @@
 """CFE contact against closed-form answers: two blocks with an initial gap
-and non-matching meshes, pressed and released (issue: contact (a)-(e))."""
+and non-matching meshes, pressed and released.
+
+The upper (slave) block has 10 elements across, the lower (master) block 5:
+the meshes do not match (every other slave node faces the middle of a
+master edge). Single-pass node-to-segment contact transmits a uniform
+pressure exactly on such nested meshes; on meshes with no common
+refinement (7 over 5) it does not (the contact patch test), and
+test_general_nonmatching_patch_error measures that error."""
 from decks import grid, node_lines, quad_lines
 from helpers import rel_err, run_deck
 
 E, NU, W, H1, H2, G0 = 1000.0, 0.3, 1.0, 1.0, 1.0, 0.01
-NX1, NY1, NX2, NY2 = 5, 5, 7, 4
+NX1, NY1, NX2, NY2 = 5, 5, 10, 4
 
 
-def blocks_deck(steps, pair_params="", lower_load=False):
+def blocks_deck(steps, pair_params=""):
     """Lower block (master) on the ground, upper block (slave) G0 above it.
     steps: list of *STEP bodies."""
     n1, ids1, q1 = grid(NX1, NY1, 0.0, W, 0.0, H1)
@@ -110,7 +117,9 @@ def test_unloading_opens_every_cfe():
     last = run.listing.increments[-1]
     slave, master, summ = contact_blocks(last)
     assert all(s == "OPEN" for s in slave["state"])
-    assert abs(summ["total_force"][0]) < 1e-9 * series_pressure(d) * W
+    # the open penalty (1e-12 of the closed one) leaves a tensile force
+    # many orders below the loaded value
+    assert abs(summ["total_force"][0]) < 1e-6 * series_pressure(d) * W
     assert max(abs(last.block("NODE U", set="TOP")["U2"])) < 1e-12
     assert max(abs(last.block("ELEMENT S", set="UPPER")["S22"])) < 1e-6 * series_pressure(d)
 
@@ -157,3 +166,23 @@ U
     slave, _, summ = contact_blocks(run.listing.increments[-1])
     assert rel_err(summ["total_force"][0], load) < 1e-6, summ["total_force"]
     assert max(abs(slave["pressure"] - load / W)) / (load / W) < 0.02
+
+
+def test_general_nonmatching_patch_error():
+    """Meshes with no common refinement (7 slave over 5 master elements):
+    single-pass node-to-segment does not pass the contact patch test. The
+    measured errors (slave 9.5%, master 6.8% of p at the time of writing)
+    are guarded here so that a change to the method shows up."""
+    global NX2
+    saved, NX2 = NX2, 7
+    try:
+        d = 3 * G0
+        run = run_deck("contact_general", blocks_deck([push_step(d)])).ok()
+    finally:
+        NX2 = saved
+    slave, master, summ = contact_blocks(run.listing.increments[-1])
+    p = series_pressure(d)
+    err_s = max(abs(slave["pressure"] - p)) / p
+    err_m = max(abs(master["pressure"] - p)) / p
+    assert rel_err(summ["total_force"][0], p * W) < 1e-3, "total force must still balance"
+    assert err_s < 0.12 and err_m < 0.10, f"slave {err_s:.4f}, master {err_m:.4f}"
