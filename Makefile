@@ -8,15 +8,16 @@ BUILD    ?= build
 OPTFLAGS ?= -O2 -march=x86-64 -mtune=generic
 DBGFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -fcheck=all -g -fbacktrace -O0
 FFLAGS   ?= $(OPTFLAGS)
-LAPACK   ?= -llapack -lblas
+LIBS     ?= -lcholmod -lumfpack -lamd -lcolamd -lsuitesparseconfig -lmetis -llapack -lopenblas
 PYTHON   ?= python3
 
 OBJDIR := $(BUILD)/obj
 MODDIR := $(BUILD)/mod
 
 # Program modules in dependency order (see the explicit rules below).
-MODULES := kinds messages strings deck_input model deck_parser materials \
-           element_types plane_elements cfe_element element_library skyline \
+MODULES := kinds messages strings skyline sparse_matrix cholmod_binding umfpack_binding \
+           metis_binding blas_info linear_solver deck_input model deck_parser materials \
+           element_types plane_elements cfe_element element_library \
            ordering contact assembly listing results_gmsh analysis
 OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
@@ -33,7 +34,7 @@ help:
 	@echo "make deps       install compilers, libraries, gmsh and Python packages"
 
 bin/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o | bin
-	$(FC) $(FFLAGS) -o $@ $^ $(LAPACK)
+	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
 
 debug:
 	$(MAKE) BUILD=build-debug FFLAGS="$(DBGFLAGS)" bin/cfe2d
@@ -45,15 +46,24 @@ $(OBJDIR)/%.o: src/%.f90 | $(OBJDIR) $(MODDIR)
 	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
 
 $(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) | $(BUILD)/tests
-	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(OBJS) $(LAPACK)
+	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(OBJS) $(LIBS)
 
 # Explicit module dependencies: an object depends on the objects of the
 # modules it uses (their .mod files are written alongside).
 $(OBJDIR)/messages.o:
 $(OBJDIR)/strings.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/deck_input.o: $(OBJDIR)/strings.o $(OBJDIR)/messages.o
-$(OBJDIR)/model.o: $(OBJDIR)/kinds.o
-$(OBJDIR)/deck_parser.o: $(OBJDIR)/kinds.o $(OBJDIR)/strings.o $(OBJDIR)/deck_input.o $(OBJDIR)/model.o
+$(OBJDIR)/sparse_matrix.o: $(OBJDIR)/kinds.o
+$(OBJDIR)/cholmod_binding.o:
+$(OBJDIR)/umfpack_binding.o:
+$(OBJDIR)/metis_binding.o:
+$(OBJDIR)/blas_info.o:
+$(OBJDIR)/linear_solver.o: $(OBJDIR)/kinds.o $(OBJDIR)/skyline.o $(OBJDIR)/sparse_matrix.o \
+                           $(OBJDIR)/cholmod_binding.o $(OBJDIR)/umfpack_binding.o \
+                           $(OBJDIR)/metis_binding.o $(OBJDIR)/messages.o
+$(OBJDIR)/model.o: $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o
+$(OBJDIR)/deck_parser.o: $(OBJDIR)/kinds.o $(OBJDIR)/strings.o $(OBJDIR)/deck_input.o $(OBJDIR)/model.o \
+                         $(OBJDIR)/linear_solver.o
 $(OBJDIR)/materials.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/element_types.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/plane_elements.o: $(OBJDIR)/element_types.o $(OBJDIR)/materials.o
@@ -63,10 +73,11 @@ $(OBJDIR)/skyline.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/ordering.o:
 $(OBJDIR)/contact.o: $(OBJDIR)/model.o $(OBJDIR)/element_types.o
 $(OBJDIR)/assembly.o: $(OBJDIR)/model.o $(OBJDIR)/contact.o $(OBJDIR)/element_library.o \
-                      $(OBJDIR)/skyline.o $(OBJDIR)/ordering.o
-$(OBJDIR)/listing.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o
+                      $(OBJDIR)/linear_solver.o $(OBJDIR)/ordering.o
+$(OBJDIR)/listing.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o \
+                     $(OBJDIR)/linear_solver.o $(OBJDIR)/blas_info.o
 $(OBJDIR)/results_gmsh.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o
-$(OBJDIR)/analysis.o: $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/skyline.o \
+$(OBJDIR)/analysis.o: $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/linear_solver.o \
                       $(OBJDIR)/listing.o $(OBJDIR)/results_gmsh.o $(OBJDIR)/messages.o
 $(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o
 
@@ -74,7 +85,7 @@ deps:
 	bash scripts/install-deps.sh
 
 run: deps bin/cfe2d
-	$(PYTHON) scripts/run_main.py
+	$(PYTHON) scripts/run_hertz.py
 
 check: deps
 	$(MAKE) bin/cfe2d $(TESTS:%=$(BUILD)/tests/%)

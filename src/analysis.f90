@@ -8,7 +8,9 @@ module analysis
   use contact, only: contact_set_t, contact_search
   use assembly, only: dofmap_t, number_dofs, assemble, internal_forces, stress_recovery
   use results_gmsh, only: result_file_t, write_result_views
-  use skyline, only: skyline_t, sky_factor, sky_solve
+  use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_describe, sys_setup, sys_free, &
+                           factor_ok, factor_singular, factor_fallback, solver_skyline, order_natural
+  use messages, only: warn
   use listing, only: listing_t, write_step_header, write_increment, write_iteration, write_text, &
                      contact_results_t, contact_results
   use messages, only: fatal
@@ -48,11 +50,12 @@ contains
     real(dp), allocatable :: rhs(:), set_sums(:, :)
     type(contact_set_t) :: cs
     type(dofmap_t) :: dm
-    type(skyline_t) :: k
+    type(linear_system_t) :: sys
+    logical :: described
     integer :: is, i, ninc, inc, j, nset
     real(dp) :: total_time, period
     character(len=:), allocatable :: last_changed
-    logical :: factor_valid
+    logical :: factor_valid, update_search
     logical, allocatable :: factor_states(:)
     integer :: nfactor
     real(dp) :: kmax
@@ -69,6 +72,8 @@ contains
     ld_amp = 0
     ! Small deformation: one search on the initial configuration.
     call contact_search(m, m%x, cs)
+    update_search = .false.
+    if (size(m%pairs) > 0) update_search = any(m%pairs%update_search)
     allocate(factor_states(cs%n))
     factor_valid = .false.
     nfactor = 0
@@ -105,11 +110,12 @@ contains
         end do
         call prescribed_sets()
 
-        call number_dofs(m, cs, presc, m%ordering == ordering_rcm, dm, k)
+        call number_dofs(m, cs, presc, m%solver, m%ordering, dm, sys)
         factor_valid = .false.
+        described = .false.
         if (allocated(rhs)) deallocate(rhs)
         allocate(rhs(dm%neq))
-        call write_step_header(lst, is, m, dm%neq, count(presc), k%nnz, cs)
+        call write_step_header(lst, is, m, dm%neq, count(presc), cs)
         period = st%period
         ninc = nint(period / st%dt)
         inc = 0
@@ -194,6 +200,7 @@ contains
       logical, allocatable :: saved(:)
       logical :: ok
       integer :: iters
+      if (update_search .and. inc + level > 0) call research()
       allocate(saved(cs%n))
       saved = cs%c(1:cs%n)%closed
       call solve_at(is, t1, ok, iters)
@@ -213,13 +220,36 @@ contains
       call advance(is, 0.5_dp * (t0 + t1), t1, level + 1)
     end subroutine advance
 
+    !> UPDATE SEARCH: pair again on the deformed configuration. A slave node
+    !> keeps the status it had; the equations are renumbered for the new
+    !> couplings.
+    subroutine research()
+      type(contact_set_t) :: old
+      integer :: j, q
+      old = cs
+      call contact_search(m, m%x + u, cs)
+      do j = 1, cs%n
+        do q = 1, old%n
+          if (old%c(q)%slave == cs%c(j)%slave .and. old%c(q)%pair == cs%c(j)%pair) then
+            cs%c(j)%closed = old%c(q)%closed
+            exit
+          end if
+        end do
+      end do
+      call number_dofs(m, cs, presc, m%solver, m%ordering, dm, sys)
+      factor_valid = .false.
+      if (allocated(factor_states)) deallocate(factor_states)
+      allocate(factor_states(cs%n))
+    end subroutine research
+
     subroutine solve_at(is, t, ok, it)
       integer, intent(in) :: is
       real(dp), intent(in) :: t
       logical, intent(out) :: ok
       integer, intent(out) :: it
       integer :: bad, a, d, c, nchanged
-      real(dp) :: resid, ref
+      real(dp) :: resid, ref, kelem
+      integer :: status
       logical :: closed, refactor
       ok = .false.
       call values_at(is, t)
@@ -231,20 +261,26 @@ contains
         ! kept while the status is the one it was made for.
         refactor = .not. factor_valid
         if (.not. refactor) refactor = any(factor_states .neqv. cs%c(1:cs%n)%closed)
-        call assemble(m, cs, u, fext, dm, k, rhs, refactor)
+        call assemble(m, cs, u, fext, dm, sys, rhs, refactor, kelem)
         if (refactor) then
-          kmax = 0.0_dp
-          do a = 1, dm%neq
-            kmax = max(kmax, abs(k%a(k%ptr(a + 1) - 1)))
-          end do
-          call sky_factor(k, bad)
-          if (bad > 0) call fatal('singular stiffness at node ' // itoa(m%node_id(dm%node_of_eq(bad))) // &
-            ', dof ' // itoa(dm%dof_of_eq(bad)) // ' (missing boundary condition?)' // contact_hint())
+          kmax = kelem
+          call sys_factor(sys, status, bad)
+          if (status == factor_singular) call singular(bad)
+          if (status == factor_fallback) then
+            call write_text(lst, sys%note)
+            call warn(sys%note)
+          end if
+          if (.not. described) then
+            call write_text(lst, '--- SOLVER step=' // itoa(is))
+            call write_text(lst, 'item value')
+            call write_text(lst, 'factor ' // sys_describe(sys))
+            described = .true.
+          end if
           factor_states = cs%c(1:cs%n)%closed
           factor_valid = .true.
           nfactor = nfactor + 1
         end if
-        call sky_solve(k, rhs)
+        call sys_solve(sys, rhs)
         do a = 1, m%nn
           do d = 1, 2
             if (dm%eq(d, a) > 0) u(d, a) = u(d, a) + rhs(dm%eq(d, a))
@@ -292,6 +328,28 @@ contains
       end do
       it = it - 1
     end subroutine solve_at
+
+    !> Stops on a singular stiffness, naming the node and dof. The sparse
+    !> solvers do not say where: a skyline factorisation of the same
+    !> matrix finds it when the problem is small enough.
+    subroutine singular(bad)
+      integer, intent(in) :: bad
+      integer :: where, st
+      type(linear_system_t) :: probe
+      real(dp) :: kdummy
+      real(dp), allocatable :: r(:)
+      where = bad
+      if (where == 0 .and. dm%neq <= 200000) then
+        call sys_setup(probe, solver_skyline, order_natural, dm%neq, sys%xeq, sys%eqs)
+        allocate(r(dm%neq))
+        call assemble(m, cs, u, fext, dm, probe, r, .true., kdummy)
+        call sys_factor(probe, st, where)
+        call sys_free(probe)
+      end if
+      if (where > 0) call fatal('singular stiffness at node ' // itoa(m%node_id(dm%node_of_eq(where))) // &
+        ', dof ' // itoa(dm%dof_of_eq(where)) // ' (missing boundary condition?)' // contact_hint())
+      call fatal('singular stiffness (missing boundary condition?)' // contact_hint())
+    end subroutine singular
 
     function changed_text(n) result(s)
       integer, intent(in) :: n

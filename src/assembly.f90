@@ -7,7 +7,7 @@ module assembly
   use contact, only: contact_set_t, cfe_input
   use element_types, only: elem_in_t, elem_out_t, max_en, kind_quad4, kind_tri3
   use element_library, only: element_routine
-  use skyline, only: skyline_t, sky_setup, sky_add, sky_zero
+  use linear_solver, only: linear_system_t, sys_setup, sys_zero, sys_add, solver_skyline, order_rcm
   use ordering, only: rcm_order
   implicit none
   private
@@ -61,7 +61,7 @@ contains
     do pass = 1, 2
       cnt = 0
       do e = 1, m%ne + cs%n
-        call group_nodes(e, nodes, nen)
+        call group_nodes(m, cs, e, nodes, nen)
         do i = 1, nen
           do j = 1, nen
             if (i == j) cycle
@@ -82,40 +82,23 @@ contains
         pos = xadj(1:m%nn)
       end if
     end do
-  contains
-    subroutine group_nodes(g, nodes, nen)
-      integer, intent(in) :: g
-      integer, intent(out) :: nodes(:), nen
-      if (g <= m%ne) then
-        nen = 0
-        if (.not. et_is_solid(m%etype(g))) return
-        nen = et_nodes(m%etype(g))
-        nodes(1:nen) = m%conn(1:nen, g)
-      else
-        associate(c => cs%c(g - m%ne))
-          nen = et_nodes(m%etype(c%elem)) + 1
-          nodes(1) = c%slave
-          nodes(2:nen) = m%conn(1:nen - 1, c%elem)
-        end associate
-      end if
-    end subroutine group_nodes
   end subroutine node_graph
 
-  !> Numbers the free dofs node by node in RCM (or input) order and sets up
-  !> the skyline with the column heights of that numbering.
-  subroutine number_dofs(m, cs, prescribed, use_rcm, dm, k)
+  !> Numbers the free dofs node by node (in RCM order for the skyline with
+  !> ORDERING=RCM, in input order otherwise: the sparse solvers order for
+  !> themselves) and sets up the system's structure from the equation lists
+  !> of the solid elements and the CFEs, in assembly order.
+  subroutine number_dofs(m, cs, prescribed, kind, order, dm, sys)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
-    logical, intent(in) :: use_rcm
+    integer, intent(in) :: kind, order
     type(dofmap_t), intent(out) :: dm
-    type(skyline_t), intent(out) :: k
-    integer, allocatable :: xadj(:), adj(:), perm(:), first(:)
-    integer :: i, d, n, e, j, nen, nodes(max_en), lo, eqs(2 * max_en), ne
-    type(elem_in_t) :: ein
-    real(dp) :: dummy(2, m%nn)
+    type(linear_system_t), intent(inout) :: sys
+    integer, allocatable :: xadj(:), adj(:), perm(:), xeq(:), eqs(:)
+    integer :: i, d, n, e, nen, nodes(max_en), ng, k
     allocate(perm(m%nn), dm%eq(2, m%nn))
-    if (use_rcm) then
+    if (kind == solver_skyline .and. order == order_rcm) then
       call node_graph(m, cs, xadj, adj)
       call rcm_order(m%nn, xadj, adj, perm)
     else
@@ -140,57 +123,59 @@ contains
         end if
       end do
     end do
-    allocate(first(n))
-    first = [(i, i = 1, n)]
-    dummy = 0.0_dp
-    do e = 1, m%ne + cs%n
-      if (e <= m%ne) then
-        if (.not. et_is_solid(m%etype(e))) cycle
-        call solid_input(m, e, dummy, ein, nodes)
-      else
-        call cfe_input(m, cs%c(e - m%ne), dummy, ein, nodes)
-      end if
-      nen = ein%nen
-      call element_eqs(dm, nodes(1:nen), eqs, ne)
-      if (ne == 0) cycle
-      lo = minval(eqs(1:ne))
-      do j = 1, ne
-        first(eqs(j)) = min(first(eqs(j)), lo)
+    ! equation lists, local dof order, 0 for prescribed dofs
+    ng = m%ne + cs%n
+    allocate(xeq(ng + 1), eqs(2 * max_en * ng))
+    xeq(1) = 1
+    do e = 1, ng
+      call group_nodes(m, cs, e, nodes, nen)
+      k = xeq(e)
+      do i = 1, nen
+        eqs(k:k + 1) = dm%eq(:, nodes(i))
+        k = k + 2
       end do
+      xeq(e + 1) = k
     end do
-    call sky_setup(k, first)
+    call sys_setup(sys, kind, order, n, xeq, eqs(1:xeq(ng + 1) - 1))
   end subroutine number_dofs
 
-  pure subroutine element_eqs(dm, nodes, eqs, ne)
-    type(dofmap_t), intent(in) :: dm
-    integer, intent(in) :: nodes(:)
-    integer, intent(out) :: eqs(:), ne
-    integer :: i, d
-    ne = 0
-    do i = 1, size(nodes)
-      do d = 1, 2
-        if (dm%eq(d, nodes(i)) > 0) then
-          ne = ne + 1
-          eqs(ne) = dm%eq(d, nodes(i))
-        end if
-      end do
-    end do
-  end subroutine element_eqs
+  !> Nodes of assembly group g: solid element g, or CFE g - ne (coupling
+  !> node first); no nodes for line elements.
+  pure subroutine group_nodes(m, cs, g, nodes, nen)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: g
+    integer, intent(out) :: nodes(:), nen
+    if (g <= m%ne) then
+      nen = 0
+      if (.not. et_is_solid(m%etype(g))) return
+      nen = et_nodes(m%etype(g))
+      nodes(1:nen) = m%conn(1:nen, g)
+    else
+      associate(c => cs%c(g - m%ne))
+        nen = et_nodes(m%etype(c%elem)) + 1
+        nodes(1) = c%slave
+        nodes(2:nen) = m%conn(1:nen - 1, c%elem)
+      end associate
+    end if
+  end subroutine group_nodes
 
   !> Stiffness into k and the out-of-balance force f_ext - f_int(u) into
   !> rhs (free equations): k du = rhs corrects the free displacements.
-  subroutine assemble(m, cs, u, fext, dm, k, rhs, with_k)
+  subroutine assemble(m, cs, u, fext, dm, sys, rhs, with_k, kmax)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     real(dp), intent(in) :: u(:, :), fext(:, :)
     type(dofmap_t), intent(in) :: dm
-    type(skyline_t), intent(inout) :: k
+    type(linear_system_t), intent(inout) :: sys
     real(dp), intent(out) :: rhs(:)
     logical, intent(in) :: with_k    ! .false.: only the right-hand side
+    real(dp), intent(out) :: kmax    ! largest diagonal entry of an element matrix
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
-    integer :: e, i, j, nodes(max_en), gi, gj
-    if (with_k) call sky_zero(k)
+    integer :: e, i, j, nodes(max_en), gi
+    kmax = 0.0_dp
+    if (with_k) call sys_zero(sys)
     rhs = 0.0_dp
     do i = 1, m%nn
       do j = 1, 2
@@ -207,15 +192,14 @@ contains
       call element_routine(ein, eout)
       do i = 1, eout%ndof
         gi = dm%eq(2 - mod(i, 2), nodes((i + 1) / 2))
-        if (gi == 0) cycle
-        rhs(gi) = rhs(gi) - eout%fe(i)
-        if (.not. with_k) cycle
-        do j = i, eout%ndof
-          gj = dm%eq(2 - mod(j, 2), nodes((j + 1) / 2))
-          if (gj == 0) cycle
-          call sky_add(k, gi, gj, eout%ke(i, j))
-        end do
+        if (gi > 0) rhs(gi) = rhs(gi) - eout%fe(i)
       end do
+      if (with_k) then
+        call sys_add(sys, e, eout%ke(1:eout%ndof, 1:eout%ndof))
+        do j = 1, eout%ndof
+          kmax = max(kmax, abs(eout%ke(j, j)))
+        end do
+      end if
     end do
   end subroutine assemble
 

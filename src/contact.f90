@@ -100,7 +100,8 @@ contains
   end subroutine tributary_lengths
 
   !> Couples every slave node of every pair to the nearest master edge on
-  !> which its orthogonal projection falls (search on the configuration x).
+  !> which its orthogonal projection falls, searching on the configuration
+  !> x (the initial one, or the deformed one with UPDATE SEARCH).
   subroutine contact_search(m, x, cs)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
@@ -160,7 +161,10 @@ contains
           ab = x(:, b) - x(:, a)
           tvec = ab / norm2(ab)
           c%normal = [tvec(2), -tvec(1)]
-          c%gap0 = x(:, s) - (x(:, a) + tbest * ab)
+          ! [[U]]_0 between the reference positions of the slave node and of
+          ! X_C: with a search on the deformed configuration, [[U]] of eq. (8)
+          ! is then the current slave-to-X_C vector.
+          c%gap0 = m%x(:, s) - (m%x(:, a) + tbest * (m%x(:, b) - m%x(:, a)))
           c%area = area(k)
           hm = min(h(k), norm2(ab))
           em = max(emod(k), section_e(m, c%elem))
@@ -172,7 +176,7 @@ contains
           end if
           c%k_closed = cfe_penalty(pr, c%area, em, hm)
           c%k_open = pr%open_ratio * c%k_closed
-          c%closed = dot_product(c%normal, c%gap0) <= 0.0_dp
+          c%closed = dot_product(c%normal, x(:, s) - (x(:, a) + tbest * ab)) <= 0.0_dp
           list = [list, c]
         end do
         deallocate(area, h, emod)

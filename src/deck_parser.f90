@@ -7,6 +7,8 @@ module deck_parser
   use deck_input, only: deck_t, keyword_t, read_deck, parse_keyword, deck_error, &
                         deck_warning, param_value, has_param, is_keyword
   use model
+  use linear_solver, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
+                           order_amd, order_metis
   implicit none
   private
   public :: read_model
@@ -1080,16 +1082,32 @@ contains
       v = to_upper(param_value(kw, 'TYPE'))
       select case (v)
       case ('SKYLINE'); m%solver = solver_skyline
-      case default; call err(p, 'solver ' // v // ' is not available (SKYLINE)')
+      case ('CHOLMOD'); m%solver = solver_cholmod
+      case ('UMFPACK'); m%solver = solver_umfpack
+      case default; call err(p, 'solver ' // v // ' is not available (SKYLINE, CHOLMOD, UMFPACK)')
       end select
+    end if
+    ! default ordering of each solver
+    if (m%solver == solver_skyline) then
+      m%ordering = order_rcm
+    else
+      m%ordering = order_amd
     end if
     if (has_param(kw, 'ORDERING')) then
       v = to_upper(param_value(kw, 'ORDERING'))
-      select case (v)
-      case ('RCM'); m%ordering = ordering_rcm
-      case ('NONE'); m%ordering = ordering_none
-      case default; call err(p, 'ordering ' // v // ' is not available for the skyline solver (RCM, NONE)')
-      end select
+      if (m%solver == solver_skyline) then
+        select case (v)
+        case ('RCM'); m%ordering = order_rcm
+        case ('NONE'); m%ordering = order_natural
+        case default; call err(p, 'ordering ' // v // ' is not available for the skyline solver (RCM, NONE)')
+        end select
+      else
+        select case (v)
+        case ('AMD'); m%ordering = order_amd
+        case ('METIS'); m%ordering = order_metis
+        case default; call err(p, 'ordering ' // v // ' is not available for CHOLMOD and UMFPACK (AMD, METIS)')
+        end select
+      end if
     end if
     call no_data(p, kw)
   end subroutine read_solver

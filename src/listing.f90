@@ -8,6 +8,8 @@ module listing
   use materials, only: von_mises
   use contact, only: contact_set_t
   use messages, only: register_unit_to_close, fatal
+  use linear_solver, only: solver_name, ordering_name
+  use blas_info, only: blas_description
   implicit none
   private
   public :: listing_t, open_listing, write_header, write_step_header, write_increment, &
@@ -105,20 +107,16 @@ contains
     write(u, '(a,i0)') 'materials ', size(m%materials)
     write(u, '(a,i0)') 'contact_pairs ', size(m%pairs)
     write(u, '(a,i0)') 'steps ', size(m%steps)
-    write(u, '(a)') 'solver skyline LDL^T'
-    if (m%ordering == ordering_rcm) then
-      write(u, '(a)') 'ordering RCM'
-    else
-      write(u, '(a)') 'ordering none'
-    end if
+    write(u, '(a)') 'solver ' // solver_name(m%solver)
+    write(u, '(a)') 'ordering ' // ordering_name(m%ordering)
+    write(u, '(a)') 'blas ' // blas_description()
     flush(u)
   end subroutine write_header
 
-  subroutine write_step_header(lst, istep, m, neq, nprescribed, profile, cs)
+  subroutine write_step_header(lst, istep, m, neq, nprescribed, cs)
     type(listing_t), intent(in) :: lst
     integer, intent(in) :: istep, neq, nprescribed
     type(model_t), intent(in) :: m
-    integer(8), intent(in) :: profile
     type(contact_set_t), intent(in) :: cs
     integer :: u, k
     u = lst%unit
@@ -127,7 +125,6 @@ contains
     write(u, '(a)') 'item value'
     write(u, '(a,i0)') 'equations ', neq
     write(u, '(a,i0)') 'prescribed_dofs ', nprescribed
-    write(u, '(a,i0)') 'profile ', profile
     write(u, '(a,es12.5)') 'time_period ', m%steps(istep)%period
     write(u, '(a,i0)') 'increments ', nint(m%steps(istep)%period / m%steps(istep)%dt)
     write(u, '(a,i0)') 'coupling_elements ', cs%n

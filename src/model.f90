@@ -3,21 +3,20 @@
 !> stored with internal (1..n) indices; user ids are kept for output.
 module model
   use kinds, only: dp, name_len
+  use linear_solver, only: solver_cholmod, order_amd
   implicit none
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
             et_none, et_t3d2, et_cps3, et_cpe3, et_cps4, et_cpe4, &
             et_name, et_nodes, et_is_solid, et_plane_strain, &
-            surf_element, surf_node, solver_skyline, ordering_rcm, ordering_none, &
+            surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, append_int
 
   ! Element type codes; the Abaqus names map onto these in the deck reader.
   integer, parameter :: et_none = 0, et_t3d2 = 1, et_cps3 = 2, et_cpe3 = 3, &
                         et_cps4 = 4, et_cpe4 = 5
   integer, parameter :: surf_element = 1, surf_node = 2
-  integer, parameter :: solver_skyline = 1
-  integer, parameter :: ordering_none = 0, ordering_rcm = 1
   integer, parameter :: amp_step_time = 1, amp_total_time = 2
 
   !> Where something was defined in the deck: for errors found after reading.
@@ -126,9 +125,9 @@ module model
     type(bc_t), allocatable :: model_bcs(:)
     type(step_t), allocatable :: steps(:)
     type(contact_pair_t), allocatable :: pairs(:)
-    integer :: solver = solver_skyline
-    integer :: ordering = ordering_rcm
-    real(dp) :: contact_tolerance = 1.0e-8_dp
+    integer :: solver = solver_cholmod   ! linear_solver's solver_* codes
+    integer :: ordering = order_amd      ! linear_solver's order_* codes
+    real(dp) :: contact_tolerance = 1.0e-6_dp
     integer :: contact_max_iter = 30
     integer :: max_cutbacks = 5
   end type model_t

@@ -147,25 +147,46 @@ def test_penalty_insensitivity_two_decades():
     assert change < 0.005, f"pressures {pressures}"
 
 
-def test_body_held_only_by_contact_is_solved():
-    """Force-driven upper block with an initial gap: no NaN, the right answer."""
+def force_driven_deck(pair_params="", solver=""):
     load = 2.0
-    n = NX2 + 1
     step = f"""*STEP
 *STATIC
 *CLOAD
-TOP, 2, {-load / n}
+TOP, 2, {-load / (NX2 + 1)}
 *NODE PRINT, NSET=TOP
 U
 *END STEP
 """
-    deck = blocks_deck([step])
-    run = run_deck("contact_force_driven", deck)
+    deck = blocks_deck([step], pair_params)
+    if solver:
+        deck = deck.replace("*CONTACT PAIR", f"*SOLVER, TYPE={solver}\n*CONTACT PAIR")
+    return deck, load
+
+
+def test_body_held_only_by_contact_clear_error():
+    """Force-driven upper block with an initial gap, only the 1e-12 open
+    penalty holding it at first: CHOLMOD finds the stiffness singular to
+    working precision and the run stops with a message saying what to do."""
+    deck, _ = force_driven_deck()
+    run = run_deck("contact_force_driven_error", deck)
+    assert run.rc != 0
+    assert "singular stiffness" in run.stderr and "OPEN PENALTY" in run.stderr, run.stderr
     assert "NaN" not in open(run.listing_path).read()
-    run.ok()
-    slave, _, summ = contact_blocks(run.listing.increments[-1])
-    assert rel_err(summ["total_force"][0], load) < 1e-6, summ["total_force"]
-    assert max(abs(slave["pressure"] - load / W)) / (load / W) < 0.02
+
+
+def test_body_held_only_by_contact_solved():
+    """The same with a larger open penalty (CHOLMOD), and with the default
+    one on the skyline solver, whose pivot test accepts it: all slave nodes
+    close and the contact force equals the load, no NaN anywhere."""
+    for tag, params, solver in (("open", ", OPEN PENALTY=1e-6", ""), ("skyline", "", "SKYLINE")):
+        deck, load = force_driven_deck(params, solver)
+        run = run_deck("contact_force_driven_" + tag, deck)
+        assert "NaN" not in open(run.listing_path).read()
+        run.ok()
+        slave, _, summ = contact_blocks(run.listing.increments[-1])
+        assert all(s == "CLOSED" for s in slave["state"]), tag
+        assert rel_err(summ["total_force"][0], load) < 1e-6, (tag, summ["total_force"])
+        assert max(abs(slave["pressure"] - load / W)) / (load / W) < 0.005, tag
 
 
 def test_general_nonmatching_patch_error():
@@ -186,3 +207,15 @@ def test_general_nonmatching_patch_error():
     err_m = max(abs(master["pressure"] - p)) / p
     assert rel_err(summ["total_force"][0], p * W) < 1e-3, "total force must still balance"
     assert err_s < 0.12 and err_m < 0.10, f"slave {err_s:.4f}, master {err_m:.4f}"
+
+
+def test_update_search_on_deformed_configuration():
+    """Searching again each increment on the deformed configuration gives
+    the same answer here (the blocks do not slide) and keeps the listing's
+    coupling count."""
+    d = 3 * G0
+    base = run_deck("contact_nosearch", blocks_deck([push_step(d, 2)])).ok()
+    upd = run_deck("contact_update", blocks_deck([push_step(d, 2)], ", UPDATE SEARCH")).ok()
+    s0, _, _ = contact_blocks(base.listing.increments[-1])
+    s1, _, _ = contact_blocks(upd.listing.increments[-1])
+    assert max(abs(s0["pressure"] - s1["pressure"])) < 1e-6 * series_pressure(d)

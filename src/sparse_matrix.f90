@@ -1,0 +1,189 @@
+!> Compressed-column (CSC) matrices assembled straight from element arrays:
+!> the pattern is computed once from the element equation lists, together
+!> with the position in the value array of every element entry, so that
+!> re-assembly only adds into place. Symmetric matrices keep the upper
+!> triangle (CHOLMOD), unsymmetric solvers the full pattern (UMFPACK).
+module sparse_matrix
+  use kinds, only: dp
+  implicit none
+  private
+  public :: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec
+
+  type :: csc_t
+    integer :: n = 0
+    logical :: upper = .true.
+    integer, allocatable :: colptr(:)     ! 1-based, n+1
+    integer, allocatable :: rowind(:)     ! 1-based, sorted in each column
+    real(dp), allocatable :: val(:)
+    ! position in val of entry (a, b) of element e: emap(eptr(e) + k), k
+    ! running over the pairs in the order csc_add_element visits them
+    integer(8), allocatable :: eptr(:)
+    integer, allocatable :: emap(:)
+  end type csc_t
+
+contains
+
+  !> Pattern of the matrix of elements whose equation lists are
+  !> eqs(xeq(e):xeq(e+1)-1) (0 entries = prescribed, skipped).
+  subroutine csc_build(a, n, xeq, eqs, upper)
+    type(csc_t), intent(out) :: a
+    integer, intent(in) :: n, xeq(:), eqs(:)
+    logical, intent(in) :: upper
+    integer :: ne, e, i, j, k, gi, gj, col, cnt, lo, hi, mid, pass
+    integer, allocatable :: xel(:), el(:), mark(:), fill(:)
+    integer(8) :: npairs
+    ne = size(xeq) - 1
+    a%n = n
+    a%upper = upper
+    ! elements of each equation (transpose of the element lists)
+    allocate(xel(n + 1), mark(n), fill(n))
+    xel = 0
+    do k = 1, xeq(ne + 1) - 1
+      if (eqs(k) > 0) xel(eqs(k) + 1) = xel(eqs(k) + 1) + 1
+    end do
+    xel(1) = 1
+    do i = 1, n
+      xel(i + 1) = xel(i + 1) + xel(i)
+    end do
+    allocate(el(xel(n + 1) - 1))
+    fill = xel(1:n)
+    do e = 1, ne
+      do k = xeq(e), xeq(e + 1) - 1
+        if (eqs(k) > 0) then
+          el(fill(eqs(k))) = e
+          fill(eqs(k)) = fill(eqs(k)) + 1
+        end if
+      end do
+    end do
+    ! rows of each column: the equations of the elements that hold it
+    mark = 0
+    allocate(a%colptr(n + 1))
+    a%colptr(1) = 1
+      do pass = 1, 2
+        do col = 1, n
+          cnt = 0
+          do k = xel(col), xel(col + 1) - 1
+            e = el(k)
+            do j = xeq(e), xeq(e + 1) - 1
+              gi = eqs(j)
+              if (gi <= 0) cycle
+              if (upper .and. gi > col) cycle
+              if (mark(gi) == col + (pass - 1) * n) cycle
+              mark(gi) = col + (pass - 1) * n
+              cnt = cnt + 1
+              if (pass == 2) a%rowind(a%colptr(col) + cnt - 1) = gi
+            end do
+          end do
+          if (pass == 1) then
+            a%colptr(col + 1) = a%colptr(col) + cnt
+          else
+            call sort_int(a%rowind(a%colptr(col):a%colptr(col + 1) - 1))
+          end if
+        end do
+        if (pass == 1) allocate(a%rowind(a%colptr(n + 1) - 1))
+      end do
+    allocate(a%val(a%colptr(n + 1) - 1))
+    a%val = 0.0_dp
+    ! value positions of every element entry
+    allocate(a%eptr(ne + 1))
+    a%eptr(1) = 1
+    do e = 1, ne
+      cnt = count(eqs(xeq(e):xeq(e + 1) - 1) > 0)
+      if (upper) then
+        npairs = int(cnt, 8) * (cnt + 1) / 2
+      else
+        npairs = int(cnt, 8) * cnt
+      end if
+      a%eptr(e + 1) = a%eptr(e) + npairs
+    end do
+    allocate(a%emap(a%eptr(ne + 1) - 1))
+    do e = 1, ne
+      k = int(a%eptr(e))
+      do i = xeq(e), xeq(e + 1) - 1
+        gi = eqs(i)
+        if (gi <= 0) cycle
+        do j = xeq(e), xeq(e + 1) - 1
+          gj = eqs(j)
+          if (gj <= 0) cycle
+          if (upper .and. j < i) cycle
+          ! entry (row, col); the upper triangle takes (min, max)
+          if (upper) then
+            col = max(gi, gj)
+            gj = min(gi, gj)
+          else
+            col = gj
+            gj = gi
+          end if
+          lo = a%colptr(col)
+          hi = a%colptr(col + 1) - 1
+          do while (lo < hi)
+            mid = (lo + hi) / 2
+            if (a%rowind(mid) < gj) then
+              lo = mid + 1
+            else
+              hi = mid
+            end if
+          end do
+          a%emap(k) = lo
+          k = k + 1
+        end do
+      end do
+    end do
+  end subroutine csc_build
+
+  pure subroutine sort_int(v)
+    integer, intent(inout) :: v(:)
+    integer :: i, j, x
+    do i = 2, size(v)
+      x = v(i)
+      j = i - 1
+      do while (j >= 1)
+        if (v(j) <= x) exit
+        v(j + 1) = v(j)
+        j = j - 1
+      end do
+      v(j + 1) = x
+    end do
+  end subroutine sort_int
+
+  subroutine csc_zero(a)
+    type(csc_t), intent(inout) :: a
+    a%val = 0.0_dp
+  end subroutine csc_zero
+
+  !> Adds element matrix ke (local dofs in the order of the element's
+  !> equation list, prescribed ones included and skipped via eqs = 0).
+  pure subroutine csc_add_element(a, e, eqs, ke)
+    type(csc_t), intent(inout) :: a
+    integer, intent(in) :: e, eqs(:)
+    real(dp), intent(in) :: ke(:, :)
+    integer :: i, j
+    integer(8) :: k
+    k = a%eptr(e)
+    do i = 1, size(eqs)
+      if (eqs(i) <= 0) cycle
+      do j = 1, size(eqs)
+        if (eqs(j) <= 0) cycle
+        if (a%upper .and. j < i) cycle
+        a%val(a%emap(k)) = a%val(a%emap(k)) + ke(i, j)
+        k = k + 1
+      end do
+    end do
+  end subroutine csc_add_element
+
+  !> y = A x (the full symmetric matrix when only the upper part is kept).
+  pure subroutine csc_matvec(a, x, y)
+    type(csc_t), intent(in) :: a
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: y(:)
+    integer :: col, k, r
+    y = 0.0_dp
+    do col = 1, a%n
+      do k = a%colptr(col), a%colptr(col + 1) - 1
+        r = a%rowind(k)
+        y(r) = y(r) + a%val(k) * x(col)
+        if (a%upper .and. r /= col) y(col) = y(col) + a%val(k) * x(r)
+      end do
+    end do
+  end subroutine csc_matvec
+end module sparse_matrix

@@ -1,0 +1,67 @@
+"""The flagship verification: the paper's cylinder on a plate (default
+mesh, automatic penalty) against Hertz, for every increment in contact with
+P taken from the FE contact force. See README.md, "The flagship run"."""
+import os
+
+import numpy as np
+
+from helpers import WORK, Skip
+
+_CACHE = {}
+
+
+def hertz_rows():
+    """Run the default case once and share its comparison rows."""
+    if "rows" not in _CACHE:
+        import shutil
+        if shutil.which("gmsh") is None:
+            raise Skip("gmsh is not installed")
+        import compare_hertz
+        import run_hertz
+        from hertz import effective_modulus
+        out = os.path.join(WORK, "hertz_default")
+        job, _ = run_hertz.run_case(out)
+        table = compare_hertz.read_contact_table(job + "_contact.csv")
+        disp = compare_hertz.top_displacement(job + ".out")
+        _CACHE["rows"] = compare_hertz.compare(table, 10.0, effective_modulus(210000.0, 0.3), displacement=disp)
+    return _CACHE["rows"]
+
+
+def loaded(rows):
+    return [r for r in rows if r["closed"] >= 3]
+
+
+def test_peak_pressure_and_half_width_within_3_percent():
+    rows = loaded(hertz_rows())
+    assert len(rows) == 15, f"{len(rows)} increments in contact, expected 15 (3..17)"
+    for r in rows:
+        assert abs(r["err_p0"]) < 0.03, f"increment {r['increment']}: p0 error {r['err_p0']:.2%}"
+        assert abs(r["err_a"]) < 0.03, f"increment {r['increment']}: a error {r['err_a']:.2%}"
+
+
+def test_slave_and_master_profiles_agree():
+    """Within 5% of p0 over |x| < 0.8 a where the contact zone is resolved by
+    at least ten master elements (a >= 0.5 mm). At first contact (increments
+    3 and 17, a = 0.28 mm, six plate elements across) the measured
+    difference is 6.1%: checked against 7% so that it cannot grow unseen."""
+    for r in loaded(hertz_rows()):
+        limit = 0.05 if r["a_H"] >= 0.5 else 0.07
+        assert r["slave_master"] < limit, f"increment {r['increment']}: {r['slave_master']:.2%} > {limit:.0%}"
+
+
+def test_unloading_retraces_loading():
+    rows = {r["increment"]: r for r in hertz_rows()}
+    for k in range(1, 10):
+        up, down = rows[10 - k], rows[10 + k]
+        assert abs(up["u"] - down["u"]) < 1e-12
+        if up["P"] > 1.0:
+            assert abs(up["P"] - down["P"]) <= 1e-3 * up["P"], (k, up["P"], down["P"])
+
+
+def test_no_contact_force_when_separated():
+    rows = hertz_rows()
+    peak = max(r["P"] for r in rows)
+    for r in rows:
+        if r["increment"] in (1, 2, 18, 19, 20):
+            assert r["closed"] == 0 and abs(r["P"]) < 1e-6 * peak, (r["increment"], r["P"])
+    assert np.isclose(rows[-1]["u"], 0.0, atol=1e-12)
