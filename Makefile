@@ -21,7 +21,7 @@ MODULES := kinds messages strings skyline sparse_matrix cholmod_binding umfpack_
            ordering contact assembly listing results_gmsh analysis
 OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
-TESTS := test_elements test_skyline test_cfe
+TESTS := test_elements test_skyline test_cfe test_solvers
 
 .PHONY: all debug run check bench deps clean help
 all: bin/cfe2d
@@ -83,6 +83,12 @@ $(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysi
 
 deps:
 	bash scripts/install-deps.sh
+
+$(BUILD)/bench: tests/bench/bench.f90 $(OBJS) | $(BUILD)/tests
+	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(OBJS) $(LIBS)
+
+bench: $(BUILD)/bench
+	$(PYTHON) scripts/bench.py --exe $(BUILD)/bench
 
 run: deps bin/cfe2d
 	$(PYTHON) scripts/run_hertz.py

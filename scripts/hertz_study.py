@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Error study of the Hertz case at the peak load (increment 10).
 
-1. Mesh convergence: coarse, default and fine meshes (h = 0.2, 0.1, 0.05 mm
+1. Mesh convergence: coarse, default and fine meshes (h = 0.1, 0.05, 0.025 mm
    at the contact), the observed order of the FE peak pressure and
    half-width (self-convergence, ratio 2) and their distance from Hertz.
 2. Model error: the default mesh with a plate three times larger

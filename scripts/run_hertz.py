@@ -21,7 +21,7 @@ sys.path.insert(0, HERE)
 
 import compare_hertz  # noqa: E402
 
-MESHES = {"coarse": 0.2, "default": 0.1, "fine": 0.05}
+MESHES = {"coarse": 0.1, "default": 0.05, "fine": 0.025}
 DECKS = {"auto": "hertz.inp", "paper": "hertz_paper_penalty.inp"}
 
 

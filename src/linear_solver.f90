@@ -233,6 +233,10 @@ contains
       call fatal('CHOLMOD common block layout does not match cholmod_start defaults')
     s%cc%print = 0
     s%cc%quick_return_if_not_posdef = 1
+    ! Always the supernodal LL' factorisation: it reports a matrix that is
+    ! not positive definite (the simplicial LDL' would factor it silently,
+    ! without pivoting).
+    s%cc%supernodal = 2
   end subroutine cholmod_init
 
   subroutine cholmod_factor_numeric(s, status, bad)

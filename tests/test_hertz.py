@@ -40,13 +40,9 @@ def test_peak_pressure_and_half_width_within_3_percent():
 
 
 def test_slave_and_master_profiles_agree():
-    """Within 5% of p0 over |x| < 0.8 a where the contact zone is resolved by
-    at least ten master elements (a >= 0.5 mm). At first contact (increments
-    3 and 17, a = 0.28 mm, six plate elements across) the measured
-    difference is 6.1%: checked against 7% so that it cannot grow unseen."""
+    """Within 5% of p0 of each other over |x| < 0.8 a."""
     for r in loaded(hertz_rows()):
-        limit = 0.05 if r["a_H"] >= 0.5 else 0.07
-        assert r["slave_master"] < limit, f"increment {r['increment']}: {r['slave_master']:.2%} > {limit:.0%}"
+        assert r["slave_master"] < 0.05, f"increment {r['increment']}: {r['slave_master']:.2%}"
 
 
 def test_unloading_retraces_loading():

@@ -5,12 +5,12 @@
 // match across the contact (the cylinder is meshed finer than the plate).
 //
 // Parameters (gmsh -setnumber NAME VALUE):
-//   h       element size at the contact (mm)          default 0.1
+//   h       element size at the contact (mm)          default 0.05
 //   ratio   cylinder size / plate size at the contact  default 0.5
 //   Lp      plate half width (mm)                      default 40
 //   Hp      plate depth (mm)                           default 40
 //   quads   1 = quadrilaterals, 0 = triangles          default 1
-DefineConstant[ h = 0.1, ratio = 0.5, Lp = 40, Hp = 40, quads = 1 ];
+DefineConstant[ h = 0.05, ratio = 0.5, Lp = 40, Hp = 40, quads = 1 ];
 R = 10;
 g0 = 0.1;
 far = R / 4;      // element size far from the contact

@@ -1,0 +1,83 @@
+"""The three solvers (skyline, CHOLMOD with AMD and METIS, UMFPACK) give the
+same displacements to 1e-10 (relative to the largest) on the foundation's
+problems and on a contact problem of Hertz size; each reports a singular
+stiffness clearly."""
+import os
+import re
+
+import numpy as np
+
+from helpers import ROOT, WORK, run_deck
+from test_bad_decks import GOOD, replace
+
+SOLVERS = ["TYPE=SKYLINE", "TYPE=CHOLMOD, ORDERING=AMD", "TYPE=CHOLMOD, ORDERING=METIS", "TYPE=UMFPACK"]
+
+
+def with_solver(deck, solver):
+    """The deck with a *SOLVER line before its first *STEP."""
+    return re.sub(r"^\*STEP", f"*SOLVER, {solver}\n*STEP", deck, count=1, flags=re.M)
+
+
+def displacements(run):
+    out = []
+    for inc in run.listing.increments:
+        for b in inc.blocks:
+            if b.name == "NODE U":
+                out += [b["U1"], b["U2"]]
+    return np.concatenate(out)
+
+
+def agree(name, deck, files=None):
+    ref = None
+    for solver in SOLVERS:
+        run = run_deck(f"solvers_{name}", with_solver(deck, solver), files=files).ok()
+        u = displacements(run)
+        assert len(u) > 0
+        if ref is None:
+            ref = u
+            continue
+        err = np.max(np.abs(u - ref)) / np.max(np.abs(ref))
+        assert err < 1e-10, f"{solver}: {err:.2e} from the skyline"
+
+
+def test_solvers_agree_cantilever():
+    with open(os.path.join(ROOT, "input", "examples", "cantilever.inp")) as f:
+        agree("cantilever", f.read().replace("*NODE PRINT, NSET=TIP", "*NODE PRINT"))
+
+
+def test_solvers_agree_contact_blocks():
+    with open(os.path.join(ROOT, "input", "examples", "blocks.inp")) as f:
+        agree("blocks", f.read().replace("*NODE PRINT, NSET=TOP", "*NODE PRINT"))
+
+
+def test_solvers_agree_hertz_contact():
+    """The Hertz deck on a coarse mesh (h = 0.2 mm, about 6500 equations),
+    all 20 increments, displacements of every node."""
+    import subprocess
+    d = os.path.join(WORK, "solvers_hertz_mesh")
+    os.makedirs(d, exist_ok=True)
+    mesh = os.path.join(d, "hertz_mesh.inp")
+    subprocess.run(["gmsh", "-2", "-format", "inp", "-setnumber", "Mesh.SaveGroupsOfNodes", "1", "-setnumber",
+                    "h", "0.2", "-o", mesh, os.path.join(ROOT, "input", "hertz", "hertz.geo")], check=True,
+                   capture_output=True)
+    with open(os.path.join(ROOT, "input", "hertz", "hertz.inp")) as f:
+        deck = f.read().replace("*NODE PRINT, NSET=CYL_TOP", "*NODE PRINT").replace("*NODE FILE\nU, S, CSTRESS\n*EL FILE\nS\n", "")
+    with open(mesh) as f:
+        agree("hertz", deck, files={"hertz_mesh.inp": f.read()})
+
+
+def test_singular_reported_by_each_solver():
+    deck = replace("LEFT, 1, 2", "LEFT, 1, 1", GOOD)
+    for solver in SOLVERS:
+        run = run_deck("solvers_singular", with_solver(deck, solver))
+        assert run.rc != 0, solver
+        assert "singular stiffness at node" in run.stderr and "missing boundary condition" in run.stderr, \
+            (solver, run.stderr)
+        assert "NaN" not in open(run.listing_path).read()
+
+
+def test_solver_named_in_listing():
+    run = run_deck("solvers_listing", with_solver(GOOD, "TYPE=CHOLMOD, ORDERING=METIS")).ok()
+    text = open(run.listing_path).read()
+    assert "solver CHOLMOD" in text and "ordering METIS" in text and "blas OpenBLAS" in text
+    assert re.search(r"factor CHOLMOD, ordering METIS, factor entries \d", text)
