@@ -6,7 +6,8 @@ FC       := gfortran
 endif
 BUILD    ?= build
 OPTFLAGS ?= -O2 -march=x86-64 -mtune=generic
-DBGFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -fcheck=all -g -fbacktrace -O0
+DBGFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -fcheck=all,no-array-temps \
+            -g -fbacktrace -O0
 FFLAGS   ?= $(OPTFLAGS)
 LIBS     ?= -lcholmod -lumfpack -lamd -lcolamd -lsuitesparseconfig -lmetis -llapack -lopenblas
 PYTHON   ?= python3
@@ -28,16 +29,21 @@ all: bin/cfe2d
 
 help:
 	@echo "make            build bin/cfe2d (optimised)"
-	@echo "make debug      build with -std=f2008 -Wall -fcheck=all -g -fbacktrace"
+	@echo "make debug      build build-debug/cfe2d with -std=f2008 -Wall -fcheck=all -g -fbacktrace"
 	@echo "make run        install what is missing, then run the main example"
 	@echo "make check      install what is missing, build, run every test"
+	@echo "make bench      solver benchmark (about 1e4, 1e5, 1e6 dofs)"
 	@echo "make deps       install compilers, libraries, gmsh and Python packages"
 
 bin/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o | bin
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
 
+# The debug build keeps its objects and executable apart: build-debug/cfe2d.
 debug:
-	$(MAKE) BUILD=build-debug FFLAGS="$(DBGFLAGS)" bin/cfe2d
+	$(MAKE) BUILD=build-debug FFLAGS="$(DBGFLAGS)" build-debug/cfe2d
+
+build-debug/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
+	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
 
 bin $(OBJDIR) $(MODDIR) $(BUILD)/tests:
 	mkdir -p $@
@@ -95,6 +101,7 @@ run: deps bin/cfe2d
 
 check: deps
 	$(MAKE) bin/cfe2d $(TESTS:%=$(BUILD)/tests/%)
+	$(MAKE) debug
 	$(PYTHON) tests/run_tests.py --build $(BUILD)
 
 clean:
