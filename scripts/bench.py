@@ -9,6 +9,7 @@ The skyline runs up to 1e5 dofs: at 1e6 its RCM profile (about 1.4e9
 entries, 11 GB) and its O(n b^2) factorisation are out of reach."""
 import argparse
 import os
+import re
 import subprocess
 import sys
 
@@ -45,7 +46,7 @@ def main(argv=None):
                 print(f"{label:>11} {solver:>11} {order:>11}   failed: {out.stderr.strip()[:200]}")
                 failed = True
                 continue
-            kv = dict(w.split("=", 1) for w in out.stdout.replace("= ", "=").split())
+            kv = dict(re.findall(r"(\w+)=\s*(\S+)", out.stdout))
             row = [label, solver, order] + [kv[c] for c in cols[3:]]
             print(" ".join(f"{c:>11}" for c in row), flush=True)
     t_asm_note = "assembly target: < 0.5 s per million dofs; CHOLMOD target: 1e6 dofs < 5 s with assembly"

@@ -377,8 +377,6 @@ contains
       logical, allocatable :: has_pres(:)
       allocate(nip(m%ne), sig_ip(4, 4, m%ne), eps_ip(3, 4, m%ne), sig_node(4, m%nn), sig_elem(4, m%ne))
       ! Requests to file of this step, merged into one nodal and one element set of views.
-      fnode%u = .false.
-      felem%s = .false.
       do q = 1, size(m%steps(is)%requests)
         associate(r => m%steps(is)%requests(q))
           if (.not. r%to_file) cycle

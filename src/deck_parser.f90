@@ -1046,10 +1046,8 @@ contains
       call allow_params(p, kw, 'ELSET,FREQUENCY,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL')
       if (has_param(kw, 'ELSET')) r%set = need_elset(p, m, param_value(kw, 'ELSET'))
     end if
-    n = 0
     call require_data(p, 'output quantities')
-    p%i = p%i - 1
-    do while (next_data(p))
+    do
       call split_fields(line_text(p), f, n)
       do k = 1, n
         q = to_upper(f(k)%s)
@@ -1064,6 +1062,7 @@ contains
           call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
         end select
       end do
+      if (.not. next_data(p)) exit
     end do
     if (r%nodal .and. r%e) call err(p, 'E is an element quantity: ask for it in *EL PRINT or *EL FILE')
     associate(s => m%steps(p%step))

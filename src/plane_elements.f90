@@ -60,8 +60,8 @@ contains
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     real(dp), parameter :: g = 1.0_dp / sqrt(3.0_dp)
-    real(dp) :: d(3, 3), n(4), dn(2, 4), b(3, 8), detj, eps(3), sig(3), w(4)
-    integer :: ip, k
+    real(dp) :: d(3, 3), n(4), dn(2, 4), b(3, 8), db(3, 8), detj, eps(3), sig(3), w(4)
+    integer :: ip, k, i, j
     d = elastic_matrix(ein%e, ein%nu, ein%plane_strain)
     eout%ndof = 8
     eout%nip = 4
@@ -70,11 +70,20 @@ contains
     do ip = 1, 4
       call quad4_shape(g * xi_node(ip), g * eta_node(ip), n, dn)
       call strain_matrix(4, ein%xy(:, 1:4), dn, b, detj)
-      eout%ke(1:8, 1:8) = eout%ke(1:8, 1:8) + matmul(transpose(b), matmul(d, b)) * detj * ein%thickness
+      ! upper triangle of B^T D B, mirrored below after the loop
+      db = matmul(d, b) * (detj * ein%thickness)
+      do j = 1, 8
+        do i = 1, j
+          eout%ke(i, j) = eout%ke(i, j) + b(1, i) * db(1, j) + b(2, i) * db(2, j) + b(3, i) * db(3, j)
+        end do
+      end do
       eps = matmul(b, ein%ue(1:8))
       sig = matmul(d, eps)
       eout%eps_ip(:, ip) = eps
       eout%sig_ip(:, ip) = [sig(1), sig(2), out_of_plane_stress(sig(1), sig(2), ein%nu, ein%plane_strain), sig(3)]
+    end do
+    do j = 1, 7
+      eout%ke(j + 1:8, j) = eout%ke(j, j + 1:8)
     end do
     eout%fe(1:8) = matmul(eout%ke(1:8, 1:8), ein%ue(1:8))
     ! Node k sits at natural coordinates sqrt(3)*(xi_k, eta_k) of the
