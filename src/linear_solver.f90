@@ -17,7 +17,7 @@ module linear_solver
   private
   public :: linear_system_t, solver_skyline, solver_cholmod, solver_umfpack, &
             order_natural, order_rcm, order_amd, order_metis, &
-            sys_setup, sys_zero, sys_add, sys_factor, sys_solve, sys_matvec, sys_free, &
+            sys_setup, sys_zero, sys_add, sys_analyse, sys_factor, sys_solve, sys_matvec, sys_free, &
             sys_describe, solver_name, ordering_name, factor_ok, factor_singular, factor_fallback
 
   integer, parameter :: solver_skyline = 1, solver_cholmod = 2, solver_umfpack = 3
@@ -151,6 +151,15 @@ contains
     end if
   end subroutine sys_matvec
 
+  !> Ordering and symbolic analysis of the sparse solvers (done by
+  !> sys_factor when needed; separate for timing).
+  subroutine sys_analyse(s)
+    type(linear_system_t), intent(inout) :: s
+    if (s%analysed) return
+    if (s%kind == solver_cholmod) call cholmod_analyse(s)
+    if (s%kind == solver_umfpack) call umfpack_analyse(s)
+  end subroutine sys_analyse
+
   !> Numeric factorisation (symbolic analysis first if the pattern is new).
   !> status: factor_ok, factor_singular (bad = equation where detected, 0
   !> if the solver does not say), or factor_fallback (CHOLMOD found the
@@ -239,46 +248,50 @@ contains
     s%cc%supernodal = 2
   end subroutine cholmod_init
 
+  !> Ordering and symbolic factorisation, once per pattern.
+  subroutine cholmod_analyse(s)
+    type(linear_system_t), intent(inout), target :: s
+    integer(c_int), allocatable :: perm(:)
+    if (.not. associated(s%cc)) call cholmod_init(s)
+    s%ap0 = int(s%a%colptr - 1, c_int)
+    s%ai0 = int(s%a%rowind - 1, c_int)
+    s%ca%nrow = int(s%n, c_size_t)
+    s%ca%ncol = int(s%n, c_size_t)
+    s%ca%nzmax = int(size(s%a%val), c_size_t)
+    s%ca%p = c_loc(s%ap0)
+    s%ca%i = c_loc(s%ai0)
+    s%ca%nz = c_null_ptr
+    s%ca%z = c_null_ptr
+    s%ca%stype = 1          ! symmetric, upper triangle stored
+    s%ca%itype = cholmod_int
+    s%ca%xtype = cholmod_real
+    s%ca%dtype = cholmod_double
+    s%ca%sorted = 1
+    s%ca%packed = 1
+    s%ca%x = c_loc(s%a%val)
+    if (s%ordering == order_metis) then
+      call metis_order(s%n, s%a, perm)
+      s%cc%nmethods = 1
+      s%cc%method(1)%ordering = cholmod_given
+      s%factor = cholmod_analyze_p(s%ca, perm, c_null_ptr, 0_c_size_t, s%cc)
+    else
+      s%cc%nmethods = 1
+      s%cc%method(1)%ordering = cholmod_amd
+      s%factor = cholmod_analyze(s%ca, s%cc)
+    end if
+    if (.not. c_associated(s%factor) .or. s%cc%status < cholmod_ok) &
+      call fatal('CHOLMOD analysis failed, status ' // itoa(int(s%cc%status)))
+    s%factor_entries = s%cc%lnz
+    s%analysed = .true.
+  end subroutine cholmod_analyse
+
   subroutine cholmod_factor_numeric(s, status, bad)
     type(linear_system_t), intent(inout), target :: s
     integer, intent(out) :: status, bad
     integer(c_int) :: ok
-    integer(c_int), allocatable :: perm(:)
     status = factor_ok
     bad = 0
-    if (.not. s%analysed) then
-      if (.not. associated(s%cc)) call cholmod_init(s)
-      s%ap0 = int(s%a%colptr - 1, c_int)
-      s%ai0 = int(s%a%rowind - 1, c_int)
-      s%ca%nrow = int(s%n, c_size_t)
-      s%ca%ncol = int(s%n, c_size_t)
-      s%ca%nzmax = int(size(s%a%val), c_size_t)
-      s%ca%p = c_loc(s%ap0)
-      s%ca%i = c_loc(s%ai0)
-      s%ca%nz = c_null_ptr
-      s%ca%z = c_null_ptr
-      s%ca%stype = 1          ! symmetric, upper triangle stored
-      s%ca%itype = cholmod_int
-      s%ca%xtype = cholmod_real
-      s%ca%dtype = cholmod_double
-      s%ca%sorted = 1
-      s%ca%packed = 1
-      s%ca%x = c_loc(s%a%val)
-      if (s%ordering == order_metis) then
-        call metis_order(s%n, s%a, perm)
-        s%cc%nmethods = 1
-        s%cc%method(1)%ordering = cholmod_given
-        s%factor = cholmod_analyze_p(s%ca, perm, c_null_ptr, 0_c_size_t, s%cc)
-      else
-        s%cc%nmethods = 1
-        s%cc%method(1)%ordering = cholmod_amd
-        s%factor = cholmod_analyze(s%ca, s%cc)
-      end if
-      if (.not. c_associated(s%factor) .or. s%cc%status < cholmod_ok) &
-        call fatal('CHOLMOD analysis failed, status ' // itoa(int(s%cc%status)))
-      s%factor_entries = s%cc%lnz
-      s%analysed = .true.
-    end if
+    if (.not. s%analysed) call cholmod_analyse(s)
     s%ca%x = c_loc(s%a%val)
     ok = cholmod_factorize(s%ca, s%factor, s%cc)
     if (s%cc%status == cholmod_not_posdef) then
@@ -418,28 +431,32 @@ contains
     end subroutine put
   end subroutine switch_to_umfpack
 
+  subroutine umfpack_analyse(s)
+    type(linear_system_t), intent(inout) :: s
+    integer(c_int) :: st
+    call umfpack_di_defaults(s%control)
+    s%control(umfpack_prl) = 0.0_c_double
+    if (s%ordering == order_metis) then
+      s%control(umfpack_ordering) = umfpack_ordering_metis
+    else
+      s%control(umfpack_ordering) = umfpack_ordering_amd
+    end if
+    s%ap0 = int(s%a%colptr - 1, c_int)
+    s%ai0 = int(s%a%rowind - 1, c_int)
+    if (c_associated(s%symbolic)) call umfpack_di_free_symbolic(s%symbolic)
+    st = umfpack_di_symbolic(int(s%n, c_int), int(s%n, c_int), s%ap0, s%ai0, s%a%val, s%symbolic, &
+                             s%control, s%info)
+    if (st /= umfpack_ok) call fatal('UMFPACK symbolic analysis failed, status ' // itoa(int(st)))
+    s%analysed = .true.
+  end subroutine umfpack_analyse
+
   subroutine umfpack_factor_numeric(s, status, bad)
     type(linear_system_t), intent(inout) :: s
     integer, intent(out) :: status, bad
     integer(c_int) :: st
     status = factor_ok
     bad = 0
-    if (.not. s%analysed) then
-      call umfpack_di_defaults(s%control)
-      s%control(umfpack_prl) = 0.0_c_double
-      if (s%ordering == order_metis) then
-        s%control(umfpack_ordering) = umfpack_ordering_metis
-      else
-        s%control(umfpack_ordering) = umfpack_ordering_amd
-      end if
-      s%ap0 = int(s%a%colptr - 1, c_int)
-      s%ai0 = int(s%a%rowind - 1, c_int)
-      if (c_associated(s%symbolic)) call umfpack_di_free_symbolic(s%symbolic)
-      st = umfpack_di_symbolic(int(s%n, c_int), int(s%n, c_int), s%ap0, s%ai0, s%a%val, s%symbolic, &
-                               s%control, s%info)
-      if (st /= umfpack_ok) call fatal('UMFPACK symbolic analysis failed, status ' // itoa(int(st)))
-      s%analysed = .true.
-    end if
+    if (.not. s%analysed) call umfpack_analyse(s)
     if (c_associated(s%numeric)) call umfpack_di_free_numeric(s%numeric)
     st = umfpack_di_numeric(s%ap0, s%ai0, s%a%val, s%symbolic, s%numeric, s%control, s%info)
     if (st == umfpack_warning_singular .or. (st == umfpack_ok .and. s%info(umfpack_rcond) < rcond_lu_min)) then
