@@ -411,11 +411,12 @@ contains
       pres = 0.0_dp
       has_pres = .false.
       do ip = 1, size(m%pairs)
+        if (m%pairs(ip)%twin > 0 .and. m%pairs(ip)%twin < ip) cycle
         call contact_results(m, cs, ip, cr)
         force = force + cr%total
         do j = 1, size(cr%slave_cfe)
           associate(c => cs%c(cr%slave_cfe(j)))
-            pres(c%slave) = -c%force / c%area
+            pres(c%slave) = cr%slave_force(j) / c%area
             has_pres(c%slave) = .true.
           end associate
         end do

@@ -1119,7 +1119,7 @@ contains
     type(contact_pair_t), allocatable :: tmp(:)
     type(contact_pair_t) :: c
     integer :: n, npair, ns, nsurf
-    call allow_params(p, kw, 'PENALTY,OPEN PENALTY,NODAL,SEARCH DISTANCE,UPDATE SEARCH,TYPE')
+    call allow_params(p, kw, 'PENALTY,OPEN PENALTY,NODAL,SEARCH DISTANCE,UPDATE SEARCH,TYPE,SYMMETRIC')
     if (has_param(kw, 'TYPE')) then
       if (to_upper(param_value(kw, 'TYPE')) /= 'NODE TO SURFACE') &
         call err(p, 'only TYPE=NODE TO SURFACE is implemented')
@@ -1149,16 +1149,32 @@ contains
         call err(p, 'the master surface must be element-based')
       if (c%master_surface == c%slave_surface) call err(p, 'slave and master are the same surface')
       c%src%line = p%i
+      c%twin = 0
+      call add_pair(c)
+      npair = npair + 1
+      if (has_param(kw, 'SYMMETRIC')) then
+        ! Two-pass contact: the same pair again with the roles swapped.
+        if (m%surfaces(c%slave_surface)%kind /= surf_element) &
+          call err(p, 'SYMMETRIC needs an element-based slave surface (it is the master of the second pass)')
+        m%pairs(p%npairs)%twin = p%npairs + 1
+        c%slave_surface = m%pairs(p%npairs)%master_surface
+        c%master_surface = m%pairs(p%npairs)%slave_surface
+        c%twin = p%npairs
+        call add_pair(c)
+      end if
+    end do
+    if (npair == 0) call err(p, 'missing data line (slave, master)')
+  contains
+    subroutine add_pair(pair)
+      type(contact_pair_t), intent(in) :: pair
       if (p%npairs == size(m%pairs)) then
         allocate(tmp(2 * p%npairs))
         tmp(1:p%npairs) = m%pairs(1:p%npairs)
         call move_alloc(tmp, m%pairs)
       end if
       p%npairs = p%npairs + 1
-      m%pairs(p%npairs) = c
-      npair = npair + 1
-    end do
-    if (npair == 0) call err(p, 'missing data line (slave, master)')
+      m%pairs(p%npairs) = pair
+    end subroutine add_pair
   end subroutine read_contact_pair
 
   subroutine node_surface_from_set(p, m, ns, isurf)

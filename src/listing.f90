@@ -26,6 +26,7 @@ module listing
   !> and the table.
   type :: contact_results_t
     integer, allocatable :: slave_cfe(:)       ! CFE index of each slave row
+    real(dp), allocatable :: slave_force(:)    ! normal force at the slave node
     integer, allocatable :: master_node(:)
     real(dp), allocatable :: master_force(:), master_area(:)
     real(dp) :: total = 0.0_dp, resultant(2) = 0.0_dp, max_pen = 0.0_dp
@@ -147,9 +148,38 @@ contains
       nchanged, ', closed ', nclosed, ', out-of-balance ', resid, trim(changed_nodes)
   end subroutine write_iteration
 
-  !> Slave rows and the master-side forces a pair's CFEs produce. Each CFE
-  !> force goes to the master edge nodes with the weights N_i(X_C).
+  !> Results of pair ip. For a SYMMETRIC pair (reported on its first pass)
+  !> each node's force is what both passes put on it: its own CFE force and
+  !> what it receives as a master node of the other pass.
   subroutine contact_results(m, cs, ip, r)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip
+    type(contact_results_t), intent(out) :: r
+    type(contact_results_t) :: rt
+    integer :: j, k
+    call pass_results(m, cs, ip, r)
+    if (m%pairs(ip)%twin == 0) return
+    call pass_results(m, cs, m%pairs(ip)%twin, rt)
+    do j = 1, size(r%slave_cfe)
+      do k = 1, size(rt%master_node)
+        if (rt%master_node(k) == cs%c(r%slave_cfe(j))%slave) r%slave_force(j) = r%slave_force(j) + rt%master_force(k)
+      end do
+    end do
+    do k = 1, size(r%master_node)
+      do j = 1, size(rt%slave_cfe)
+        if (cs%c(rt%slave_cfe(j))%slave == r%master_node(k)) r%master_force(k) = r%master_force(k) + rt%slave_force(j)
+      end do
+    end do
+    r%total = r%total + rt%total
+    r%resultant = r%resultant - rt%resultant
+    r%nclosed = r%nclosed + rt%nclosed
+    r%max_pen = max(r%max_pen, rt%max_pen)
+  end subroutine contact_results
+
+  !> One pass: slave rows and the master-side forces its CFEs produce (each
+  !> CFE force goes to the master edge nodes with the weights N_i(X_C)).
+  subroutine pass_results(m, cs, ip, r)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: ip
@@ -159,6 +189,7 @@ contains
     real(dp) :: len, f
     associate(ms => m%surfaces(m%pairs(ip)%master_surface))
       r%slave_cfe = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == ip)
+      r%slave_force = -cs%c(r%slave_cfe)%force
       r%master_node = ms%nodes
       nm = size(ms%nodes)
       allocate(r%master_force(nm), r%master_area(nm), pos(m%nn))
@@ -190,7 +221,7 @@ contains
         end associate
       end do
     end associate
-  end subroutine contact_results
+  end subroutine pass_results
 
   subroutine write_increment(lst, m, istep, inc, t, ttot, iters, u, rf, cs, set_sums, set_ids, &
                              nip, sig_ip, eps_ip, sig_node)
@@ -274,6 +305,8 @@ contains
       end do
     end if
     do ip = 1, size(m%pairs)
+      ! the second pass of a SYMMETRIC pair is reported with the first
+      if (m%pairs(ip)%twin > 0 .and. m%pairs(ip)%twin < ip) cycle
       call contact_results(m, cs, ip, cr)
       call write_contact(ip, cr)
     end do
@@ -314,11 +347,11 @@ contains
           xs = m%x(:, c%slave) + u(:, c%slave)
           st = 'OPEN'
           if (c%closed) st = 'CLOSED'
-          write(un, '(i10,3' // efmt(lst) // ',1x,a6,3' // efmt(lst) // ')') m%node_id(c%slave), xs, c%gap, st, -c%force, c%area, &
-            -c%force / c%area
+          write(un, '(i10,3' // efmt(lst) // ',1x,a6,3' // efmt(lst) // ')') m%node_id(c%slave), xs, c%gap, st, &
+            r%slave_force(j), c%area, r%slave_force(j) / c%area
           if (lst%has_csv) write(lst%csv, '(i0,",",i0,",",es15.8,",",i0,",slave,",i0,",",es15.8,",",es15.8,",",&
             &es15.8,",",a,",",es15.8,",",es15.8)') istep, inc, ttot, ipair, m%node_id(c%slave), xs, c%gap, &
-            trim(st), -c%force, -c%force / c%area
+            trim(st), r%slave_force(j), r%slave_force(j) / c%area
         end associate
       end do
       write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', ipair, ' surface=' // &

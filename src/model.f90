@@ -104,6 +104,9 @@ module model
     logical :: nodal = .false.            ! penalty given per node, not per area
     real(dp) :: search_distance = -1.0_dp ! < 0: automatic
     logical :: update_search = .false.
+    !> SYMMETRIC: the pair made for the second pass (master and slave
+    !> swapped) and the other way round; 0 for a single pass.
+    integer :: twin = 0
     type(src_t) :: src
   end type contact_pair_t
 

@@ -219,3 +219,29 @@ def test_update_search_on_deformed_configuration():
     s0, _, _ = contact_blocks(base.listing.increments[-1])
     s1, _, _ = contact_blocks(upd.listing.increments[-1])
     assert max(abs(s0["pressure"] - s1["pressure"])) < 1e-6 * series_pressure(d)
+
+
+def test_symmetric_two_pass_passes_patch_test():
+    """SYMMETRIC (two passes, each surface the slave of one) on the meshes
+    with no common refinement: the uniform pressure is transmitted on both
+    sides within 0.5%."""
+    global NX2
+    saved, NX2 = NX2, 7
+    try:
+        d = 3 * G0
+        deck = blocks_deck([push_step(d)], ", SYMMETRIC")
+        # the upper block's bottom faces (S1 of its first row) as a surface
+        bottom = ", ".join(str(1001 + i) for i in range(NX2))
+        deck = deck.replace("*SURFACE, NAME=MASTER", f"*ELSET, ELSET=UPPERBOTTOM\n{bottom}\n*SURFACE, NAME=UPPERFACE\n"
+                            "UPPERBOTTOM, S1\n*SURFACE, NAME=MASTER").replace("SLAVE, MASTER", "UPPERFACE, MASTER")
+        run = run_deck("contact_symmetric", deck).ok()
+    finally:
+        NX2 = saved
+    inc = run.listing.increments[-1]
+    assert not inc.has("CONTACT SLAVE", pair=2), "the second pass is reported with the first"
+    slave, master, summ = contact_blocks(inc)
+    p = series_pressure(d)
+    err_s = max(abs(slave["pressure"] - p)) / p
+    err_m = max(abs(master["pressure"] - p)) / p
+    assert err_s < 0.005 and err_m < 0.005, f"slave {err_s:.4f}, master {err_m:.4f}"
+    assert rel_err(summ["total_force"][0], p * W) < 1e-3
