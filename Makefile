@@ -51,8 +51,11 @@ bin $(OBJDIR) $(MODDIR) $(BUILD)/tests:
 $(OBJDIR)/%.o: src/%.f90 | $(OBJDIR) $(MODDIR)
 	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
 
-$(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) | $(BUILD)/tests
-	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(OBJS) $(LIBS)
+$(BUILD)/tests/test_report.o: tests/unit/test_report.f90 | $(BUILD)/tests $(MODDIR)
+	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
+
+$(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) $(BUILD)/tests/test_report.o | $(BUILD)/tests
+	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(BUILD)/tests/test_report.o $(OBJS) $(LIBS)
 
 # Explicit module dependencies: an object depends on the objects of the
 # modules it uses (their .mod files are written alongside).
@@ -64,7 +67,7 @@ $(OBJDIR)/cholmod_binding.o:
 $(OBJDIR)/umfpack_binding.o:
 $(OBJDIR)/metis_binding.o:
 $(OBJDIR)/blas_info.o:
-$(OBJDIR)/linear_solver.o: $(OBJDIR)/kinds.o $(OBJDIR)/skyline.o $(OBJDIR)/sparse_matrix.o \
+$(OBJDIR)/linear_solver.o: $(OBJDIR)/kinds.o $(OBJDIR)/strings.o $(OBJDIR)/skyline.o $(OBJDIR)/sparse_matrix.o \
                            $(OBJDIR)/cholmod_binding.o $(OBJDIR)/umfpack_binding.o \
                            $(OBJDIR)/metis_binding.o $(OBJDIR)/messages.o
 $(OBJDIR)/model.o: $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o
@@ -83,7 +86,7 @@ $(OBJDIR)/assembly.o: $(OBJDIR)/model.o $(OBJDIR)/contact.o $(OBJDIR)/element_li
 $(OBJDIR)/listing.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o \
                      $(OBJDIR)/linear_solver.o $(OBJDIR)/blas_info.o
 $(OBJDIR)/results_gmsh.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o
-$(OBJDIR)/analysis.o: $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/linear_solver.o \
+$(OBJDIR)/analysis.o: $(OBJDIR)/strings.o $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/linear_solver.o \
                       $(OBJDIR)/listing.o $(OBJDIR)/results_gmsh.o $(OBJDIR)/messages.o
 $(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o
 

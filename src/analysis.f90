@@ -4,6 +4,7 @@
 module analysis
   use, intrinsic :: iso_fortran_env, only: output_unit
   use kinds, only: dp
+  use strings, only: itoa
   use model
   use contact, only: contact_set_t, contact_search
   use assembly, only: dofmap_t, number_dofs, assemble, internal_forces, stress_recovery
@@ -441,13 +442,6 @@ contains
     end subroutine report
   end subroutine run_analysis
 
-  function itoa(k) result(s)
-    integer, intent(in) :: k
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') k
-    s = trim(buf)
-  end function itoa
 
   function rtoa(x) result(s)
     real(dp), intent(in) :: x

@@ -139,6 +139,25 @@ contains
     call sys_setup(sys, kind, order, n, xeq, eqs(1:xeq(ng + 1) - 1))
   end subroutine number_dofs
 
+  !> Element data of assembly group g (solid element g, or CFE g - ne);
+  !> false for line elements, which carry no stiffness.
+  logical function group_input(m, cs, g, u, ein, nodes)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: g
+    real(dp), intent(in) :: u(:, :)
+    type(elem_in_t), intent(out) :: ein
+    integer, intent(out) :: nodes(:)
+    group_input = .true.
+    if (g > m%ne) then
+      call cfe_input(m, cs%c(g - m%ne), u, ein, nodes)
+    else if (et_is_solid(m%etype(g))) then
+      call solid_input(m, g, u, ein, nodes)
+    else
+      group_input = .false.
+    end if
+  end function group_input
+
   !> Nodes of assembly group g: solid element g, or CFE g - ne (coupling
   !> node first); no nodes for line elements.
   pure subroutine group_nodes(m, cs, g, nodes, nen)
@@ -183,12 +202,7 @@ contains
       end do
     end do
     do e = 1, m%ne + cs%n
-      if (e <= m%ne) then
-        if (.not. et_is_solid(m%etype(e))) cycle
-        call solid_input(m, e, u, ein, nodes)
-      else
-        call cfe_input(m, cs%c(e - m%ne), u, ein, nodes)
-      end if
+      if (.not. group_input(m, cs, e, u, ein, nodes)) cycle
       call element_routine(ein, eout)
       do i = 1, eout%ndof
         gi = dm%eq(2 - mod(i, 2), nodes((i + 1) / 2))
@@ -215,12 +229,7 @@ contains
     integer :: e, i, nodes(max_en)
     fint = 0.0_dp
     do e = 1, m%ne + cs%n
-      if (e <= m%ne) then
-        if (.not. et_is_solid(m%etype(e))) cycle
-        call solid_input(m, e, u, ein, nodes)
-      else
-        call cfe_input(m, cs%c(e - m%ne), u, ein, nodes)
-      end if
+      if (.not. group_input(m, cs, e, u, ein, nodes)) cycle
       call element_routine(ein, eout)
       do i = 1, ein%nen
         fint(:, nodes(i)) = fint(:, nodes(i)) + eout%fe(2 * i - 1:2 * i)

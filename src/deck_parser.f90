@@ -3,7 +3,7 @@
 !> with file:line on the first problem.
 module deck_parser
   use kinds, only: dp, name_len
-  use strings, only: to_upper, split_fields, parse_real, parse_int, field_t
+  use strings, only: to_upper, split_fields, parse_real, parse_int, field_t, itoa
   use deck_input, only: deck_t, keyword_t, read_deck, parse_keyword, deck_error, &
                         deck_warning, param_value, has_param, is_keyword
   use model
@@ -1287,11 +1287,4 @@ contains
     if (min_corner_jacobian <= 1.0e-12_dp * scale) min_corner_jacobian = 0.0_dp
   end function min_corner_jacobian
 
-  function itoa(k) result(s)
-    integer, intent(in) :: k
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') k
-    s = trim(buf)
-  end function itoa
 end module deck_parser

@@ -7,8 +7,9 @@
 module linear_solver
   use, intrinsic :: iso_c_binding
   use kinds, only: dp
+  use strings, only: itoa
   use skyline, only: skyline_t, sky_setup, sky_add, sky_factor, sky_solve, sky_matvec, sky_zero
-  use sparse_matrix, only: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec
+  use sparse_matrix, only: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec, csc_position
   use cholmod_binding
   use umfpack_binding
   use metis_binding, only: metis_nodend, metis_setdefaultoptions, metis_noptions, metis_ok
@@ -393,42 +394,29 @@ contains
     type(linear_system_t), intent(inout) :: s
     type(csc_t) :: full
     real(dp), allocatable :: v(:)
-    integer :: col, k, r, kk, lo, hi, mid
+    integer :: col, k, r, kk
     integer(c_int) :: ok
     if (c_associated(s%factor)) ok = cholmod_free_factor(s%factor, s%cc)
     s%factor = c_null_ptr
     call csc_build(full, s%n, s%xeq, s%eqs, upper=.false.)
     ! copy the assembled values into both triangles
-    v = full%val
+    allocate(v(size(full%val)))
     v = 0.0_dp
     do col = 1, s%n
       do k = s%a%colptr(col), s%a%colptr(col + 1) - 1
         r = s%a%rowind(k)
-        call put(r, col, s%a%val(k))
-        if (r /= col) call put(col, r, s%a%val(k))
+        kk = csc_position(full, r, col)
+        v(kk) = v(kk) + s%a%val(k)
+        if (r /= col) then
+          kk = csc_position(full, col, r)
+          v(kk) = v(kk) + s%a%val(k)
+        end if
       end do
     end do
     full%val = v
     s%a = full
     s%kind = solver_umfpack
     s%analysed = .false.
-  contains
-    subroutine put(row, c, x)
-      integer, intent(in) :: row, c
-      real(dp), intent(in) :: x
-      lo = full%colptr(c)
-      hi = full%colptr(c + 1) - 1
-      do while (lo < hi)
-        mid = (lo + hi) / 2
-        if (full%rowind(mid) < row) then
-          lo = mid + 1
-        else
-          hi = mid
-        end if
-      end do
-      kk = lo
-      v(kk) = v(kk) + x
-    end subroutine put
   end subroutine switch_to_umfpack
 
   subroutine umfpack_analyse(s)
@@ -478,11 +466,4 @@ contains
     b = x
   end subroutine umfpack_solve_rhs
 
-  function itoa(k) result(str)
-    integer, intent(in) :: k
-    character(len=:), allocatable :: str
-    character(len=16) :: buf
-    write(buf, '(i0)') k
-    str = trim(buf)
-  end function itoa
 end module linear_solver

@@ -7,7 +7,7 @@ module sparse_matrix
   use kinds, only: dp
   implicit none
   private
-  public :: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec
+  public :: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec, csc_position
 
   type :: csc_t
     integer :: n = 0
@@ -29,7 +29,7 @@ contains
     type(csc_t), intent(out) :: a
     integer, intent(in) :: n, xeq(:), eqs(:)
     logical, intent(in) :: upper
-    integer :: ne, e, i, j, k, gi, gj, col, cnt, lo, hi, mid, pass
+    integer :: ne, e, i, j, k, gi, gj, col, cnt, pass
     integer, allocatable :: xel(:), el(:), mark(:), fill(:)
     integer(8) :: npairs
     ne = size(xeq) - 1
@@ -114,22 +114,29 @@ contains
             col = gj
             gj = gi
           end if
-          lo = a%colptr(col)
-          hi = a%colptr(col + 1) - 1
-          do while (lo < hi)
-            mid = (lo + hi) / 2
-            if (a%rowind(mid) < gj) then
-              lo = mid + 1
-            else
-              hi = mid
-            end if
-          end do
-          a%emap(k) = lo
+          a%emap(k) = csc_position(a, gj, col)
           k = k + 1
         end do
       end do
     end do
   end subroutine csc_build
+
+  !> Index in rowind/val of entry (row, col), which must be in the pattern.
+  pure integer function csc_position(a, row, col) result(lo)
+    type(csc_t), intent(in) :: a
+    integer, intent(in) :: row, col
+    integer :: hi, mid
+    lo = a%colptr(col)
+    hi = a%colptr(col + 1) - 1
+    do while (lo < hi)
+      mid = (lo + hi) / 2
+      if (a%rowind(mid) < row) then
+        lo = mid + 1
+      else
+        hi = mid
+      end if
+    end do
+  end function csc_position
 
   pure subroutine sort_int(v)
     integer, intent(inout) :: v(:)

@@ -4,7 +4,7 @@ module strings
   use kinds, only: dp
   implicit none
   private
-  public :: to_upper, split_fields, parse_real, parse_int, field_t
+  public :: to_upper, split_fields, parse_real, parse_int, field_t, itoa
 
   !> One comma-separated field of a deck line, blanks removed at both ends.
   type :: field_t
@@ -90,4 +90,13 @@ contains
     read(s, *, iostat=ios) k
     ok = (ios == 0)
   end subroutine parse_int
+
+  !> An integer as text without blanks.
+  pure function itoa(k) result(s)
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write(buf, '(i0)') k
+    s = trim(buf)
+  end function itoa
 end module strings

@@ -3,28 +3,18 @@
 !> F_int, and [[U]] equal to the current slave-to-X_C vector.
 program test_cfe
   use kinds, only: dp
+  use test_report, only: report, failures
   use element_types, only: elem_in_t, elem_out_t, kind_cfe, kind_quad4, kind_tri3
   use element_library, only: element_routine
   use cfe_element, only: cfe_b_matrix
   use plane_elements, only: quad4_shape, tri3_shape
   implicit none
-  integer :: nfail = 0
   call check('CFE on Q4 master', kind_quad4, 4, [0.3_dp, 1.0_dp])
   call check('CFE on T3 master', kind_tri3, 3, [0.35_dp, 0.65_dp])
-  if (nfail > 0) stop 1
+  if (failures() > 0) stop 1
 
 contains
 
-  subroutine report(name, ok, detail)
-    character(len=*), intent(in) :: name, detail
-    logical, intent(in) :: ok
-    if (ok) then
-      print '(a)', 'PASS ' // name
-    else
-      print '(a)', 'FAIL ' // name // ': ' // detail
-      nfail = nfail + 1
-    end if
-  end subroutine report
 
   subroutine check(name, mkind, nm, xi)
     character(len=*), intent(in) :: name

@@ -3,10 +3,10 @@
 !> rigid motions, and exact stresses for a linear displacement field.
 program test_elements
   use kinds, only: dp
+  use test_report, only: report, failures
   use element_types, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3
   use element_library, only: element_routine
   implicit none
-  integer :: nfail = 0
   type(elem_in_t) :: ein
 
   ! A distorted quadrilateral and a general triangle.
@@ -30,20 +30,10 @@ program test_elements
   ein%plane_strain = .true.
   call check_element('T3 plane strain')
 
-  if (nfail > 0) stop 1
+  if (failures() > 0) stop 1
 
 contains
 
-  subroutine report(name, ok, detail)
-    character(len=*), intent(in) :: name, detail
-    logical, intent(in) :: ok
-    if (ok) then
-      print '(a)', 'PASS ' // name
-    else
-      print '(a)', 'FAIL ' // name // ': ' // detail
-      nfail = nfail + 1
-    end if
-  end subroutine report
 
   subroutine check_element(name)
     character(len=*), intent(in) :: name

@@ -3,28 +3,18 @@
 !> detection of singular and indefinite matrices.
 program test_skyline
   use kinds, only: dp
+  use test_report, only: report, failures
   use skyline, only: skyline_t, sky_setup, sky_add, sky_factor, sky_solve, sky_matvec
   use ordering, only: rcm_order
   implicit none
-  integer :: nfail = 0
   call random_profile_case(7, 40)
   call random_profile_case(11, 200)
   call reordered_grid_case(13, 9)
   call singular_cases()
-  if (nfail > 0) stop 1
+  if (failures() > 0) stop 1
 
 contains
 
-  subroutine report(name, ok, detail)
-    character(len=*), intent(in) :: name, detail
-    logical, intent(in) :: ok
-    if (ok) then
-      print '(a)', 'PASS ' // name
-    else
-      print '(a)', 'FAIL ' // name // ': ' // detail
-      nfail = nfail + 1
-    end if
-  end subroutine report
 
   !> Symmetric, diagonally dominant matrix with a random profile.
   subroutine random_profile_case(seed, n)

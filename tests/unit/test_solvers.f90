@@ -6,28 +6,18 @@
 program test_solvers
   use, intrinsic :: iso_c_binding
   use kinds, only: dp
+  use test_report, only: report, failures
   use linear_solver
   use cholmod_binding, only: cholmod_common_t
   implicit none
-  integer :: nfail = 0
   call layout_check()
   call spd_case()
   call indefinite_case()
   call singular_case()
-  if (nfail > 0) stop 1
+  if (failures() > 0) stop 1
 
 contains
 
-  subroutine report(name, ok, detail)
-    character(len=*), intent(in) :: name, detail
-    logical, intent(in) :: ok
-    if (ok) then
-      print '(a)', 'PASS ' // name
-    else
-      print '(a)', 'FAIL ' // name // ': ' // detail
-      nfail = nfail + 1
-    end if
-  end subroutine report
 
   !> Offsets of cholmod_common fields as the C compiler lays them out for
   !> CHOLMOD 3.0 (offsetof on this platform: nmethods 168, method 184,
