@@ -206,8 +206,12 @@ contains
     character(len=:), allocatable :: d
     character(len=40) :: buf
     write(buf, '(es12.5)') s%factor_entries
-    d = solver_name(s%kind) // ', ordering ' // ordering_name(s%ordering) // ', factor entries ' // &
-        trim(adjustl(buf))
+    if (s%kind == solver_skyline) then
+      d = solver_name(s%kind) // ', ordering ' // ordering_name(s%ordering) // ', profile ' // trim(adjustl(buf))
+    else
+      d = solver_name(s%kind) // ', ordering ' // ordering_name(s%ordering) // ', factor entries ' // &
+          trim(adjustl(buf))
+    end if
   end function sys_describe
 
   subroutine sys_free(s)

@@ -245,3 +245,19 @@ def test_symmetric_two_pass_passes_patch_test():
     err_m = max(abs(master["pressure"] - p)) / p
     assert err_s < 0.005 and err_m < 0.005, f"slave {err_s:.4f}, master {err_m:.4f}"
     assert rel_err(summ["total_force"][0], p * W) < 1e-3
+
+
+def test_unsettled_status_bisects_then_stops_keeping_completed_increments():
+    """MAXIT=1 leaves no room for a status change: the increment that needs
+    one is bisected CUTBACKS times, then the run stops naming the nodes; the
+    increments completed before it stay in the listing."""
+    approach = push_step(0.5 * G0)             # step 1: no contact, settles at once
+    press = push_step(3 * G0)                  # step 2: contact, needs a change
+    deck = blocks_deck([approach, press]).replace("*CONTACT PAIR", "*CONTACT CONTROLS, MAXIT=1, CUTBACKS=2\n*CONTACT PAIR")
+    run = run_deck("contact_unsettled", deck)
+    assert run.rc != 0
+    assert "did not settle" in run.stderr and "after 2 bisections" in run.stderr, run.stderr
+    text = open(run.listing_path).read()
+    assert text.count("increment bisected") == 2, text.count("increment bisected")
+    incs = run.listing.increments
+    assert len(incs) == 1 and incs[0].step == 1, [(i.step, i.number) for i in incs]

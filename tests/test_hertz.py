@@ -61,3 +61,19 @@ def test_no_contact_force_when_separated():
         if r["increment"] in (1, 2, 18, 19, 20):
             assert r["closed"] == 0 and abs(r["P"]) < 1e-6 * peak, (r["increment"], r["P"])
     assert np.isclose(rows[-1]["u"], 0.0, atol=1e-12)
+
+
+def test_paper_penalty_gives_the_same_answer():
+    """The paper's c = 1e10 per node (N/mm) against the automatic penalty:
+    the same contact force at the peak to 1e-4 and p0, a within 3% of Hertz
+    at every loaded increment."""
+    import compare_hertz
+    import run_hertz
+    from hertz import effective_modulus
+    auto = {r["increment"]: r for r in hertz_rows()}
+    job, _ = run_hertz.run_case(os.path.join(WORK, "hertz_paper"), penalty="paper")
+    table = compare_hertz.read_contact_table(job + "_contact.csv")
+    rows = compare_hertz.compare(table, 10.0, effective_modulus(210000.0, 0.3))
+    for r in loaded(rows):
+        assert abs(r["err_p0"]) < 0.03 and abs(r["err_a"]) < 0.03, r["increment"]
+        assert abs(r["P"] - auto[r["increment"]]["P"]) < 1e-4 * auto[10]["P"], r["increment"]
