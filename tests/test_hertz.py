@@ -77,3 +77,18 @@ def test_paper_penalty_gives_the_same_answer():
     for r in loaded(rows):
         assert abs(r["err_p0"]) < 0.03 and abs(r["err_a"]) < 0.03, r["increment"]
         assert abs(r["P"] - auto[r["increment"]]["P"]) < 1e-4 * auto[10]["P"], r["increment"]
+
+
+def test_gmsh_opens_the_result_file():
+    """gmsh itself reads <job>.msh: 7 nodal views (displacement, S11, S22,
+    S33, S12, Mises, contact pressure) and 5 element views, 20 steps each."""
+    import subprocess
+    hertz_rows()
+    msh = os.path.join(WORK, "hertz_default", "hertz.msh")
+    geo = os.path.join(WORK, "hertz_default", "views.geo")
+    with open(geo, "w") as f:
+        f.write(f'Merge "{msh}";\nn = PostProcessing.NbViews;\nPrintf("views %g", n);\n'
+                'For i In {0:n-1}\n  Printf("steps %g", View[i].NbTimeStep);\nEndFor\nExit;\n')
+    out = subprocess.run(["gmsh", geo, "-0"], capture_output=True, text=True).stdout
+    assert "views 12" in out, out[-2000:]
+    assert out.count("steps 20") == 12, out[-2000:]

@@ -1,0 +1,212 @@
+"""Keyword-deck features against answers known in closed form: nested
+*INCLUDE with relative paths, GENERATE, set names inside lists, trailing
+commas, comments and mixed case, faces S1..S4 of quads and triangles,
+named boundary conditions, amplitudes in step and total time, OP=NEW,
+loads carried over between steps, reactions per set."""
+import os
+
+import numpy as np
+
+from helpers import rel_err, run_deck
+
+E, NU = 1000.0, 0.25
+
+# A 2 x 1 block of two quads, nodes 1-3 at y = 0, 4-6 at y = 1.
+MESH = """** nodes with tabs, a trailing comma and mixed case
+*Node, nset=allN
+1,\t0.0,\t0.0
+2, 1.0, 0.0,
+3, 2.0, 0.0
+4, 0.0, 1.0
+5, 1.0, 1.0
+6, 2.0, 1.0
+*INCLUDE, INPUT=sub/elements.inp
+"""
+ELEMENTS = """*element, type=cps4, elset=QUADS
+1, 1, 2, 5, 4
+2, 2, 3, 6, 5
+*INCLUDE, INPUT=../sets.inp
+"""
+SETS = """*NSET, NSET=LEFT, GENERATE
+1, 4, 3
+*NSET, NSET=RIGHTBOT
+3
+*NSET, NSET=RIGHT
+RIGHTBOT, 6,
+*ELSET, ELSET=ALLE, GENERATE
+1, 2
+"""
+
+
+def block_deck(step_text, extra=""):
+    return f"""*HEADING
+features
+*INCLUDE, INPUT=mesh.inp
+*MATERIAL, NAME=m1
+*ELASTIC
+{E}, {NU}
+*SOLID SECTION, ELSET=alle, MATERIAL=M1
+2.0
+{extra}*BOUNDARY
+LEFT, XSYMM
+1, YSYMM
+{step_text}"""
+
+
+FILES = {"mesh.inp": MESH, "sub/elements.inp": ELEMENTS, "sets.inp": SETS}
+
+
+def run_block(name, step_text, extra=""):
+    # write the nested include tree
+    from helpers import workdir
+    d = workdir("feat_" + name)
+    for fn, text in FILES.items():
+        os.makedirs(os.path.dirname(os.path.join(d, fn)), exist_ok=True)
+        with open(os.path.join(d, fn), "w") as f:
+            f.write(text)
+    path = os.path.join(d, name + ".inp")
+    with open(path, "w") as f:
+        f.write(block_deck(step_text, extra))
+    return run_deck("feat_" + name + "_out", path=path).ok()
+
+
+def tension_u(force_total):
+    """Uniaxial tension of the 2 x 1 x 2 (thickness) block: end displacement."""
+    return force_total / (2.0 * 1.0) / E * 2.0
+
+
+def test_nested_include_generate_sets_and_named_bcs():
+    step = """*STEP
+*STATIC
+*CLOAD
+RIGHT, 1, 3.0
+*NODE PRINT, NSET=RIGHT
+U
+*END STEP
+"""
+    run = run_block("tension", step)
+    inc = run.listing.increments[-1]
+    u = inc.block("NODE U", set="RIGHT")["U1"]
+    assert np.allclose(u, tension_u(6.0), rtol=1e-10), u
+    rf = inc.block("REACTIONS").as_dict()
+    assert abs(rf["LEFT"][0] + 6.0) < 1e-9, rf
+
+
+def test_amplitudes_step_and_total_time_and_op_new():
+    """Step 1: load with a step-time amplitude (0 -> 1 -> 0.5 over the step);
+    step 2: the same load value with a total-time amplitude; step 3: OP=NEW
+    removes the loads."""
+    step = """*AMPLITUDE, NAME=UPDOWN
+0., 0., 0.5, 1., 1., 0.5
+*AMPLITUDE, NAME=TOT, TIME=TOTAL TIME
+0., 0., 2., 2.
+*STEP
+*STATIC
+0.5, 1.0
+*CLOAD, AMPLITUDE=UPDOWN
+RIGHT, 1, 3.0
+*NODE PRINT, NSET=RIGHT
+U
+*END STEP
+*STEP
+*STATIC
+1.0, 1.0
+*CLOAD, AMPLITUDE=TOT
+RIGHT, 1, 3.0
+*NODE PRINT, NSET=RIGHT
+U
+*END STEP
+*STEP
+*STATIC
+*CLOAD, OP=NEW
+*NODE PRINT, NSET=RIGHT
+U
+*END STEP
+"""
+    step = step.replace("*CLOAD, OP=NEW\n", "*CLOAD, OP=NEW\nRIGHT, 2, 0.0\n")
+    run = run_block("amplitudes", step)
+    u = [i.block("NODE U", set="RIGHT")["U1"][0] for i in run.listing.increments]
+    expect = [tension_u(6.0), tension_u(3.0), tension_u(6.0 * 2.0), 0.0]
+    assert len(u) == 4
+    for got, want in zip(u, expect):
+        assert abs(got - want) < 1e-10 * tension_u(6.0), (u, expect)
+
+
+def test_faces_of_quads_and_triangles():
+    """Each face Sk of a quad and of a triangle, used as a contact master
+    surface, has the outward normal of its edge: a node 0.1 outside each
+    face is coupled with gap 0.1."""
+    deck = """*NODE
+1, 0, 0
+2, 1, 0
+3, 1, 1
+4, 0, 1
+11, 3, 0
+12, 4, 0
+13, 3, 1
+21, 0.5, -0.1
+22, 1.1, 0.5
+23, 0.5, 1.1
+24, -0.1, 0.5
+31, 3.5, -0.1
+32, 3.6, 0.5
+33, 2.9, 0.5
+*ELEMENT, TYPE=CPS4, ELSET=Q
+1, 1, 2, 3, 4
+*ELEMENT, TYPE=CPS3, ELSET=T
+2, 11, 12, 13
+*NSET, NSET=PROBES
+21, 22, 23, 24, 31, 32, 33
+*SURFACE, NAME=FACES
+1, S1
+1, S2
+1, S3
+1, S4
+2, S1
+2, S2
+2, S3
+*MATERIAL, NAME=M
+*ELASTIC
+1000., 0.3
+*SOLID SECTION, ELSET=Q, MATERIAL=M
+*SOLID SECTION, ELSET=T, MATERIAL=M
+*CONTACT PAIR, PENALTY=1.0, NODAL
+PROBES, FACES
+*BOUNDARY
+1, 1, 2
+2, 2, 2
+11, 1, 2
+12, 2, 2
+PROBES, 1, 2
+*STEP
+*STATIC
+*END STEP
+"""
+    run = run_deck("feat_faces", deck).ok()
+    slave = run.listing.increments[-1].block("CONTACT SLAVE", pair=1)
+    gaps = dict(zip(slave["node"], slave["gap"]))
+    expect = {21: 0.1, 22: 0.1, 23: 0.1, 24: 0.1, 31: 0.1, 33: 0.1}
+    # node 32 faces the hypotenuse (face S2, node 12 to node 13)
+    a, b = np.array([4.0, 0.0]), np.array([3.0, 1.0])
+    t = (b - a) / np.linalg.norm(b - a)
+    n = np.array([t[1], -t[0]])
+    expect[32] = float(np.dot(np.array([3.6, 0.5]) - a, n))
+    for node, g in expect.items():
+        assert abs(gaps[node] - g) < 1e-12, (node, gaps[node], g)
+
+
+def test_reaction_sums_balance_loads():
+    step = """*STEP
+*STATIC
+*CLOAD
+6, 2, -1.5
+3, 1, 2.0
+*NODE PRINT, NSET=LEFT
+RF
+*END STEP
+"""
+    run = run_block("reactions", step, extra="*NSET, NSET=BOTTOMLEFT\n1\n")
+    inc = run.listing.increments[-1]
+    rf = inc.block("NODE RF", set="LEFT")
+    assert abs(sum(rf["RF1"]) + 2.0) < 1e-9
+    assert rel_err(inc.block("REACTIONS").as_dict()["LEFT"][0], -2.0) < 1e-9
