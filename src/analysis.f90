@@ -11,10 +11,9 @@ module analysis
   use results_gmsh, only: result_file_t, write_result_views
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_describe, sys_setup, sys_free, &
                            factor_ok, factor_singular, factor_fallback, solver_skyline, order_natural
-  use messages, only: warn
   use listing, only: listing_t, write_step_header, write_increment, write_iteration, write_text, &
                      contact_results_t, contact_results
-  use messages, only: fatal
+  use messages, only: fatal, warn
   implicit none
   private
   public :: run_analysis, amplitude_value
@@ -120,9 +119,15 @@ contains
         period = st%period
         ninc = nint(period / st%dt)
         inc = 0
+        nfactor = 0
         do i = 1, ninc
           call advance(is, period * (i - 1) / ninc, period * i / ninc, 0)
         end do
+        call write_text(lst, '')
+        call write_text(lst, '--- STEP SUMMARY step=' // itoa(is))
+        call write_text(lst, 'item value')
+        call write_text(lst, 'increments ' // itoa(inc))
+        call write_text(lst, 'numeric_factorisations ' // itoa(nfactor))
         total_time = total_time + period
       end associate
     end do
