@@ -8,8 +8,7 @@ module contact
   use element_types, only: elem_in_t, kind_cfe, kind_quad4, kind_tri3
   implicit none
   private
-  public :: cfe_t, contact_set_t, contact_search, cfe_input, cfe_penalty, &
-            tributary_lengths, auto_penalty_factor, section_e, section_thickness
+  public :: cfe_t, contact_set_t, contact_search, cfe_input
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp

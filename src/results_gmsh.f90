@@ -5,7 +5,6 @@ module results_gmsh
   use kinds, only: dp
   use model
   use materials, only: von_mises
-  use contact, only: contact_set_t
   use messages, only: register_unit_to_close, fatal
   implicit none
   private
