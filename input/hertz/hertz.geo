@@ -14,7 +14,7 @@ DefineConstant[ h = 0.05, ratio = 0.5, Lp = 40, Hp = 40, quads = 1 ];
 R = 10;
 g0 = 0.1;
 far = R / 4;      // element size far from the contact
-zone = 2.5;       // half width of the finely meshed zone (a < 1.6 at the peak)
+zone = 2.5;       // half width of the finely meshed zone (a = 1.3 at the peak)
 
 // plate: top edge y = 0
 Point(1) = {-Lp, -Hp, 0, far};
