@@ -16,7 +16,7 @@ OBJDIR := $(BUILD)/obj
 MODDIR := $(BUILD)/mod
 
 # Program modules in dependency order (see the explicit rules below).
-MODULES := kinds messages strings skyline sparse_matrix cholmod_binding umfpack_binding \
+MODULES := kinds messages strings solver_codes skyline sparse_matrix cholmod_binding umfpack_binding \
            metis_binding blas_info linear_solver deck_input model deck_parser materials \
            element_types plane_elements cfe_element element_library \
            ordering contact assembly listing results_gmsh analysis
@@ -69,10 +69,11 @@ $(OBJDIR)/metis_binding.o:
 $(OBJDIR)/blas_info.o:
 $(OBJDIR)/linear_solver.o: $(OBJDIR)/kinds.o $(OBJDIR)/strings.o $(OBJDIR)/skyline.o $(OBJDIR)/sparse_matrix.o \
                            $(OBJDIR)/cholmod_binding.o $(OBJDIR)/umfpack_binding.o \
-                           $(OBJDIR)/metis_binding.o $(OBJDIR)/messages.o
-$(OBJDIR)/model.o: $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o
+                           $(OBJDIR)/metis_binding.o $(OBJDIR)/messages.o $(OBJDIR)/solver_codes.o
+$(OBJDIR)/solver_codes.o:
+$(OBJDIR)/model.o: $(OBJDIR)/kinds.o $(OBJDIR)/solver_codes.o
 $(OBJDIR)/deck_parser.o: $(OBJDIR)/kinds.o $(OBJDIR)/strings.o $(OBJDIR)/deck_input.o $(OBJDIR)/model.o \
-                         $(OBJDIR)/linear_solver.o
+                         $(OBJDIR)/solver_codes.o
 $(OBJDIR)/materials.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/element_types.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/plane_elements.o: $(OBJDIR)/element_types.o $(OBJDIR)/materials.o
@@ -84,7 +85,7 @@ $(OBJDIR)/contact.o: $(OBJDIR)/model.o $(OBJDIR)/element_types.o
 $(OBJDIR)/assembly.o: $(OBJDIR)/model.o $(OBJDIR)/contact.o $(OBJDIR)/element_library.o \
                       $(OBJDIR)/linear_solver.o $(OBJDIR)/ordering.o
 $(OBJDIR)/listing.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o \
-                     $(OBJDIR)/linear_solver.o $(OBJDIR)/blas_info.o
+                     $(OBJDIR)/solver_codes.o $(OBJDIR)/blas_info.o
 $(OBJDIR)/results_gmsh.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/messages.o
 $(OBJDIR)/analysis.o: $(OBJDIR)/strings.o $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/linear_solver.o \
                       $(OBJDIR)/listing.o $(OBJDIR)/results_gmsh.o $(OBJDIR)/messages.o

@@ -7,7 +7,7 @@ module deck_parser
   use deck_input, only: deck_t, keyword_t, read_deck, parse_keyword, deck_error, &
                         deck_warning, param_value, has_param, is_keyword
   use model
-  use linear_solver, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
+  use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
                            order_amd, order_metis
   implicit none
   private

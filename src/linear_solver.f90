@@ -14,6 +14,7 @@ module linear_solver
   use umfpack_binding
   use metis_binding, only: metis_nodend, metis_setdefaultoptions, metis_noptions, metis_ok
   use messages, only: fatal
+  use solver_codes
   implicit none
   private
   public :: linear_system_t, solver_skyline, solver_cholmod, solver_umfpack, &
@@ -21,8 +22,6 @@ module linear_solver
             sys_setup, sys_zero, sys_add, sys_analyse, sys_factor, sys_solve, sys_matvec, sys_free, &
             sys_describe, solver_name, ordering_name, factor_ok, factor_singular, factor_fallback
 
-  integer, parameter :: solver_skyline = 1, solver_cholmod = 2, solver_umfpack = 3
-  integer, parameter :: order_natural = 0, order_rcm = 1, order_amd = 2, order_metis = 3
   integer, parameter :: factor_ok = 0, factor_singular = 1, factor_fallback = 2
   !> Below these the factor is taken as singular: min/max of diag(L) for
   !> CHOLMOD's LL' (its square estimates 1/cond), UMFPACK's own estimate.
@@ -55,27 +54,6 @@ module linear_solver
   end type linear_system_t
 
 contains
-
-  pure function solver_name(kind) result(s)
-    integer, intent(in) :: kind
-    character(len=:), allocatable :: s
-    select case (kind)
-    case (solver_skyline); s = 'skyline LDL^T'
-    case (solver_cholmod); s = 'CHOLMOD'
-    case default; s = 'UMFPACK'
-    end select
-  end function solver_name
-
-  pure function ordering_name(o) result(s)
-    integer, intent(in) :: o
-    character(len=:), allocatable :: s
-    select case (o)
-    case (order_natural); s = 'natural'
-    case (order_rcm); s = 'RCM'
-    case (order_amd); s = 'AMD'
-    case default; s = 'METIS'
-    end select
-  end function ordering_name
 
   !> Structure of the system from the element equation lists (skyline
   !> heights, or the CSC pattern and its element map).

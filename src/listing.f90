@@ -8,7 +8,7 @@ module listing
   use materials, only: von_mises
   use contact, only: contact_set_t
   use messages, only: register_unit_to_close, fatal
-  use linear_solver, only: solver_name, ordering_name
+  use solver_codes, only: solver_name, ordering_name
   use blas_info, only: blas_description
   implicit none
   private

@@ -3,7 +3,7 @@
 !> stored with internal (1..n) indices; user ids are kept for output.
 module model
   use kinds, only: dp, name_len
-  use linear_solver, only: solver_cholmod, order_amd
+  use solver_codes, only: solver_cholmod, order_amd
   implicit none
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
@@ -128,8 +128,8 @@ module model
     type(bc_t), allocatable :: model_bcs(:)
     type(step_t), allocatable :: steps(:)
     type(contact_pair_t), allocatable :: pairs(:)
-    integer :: solver = solver_cholmod   ! linear_solver's solver_* codes
-    integer :: ordering = order_amd      ! linear_solver's order_* codes
+    integer :: solver = solver_cholmod   ! solver_codes
+    integer :: ordering = order_amd      ! solver_codes
     real(dp) :: contact_tolerance = 1.0e-6_dp
     integer :: contact_max_iter = 30
     integer :: max_cutbacks = 5
