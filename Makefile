@@ -84,7 +84,7 @@ $(OBJDIR)/ordering.o:
 $(OBJDIR)/contact.o: $(OBJDIR)/model.o $(OBJDIR)/element_types.o
 $(OBJDIR)/assembly.o: $(OBJDIR)/model.o $(OBJDIR)/contact.o $(OBJDIR)/element_library.o \
                       $(OBJDIR)/linear_solver.o $(OBJDIR)/ordering.o
-$(OBJDIR)/listing.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o \
+$(OBJDIR)/listing.o: $(OBJDIR)/strings.o $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o \
                      $(OBJDIR)/solver_codes.o $(OBJDIR)/blas_info.o
 $(OBJDIR)/results_gmsh.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/messages.o
 $(OBJDIR)/analysis.o: $(OBJDIR)/strings.o $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/linear_solver.o \

@@ -4,7 +4,7 @@
 module analysis
   use, intrinsic :: iso_fortran_env, only: output_unit
   use kinds, only: dp
-  use strings, only: itoa
+  use strings, only: itoa, rtoa
   use model
   use contact, only: contact_set_t, contact_search
   use assembly, only: dofmap_t, number_dofs, assemble, internal_forces, stress_recovery
@@ -218,7 +218,7 @@ contains
       cs%c(1:cs%n)%closed = saved
       if (level >= m%max_cutbacks) then
         call write_text(lst, 'contact status did not settle; nodes still switching:' // last_changed)
-        call fatal('contact status did not settle in step ' // itoa(is) // ' at time ' // rtoa(t1) // &
+        call fatal('contact status did not settle in step ' // itoa(is) // ' at time ' // rtoa(t1, 6) // &
           ' after ' // itoa(level) // ' bisections; nodes still switching:' // last_changed)
       end if
       call write_text(lst, 'contact status did not settle: increment bisected')
@@ -447,12 +447,4 @@ contains
     end subroutine report
   end subroutine run_analysis
 
-
-  function rtoa(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write(buf, '(es12.5)') x
-    s = trim(adjustl(buf))
-  end function rtoa
 end module analysis

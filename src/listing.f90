@@ -4,6 +4,7 @@
 !> rows; increments are framed by "=== INCREMENT ..." and "=== END".
 module listing
   use kinds, only: dp, program_version
+  use strings, only: rtoa
   use model
   use materials, only: von_mises
   use contact, only: contact_set_t
@@ -80,15 +81,6 @@ contains
     write(buf, '(i0)') n
     f = '(' // lead // ',' // trim(buf) // efmt(lst) // ')'
   end function rowfmt
-
-  !> A real without blanks, for key=value fields.
-  function real_text(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write(buf, '(es15.8)') x
-    s = trim(adjustl(buf))
-  end function real_text
 
   subroutine write_header(lst, m)
     type(listing_t), intent(in) :: lst
@@ -241,7 +233,7 @@ contains
     un = lst%unit
     write(un, '(a)') ''
     write(un, '(a,i0,a,i0,a,i0,a)') '=== INCREMENT step=', istep, ' increment=', inc, &
-      ' time=' // real_text(t) // ' total_time=' // real_text(ttot) // ' iterations=', iters, ' ==='
+      ' time=' // rtoa(t, 9) // ' total_time=' // rtoa(ttot, 9) // ' iterations=', iters, ' ==='
     associate(reqs => m%steps(istep)%requests)
       do ir = 1, size(reqs)
         if (reqs(ir)%to_file) cycle

@@ -4,7 +4,7 @@ module strings
   use kinds, only: dp
   implicit none
   private
-  public :: to_upper, split_fields, parse_real, parse_int, field_t, itoa
+  public :: to_upper, split_fields, parse_real, parse_int, field_t, itoa, rtoa
 
   !> One comma-separated field of a deck line, blanks removed at both ends.
   type :: field_t
@@ -99,4 +99,16 @@ contains
     write(buf, '(i0)') k
     s = trim(buf)
   end function itoa
+
+  !> A real as text without blanks (key=value fields, messages) with
+  !> `digits` significant digits.
+  pure function rtoa(x, digits) result(s)
+    real(dp), intent(in) :: x
+    integer, intent(in) :: digits
+    character(len=:), allocatable :: s
+    character(len=40) :: buf, fmt
+    write(fmt, '(a,i0,a,i0,a)') '(es', digits + 8, '.', digits - 1, ')'
+    write(buf, fmt) x
+    s = trim(adjustl(buf))
+  end function rtoa
 end module strings
