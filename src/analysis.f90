@@ -16,7 +16,7 @@ module analysis
   use messages, only: fatal, warn
   implicit none
   private
-  public :: run_analysis, amplitude_value
+  public :: run_analysis
 
 contains
 

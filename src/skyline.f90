@@ -5,8 +5,7 @@ module skyline
   use kinds, only: dp
   implicit none
   private
-  public :: skyline_t, sky_setup, sky_add, sky_factor, sky_solve, sky_matvec, &
-            sky_get, sky_zero, pivot_tolerance
+  public :: skyline_t, sky_setup, sky_add, sky_factor, sky_solve, sky_matvec, sky_zero
 
   !> A pivot below this fraction of its original diagonal means the matrix
   !> is singular to working precision (a rigid-body mode left free).
@@ -57,16 +56,6 @@ contains
     c = max(i, j)
     k%a(k%ptr(c) + (r - k%first(c))) = k%a(k%ptr(c) + (r - k%first(c))) + v
   end subroutine sky_add
-
-  pure real(dp) function sky_get(k, i, j)
-    type(skyline_t), intent(in) :: k
-    integer, intent(in) :: i, j
-    integer :: r, c
-    r = min(i, j)
-    c = max(i, j)
-    sky_get = 0.0_dp
-    if (r >= k%first(c)) sky_get = k%a(k%ptr(c) + (r - k%first(c)))
-  end function sky_get
 
   !> In-place LDL^T. On a pivot that is not safely positive, bad is the
   !> equation where it appeared and the factor is incomplete.
