@@ -15,11 +15,14 @@ PYTHON   ?= python3
 OBJDIR := $(BUILD)/obj
 MODDIR := $(BUILD)/mod
 
-# Program modules in dependency order (see the explicit rules below).
-MODULES := kinds messages strings solver_codes skyline sparse_matrix cholmod_binding umfpack_binding \
-           metis_binding blas_info linear_solver deck_input model deck_parser materials \
-           element_types plane_elements cfe_element element_library \
-           ordering contact assembly listing results_gmsh analysis
+# The program's source lives in one folder per layer (docs/architecture.md);
+# each folder's module.mk lists its modules and their explicit dependencies.
+.DEFAULT_GOAL := all
+LAYERS  := base model input elements solver contact analysis output
+MODULES :=
+include $(LAYERS:%=src/%/module.mk)
+vpath %.f90 $(LAYERS:%=src/%) src
+vpath %.c $(LAYERS:%=src/%)
 OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
 TESTS := test_elements test_skyline test_cfe test_solvers
@@ -48,7 +51,7 @@ build-debug/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
 bin $(OBJDIR) $(MODDIR) $(BUILD)/tests:
 	mkdir -p $@
 
-$(OBJDIR)/%.o: src/%.f90 | $(OBJDIR) $(MODDIR)
+$(OBJDIR)/%.o: %.f90 | $(OBJDIR) $(MODDIR)
 	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
 
 $(BUILD)/tests/test_report.o: tests/unit/test_report.f90 | $(BUILD)/tests $(MODDIR)
@@ -57,38 +60,6 @@ $(BUILD)/tests/test_report.o: tests/unit/test_report.f90 | $(BUILD)/tests $(MODD
 $(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) $(BUILD)/tests/test_report.o | $(BUILD)/tests
 	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(BUILD)/tests/test_report.o $(OBJS) $(LIBS)
 
-# Explicit module dependencies: an object depends on the objects of the
-# modules it uses (their .mod files are written alongside).
-$(OBJDIR)/messages.o:
-$(OBJDIR)/strings.o: $(OBJDIR)/kinds.o
-$(OBJDIR)/deck_input.o: $(OBJDIR)/strings.o $(OBJDIR)/messages.o
-$(OBJDIR)/sparse_matrix.o: $(OBJDIR)/kinds.o
-$(OBJDIR)/cholmod_binding.o:
-$(OBJDIR)/umfpack_binding.o:
-$(OBJDIR)/metis_binding.o:
-$(OBJDIR)/blas_info.o:
-$(OBJDIR)/linear_solver.o: $(OBJDIR)/kinds.o $(OBJDIR)/strings.o $(OBJDIR)/skyline.o $(OBJDIR)/sparse_matrix.o \
-                           $(OBJDIR)/cholmod_binding.o $(OBJDIR)/umfpack_binding.o \
-                           $(OBJDIR)/metis_binding.o $(OBJDIR)/messages.o $(OBJDIR)/solver_codes.o
-$(OBJDIR)/solver_codes.o:
-$(OBJDIR)/model.o: $(OBJDIR)/kinds.o $(OBJDIR)/solver_codes.o
-$(OBJDIR)/deck_parser.o: $(OBJDIR)/kinds.o $(OBJDIR)/strings.o $(OBJDIR)/deck_input.o $(OBJDIR)/model.o \
-                         $(OBJDIR)/solver_codes.o
-$(OBJDIR)/materials.o: $(OBJDIR)/kinds.o
-$(OBJDIR)/element_types.o: $(OBJDIR)/kinds.o
-$(OBJDIR)/plane_elements.o: $(OBJDIR)/element_types.o $(OBJDIR)/materials.o
-$(OBJDIR)/cfe_element.o: $(OBJDIR)/element_types.o $(OBJDIR)/plane_elements.o
-$(OBJDIR)/element_library.o: $(OBJDIR)/plane_elements.o $(OBJDIR)/cfe_element.o
-$(OBJDIR)/skyline.o: $(OBJDIR)/kinds.o
-$(OBJDIR)/ordering.o:
-$(OBJDIR)/contact.o: $(OBJDIR)/model.o $(OBJDIR)/element_types.o
-$(OBJDIR)/assembly.o: $(OBJDIR)/model.o $(OBJDIR)/contact.o $(OBJDIR)/element_library.o \
-                      $(OBJDIR)/linear_solver.o $(OBJDIR)/ordering.o
-$(OBJDIR)/listing.o: $(OBJDIR)/strings.o $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/contact.o $(OBJDIR)/messages.o \
-                     $(OBJDIR)/solver_codes.o $(OBJDIR)/blas_info.o
-$(OBJDIR)/results_gmsh.o: $(OBJDIR)/model.o $(OBJDIR)/materials.o $(OBJDIR)/messages.o
-$(OBJDIR)/analysis.o: $(OBJDIR)/strings.o $(OBJDIR)/contact.o $(OBJDIR)/assembly.o $(OBJDIR)/linear_solver.o \
-                      $(OBJDIR)/listing.o $(OBJDIR)/results_gmsh.o $(OBJDIR)/messages.o
 $(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o
 
 deps:
