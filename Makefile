@@ -27,7 +27,7 @@ OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
 TESTS := test_elements test_skyline test_cfe test_solvers
 
-.PHONY: all debug run check bench deps clean help
+.PHONY: all debug run check bench deps clean help fuzz
 all: bin/cfe2d
 
 help:
@@ -37,6 +37,7 @@ help:
 	@echo "make check      install what is missing, build, run every test"
 	@echo "make bench      solver benchmark (about 1e4, 1e5, 1e6 dofs)"
 	@echo "make deps       install compilers, libraries, gmsh and Python packages"
+	@echo "make fuzz       mutate the example and test decks and run both builds on them"
 
 bin/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o | bin
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
@@ -53,6 +54,13 @@ bin $(OBJDIR) $(MODDIR) $(BUILD)/tests:
 
 $(OBJDIR)/%.o: %.f90 | $(OBJDIR) $(MODDIR)
 	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
+
+# C shims (one per C library whose structs must not be mirrored in Fortran).
+CC      ?= cc
+CFLAGS  ?= -O2
+CINC    := -I/usr/include/suitesparse
+$(OBJDIR)/%.o: %.c | $(OBJDIR)
+	$(CC) $(CFLAGS) $(CINC) -c $< -o $@
 
 $(BUILD)/tests/test_report.o: tests/unit/test_report.f90 | $(BUILD)/tests $(MODDIR)
 	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
@@ -78,6 +86,12 @@ check: deps
 	$(MAKE) bin/cfe2d $(TESTS:%=$(BUILD)/tests/%)
 	$(MAKE) debug
 	$(PYTHON) tests/run_tests.py --build $(BUILD)
+
+# Mutation fuzzer over the project's decks (scripts/fuzz.py; `make check` runs a short slice).
+FUZZ_ARGS ?=
+fuzz: bin/cfe2d
+	$(MAKE) debug
+	$(PYTHON) scripts/fuzz.py $(FUZZ_ARGS)
 
 clean:
 	rm -rf build build-debug bin
