@@ -4,6 +4,7 @@
 module assembly
   use kinds, only: dp
   use model
+  use element_catalogue, only: catalogue, shape_quad4, state_plane_strain
   use contact, only: contact_set_t, cfe_input
   use element_types, only: elem_in_t, elem_out_t, max_en, kind_quad4, kind_tri3
   use element_library, only: element_routine
@@ -29,9 +30,9 @@ contains
     type(elem_in_t), intent(out) :: ein
     integer, intent(out) :: nodes(:)
     integer :: k, nen
-    nen = et_nodes(m%etype(e))
+    nen = elem_nodes(m, e)
     ein%nen = nen
-    if (nen == 4) then
+    if (catalogue(m%etype(e))%shape == shape_quad4) then
       ein%kind = kind_quad4
     else
       ein%kind = kind_tri3
@@ -46,7 +47,7 @@ contains
       ein%nu = m%materials(sec%material)%nu
       ein%thickness = sec%thickness
     end associate
-    ein%plane_strain = et_plane_strain(m%etype(e))
+    ein%plane_strain = catalogue(m%etype(e))%state == state_plane_strain
   end subroutine solid_input
 
   !> Node graph of solid elements and CFEs in compressed form.
@@ -151,7 +152,7 @@ contains
     group_input = .true.
     if (g > m%ne) then
       call cfe_input(m, cs%c(g - m%ne), u, ein, nodes)
-    else if (et_is_solid(m%etype(g))) then
+    else if (is_continuum(m, g)) then
       call solid_input(m, g, u, ein, nodes)
     else
       group_input = .false.
@@ -167,12 +168,12 @@ contains
     integer, intent(out) :: nodes(:), nen
     if (g <= m%ne) then
       nen = 0
-      if (.not. et_is_solid(m%etype(g))) return
-      nen = et_nodes(m%etype(g))
+      if (.not. is_continuum(m, g)) return
+      nen = elem_nodes(m, g)
       nodes(1:nen) = m%conn(1:nen, g)
     else
       associate(c => cs%c(g - m%ne))
-        nen = et_nodes(m%etype(c%elem)) + 1
+        nen = elem_nodes(m, c%elem) + 1
         nodes(1) = c%slave
         nodes(2:nen) = m%conn(1:nen - 1, c%elem)
       end associate
@@ -261,7 +262,7 @@ contains
     eps_ip = 0.0_dp
     sig_node = 0.0_dp
     do e = 1, m%ne
-      if (.not. et_is_solid(m%etype(e))) cycle
+      if (.not. is_continuum(m, e)) cycle
       call solid_input(m, e, u, ein, nodes)
       call element_routine(ein, eout)
       nip(e) = eout%nip

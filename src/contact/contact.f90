@@ -5,6 +5,7 @@
 module contact
   use kinds, only: dp
   use model
+  use element_catalogue, only: catalogue, shape_quad4
   use element_types, only: elem_in_t, kind_cfe, kind_quad4, kind_tri3
   implicit none
   private
@@ -72,16 +73,16 @@ contains
     h = huge(1.0_dp)
     emod = 0.0_dp
     do e = 1, m%ne
-      if (.not. et_is_solid(m%etype(e))) cycle
-      do k = 1, et_nodes(m%etype(e))
+      if (.not. is_continuum(m, e)) cycle
+      do k = 1, catalogue(m%etype(e))%nedges
         call edge_nodes(m, e, k, a, b)
         if (pos(a) == 0 .or. pos(b) == 0) cycle
         ! Is the edge shared with another element?
         count = 0
         do e2 = 1, m%ne
-          if (e2 == e .or. .not. et_is_solid(m%etype(e2))) cycle
+          if (e2 == e .or. .not. is_continuum(m, e2)) cycle
           if (.not. any(m%conn(:, e2) == a)) cycle
-          do k2 = 1, et_nodes(m%etype(e2))
+          do k2 = 1, catalogue(m%etype(e2))%nedges
             call edge_nodes(m, e2, k2, a2, b2)
             if (a2 == b .and. b2 == a) count = count + 1
           end do
@@ -208,7 +209,7 @@ contains
     integer, intent(in) :: et, k
     real(dp), intent(in) :: t
     real(dp) :: xi(2)
-    if (et_nodes(et) == 4) then
+    if (catalogue(et)%shape == shape_quad4) then
       select case (k)
       case (1); xi = [-1.0_dp + 2.0_dp * t, -1.0_dp]
       case (2); xi = [1.0_dp, -1.0_dp + 2.0_dp * t]
@@ -233,7 +234,7 @@ contains
     type(elem_in_t), intent(out) :: ein
     integer, intent(out) :: nodes(:)
     integer :: nm, k
-    nm = et_nodes(m%etype(c%elem))
+    nm = elem_nodes(m, c%elem)
     ein%kind = kind_cfe
     ein%nen = nm + 1
     nodes(1) = c%slave
@@ -242,7 +243,7 @@ contains
       ein%xy(:, k) = m%x(:, nodes(k))
       ein%ue(2 * k - 1:2 * k) = u(:, nodes(k))
     end do
-    if (nm == 4) then
+    if (catalogue(m%etype(c%elem))%shape == shape_quad4) then
       ein%master_kind = kind_quad4
     else
       ein%master_kind = kind_tri3

@@ -7,6 +7,8 @@ module deck_parser
   use deck_input, only: deck_t, keyword_t, read_deck, parse_keyword, deck_error, &
                         deck_warning, param_value, has_param, is_keyword
   use model
+  use element_catalogue, only: catalogue, max_nodes, find_element_type, shape_line2
+  use mesh_topology, only: build_topology, edge_owner
   use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
                            order_amd, order_metis
   implicit none
@@ -38,7 +40,7 @@ contains
     m%deck_name = path
     m%heading = ''
     allocate(m%node_id(1024), m%x(2, 1024), m%elem_id(1024), m%etype(1024), &
-             m%conn(4, 1024), m%elem_src(1024), m%node_index(0), m%elem_index(0))
+             m%conn(max_nodes, 1024), m%elem_src(1024), m%node_index(0), m%elem_index(0))
     allocate(m%nsets(16), m%elsets(16), m%surfaces(8), m%materials(4), m%sections(8), &
              m%amplitudes(4), m%steps(4), m%pairs(4), m%model_bcs(64))
 
@@ -70,6 +72,7 @@ contains
     m%conn = m%conn(:, 1:m%ne)
     m%elem_src = m%elem_src(1:m%ne)
     call check_model(p, m)
+    call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
   end subroutine read_model
 
   ! ------------------------------------------------------------------ helpers
@@ -354,7 +357,7 @@ contains
     type(src_t), allocatable :: stmp(:)
     integer :: n
     n = m%ne
-    allocate(itmp(2 * n), ttmp(2 * n), ctmp(4, 2 * n), stmp(2 * n))
+    allocate(itmp(2 * n), ttmp(2 * n), ctmp(max_nodes, 2 * n), stmp(2 * n))
     itmp(1:n) = m%elem_id(1:n)
     ttmp(1:n) = m%etype(1:n)
     ctmp(:, 1:n) = m%conn(:, 1:n)
@@ -375,16 +378,9 @@ contains
     integer, allocatable :: items(:), tmp(:)
     call allow_params(p, kw, 'TYPE,ELSET')
     tname = to_upper(required_param(p, kw, 'TYPE'))
-    select case (tname)
-    case ('CPS4'); et = et_cps4
-    case ('CPE4'); et = et_cpe4
-    case ('CPS3'); et = et_cps3
-    case ('CPE3'); et = et_cpe3
-    case ('T3D2', 'T2D2'); et = et_t3d2
-    case default
-      call err(p, 'element type ' // tname // ' is not implemented (CPS4, CPE4, CPS3, CPE3, T3D2)')
-    end select
-    nen = et_nodes(et)
+    et = find_element_type(tname)
+    if (et == 0) call err(p, 'element type ' // tname // ' is not implemented (' // catalogue_names() // ')')
+    nen = catalogue(et)%nodes
     nitems = 0
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
@@ -551,7 +547,7 @@ contains
       es = need_elset(p, m, param_value(kw, 'ELSET'))
       do k = 1, size(m%elsets(es)%items)
         associate(e => m%elsets(es)%items(k))
-          do j = 1, et_nodes(m%etype(e))
+          do j = 1, elem_nodes(m, e)
             call append_int(items, nitems, m%conn(j, e))
           end do
         end associate
@@ -584,31 +580,29 @@ contains
     call extend_set(m%elsets(iset)%items, items(1:nitems))
   end subroutine read_elset
 
-  !> Local edge of a solid element that joins nodes a and b, searched over
-  !> all solid elements; used to turn gmsh line elements into faces.
+  !> Local edge of a continuum element that joins nodes a and b; used to
+  !> turn gmsh line elements into faces. The edge table is rebuilt when
+  !> elements were added since it was last built.
   subroutine owner_edge(p, m, a, b, e, k)
     type(parser_t), intent(in) :: p
-    type(model_t), intent(in) :: m
+    type(model_t), intent(inout) :: m
     integer, intent(in) :: a, b
     integer, intent(out) :: e, k
-    integer :: ie, j, na, nb, found
-    found = 0
-    e = 0
-    k = 0
-    do ie = 1, m%ne
-      if (.not. et_is_solid(m%etype(ie))) cycle
-      do j = 1, et_nodes(m%etype(ie))
-        call edge_nodes(m, ie, j, na, nb)
-        if ((na == a .and. nb == b) .or. (na == b .and. nb == a)) then
-          found = found + 1
-          e = ie
-          k = j
-        end if
-      end do
-    end do
-    if (found == 0) call err(p, 'line element is not an edge of any solid element')
-    if (found > 1) call err(p, 'line element lies between two solid elements, not on a boundary')
+    if (m%topo%ne /= m%ne) call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
+    call edge_owner(m%topo, a, b, e, k)
+    if (e == 0) call err(p, 'line element is not an edge of any solid element')
+    if (m%topo%neighbour(k, e) > 0) call err(p, 'line element lies between two solid elements, not on a boundary')
   end subroutine owner_edge
+
+  !> The element type names of the catalogue, for error messages.
+  function catalogue_names() result(s)
+    character(len=:), allocatable :: s
+    integer :: it
+    s = trim(catalogue(1)%name)
+    do it = 2, size(catalogue)
+      s = s // ', ' // trim(catalogue(it)%name)
+    end do
+  end function catalogue_names
 
   subroutine read_surface(p, m, kw)
     type(parser_t), intent(inout) :: p
@@ -654,7 +648,7 @@ contains
       if (n == 2) face = to_upper(f(2)%s)
       do k = 1, size(list)
         e = list(k)
-        if (m%etype(e) == et_t3d2) then
+        if (catalogue(m%etype(e))%shape == shape_line2) then
           if (len(face) > 0) call err(p, 'a face id is not allowed for line elements')
           call owner_edge(p, m, m%conn(1, e), m%conn(2, e), ee, edge)
           call append_int(elems, ne, ee)
@@ -662,9 +656,9 @@ contains
         else
           if (len(face) == 0) call err(p, 'solid elements need a face id S1..S4')
           edge = 0
-          if (len(face) == 2 .and. face(1:1) == 'S') edge = index('1234', face(2:2))
-          if (edge == 0 .or. edge > et_nodes(m%etype(e))) &
-            call err(p, 'face ' // face // ' does not exist for ' // trim(et_name(m%etype(e))))
+          if (len(face) == 2 .and. face(1:1) == 'S') edge = index('123456789', face(2:2))
+          if (edge == 0 .or. edge > catalogue(m%etype(e))%nedges) &
+            call err(p, 'face ' // face // ' does not exist for ' // trim(catalogue(m%etype(e))%name))
           call append_int(elems, ne, e)
           call append_int(edges, nedge, edge)
         end if
@@ -1239,13 +1233,13 @@ contains
       m%sections(s)%material = imat
       do k = 1, size(m%elsets(m%sections(s)%elset)%items)
         e = m%elsets(m%sections(s)%elset)%items(k)
-        if (.not. et_is_solid(m%etype(e))) cycle
+        if (.not. is_continuum(m, e)) cycle
         if (m%elem_section(e) /= 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is in two sections')
         m%elem_section(e) = s
       end do
     end do
     do e = 1, m%ne
-      if (.not. et_is_solid(m%etype(e))) cycle
+      if (.not. is_continuum(m, e)) cycle
       p%i = m%elem_src(e)%line
       if (m%elem_section(e) == 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' has no *SOLID SECTION')
       detj = min_corner_jacobian(m, e)
@@ -1274,7 +1268,7 @@ contains
     integer, intent(in) :: e
     integer :: nen, k
     real(dp) :: a(2), b(2), scale
-    nen = et_nodes(m%etype(e))
+    nen = catalogue(m%etype(e))%corners
     min_corner_jacobian = huge(1.0_dp)
     scale = 0.0_dp
     do k = 1, nen

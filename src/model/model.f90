@@ -4,18 +4,16 @@
 module model
   use kinds, only: dp, name_len
   use solver_codes, only: solver_cholmod, order_amd
+  use element_catalogue, only: catalogue, state_none
+  use mesh_topology, only: topology_t
   implicit none
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
-            et_none, et_t3d2, et_cps3, et_cpe3, et_cps4, et_cpe4, &
-            et_name, et_nodes, et_is_solid, et_plane_strain, &
+            is_continuum, elem_nodes, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, append_int
 
-  ! Element type codes; the Abaqus names map onto these in the deck reader.
-  integer, parameter :: et_none = 0, et_t3d2 = 1, et_cps3 = 2, et_cpe3 = 3, &
-                        et_cps4 = 4, et_cpe4 = 5
   integer, parameter :: surf_element = 1, surf_node = 2
   integer, parameter :: amp_step_time = 1, amp_total_time = 2
 
@@ -115,7 +113,8 @@ module model
     integer :: nn = 0, ne = 0
     integer, allocatable :: node_id(:), elem_id(:)
     real(dp), allocatable :: x(:, :)                  ! (2, nn)
-    integer, allocatable :: etype(:), conn(:, :)      ! conn(4, ne)
+    integer, allocatable :: etype(:)                  ! element_catalogue index
+    integer, allocatable :: conn(:, :)                ! (max_nodes, ne)
     integer, allocatable :: elem_section(:)
     type(src_t), allocatable :: elem_src(:)
     integer, allocatable :: node_index(:), elem_index(:)  ! user id -> internal, 0 if none
@@ -128,6 +127,7 @@ module model
     type(bc_t), allocatable :: model_bcs(:)
     type(step_t), allocatable :: steps(:)
     type(contact_pair_t), allocatable :: pairs(:)
+    type(topology_t) :: topo                          ! edges, found once per mesh
     integer :: solver = solver_cholmod   ! solver_codes
     integer :: ordering = order_amd      ! solver_codes
     real(dp) :: contact_tolerance = 1.0e-6_dp
@@ -137,38 +137,20 @@ module model
 
 contains
 
-  pure function et_name(et) result(s)
-    integer, intent(in) :: et
-    character(len=4) :: s
-    select case (et)
-    case (et_t3d2); s = 'T3D2'
-    case (et_cps3); s = 'CPS3'
-    case (et_cpe3); s = 'CPE3'
-    case (et_cps4); s = 'CPS4'
-    case (et_cpe4); s = 'CPE4'
-    case default; s = '????'
-    end select
-  end function et_name
+  !> Is element e a continuum element (one with stiffness), as opposed to
+  !> a line element that only describes a boundary?
+  pure logical function is_continuum(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    is_continuum = catalogue(m%etype(e))%state /= state_none
+  end function is_continuum
 
-  pure integer function et_nodes(et)
-    integer, intent(in) :: et
-    select case (et)
-    case (et_t3d2); et_nodes = 2
-    case (et_cps3, et_cpe3); et_nodes = 3
-    case (et_cps4, et_cpe4); et_nodes = 4
-    case default; et_nodes = 0
-    end select
-  end function et_nodes
-
-  pure logical function et_is_solid(et)
-    integer, intent(in) :: et
-    et_is_solid = et_nodes(et) >= 3
-  end function et_is_solid
-
-  pure logical function et_plane_strain(et)
-    integer, intent(in) :: et
-    et_plane_strain = et == et_cpe3 .or. et == et_cpe4
-  end function et_plane_strain
+  !> Number of nodes of element e.
+  pure integer function elem_nodes(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    elem_nodes = catalogue(m%etype(e))%nodes
+  end function elem_nodes
 
   !> Nodes of local edge k of a solid element, counter-clockwise (Abaqus
   !> face Sk runs from node k to node k+1).
@@ -176,10 +158,8 @@ contains
     type(model_t), intent(in) :: m
     integer, intent(in) :: e, k
     integer, intent(out) :: a, b
-    integer :: nen
-    nen = et_nodes(m%etype(e))
-    a = m%conn(k, e)
-    b = m%conn(mod(k, nen) + 1, e)
+    a = m%conn(catalogue(m%etype(e))%edge(1, k), e)
+    b = m%conn(catalogue(m%etype(e))%edge(2, k), e)
   end subroutine edge_nodes
 
   !> Index of a name in a list of names (case already folded), 0 if absent.

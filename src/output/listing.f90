@@ -85,9 +85,9 @@ contains
   subroutine write_header(lst, m)
     type(listing_t), intent(in) :: lst
     type(model_t), intent(in) :: m
-    integer :: nsolid, u
+    integer :: nsolid, u, e
     u = lst%unit
-    nsolid = count(m%etype >= et_cps3)
+    nsolid = count([(is_continuum(m, e), e = 1, m%ne)])
     write(u, '(a)') 'cfe2d ' // program_version // ' - 2D contact with coupling finite elements'
     write(u, '(a)') '--- MODEL'
     write(u, '(a)') 'item value'

@@ -4,6 +4,7 @@
 module results_gmsh
   use kinds, only: dp
   use model
+  use element_catalogue, only: catalogue
   use materials, only: von_mises
   use messages, only: register_unit_to_close, fatal
   implicit none
@@ -35,16 +36,15 @@ contains
       write(u, '(i0,3(1x,es23.15))') m%node_id(e), m%x(:, e), 0.0_dp
     end do
     write(u, '(a)') '$EndNodes'
-    nsolid = count(m%etype >= et_cps3)
+    nsolid = count([(is_continuum(m, e), e = 1, m%ne)])
     write(u, '(a)') '$Elements'
     write(u, '(i0)') nsolid
     do e = 1, m%ne
-      if (.not. et_is_solid(m%etype(e))) cycle
-      gtype = 2                                  ! 3-node triangle
-      if (et_nodes(m%etype(e)) == 4) gtype = 3   ! 4-node quadrangle
+      if (.not. is_continuum(m, e)) cycle
+      gtype = catalogue(m%etype(e))%gmsh_type
       ! two tags: physical and elementary entity = section number
       write(u, '(i0,1x,i0,1x,i0,1x,i0,1x,i0,4(1x,i0))') m%elem_id(e), gtype, 2, m%elem_section(e), &
-        m%elem_section(e), m%node_id(m%conn(1:et_nodes(m%etype(e)), e))
+        m%elem_section(e), m%node_id(m%conn(1:elem_nodes(m, e), e))
     end do
     write(u, '(a)') '$EndElements'
     flush(u)
@@ -122,9 +122,9 @@ contains
       character(len=*), intent(in) :: tag
       real(dp), intent(in) :: v(:, :)
       integer :: e
-      call header(tag, 'ElementData', 1, count(m%etype >= et_cps3))
+      call header(tag, 'ElementData', 1, count([(is_continuum(m, e), e = 1, m%ne)]))
       do e = 1, m%ne
-        if (et_is_solid(m%etype(e))) write(rf%unit, '(i0,1x,es16.8)') m%elem_id(e), v(1, e)
+        if (is_continuum(m, e)) write(rf%unit, '(i0,1x,es16.8)') m%elem_id(e), v(1, e)
       end do
       write(rf%unit, '(a)') '$EndElementData'
     end subroutine elem_view

@@ -7,6 +7,7 @@
 program bench
   use kinds, only: dp
   use model
+  use element_catalogue, only: find_element_type
   use contact, only: contact_set_t
   use assembly, only: dofmap_t, number_dofs, assemble
   use linear_solver
@@ -55,7 +56,7 @@ program bench
       e = j * nx + i + 1
       n = j * (nx + 1) + i + 1
       m%elem_id(e) = e
-      m%etype(e) = et_cps4
+      m%etype(e) = find_element_type('CPS4')
       m%conn(:, e) = [n, n + 1, n + nx + 2, n + nx + 1]
     end do
   end do
