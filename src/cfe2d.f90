@@ -5,16 +5,20 @@ program cfe2d
   use deck_parser, only: read_model
   use listing, only: listing_t, open_listing, write_header
   use analysis, only: run_analysis
+  use analysis_events, only: observer_ref_t
   use results_gmsh, only: result_file_t, open_result_file
+  use progress, only: progress_t
   use messages, only: fatal, terminate
   implicit none
   character(len=4096) :: arg
   character(len=:), allocatable :: deck, outdir, job, base
   type(model_t) :: m
-  type(listing_t) :: lst
-  type(result_file_t) :: res
+  type(listing_t), target :: lst
+  type(result_file_t), target :: res
+  type(progress_t), target :: prog
+  type(observer_ref_t), allocatable :: observers(:)
   logical :: quiet
-  integer :: i, k, ios, digits
+  integer :: i, k, ios, digits, nobs
 
   deck = ''
   outdir = ''
@@ -74,8 +78,20 @@ program cfe2d
     call open_listing(job // '.out', '', digits, lst)
   end if
   call write_header(lst, m)
-  if (any_file_request(m)) call open_result_file(job // '.msh', m, res)
-  call run_analysis(m, lst, res, quiet)
+  ! The writers that observe the analysis; a new output format is one more line here.
+  allocate(observers(3))
+  nobs = 1
+  observers(1)%o => lst
+  if (any_file_request(m)) then
+    call open_result_file(job // '.msh', m, res)
+    nobs = nobs + 1
+    observers(nobs)%o => res
+  end if
+  if (.not. quiet) then
+    nobs = nobs + 1
+    observers(nobs)%o => prog
+  end if
+  call run_analysis(m, observers(1:nobs))
   call terminate(0)
 
 contains

@@ -1,31 +1,41 @@
 !> Node-to-segment contact with coupling finite elements: the search that
 !> pairs each slave node with the master element edge under it (eq. 8's
-!> initial gap), tributary areas, penalties, and the open/closed state of
-!> every CFE used for the penalty switching of section 5.
+!> initial gap), tributary areas, penalties, the open/closed status of
+!> every CFE and its switching rule (section 5), the re-search on the
+!> deformed configuration, and the CFE forces at given displacements.
 module contact
   use kinds, only: dp
+  use strings, only: itoa
   use model
   use element_catalogue, only: catalogue, shape_quad4
-  use element_types, only: elem_in_t, kind_cfe, kind_quad4, kind_tri3
+  use mesh_topology, only: is_boundary_edge
+  use element_interface, only: elem_in_t, elem_out_t, kind_cfe, kind_quad4, kind_tri3, max_slave, max_en, act_residual
+  use element_library, only: element_routine
   implicit none
   private
-  public :: cfe_t, contact_set_t, contact_search, cfe_input
+  public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
+            contact_switch, coupling_node, cfe_nodes
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
   !> A projection this far outside [0, 1] along an edge still counts: it
   !> catches slave nodes exactly above a master vertex.
   real(dp), parameter :: edge_tol = 1.0e-6_dp
+  !> Status changes named in a message.
+  integer, parameter :: max_named = 20
 
   type :: cfe_t
     integer :: pair = 0
-    integer :: slave = 0             ! coupling node
+    !> Slave side: the coupling point is sum_j sw(j) * x(snode(j)).
+    integer :: ns = 1
+    integer :: snode(max_slave) = 0
+    real(dp) :: sw(max_slave) = [1.0_dp, 0.0_dp, 0.0_dp]
     integer :: elem = 0, edge = 0    ! master element and its edge
     real(dp) :: t = 0.0_dp           ! position of X_C along the edge, 0..1
     real(dp) :: xi(2) = 0.0_dp       ! natural coordinates of X_C in the master
     real(dp) :: normal(2) = 0.0_dp   ! outward unit normal of the master edge
     real(dp) :: gap0(2) = 0.0_dp     ! [[U]]_0 = X_slave - X_C
-    real(dp) :: area = 0.0_dp        ! tributary area of the slave node
+    real(dp) :: area = 0.0_dp        ! tributary area of the coupling point
     real(dp) :: k_closed = 0.0_dp    ! normal penalty of the CFE (force/length)
     real(dp) :: k_open = 0.0_dp
     logical :: closed = .false.
@@ -54,15 +64,23 @@ contains
     section_thickness = m%sections(m%elem_section(e))%thickness
   end function section_thickness
 
-  !> Boundary edges whose two nodes are both in the list give each node
-  !> half their length times the thickness (its tributary area) and their
-  !> smallest adjacent length h. Edges shared by two elements are interior.
+  !> The slave node of a node-to-segment CFE (0 when the coupling point is
+  !> not a node).
+  pure integer function coupling_node(c)
+    type(cfe_t), intent(in) :: c
+    coupling_node = 0
+    if (c%ns == 1) coupling_node = c%snode(1)
+  end function coupling_node
+
+  !> Purpose: boundary edges whose two nodes are both in the list give
+  !> each node half their length times the thickness (its tributary area),
+  !> their smallest adjacent length h and the largest adjacent modulus.
   subroutine tributary_lengths(m, nodes, area, h, emod)
     type(model_t), intent(in) :: m
     integer, intent(in) :: nodes(:)
     real(dp), intent(out) :: area(:), h(:), emod(:)
     integer, allocatable :: pos(:)
-    integer :: e, k, a, b, e2, k2, a2, b2, count
+    integer :: e, k, a, b
     real(dp) :: len
     allocate(pos(m%nn))
     pos = 0
@@ -77,17 +95,7 @@ contains
       do k = 1, catalogue(m%etype(e))%nedges
         call edge_nodes(m, e, k, a, b)
         if (pos(a) == 0 .or. pos(b) == 0) cycle
-        ! Is the edge shared with another element?
-        count = 0
-        do e2 = 1, m%ne
-          if (e2 == e .or. .not. is_continuum(m, e2)) cycle
-          if (.not. any(m%conn(:, e2) == a)) cycle
-          do k2 = 1, catalogue(m%etype(e2))%nedges
-            call edge_nodes(m, e2, k2, a2, b2)
-            if (a2 == b .and. b2 == a) count = count + 1
-          end do
-        end do
-        if (count > 0) cycle
+        if (.not. is_boundary_edge(m%topo, e, k)) cycle
         len = norm2(m%x(:, b) - m%x(:, a))
         area(pos(a)) = area(pos(a)) + 0.5_dp * len * section_thickness(m, e)
         area(pos(b)) = area(pos(b)) + 0.5_dp * len * section_thickness(m, e)
@@ -99,20 +107,58 @@ contains
     end do
   end subroutine tributary_lengths
 
-  !> Couples every slave node of every pair to the nearest master edge on
-  !> which its orthogonal projection falls, searching on the configuration
-  !> x (the initial one, or the deformed one with UPDATE SEARCH).
+  !> Purpose: the master edge (index into the master surface) on which the
+  !> orthogonal projection of point xs falls, nearest first; 0 if none.
+  !> Arguments: x configuration searched, s the slave node (edges through
+  !> it are skipped), dmax search distance, t the projection's position.
+  subroutine nearest_edge(m, x, ms, s, dmax, best, tbest)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), dmax
+    type(surface_t), intent(in) :: ms
+    integer, intent(in) :: s
+    integer, intent(out) :: best
+    real(dp), intent(out) :: tbest
+    integer :: j, a, b
+    real(dp) :: ab(2), tvec(2), nvec(2), t, d, dbest, len
+    best = 0
+    tbest = 0.0_dp
+    dbest = huge(1.0_dp)
+    do j = 1, size(ms%elem)
+      call edge_nodes(m, ms%elem(j), ms%edge(j), a, b)
+      if (a == s .or. b == s) cycle
+      ab = x(:, b) - x(:, a)
+      len = norm2(ab)
+      tvec = ab / len
+      t = dot_product(x(:, s) - x(:, a), tvec) / len
+      if (t < -edge_tol .or. t > 1.0_dp + edge_tol) cycle
+      t = min(max(t, 0.0_dp), 1.0_dp)
+      nvec = [tvec(2), -tvec(1)]
+      d = dot_product(x(:, s) - x(:, a), nvec)
+      ! A node behind the master edge by more than half its length is on
+      ! the far side of the master body, not in contact with it.
+      if (d < -0.5_dp * len .or. d > dmax) cycle
+      if (abs(d) < dbest) then
+        dbest = abs(d)
+        best = j
+        tbest = t
+      end if
+    end do
+  end subroutine nearest_edge
+
+  !> Purpose: couples every slave node of every pair to the nearest master
+  !> edge on which its orthogonal projection falls, searching on the
+  !> configuration x (the initial one, or the deformed one with UPDATE
+  !> SEARCH); the status starts closed where the node is on or behind the
+  !> master edge.
   subroutine contact_search(m, x, cs)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
     type(contact_set_t), intent(out) :: cs
-    type(cfe_t), allocatable :: list(:)
     integer, allocatable :: unc(:), uncp(:)
     real(dp), allocatable :: area(:), h(:), emod(:)
-    integer :: ip, k, j, s, a, b, best, nunc, nunc_p
-    real(dp) :: ab(2), tvec(2), nvec(2), t, d, dbest, tbest, len, hm, em, dmax
-    type(cfe_t) :: c
-    allocate(list(0), unc(16), uncp(16))
+    integer :: ip, k, s, best, nunc, nunc_p
+    real(dp) :: tbest, dmax
+    allocate(cs%c(16), unc(16), uncp(16))
     nunc = 0
     nunc_p = 0
     do ip = 1, size(m%pairs)
@@ -124,69 +170,90 @@ contains
         if (dmax < 0.0_dp) dmax = huge(1.0_dp)
         do k = 1, size(sl%nodes)
           s = sl%nodes(k)
-          best = 0
-          dbest = huge(1.0_dp)
-          do j = 1, size(ms%elem)
-            call edge_nodes(m, ms%elem(j), ms%edge(j), a, b)
-            if (a == s .or. b == s) cycle
-            ab = x(:, b) - x(:, a)
-            len = norm2(ab)
-            tvec = ab / len
-            t = dot_product(x(:, s) - x(:, a), tvec) / len
-            if (t < -edge_tol .or. t > 1.0_dp + edge_tol) cycle
-            t = min(max(t, 0.0_dp), 1.0_dp)
-            nvec = [tvec(2), -tvec(1)]
-            d = dot_product(x(:, s) - x(:, a), nvec)
-            ! A node behind the master edge by more than half its length is
-            ! on the far side of the master body, not in contact with it.
-            if (d < -0.5_dp * len .or. d > dmax) cycle
-            if (abs(d) < dbest) then
-              dbest = abs(d)
-              best = j
-              tbest = t
-            end if
-          end do
+          call nearest_edge(m, x, ms, s, dmax, best, tbest)
           if (best == 0) then
             call append_int(unc, nunc, s)
             call append_int(uncp, nunc_p, ip)
             cycle
           end if
-          call edge_nodes(m, ms%elem(best), ms%edge(best), a, b)
-          c%pair = ip
-          c%slave = s
-          c%elem = ms%elem(best)
-          c%edge = ms%edge(best)
-          c%t = tbest
-          c%xi = edge_natural(m%etype(c%elem), c%edge, tbest)
-          ab = x(:, b) - x(:, a)
-          tvec = ab / norm2(ab)
-          c%normal = [tvec(2), -tvec(1)]
-          ! [[U]]_0 between the reference positions of the slave node and of
-          ! X_C: with a search on the deformed configuration, [[U]] of eq. (8)
-          ! is then the current slave-to-X_C vector.
-          c%gap0 = m%x(:, s) - (m%x(:, a) + tbest * (m%x(:, b) - m%x(:, a)))
-          c%area = area(k)
-          hm = min(h(k), norm2(ab))
-          em = max(emod(k), section_e(m, c%elem))
-          if (area(k) <= 0.0_dp) then
-            ! A lone node with no slave edge: the master edge stands in.
-            c%area = norm2(ab) * section_thickness(m, c%elem)
-            hm = norm2(ab)
-            em = max(em, section_e(m, c%elem))
-          end if
-          c%k_closed = cfe_penalty(pr, c%area, em, hm)
-          c%k_open = pr%open_ratio * c%k_closed
-          c%closed = dot_product(c%normal, x(:, s) - (x(:, a) + tbest * ab)) <= 0.0_dp
-          list = [list, c]
+          if (cs%n == size(cs%c)) call grow_cfes(cs)
+          cs%n = cs%n + 1
+          call make_cfe(m, x, ip, s, ms%elem(best), ms%edge(best), tbest, area(k), h(k), emod(k), cs%c(cs%n))
         end do
         deallocate(area, h, emod)
       end associate
     end do
-    cs%n = size(list)
-    call move_alloc(list, cs%c)
+    cs%c = cs%c(1:cs%n)
     cs%uncoupled = unc(1:nunc)
     cs%uncoupled_pair = uncp(1:nunc_p)
   end subroutine contact_search
+
+  subroutine grow_cfes(cs)
+    type(contact_set_t), intent(inout) :: cs
+    type(cfe_t), allocatable :: tmp(:)
+    allocate(tmp(2 * size(cs%c)))
+    tmp(1:cs%n) = cs%c(1:cs%n)
+    call move_alloc(tmp, cs%c)
+  end subroutine grow_cfes
+
+  !> Purpose: one node-to-segment CFE: slave node s on edge `edge` of
+  !> master element e at fraction t, with the slave node's tributary area,
+  !> adjacent length h and modulus emod (0 area: a lone node).
+  subroutine make_cfe(m, x, ip, s, e, edge, t, area, h, emod, c)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), t, area, h, emod
+    integer, intent(in) :: ip, s, e, edge
+    type(cfe_t), intent(out) :: c
+    integer :: a, b
+    real(dp) :: ab(2), tvec(2), hm, em
+    call edge_nodes(m, e, edge, a, b)
+    c%pair = ip
+    c%ns = 1
+    c%snode(1) = s
+    c%elem = e
+    c%edge = edge
+    c%t = t
+    c%xi = edge_natural(m%etype(e), edge, t)
+    ab = x(:, b) - x(:, a)
+    tvec = ab / norm2(ab)
+    c%normal = [tvec(2), -tvec(1)]
+    ! [[U]]_0 between the reference positions of the slave node and of X_C:
+    ! with a search on the deformed configuration, [[U]] of eq. (8) is
+    ! then the current slave-to-X_C vector.
+    c%gap0 = m%x(:, s) - (m%x(:, a) + t * (m%x(:, b) - m%x(:, a)))
+    c%area = area
+    hm = min(h, norm2(ab))
+    em = max(emod, section_e(m, e))
+    if (area <= 0.0_dp) then
+      ! A lone node with no slave edge: the master edge stands in.
+      c%area = norm2(ab) * section_thickness(m, e)
+      hm = norm2(ab)
+    end if
+    c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, hm)
+    c%k_open = m%pairs(ip)%open_ratio * c%k_closed
+    c%closed = dot_product(c%normal, x(:, s) - (x(:, a) + t * ab)) <= 0.0_dp
+  end subroutine make_cfe
+
+  !> Purpose: UPDATE SEARCH: pair again on the deformed configuration x. A
+  !> slave node keeps the status it had in the same pair.
+  subroutine contact_research(m, x, cs)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    type(contact_set_t), intent(inout) :: cs
+    type(contact_set_t) :: old
+    integer :: j, q
+    call move_alloc(cs%c, old%c)
+    old%n = cs%n
+    call contact_search(m, x, cs)
+    do j = 1, cs%n
+      do q = 1, old%n
+        if (old%c(q)%snode(1) == cs%c(j)%snode(1) .and. old%c(q)%pair == cs%c(j)%pair) then
+          cs%c(j)%closed = old%c(q)%closed
+          exit
+        end if
+      end do
+    end do
+  end subroutine contact_research
 
   !> Normal penalty of one CFE (force per unit normal relative displacement):
   !> per node as given (NODAL), per area times the tributary area, or the
@@ -225,21 +292,33 @@ contains
     end if
   end function edge_natural
 
-  !> Element data of CFE k for the element routine, and its node list
-  !> (coupling node first, then the master element's nodes).
+  !> Purpose: the nodes of a CFE: slave nodes, then the master element's.
+  pure subroutine cfe_nodes(m, c, nodes, nen)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(in) :: c
+    integer, intent(out) :: nodes(:), nen
+    integer :: nm
+    nm = elem_nodes(m, c%elem)
+    nen = c%ns + nm
+    nodes(1:c%ns) = c%snode(1:c%ns)
+    nodes(c%ns + 1:nen) = m%conn(1:nm, c%elem)
+  end subroutine cfe_nodes
+
+  !> Purpose: element data of CFE c for the element routine, and its node
+  !> list (slave nodes first, then the master element's nodes).
   subroutine cfe_input(m, c, u, ein, nodes)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
     real(dp), intent(in) :: u(:, :)
     type(elem_in_t), intent(out) :: ein
     integer, intent(out) :: nodes(:)
-    integer :: nm, k
-    nm = elem_nodes(m, c%elem)
+    integer :: k, nen
+    call cfe_nodes(m, c, nodes, nen)
     ein%kind = kind_cfe
-    ein%nen = nm + 1
-    nodes(1) = c%slave
-    nodes(2:nm + 1) = m%conn(1:nm, c%elem)
-    do k = 1, nm + 1
+    ein%nen = nen
+    ein%ns = c%ns
+    ein%ws = c%sw
+    do k = 1, nen
       ein%xy(:, k) = m%x(:, nodes(k))
       ein%ue(2 * k - 1:2 * k) = u(:, nodes(k))
     end do
@@ -257,4 +336,52 @@ contains
       ein%penalty = c%k_open
     end if
   end subroutine cfe_input
+
+  !> Purpose: evaluates every CFE at displacements u with its current
+  !> status: stores its gap and normal force and adds its internal force
+  !> to fint (2, nn). ncalls counts the element routine calls.
+  subroutine contact_forces(m, cs, u, fint, ncalls)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(inout) :: fint(:, :)
+    integer(kind=8), intent(inout) :: ncalls
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: j, i, nodes(max_en)
+    do j = 1, cs%n
+      call cfe_input(m, cs%c(j), u, ein, nodes)
+      call element_routine(act_residual, ein, eout)
+      ncalls = ncalls + 1
+      do i = 1, ein%nen
+        fint(:, nodes(i)) = fint(:, nodes(i)) + eout%fe(2 * i - 1:2 * i)
+      end do
+      cs%c(j)%gap = eout%gap
+      cs%c(j)%force = eout%normal_force
+    end do
+  end subroutine contact_forces
+
+  !> Purpose: penalty switching (section 5): a compressive normal force
+  !> (negative gap) closes a CFE, a tensile one opens it.
+  !> Arguments: nchanged status changes; changed the user ids of the first
+  !> slave nodes that switched, for messages.
+  subroutine contact_switch(m, cs, nchanged, changed)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    integer, intent(out) :: nchanged
+    character(len=:), allocatable, intent(out) :: changed
+    logical :: closed
+    integer :: j
+    nchanged = 0
+    changed = ''
+    do j = 1, cs%n
+      closed = cs%c(j)%gap < 0.0_dp
+      if (closed .neqv. cs%c(j)%closed) then
+        nchanged = nchanged + 1
+        if (nchanged <= max_named) changed = changed // ' ' // itoa(m%node_id(cs%c(j)%snode(1)))
+        cs%c(j)%closed = closed
+      end if
+    end do
+    if (nchanged > max_named) changed = changed // ' ...'
+  end subroutine contact_switch
 end module contact

@@ -1,10 +1,13 @@
 !> The coupling finite element (CFE) of the contact method: a coupling
-!> node (the slave node) tied to the material point X_C of a master
-!> isoparametric element through a normal penalty. Node 1 is the coupling
-!> node, nodes 2..nen are the master element's nodes in its own order.
+!> point on the slave side tied to the material point X_C of a master
+!> isoparametric element through a normal penalty. The coupling point is
+!> the weighted combination sum_j w_j x_j of the ns slave nodes (one node
+!> with weight 1 for node-to-segment contact; any point of a slave edge
+!> otherwise, as section 5 of the paper allows). Nodes 1..ns are the slave
+!> nodes, nodes ns+1..nen the master element's nodes in its own order.
 module cfe_element
   use kinds, only: dp
-  use element_types, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3
+  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, act_tangent, act_residual, wants
   use plane_elements, only: quad4_shape, tri3_shape
   implicit none
   private
@@ -12,32 +15,39 @@ module cfe_element
 
 contains
 
-  !> B_e of eq. (4), preceded by the identity of the coupling node, so that
-  !> B_e D_e = u_C - sum_i N_i(X_C) u_i, the relative displacement of eq. (3).
+  !> Purpose: B_e of eq. (4), preceded by the weights of the slave nodes,
+  !> so that B_e D_e = sum_j w_j u_j - sum_i N_i(X_C) u_i, the relative
+  !> displacement of eq. (3).
   pure subroutine cfe_b_matrix(ein, b)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(out) :: b(2, 2 * ein%nen)
     real(dp) :: n(4), dn(2, 4)
     integer :: nm, k
-    nm = ein%nen - 1
+    nm = ein%nen - ein%ns
     if (ein%master_kind == kind_quad4) then
       call quad4_shape(ein%xi(1), ein%xi(2), n, dn)
     else
       call tri3_shape(ein%xi(1), ein%xi(2), n(1:3), dn(:, 1:3))
     end if
     b = 0.0_dp
-    b(1, 1) = 1.0_dp
-    b(2, 2) = 1.0_dp
+    do k = 1, ein%ns
+      b(1, 2 * k - 1) = ein%ws(k)
+      b(2, 2 * k) = ein%ws(k)
+    end do
     do k = 1, nm
-      b(1, 2 * k + 1) = -n(k)
-      b(2, 2 * k + 2) = -n(k)
+      b(1, 2 * (ein%ns + k) - 1) = -n(k)
+      b(2, 2 * (ein%ns + k)) = -n(k)
     end do
   end subroutine cfe_b_matrix
 
-  pure subroutine cfe(ein, eout)
+  !> Purpose: element arrays of a coupling element.
+  !> Arguments: action (act_tangent: K_e; act_residual: F_int, the
+  !> relative displacement, gap and normal force), ein, eout.
+  pure subroutine cfe(action, ein, eout)
+    integer, intent(in) :: action
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
-    real(dp) :: b(2, 2 * ein%nen), c(2, 2), cb(2, 2 * ein%nen)
+    real(dp) :: b(2, 2 * ein%nen), c(2, 2)
     integer :: nd, i, j
     nd = 2 * ein%nen
     eout%ndof = nd
@@ -49,14 +59,15 @@ contains
         c(i, j) = ein%penalty * ein%normal(i) * ein%normal(j)
       end do
     end do
-    ! eq. (8): [[U]] = B_e D_e + [[U]]_0
-    eout%jump = matmul(b, ein%ue(1:nd)) + ein%gap0
-    eout%gap = dot_product(ein%normal, eout%jump)
-    eout%normal_force = ein%penalty * eout%gap
-    cb = matmul(c, b)
     ! eq. (10): K_e = B_e^T C B_e
-    eout%ke(1:nd, 1:nd) = matmul(transpose(b), cb)
-    ! eq. (9): F_int = B_e^T C B_e D_e + B_e^T C [[U]]_0 = B_e^T C [[U]]
-    eout%fe(1:nd) = matmul(transpose(b), matmul(c, eout%jump))
+    if (wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = matmul(transpose(b), matmul(c, b))
+    if (wants(action, act_residual)) then
+      ! eq. (8): [[U]] = B_e D_e + [[U]]_0
+      eout%jump = matmul(b, ein%ue(1:nd)) + ein%gap0
+      eout%gap = dot_product(ein%normal, eout%jump)
+      eout%normal_force = ein%penalty * eout%gap
+      ! eq. (9): F_int = B_e^T C B_e D_e + B_e^T C [[U]]_0 = B_e^T C [[U]]
+      eout%fe(1:nd) = matmul(transpose(b), matmul(c, eout%jump))
+    end if
   end subroutine cfe
 end module cfe_element

@@ -1,7 +1,8 @@
 !> Dispatch from an element kind to its routine; the single entry point the
-!> assembly calls.
+!> analysis and contact layers call. A new element routine is one module
+!> and one line here.
 module element_library
-  use element_types, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_cfe
+  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_cfe
   use plane_elements, only: quad4, tri3
   use cfe_element, only: cfe
   implicit none
@@ -10,13 +11,17 @@ module element_library
 
 contains
 
-  pure subroutine element_routine(ein, eout)
+  !> Purpose: element arrays of one element.
+  !> Arguments: action (act_* codes combined with ior), ein element data,
+  !> eout the arrays asked for (the others are zero).
+  pure subroutine element_routine(action, ein, eout)
+    integer, intent(in) :: action
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     select case (ein%kind)
-    case (kind_quad4); call quad4(ein, eout)
-    case (kind_tri3);  call tri3(ein, eout)
-    case (kind_cfe);   call cfe(ein, eout)
+    case (kind_quad4); call quad4(action, ein, eout)
+    case (kind_tri3);  call tri3(action, ein, eout)
+    case (kind_cfe);   call cfe(action, ein, eout)
     end select
   end subroutine element_routine
 end module element_library

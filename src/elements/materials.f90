@@ -1,6 +1,7 @@
 !> Isotropic linear elasticity in the two plane states.
 module materials
   use kinds, only: dp
+  use element_catalogue, only: state_plane_strain
   implicit none
   private
   public :: elastic_matrix, out_of_plane_stress, von_mises
@@ -8,12 +9,12 @@ module materials
 contains
 
   !> Stress-strain matrix for (eps11, eps22, gamma12).
-  pure function elastic_matrix(e, nu, plane_strain) result(d)
+  pure function elastic_matrix(e, nu, state) result(d)
     real(dp), intent(in) :: e, nu
-    logical, intent(in) :: plane_strain
+    integer, intent(in) :: state     ! element_catalogue stress state
     real(dp) :: d(3, 3), c
     d = 0.0_dp
-    if (plane_strain) then
+    if (state == state_plane_strain) then
       c = e / ((1.0_dp + nu) * (1.0_dp - 2.0_dp * nu))
       d(1, 1) = c * (1.0_dp - nu)
       d(2, 2) = d(1, 1)
@@ -30,11 +31,11 @@ contains
   end function elastic_matrix
 
   !> sigma33: zero in plane stress, nu*(s11+s22) in plane strain.
-  pure real(dp) function out_of_plane_stress(s11, s22, nu, plane_strain)
+  pure real(dp) function out_of_plane_stress(s11, s22, nu, state)
     real(dp), intent(in) :: s11, s22, nu
-    logical, intent(in) :: plane_strain
+    integer, intent(in) :: state
     out_of_plane_stress = 0.0_dp
-    if (plane_strain) out_of_plane_stress = nu * (s11 + s22)
+    if (state == state_plane_strain) out_of_plane_stress = nu * (s11 + s22)
   end function out_of_plane_stress
 
   !> von Mises stress of (s11, s22, s33, s12).

@@ -1,23 +1,55 @@
 !> Result file <job>.msh that gmsh opens (MSH 2.2 ASCII): the mesh once,
 !> then per increment the views asked for by *NODE FILE and *EL FILE, each
 !> view tagged with the increment's time so that gmsh steps through them.
+!> It observes the analysis and writes at every converged increment.
 module results_gmsh
   use kinds, only: dp
   use model
   use element_catalogue, only: catalogue
   use materials, only: von_mises
   use messages, only: register_unit_to_close, fatal
+  use analysis_events, only: analysis_observer_t
+  use increment_results, only: increment_results_t
   implicit none
   private
   public :: result_file_t, open_result_file, write_result_views
 
-  type :: result_file_t
+  type, extends(analysis_observer_t) :: result_file_t
     integer :: unit = 0
     logical :: open = .false.
     integer :: count = 0          ! increments written (gmsh time-step index)
+  contains
+    procedure :: increment_done => write_increment_views
   end type result_file_t
 
 contains
+
+  !> Purpose: the views of this increment that the step's *NODE FILE and
+  !> *EL FILE requests ask for, merged into one nodal and one element set.
+  subroutine write_increment_views(self, m, res)
+    class(result_file_t), intent(inout) :: self
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    type(request_t) :: fnode, felem
+    integer :: q
+    do q = 1, size(m%steps(res%step)%requests)
+      associate(r => m%steps(res%step)%requests(q))
+        if (.not. r%to_file) cycle
+        if (r%nodal) then
+          fnode%u = fnode%u .or. r%u
+          fnode%rf = fnode%rf .or. r%rf
+          fnode%s = fnode%s .or. r%s
+          fnode%cstress = fnode%cstress .or. r%cstress
+        else
+          felem%s = felem%s .or. r%s
+        end if
+      end associate
+    end do
+    if (.not. self%open) return
+    if (.not. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s)) return
+    call write_result_views(self, m, fnode, felem, res%total_time, res%u, res%rf, res%sig_node, res%sig_elem, &
+                            res%contact%pressure, res%contact%has_pressure)
+  end subroutine write_increment_views
 
   subroutine open_result_file(path, m, rf)
     character(len=*), intent(in) :: path
@@ -43,7 +75,7 @@ contains
       if (.not. is_continuum(m, e)) cycle
       gtype = catalogue(m%etype(e))%gmsh_type
       ! two tags: physical and elementary entity = section number
-      write(u, '(i0,1x,i0,1x,i0,1x,i0,1x,i0,4(1x,i0))') m%elem_id(e), gtype, 2, m%elem_section(e), &
+      write(u, '(i0,1x,i0,1x,i0,1x,i0,1x,i0,*(1x,i0))') m%elem_id(e), gtype, 2, m%elem_section(e), &
         m%elem_section(e), m%node_id(m%conn(1:elem_nodes(m, e), e))
     end do
     write(u, '(a)') '$EndElements'

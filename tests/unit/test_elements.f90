@@ -4,7 +4,8 @@
 program test_elements
   use kinds, only: dp
   use test_report, only: report, failures
-  use element_types, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3
+  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, act_tangent, act_residual, act_stresses
+  use element_catalogue, only: state_plane_stress, state_plane_strain
   use element_library, only: element_routine
   implicit none
   type(elem_in_t) :: ein
@@ -17,17 +18,17 @@ program test_elements
   ein%kind = kind_quad4
   ein%nen = 4
   ein%xy(:, 1:4) = reshape([0.0_dp, 0.0_dp, 2.2_dp, 0.3_dp, 1.9_dp, 1.7_dp, -0.2_dp, 1.1_dp], [2, 4])
-  ein%plane_strain = .false.
+  ein%state = state_plane_stress
   call check_element('Q4 plane stress')
-  ein%plane_strain = .true.
+  ein%state = state_plane_strain
   call check_element('Q4 plane strain')
 
   ein%kind = kind_tri3
   ein%nen = 3
   ein%xy(:, 1:3) = reshape([0.1_dp, -0.2_dp, 1.7_dp, 0.4_dp, 0.6_dp, 1.3_dp], [2, 3])
-  ein%plane_strain = .false.
+  ein%state = state_plane_stress
   call check_element('T3 plane stress')
-  ein%plane_strain = .true.
+  ein%state = state_plane_strain
   call check_element('T3 plane strain')
 
   if (failures() > 0) stop 1
@@ -43,7 +44,7 @@ contains
     real(dp) :: r(8, 3), s11, s22, s12, d(3, 3), c, asym, big, sig_exact(4)
     character(len=200) :: msg
     integer :: n, info, nzero, i, j
-    call element_routine(ein, eout)
+    call element_routine(ior(ior(act_tangent, act_residual), act_stresses), ein, eout)
     n = eout%ndof
     k = eout%ke(1:n, 1:n)
     big = maxval(abs(k))
@@ -80,8 +81,8 @@ contains
       e2%ue(2 * i - 1) = 1.0e-3_dp * ein%xy(1, i) + 2.0e-4_dp * ein%xy(2, i)
       e2%ue(2 * i) = -5.0e-4_dp * ein%xy(1, i) - 3.0e-4_dp * ein%xy(2, i)
     end do
-    call element_routine(e2, eout)
-    if (ein%plane_strain) then
+    call element_routine(ior(ior(act_tangent, act_residual), act_stresses), e2, eout)
+    if (ein%state == state_plane_strain) then
       c = ein%e / ((1 + ein%nu) * (1 - 2 * ein%nu))
       d = reshape([1 - ein%nu, ein%nu, 0.0_dp, ein%nu, 1 - ein%nu, 0.0_dp, 0.0_dp, 0.0_dp, &
                    (1 - 2 * ein%nu) / 2], [3, 3]) * c
@@ -93,7 +94,7 @@ contains
     s22 = d(2, 1) * 1.0e-3_dp + d(2, 2) * (-3.0e-4_dp)
     s12 = d(3, 3) * (2.0e-4_dp - 5.0e-4_dp)
     sig_exact = [s11, s22, 0.0_dp, s12]
-    if (ein%plane_strain) sig_exact(3) = ein%nu * (s11 + s22)
+    if (ein%state == state_plane_strain) sig_exact(3) = ein%nu * (s11 + s22)
     c = 0.0_dp
     do i = 1, eout%nip
       c = max(c, maxval(abs(eout%sig_ip(:, i) - sig_exact)))

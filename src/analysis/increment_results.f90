@@ -1,0 +1,82 @@
+!> The results of one converged increment, computed once and consumed by
+!> every writer (listing, contact table, gmsh file, progress line):
+!> displacements, reactions and their sums over prescribed node sets,
+!> stresses at the integration points and the nodes, contact results.
+module increment_results
+  use kinds, only: dp
+  use element_catalogue, only: max_ip
+  use model
+  use contact, only: contact_set_t
+  use contact_results, only: contact_results_t, compute_contact_results
+  use assembly, only: stress_recovery, element_counts_t
+  implicit none
+  private
+  public :: increment_results_t, compute_increment_results
+
+  type :: increment_results_t
+    integer :: step = 0, increment = 0, iterations = 0
+    real(dp) :: time = 0.0_dp, total_time = 0.0_dp   ! step time and total time
+    real(dp), allocatable :: u(:, :), rf(:, :)        ! (2, nn)
+    integer, allocatable :: set_ids(:)                ! node sets summed
+    real(dp), allocatable :: set_sums(:, :)           ! (2, size(set_ids))
+    logical :: has_stresses = .false.
+    integer, allocatable :: nip(:)                    ! (ne)
+    real(dp), allocatable :: sig_ip(:, :, :)          ! (4, max_ip, ne)
+    real(dp), allocatable :: eps_ip(:, :, :)          ! (3, max_ip, ne)
+    real(dp), allocatable :: sig_node(:, :)           ! (4, nn)
+    real(dp), allocatable :: sig_elem(:, :)           ! (4, ne) element averages
+    type(contact_results_t) :: contact
+    integer :: nclosed = 0
+  end type increment_results_t
+
+contains
+
+  !> Purpose: results of the increment that ended at step time t of step
+  !> is, from the converged u, the residual rf = f_int - f_ext (reactions
+  !> where prescribed) and the contact set.
+  !> Arguments: set_ids node sets whose reactions are summed; counts
+  !> counts the element routine calls of the stress recovery.
+  subroutine compute_increment_results(m, is, inc, t, total_time, iters, u, rf, cs, set_ids, res, counts)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is, inc, iters
+    real(dp), intent(in) :: t, total_time
+    real(dp), intent(in) :: u(:, :), rf(:, :)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: set_ids(:)
+    type(increment_results_t), intent(out) :: res
+    type(element_counts_t), intent(inout) :: counts
+    integer :: s, q, e
+    res%step = is
+    res%increment = inc
+    res%iterations = iters
+    res%time = t
+    res%total_time = total_time
+    res%u = u
+    res%rf = rf
+    res%set_ids = set_ids
+    allocate(res%set_sums(2, size(set_ids)))
+    do s = 1, size(set_ids)
+      res%set_sums(:, s) = 0.0_dp
+      do q = 1, size(m%nsets(set_ids(s))%items)
+        res%set_sums(:, s) = res%set_sums(:, s) + rf(:, m%nsets(set_ids(s))%items(q))
+      end do
+    end do
+    allocate(res%nip(m%ne), res%sig_ip(4, max_ip, m%ne), res%eps_ip(3, max_ip, m%ne), res%sig_node(4, m%nn), &
+             res%sig_elem(4, m%ne))
+    res%has_stresses = any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e)
+    if (res%has_stresses) then
+      call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts)
+    else
+      res%nip = 0
+      res%sig_ip = 0.0_dp
+      res%eps_ip = 0.0_dp
+      res%sig_node = 0.0_dp
+    end if
+    do e = 1, m%ne
+      res%sig_elem(:, e) = 0.0_dp
+      if (res%nip(e) > 0) res%sig_elem(:, e) = sum(res%sig_ip(:, 1:res%nip(e), e), dim=2) / res%nip(e)
+    end do
+    call compute_contact_results(m, cs, u, res%contact)
+    res%nclosed = count(cs%c(1:cs%n)%closed)
+  end subroutine compute_increment_results
+end module increment_results

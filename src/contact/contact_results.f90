@@ -1,0 +1,164 @@
+!> Contact results of an increment, computed once and read by every
+!> writer: per reported pair the slave rows (one per CFE: coupling point,
+!> gap, status, normal force, area, pressure), the master rows (the CFE
+!> forces taken to the master edge nodes with the weights N_i(X_C), their
+!> tributary areas, pressures) and the pair's totals; and the nodal
+!> contact pressure field of the whole model.
+module contact_results
+  use kinds, only: dp
+  use model
+  use contact, only: contact_set_t, coupling_node
+  implicit none
+  private
+  public :: pair_results_t, contact_results_t, compute_contact_results
+
+  type :: pair_results_t
+    integer :: pair = 0
+    ! slave rows
+    integer, allocatable :: slave_node(:)        ! coupling node (0 if not a node)
+    real(dp), allocatable :: slave_x(:, :)       ! current coupling point (2, n)
+    real(dp), allocatable :: slave_gap(:)
+    logical, allocatable :: slave_closed(:)
+    real(dp), allocatable :: slave_force(:)      ! compressive positive
+    real(dp), allocatable :: slave_area(:)
+    ! master rows
+    integer, allocatable :: master_node(:)
+    real(dp), allocatable :: master_force(:), master_area(:)
+    ! totals: normal-force sum, resultant vector on the slave side
+    real(dp) :: total = 0.0_dp, resultant(2) = 0.0_dp, max_pen = 0.0_dp
+    integer :: nclosed = 0
+  end type pair_results_t
+
+  type :: contact_results_t
+    type(pair_results_t), allocatable :: pairs(:)   ! one per reported pair
+    real(dp) :: total_force = 0.0_dp                ! sum over the reported pairs
+    real(dp), allocatable :: pressure(:)            ! (nn) nodal contact pressure
+    logical, allocatable :: has_pressure(:)
+  end type contact_results_t
+
+contains
+
+  !> Purpose: the contact results at displacements u from the CFE gaps and
+  !> forces of the last evaluation. The second pass of a SYMMETRIC pair is
+  !> reported with its first one.
+  subroutine compute_contact_results(m, cs, u, r)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: u(:, :)
+    type(contact_results_t), intent(out) :: r
+    integer :: ip, np, j
+    np = 0
+    do ip = 1, size(m%pairs)
+      if (.not. (m%pairs(ip)%twin > 0 .and. m%pairs(ip)%twin < ip)) np = np + 1
+    end do
+    allocate(r%pairs(np), r%pressure(m%nn), r%has_pressure(m%nn))
+    r%pressure = 0.0_dp
+    r%has_pressure = .false.
+    np = 0
+    do ip = 1, size(m%pairs)
+      if (m%pairs(ip)%twin > 0 .and. m%pairs(ip)%twin < ip) cycle
+      np = np + 1
+      call pair_results(m, cs, u, ip, r%pairs(np))
+      associate(pr => r%pairs(np))
+        r%total_force = r%total_force + pr%total
+        do j = 1, size(pr%slave_node)
+          if (pr%slave_node(j) == 0) cycle
+          r%pressure(pr%slave_node(j)) = pr%slave_force(j) / pr%slave_area(j)
+          r%has_pressure(pr%slave_node(j)) = .true.
+        end do
+        do j = 1, size(pr%master_node)
+          if (pr%master_area(j) > 0.0_dp) r%pressure(pr%master_node(j)) = pr%master_force(j) / pr%master_area(j)
+          r%has_pressure(pr%master_node(j)) = .true.
+        end do
+      end associate
+    end do
+  end subroutine compute_contact_results
+
+  !> Purpose: results of pair ip. For a SYMMETRIC pair each node's force
+  !> is what both passes put on it: its own CFE force and what it receives
+  !> as a master node of the other pass.
+  subroutine pair_results(m, cs, u, ip, r)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: u(:, :)
+    integer, intent(in) :: ip
+    type(pair_results_t), intent(out) :: r
+    type(pair_results_t) :: rt
+    integer :: j, k
+    call pass_results(m, cs, u, ip, r)
+    if (m%pairs(ip)%twin == 0) return
+    call pass_results(m, cs, u, m%pairs(ip)%twin, rt)
+    do j = 1, size(r%slave_node)
+      do k = 1, size(rt%master_node)
+        if (rt%master_node(k) == r%slave_node(j)) r%slave_force(j) = r%slave_force(j) + rt%master_force(k)
+      end do
+    end do
+    do k = 1, size(r%master_node)
+      do j = 1, size(rt%slave_node)
+        if (rt%slave_node(j) == r%master_node(k)) r%master_force(k) = r%master_force(k) + rt%slave_force(j)
+      end do
+    end do
+    r%total = r%total + rt%total
+    r%resultant = r%resultant - rt%resultant
+    r%nclosed = r%nclosed + rt%nclosed
+    r%max_pen = max(r%max_pen, rt%max_pen)
+  end subroutine pair_results
+
+  !> Purpose: one pass: slave rows and the master-side forces its CFEs
+  !> produce (each CFE force goes to the master edge nodes with the
+  !> weights N_i(X_C)).
+  subroutine pass_results(m, cs, u, ip, r)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: u(:, :)
+    integer, intent(in) :: ip
+    type(pair_results_t), intent(out) :: r
+    integer :: k, j, a, b, nm, ns, n
+    integer, allocatable :: pos(:), sel(:)
+    real(dp) :: len, f
+    r%pair = ip
+    sel = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == ip)
+    n = size(sel)
+    allocate(r%slave_node(n), r%slave_x(2, n), r%slave_gap(n), r%slave_closed(n), r%slave_force(n), &
+             r%slave_area(n))
+    associate(ms => m%surfaces(m%pairs(ip)%master_surface))
+      r%master_node = ms%nodes
+      nm = size(ms%nodes)
+      allocate(r%master_force(nm), r%master_area(nm), pos(m%nn))
+      pos = 0
+      do k = 1, nm
+        pos(ms%nodes(k)) = k
+      end do
+      r%master_force = 0.0_dp
+      r%master_area = 0.0_dp
+      do j = 1, size(ms%elem)
+        call edge_nodes(m, ms%elem(j), ms%edge(j), a, b)
+        len = norm2(m%x(:, b) - m%x(:, a))
+        f = 0.5_dp * len * m%sections(m%elem_section(ms%elem(j)))%thickness
+        r%master_area(pos(a)) = r%master_area(pos(a)) + f
+        r%master_area(pos(b)) = r%master_area(pos(b)) + f
+      end do
+    end associate
+    do j = 1, n
+      associate(c => cs%c(sel(j)))
+        ns = c%ns
+        r%slave_node(j) = coupling_node(c)
+        r%slave_x(:, j) = matmul(m%x(:, c%snode(1:ns)) + u(:, c%snode(1:ns)), c%sw(1:ns))
+        r%slave_gap(j) = c%gap
+        r%slave_closed(j) = c%closed
+        ! compressive force counted positive
+        r%slave_force(j) = -c%force
+        r%slave_area(j) = c%area
+        call edge_nodes(m, c%elem, c%edge, a, b)
+        r%master_force(pos(a)) = r%master_force(pos(a)) - (1.0_dp - c%t) * c%force
+        r%master_force(pos(b)) = r%master_force(pos(b)) - c%t * c%force
+        r%total = r%total - c%force
+        r%resultant = r%resultant + c%force * c%normal
+        if (c%closed) then
+          r%nclosed = r%nclosed + 1
+          r%max_pen = max(r%max_pen, -c%gap)
+        end if
+      end associate
+    end do
+  end subroutine pass_results
+end module contact_results

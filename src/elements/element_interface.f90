@@ -1,0 +1,67 @@
+!> The one interface every element routine shares (FEAP style): an action
+!> code says what to compute, element data come in, element arrays go out.
+!> No element routine sees global state. Sizes come from the element
+!> catalogue.
+module element_interface
+  use kinds, only: dp
+  use element_catalogue, only: max_nodes, max_ip, shape_tri3, shape_quad4, state_none
+  implicit none
+  private
+  public :: elem_in_t, elem_out_t, max_en, max_edof, max_ip, max_slave, &
+            kind_quad4, kind_tri3, kind_cfe, act_tangent, act_residual, act_stresses, wants
+
+  !> Routine selectors: the continuum routines are the catalogue's shapes;
+  !> the coupling element is the contact layer's element.
+  integer, parameter :: kind_tri3 = shape_tri3, kind_quad4 = shape_quad4, kind_cfe = 100
+  !> Slave-side nodes of a coupling element (its coupling point is a
+  !> weighted combination of them, section 5 of the paper).
+  integer, parameter :: max_slave = 3
+  integer, parameter :: max_en = max_nodes + max_slave, max_edof = 2 * max_en
+  !> Actions, combined with ior: tangent stiffness ke, internal force fe
+  !> (and, for a coupling element, its gap and normal force), stresses and
+  !> strains at the integration points and extrapolated to the nodes.
+  integer, parameter :: act_tangent = 1, act_residual = 2, act_stresses = 4
+
+  type :: elem_in_t
+    integer :: kind = 0
+    integer :: nen = 0                      ! nodes (CFE: slave nodes + master nodes)
+    real(dp) :: xy(2, max_en) = 0.0_dp      ! nodal coordinates
+    real(dp) :: ue(max_edof) = 0.0_dp       ! nodal displacements
+    ! continuum elements
+    real(dp) :: e = 0.0_dp, nu = 0.0_dp, thickness = 1.0_dp
+    integer :: state = state_none           ! element_catalogue stress state
+    ! coupling element: slave side (ns nodes, weights ws summing to 1),
+    ! master kind, natural coordinates of X_C in the master, unit outward
+    ! normal of the master edge, normal penalty and the initial gap [[U]]_0
+    integer :: ns = 1
+    real(dp) :: ws(max_slave) = [1.0_dp, 0.0_dp, 0.0_dp]
+    integer :: master_kind = 0
+    real(dp) :: xi(2) = 0.0_dp
+    real(dp) :: normal(2) = 0.0_dp
+    real(dp) :: penalty = 0.0_dp
+    real(dp) :: gap0(2) = 0.0_dp
+  end type elem_in_t
+
+  type :: elem_out_t
+    integer :: ndof = 0
+    real(dp) :: ke(max_edof, max_edof) = 0.0_dp
+    real(dp) :: fe(max_edof) = 0.0_dp          ! internal force
+    integer :: nip = 0
+    real(dp) :: sig_ip(4, max_ip) = 0.0_dp     ! s11, s22, s33, s12
+    real(dp) :: eps_ip(3, max_ip) = 0.0_dp     ! e11, e22, gamma12
+    real(dp) :: sig_node(4, max_nodes) = 0.0_dp   ! extrapolated to the nodes
+    ! coupling element: relative displacement [[U]] (eq. 8) and its
+    ! normal component, the normal gap (negative = penetration)
+    real(dp) :: jump(2) = 0.0_dp
+    real(dp) :: gap = 0.0_dp
+    real(dp) :: normal_force = 0.0_dp
+  end type elem_out_t
+
+contains
+
+  !> Does action code `action` include `what`?
+  pure logical function wants(action, what)
+    integer, intent(in) :: action, what
+    wants = iand(action, what) /= 0
+  end function wants
+end module element_interface

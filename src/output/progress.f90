@@ -1,0 +1,39 @@
+!> The progress line on standard output: one line per converged increment
+!> and one per finished step, so that a long run shows where it is.
+module progress
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use kinds, only: dp
+  use model, only: model_t
+  use analysis_events, only: analysis_observer_t, step_summary_t
+  use increment_results, only: increment_results_t
+  implicit none
+  private
+  public :: progress_t
+
+  type, extends(analysis_observer_t) :: progress_t
+  contains
+    procedure :: increment_done => progress_increment
+    procedure :: step_finished => progress_step
+  end type progress_t
+
+contains
+
+  subroutine progress_increment(self, m, res)
+    class(progress_t), intent(inout) :: self
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    write(output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es12.5)') 'step ', res%step, '  increment ', &
+      res%increment, '  time ', res%total_time, '  iterations ', res%iterations, '  closed ', res%nclosed, &
+      '  contact force ', res%contact%total_force
+    flush(output_unit)
+  end subroutine progress_increment
+
+  subroutine progress_step(self, summary)
+    class(progress_t), intent(inout) :: self
+    type(step_summary_t), intent(in) :: summary
+    write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a,f0.2,a)') 'step ', summary%step, ' done: ', summary%increments, &
+      ' increments, ', summary%iterations, ' contact iterations, ', summary%factorisations, &
+      ' factorisations, ', summary%wall_seconds, ' s'
+    flush(output_unit)
+  end subroutine progress_step
+end module progress
