@@ -9,7 +9,8 @@ program bench
   use model
   use element_catalogue, only: find_element_type
   use contact, only: contact_set_t
-  use assembly, only: dofmap_t, number_dofs, assemble
+  use dof_numbering, only: dofmap_t, number_dofs
+  use assembly, only: body_t, element_counts_t, body_setup, assemble_stiffness, body_forces, free_residual
   use linear_solver
   implicit none
   character(len=32) :: a1, a2, a3
@@ -19,7 +20,9 @@ program bench
   type(dofmap_t) :: dm
   type(linear_system_t) :: sys
   logical, allocatable :: presc(:, :)
-  real(dp), allocatable :: u(:, :), f(:, :), rhs(:), b(:), r(:)
+  real(dp), allocatable :: u(:, :), f(:, :), fint(:, :), rhs(:), b(:), r(:)
+  type(body_t) :: body
+  type(element_counts_t) :: counts
   real(dp) :: kmax, t_number, t_asm, t_analysis, t_fact, t_solve, res
   integer(8) :: c0, c1, rate
 
@@ -65,7 +68,7 @@ program bench
   m%materials(1)%nu = 0.3_dp
   m%sections(1)%material = 1
   m%sections(1)%thickness = 1.0_dp
-  allocate(cs%c(0), presc(2, m%nn), u(2, m%nn), f(2, m%nn))
+  allocate(cs%c(0), presc(2, m%nn), u(2, m%nn), f(2, m%nn), fint(2, m%nn))
   cs%n = 0
   presc = .false.
   do i = 1, nx + 1
@@ -81,7 +84,10 @@ program bench
   call number_dofs(m, cs, presc, kind, order, dm, sys)
   t_number = elapsed()
   allocate(rhs(dm%neq))
-  call assemble(m, cs, u, f, dm, sys, rhs, .true., kmax)
+  call body_setup(m, body, counts)
+  call assemble_stiffness(m, cs, body, u, sys, kmax, counts)
+  call body_forces(m, body, u, fint)
+  call free_residual(dm, f, fint, rhs)
   t_asm = elapsed()
   call sys_analyse(sys)
   t_analysis = elapsed()
@@ -92,7 +98,7 @@ program bench
   call sys_solve(sys, b)
   t_solve = elapsed()
   ! residual with the assembled (for the skyline: re-assembled) matrix
-  if (kind == solver_skyline) call assemble(m, cs, u, f, dm, sys, rhs, .true., kmax)
+  if (kind == solver_skyline) call assemble_stiffness(m, cs, body, u, sys, kmax, counts)
   allocate(r(dm%neq))
   call sys_matvec(sys, b, r)
   res = norm2(r - rhs) / norm2(rhs)
