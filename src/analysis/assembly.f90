@@ -18,8 +18,9 @@ module assembly
   public :: body_t, element_counts_t, body_setup, assemble_stiffness, body_forces, free_residual, &
             stress_recovery, solid_input
 
-  !> Stored element stiffness of every continuum element: the nd x nd
-  !> matrix of element e is ke(kptr(e) : kptr(e+1)-1), column by column.
+  !> Stored element stiffness of every continuum element: the upper
+  !> triangle of the symmetric nd x nd matrix of element e, column by
+  !> column, in ke(kptr(e) : kptr(e+1)-1).
   type :: body_t
     integer(kind=8), allocatable :: kptr(:)
     real(dp), allocatable :: ke(:)
@@ -72,7 +73,7 @@ contains
     do e = 1, m%ne
       nd = 0
       if (is_continuum(m, e)) nd = 2 * elem_nodes(m, e)
-      body%kptr(e + 1) = body%kptr(e) + int(nd, 8)**2
+      body%kptr(e + 1) = body%kptr(e) + int(nd, 8) * (nd + 1) / 2
     end do
     allocate(body%ke(body%kptr(m%ne + 1) - 1))
     do e = 1, m%ne
@@ -81,12 +82,40 @@ contains
       call element_routine(act_tangent, ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
       nd = eout%ndof
-      body%ke(body%kptr(e):body%kptr(e + 1) - 1) = reshape(eout%ke(1:nd, 1:nd), [nd * nd])
+      call pack_upper(eout%ke(1:nd, 1:nd), body%ke(body%kptr(e):body%kptr(e + 1) - 1))
       do j = 1, nd
         body%kmax = max(body%kmax, abs(eout%ke(j, j)))
       end do
     end do
   end subroutine body_setup
+
+  !> The upper triangle of a symmetric matrix, column by column.
+  pure subroutine pack_upper(a, p)
+    real(dp), intent(in) :: a(:, :)
+    real(dp), intent(out) :: p(:)
+    integer :: i, j, k
+    k = 0
+    do j = 1, size(a, 2)
+      do i = 1, j
+        k = k + 1
+        p(k) = a(i, j)
+      end do
+    end do
+  end subroutine pack_upper
+
+  pure subroutine unpack_upper(p, a)
+    real(dp), intent(in) :: p(:)
+    real(dp), intent(out) :: a(:, :)
+    integer :: i, j, k
+    k = 0
+    do j = 1, size(a, 2)
+      do i = 1, j
+        k = k + 1
+        a(i, j) = p(k)
+        a(j, i) = p(k)
+      end do
+    end do
+  end subroutine unpack_upper
 
   !> Purpose: the stiffness of the current contact status into sys: the
   !> stored body matrices plus the tangent of every CFE.
@@ -103,11 +132,13 @@ contains
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, j, nd, nodes(max_en)
+    real(dp) :: ke(2 * max_en, 2 * max_en)
     call sys_zero(sys)
     do e = 1, m%ne
       if (.not. is_continuum(m, e)) cycle
       nd = 2 * elem_nodes(m, e)
-      call sys_add(sys, e, reshape(body%ke(body%kptr(e):body%kptr(e + 1) - 1), [nd, nd]))
+      call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
+      call sys_add(sys, e, ke(1:nd, 1:nd))
     end do
     kmax = body%kmax
     do e = 1, cs%n
@@ -128,7 +159,7 @@ contains
     type(body_t), intent(in) :: body
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(out) :: fint(:, :)
-    real(dp) :: ue(2 * max_en), fe(2 * max_en)
+    real(dp) :: ue(2 * max_en), fe(2 * max_en), ke(2 * max_en, 2 * max_en)
     integer :: e, k, nen, nd
     fint = 0.0_dp
     do e = 1, m%ne
@@ -138,7 +169,8 @@ contains
       do k = 1, nen
         ue(2 * k - 1:2 * k) = u(:, m%conn(k, e))
       end do
-      fe(1:nd) = matmul(reshape(body%ke(body%kptr(e):body%kptr(e + 1) - 1), [nd, nd]), ue(1:nd))
+      call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
+      fe(1:nd) = matmul(ke(1:nd, 1:nd), ue(1:nd))
       do k = 1, nen
         fint(:, m%conn(k, e)) = fint(:, m%conn(k, e)) + fe(2 * k - 1:2 * k)
       end do

@@ -11,6 +11,7 @@ program test_cfe
   implicit none
   call check('CFE on Q4 master', kind_quad4, 4, [0.3_dp, 1.0_dp])
   call check('CFE on T3 master', kind_tri3, 3, [0.35_dp, 0.65_dp])
+  call check_slave_point()
   if (failures() > 0) stop 1
 
 contains
@@ -101,4 +102,59 @@ contains
     write(msg, '(a,es9.2)') 'relative force change ', err
     call report(name // ': frictionless (tangential slide changes no force)', err < 1.0e-9_dp, msg)
   end subroutine check
+
+  !> A coupling point between two slave nodes (weights 0.3, 0.7), as the
+  !> paper's section 5 allows: the element behaves as a one-node CFE whose
+  !> node moves as the weighted slave nodes, and the slave forces are the
+  !> weights times that node's force.
+  subroutine check_slave_point()
+    type(elem_in_t) :: e1, e2
+    type(elem_out_t) :: o1, o2
+    real(dp), parameter :: w(2) = [0.3_dp, 0.7_dp]
+    real(dp) :: err, f_expect(12), b1(2, 10), b2(2, 12)
+    character(len=120) :: msg
+    integer :: i
+    ! the one-node reference: coupling node + Q4 master
+    e1%kind = kind_cfe
+    e1%master_kind = kind_quad4
+    e1%nen = 5
+    e1%xi = [0.2_dp, 1.0_dp]
+    e1%normal = [0.0_dp, -1.0_dp]
+    e1%penalty = 2.0e8_dp
+    e1%xy(:, 2:5) = reshape([0.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 4])
+    do i = 3, 10
+      e1%ue(i) = 1.0e-4_dp * cos(0.7_dp * i)
+    end do
+    ! two slave nodes whose weighted position and displacement give node 1 of e1
+    e2 = e1
+    e2%ns = 2
+    e2%ws(1:2) = w
+    e2%nen = 6
+    e2%xy(:, 3:6) = e1%xy(:, 2:5)
+    e2%ue(5:12) = e1%ue(3:10)
+    e2%ue(1:4) = [1.0e-4_dp, -3.0e-4_dp, -2.0e-4_dp, -1.0e-4_dp]
+    e1%ue(1:2) = w(1) * e2%ue(1:2) + w(2) * e2%ue(3:4)
+    e1%gap0 = [0.0_dp, 1.0e-5_dp]
+    e2%gap0 = e1%gap0
+    call element_routine(ior(act_tangent, act_residual), e1, o1)
+    call element_routine(ior(act_tangent, act_residual), e2, o2)
+    err = abs(o2%gap - o1%gap) / abs(o1%gap)
+    write(msg, '(a,es9.2)') 'relative gap difference ', err
+    call report('CFE with a slave point between two nodes: same gap as the one-node CFE', err < 1.0e-13_dp, msg)
+    f_expect(1:2) = w(1) * o1%fe(1:2)
+    f_expect(3:4) = w(2) * o1%fe(1:2)
+    f_expect(5:12) = o1%fe(3:10)
+    err = maxval(abs(o2%fe(1:12) - f_expect)) / maxval(abs(f_expect))
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report('CFE with a slave point: slave forces are the weights times the point force', err < 1.0e-13_dp, msg)
+    call cfe_b_matrix(e1, b1)
+    call cfe_b_matrix(e2, b2)
+    err = maxval(abs(b2(:, 1:2) - w(1) * b1(:, 1:2))) + maxval(abs(b2(:, 3:4) - w(2) * b1(:, 1:2))) + &
+          maxval(abs(b2(:, 5:12) - b1(:, 3:10)))
+    write(msg, '(a,es9.2)') 'largest difference ', err
+    call report('CFE with a slave point: B_e holds the weights on the slave side (eq. 4)', err < 1.0e-15_dp, msg)
+    err = maxval(abs(o2%ke(1:12, 1:12) - transpose(o2%ke(1:12, 1:12)))) / maxval(abs(o2%ke))
+    write(msg, '(a,es9.2)') 'relative asymmetry ', err
+    call report('CFE with a slave point: K_e symmetric', err < 1.0e-15_dp, msg)
+  end subroutine check_slave_point
 end program test_cfe
