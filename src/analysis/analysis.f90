@@ -138,7 +138,7 @@ contains
       if (rs%update_search .and. rs%inc + iv%level > 0) call research(m, rs)
       saved = rs%cs%c(1:rs%cs%n)%closed
       call values_at(m, rs%ls, iv%t1, rs%u, rs%fext)
-      call solve_increment(rs%eq, m, is, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, ok, iters)
+      call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, ok, iters)
       if (ok) then
         rs%inc = rs%inc + 1
         call report(m, is, rs, obs, iv%t1, iters)

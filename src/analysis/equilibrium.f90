@@ -5,6 +5,7 @@
 !> tolerance. The stiffness depends only on the contact status, so its
 !> factor is kept while the status is the one it was made for.
 module equilibrium
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use strings, only: itoa
   use model
@@ -57,10 +58,10 @@ contains
   !> and fext. On return u holds the solution, rf = f_int - f_ext (the
   !> reactions at prescribed dofs), ok whether it converged and iters the
   !> iterations used.
-  subroutine solve_increment(eq, m, is, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
+  subroutine solve_increment(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
-    integer, intent(in) :: is
+    integer, intent(in) :: is, inc       ! step, and the increment being solved
     type(body_t), intent(in) :: body
     type(contact_set_t), intent(inout) :: cs
     type(dofmap_t), intent(in) :: dm
@@ -85,6 +86,9 @@ contains
         do d = 1, 2
           if (dm%eq(d, a) > 0) u(d, a) = u(d, a) + eq%rhs(dm%eq(d, a))
         end do
+        if (.not. all(ieee_is_finite(u(:, a)))) call fatal('step ' // itoa(is) // ', increment ' // &
+          itoa(inc) // ': the displacement at node ' // itoa(m%node_id(a)) // ' is not a finite number ' // &
+          '(overflow: loads, stiffness or displacements out of range?); results of this increment are not written')
       end do
       call internal_forces(m, body, cs, u, fint, eq%counts)
       call contact_switch(m, cs, nchanged, eq%changed)
@@ -163,22 +167,11 @@ contains
     type(dofmap_t), intent(in) :: dm
     type(contact_set_t), intent(in) :: cs
     real(dp), intent(in) :: fext(:, :), u(:, :), rf(:, :), kmax
-    real(dp) :: resid, ref
-    integer :: a, d
-    resid = 0.0_dp
-    ref = 0.0_dp
-    do a = 1, size(rf, 2)
-      do d = 1, 2
-        if (dm%eq(d, a) > 0) then
-          resid = resid + rf(d, a)**2
-        else
-          ref = ref + rf(d, a)**2
-        end if
-      end do
-    end do
-    ref = max(sqrt(ref), norm2(fext), sum(abs(cs%c(1:cs%n)%force)), &
+    real(dp) :: ref
+    ! norm2 scales internally: no overflow for large but finite forces
+    ref = max(norm2(pack(rf, dm%eq == 0)), norm2(fext), sum(abs(cs%c(1:cs%n)%force)), &
               1.0e-6_dp * kmax * maxval(abs(u)), tiny(1.0_dp))
-    r = sqrt(resid) / ref
+    r = norm2(pack(rf, dm%eq > 0)) / ref
   end function relative_residual
 
   !> Stops on a singular stiffness, naming the node and dof where the

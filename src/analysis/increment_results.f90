@@ -3,7 +3,10 @@
 !> displacements, reactions and their sums over prescribed node sets,
 !> stresses at the integration points and the nodes, contact results.
 module increment_results
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
+  use strings, only: itoa
+  use messages, only: fatal
   use element_catalogue, only: max_ip
   use model
   use contact, only: contact_set_t
@@ -78,5 +81,41 @@ contains
     end do
     call compute_contact_results(m, cs, u, res%contact)
     res%nclosed = count(cs%c(1:cs%n)%closed)
+    call check_finite(m, res)
   end subroutine compute_increment_results
+
+  !> Purpose: stops the run, naming the increment, the quantity and where,
+  !> if any result is not a finite number: nothing that is not a number is
+  !> ever written. The increments before it are already on disk.
+  subroutine check_finite(m, res)
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    character(len=:), allocatable :: where
+    integer :: a, e, k
+    where = 'step ' // itoa(res%step) // ', increment ' // itoa(res%increment) // ': '
+    do a = 1, m%nn
+      if (.not. all(ieee_is_finite(res%u(:, a)))) call stop_at('displacement', 'node', m%node_id(a))
+      if (.not. all(ieee_is_finite(res%rf(:, a)))) call stop_at('reaction/internal force', 'node', m%node_id(a))
+      if (.not. all(ieee_is_finite(res%sig_node(:, a)))) call stop_at('nodal stress', 'node', m%node_id(a))
+    end do
+    do e = 1, m%ne
+      if (.not. all(ieee_is_finite(res%sig_ip(:, :, e))) .or. .not. all(ieee_is_finite(res%eps_ip(:, :, e)))) &
+        call stop_at('stress or strain', 'element', m%elem_id(e))
+    end do
+    do k = 1, size(res%contact%pairs)
+      associate(p => res%contact%pairs(k))
+        if (.not. (all(ieee_is_finite(p%slave_force)) .and. all(ieee_is_finite(p%master_force)) .and. &
+                   all(ieee_is_finite(p%slave_gap)) .and. ieee_is_finite(p%total))) &
+          call stop_at('contact force', 'pair', p%pair)
+      end associate
+    end do
+  contains
+    subroutine stop_at(quantity, what, id)
+      character(len=*), intent(in) :: quantity, what
+      integer, intent(in) :: id
+      call fatal(where // 'the ' // quantity // ' at ' // what // ' ' // itoa(id) // &
+        ' is not a finite number (overflow: loads, stiffness or displacements out of range?); ' // &
+        'results of this increment are not written')
+    end subroutine stop_at
+  end subroutine check_finite
 end module increment_results

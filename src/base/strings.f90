@@ -107,7 +107,13 @@ contains
     integer, intent(in) :: digits
     character(len=:), allocatable :: s
     character(len=40) :: buf, fmt
-    write(fmt, '(a,i0,a,i0,a)') '(es', digits + 8, '.', digits - 1, ')'
+    ! A three-digit exponent needs its width given, or the E is dropped
+    ! (1e160 would print as 1.0+160).
+    if (abs(x) >= 1.0e99_dp .or. (x /= 0.0_dp .and. abs(x) < 1.0e-98_dp)) then
+      write(fmt, '(a,i0,a,i0,a)') '(es', digits + 9, '.', digits - 1, 'e3)'
+    else
+      write(fmt, '(a,i0,a,i0,a)') '(es', digits + 8, '.', digits - 1, ')'
+    end if
     write(buf, fmt) x
     s = trim(adjustl(buf))
   end function rtoa

@@ -38,10 +38,19 @@ contains
     if (state == state_plane_strain) out_of_plane_stress = nu * (s11 + s22)
   end function out_of_plane_stress
 
-  !> von Mises stress of (s11, s22, s33, s12).
+  !> von Mises stress of (s11, s22, s33, s12), scaled by the largest
+  !> component so that the squares cannot overflow for any finite stress.
   pure real(dp) function von_mises(s)
     real(dp), intent(in) :: s(4)
-    von_mises = sqrt(0.5_dp * ((s(1) - s(2))**2 + (s(2) - s(3))**2 + (s(3) - s(1))**2) &
-                     + 3.0_dp * s(4)**2)
+    real(dp) :: smax, t(4)
+    smax = maxval(abs(s))
+    von_mises = 0.0_dp
+    if (.not. smax > 0.0_dp .or. smax > huge(1.0_dp)) then
+      von_mises = smax          ! zero, or not a number / infinite as given
+      return
+    end if
+    t = s / smax
+    von_mises = smax * sqrt(0.5_dp * ((t(1) - t(2))**2 + (t(2) - t(3))**2 + (t(3) - t(1))**2) &
+                            + 3.0_dp * t(4)**2)
   end function von_mises
 end module materials

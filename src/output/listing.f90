@@ -65,7 +65,7 @@ contains
     class(listing_t), intent(in) :: lst
     character(len=:), allocatable :: f
     character(len=16) :: buf
-    write(buf, '(a,i0,a,i0)') 'es', lst%digits + 8, '.', lst%digits - 1
+    write(buf, '(a,i0,a,i0,a)') 'es', lst%digits + 9, '.', lst%digits - 1, 'e3'
     f = trim(buf)
   end function efmt
 
@@ -115,7 +115,7 @@ contains
     write(u, '(a)') 'item value'
     write(u, '(a,i0)') 'equations ', info%equations
     write(u, '(a,i0)') 'prescribed_dofs ', info%prescribed
-    write(u, '(a,es12.5)') 'time_period ', info%period
+    write(u, '(a,es13.5e3)') 'time_period ', info%period
     write(u, '(a,i0)') 'increments ', info%increments
     write(u, '(a,i0)') 'coupling_elements ', info%coupling_elements
     if (size(info%uncoupled) > 0) then
@@ -144,7 +144,7 @@ contains
     character(len=:), allocatable :: nodes
     nodes = ''
     if (info%changes > 0) nodes = ' (nodes' // info%changed // ')'
-    write(self%unit, '(a,i0,a,i0,a,i0,a,es10.3,a)') 'contact iteration ', info%iteration, ': status changes ', &
+    write(self%unit, '(a,i0,a,i0,a,i0,a,es11.3e3,a)') 'contact iteration ', info%iteration, ': status changes ', &
       info%changes, ', closed ', info%closed, ', out-of-balance ', info%residual, nodes
   end subroutine write_iteration
 
@@ -320,8 +320,8 @@ contains
       if (r%slave_closed(j)) st = 'CLOSED'
       write(un, '(i10,3' // efmt(self) // ',1x,a6,3' // efmt(self) // ')') nid, r%slave_x(:, j), &
         r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_force(j) / r%slave_area(j)
-      if (self%has_csv) write(self%csv, '(i0,",",i0,",",es15.8,",",i0,",slave,",i0,",",es15.8,",",es15.8,",",&
-        &es15.8,",",a,",",es15.8,",",es15.8)') res%step, res%increment, res%total_time, r%pair, nid, &
+      if (self%has_csv) write(self%csv, '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,",",es16.8e3,",",&
+        &es16.8e3,",",a,",",es16.8e3,",",es16.8e3)') res%step, res%increment, res%total_time, r%pair, nid, &
         r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_force(j) / r%slave_area(j)
     end do
     write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', r%pair, ' surface=' // &
@@ -333,8 +333,8 @@ contains
       p = 0.0_dp
       if (r%master_area(j) > 0.0_dp) p = r%master_force(j) / r%master_area(j)
       write(un, rowfmt(self, 'i10', 5)) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
-      if (self%has_csv) write(self%csv, '(i0,",",i0,",",es15.8,",",i0,",master,",i0,",",es15.8,",",es15.8,&
-        &",0,-,",es15.8,",",es15.8)') res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
+      if (self%has_csv) write(self%csv, '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",es16.8e3,&
+        &",0,-,",es16.8e3,",",es16.8e3)') res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
         r%master_force(j), p
     end do
     write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', r%pair

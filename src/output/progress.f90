@@ -22,7 +22,7 @@ contains
     class(progress_t), intent(inout) :: self
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
-    write(output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es12.5)') 'step ', res%step, '  increment ', &
+    write(output_unit, '(a,i0,a,i0,a,es12.4e3,a,i0,a,i0,a,es13.5e3)') 'step ', res%step, '  increment ', &
       res%increment, '  time ', res%total_time, '  iterations ', res%iterations, '  closed ', res%nclosed, &
       '  contact force ', res%contact%total_force
     flush(output_unit)

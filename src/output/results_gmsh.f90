@@ -65,7 +65,7 @@ contains
     write(u, '(a)') '$Nodes'
     write(u, '(i0)') m%nn
     do e = 1, m%nn
-      write(u, '(i0,3(1x,es23.15))') m%node_id(e), m%x(:, e), 0.0_dp
+      write(u, '(i0,3(1x,es24.15e3))') m%node_id(e), m%x(:, e), 0.0_dp
     end do
     write(u, '(a)') '$EndNodes'
     nsolid = count([(is_continuum(m, e), e = 1, m%ne)])
@@ -120,7 +120,7 @@ contains
       integer, intent(in) :: ncomp, n
       write(rf%unit, '(a)') '$' // block
       write(rf%unit, '(a)') '1', '"' // tag // '"', '1'
-      write(rf%unit, '(es23.15)') time
+      write(rf%unit, '(es24.15e3)') time
       write(rf%unit, '(a)') '3'
       write(rf%unit, '(i0)') rf%count - 1, ncomp, n
     end subroutine header
@@ -133,9 +133,9 @@ contains
       call header(tag, 'NodeData', ncomp, m%nn)
       do i = 1, m%nn
         if (ncomp == 3) then
-          write(rf%unit, '(i0,3(1x,es16.8))') m%node_id(i), v(1:2, i), 0.0_dp
+          write(rf%unit, '(i0,3(1x,es17.8e3))') m%node_id(i), v(1:2, i), 0.0_dp
         else
-          write(rf%unit, '(i0,1x,es16.8)') m%node_id(i), v(1, i)
+          write(rf%unit, '(i0,1x,es17.8e3)') m%node_id(i), v(1, i)
         end if
       end do
       write(rf%unit, '(a)') '$EndNodeData'
@@ -145,7 +145,7 @@ contains
       integer :: i
       call header('Contact pressure', 'NodeData', 1, count(has_pressure))
       do i = 1, m%nn
-        if (has_pressure(i)) write(rf%unit, '(i0,1x,es16.8)') m%node_id(i), pressure(i)
+        if (has_pressure(i)) write(rf%unit, '(i0,1x,es17.8e3)') m%node_id(i), pressure(i)
       end do
       write(rf%unit, '(a)') '$EndNodeData'
     end subroutine pressure_view
@@ -156,7 +156,7 @@ contains
       integer :: e
       call header(tag, 'ElementData', 1, count([(is_continuum(m, e), e = 1, m%ne)]))
       do e = 1, m%ne
-        if (is_continuum(m, e)) write(rf%unit, '(i0,1x,es16.8)') m%elem_id(e), v(1, e)
+        if (is_continuum(m, e)) write(rf%unit, '(i0,1x,es17.8e3)') m%elem_id(e), v(1, e)
       end do
       write(rf%unit, '(a)') '$EndElementData'
     end subroutine elem_view
