@@ -163,22 +163,28 @@ U
     return deck, load
 
 
-def test_body_held_only_by_contact_clear_error():
-    """Force-driven upper block with an initial gap, only the 1e-12 open
-    penalty holding it at first: CHOLMOD finds the stiffness singular to
-    working precision and the run stops with a message saying what to do."""
+def test_body_held_away_from_contact_clear_error():
+    """An upper block with an initial gap pulled away from the lower one:
+    nothing holds it, whatever the stabilisation of the open contact; the
+    run stops naming a node and saying why, and writes no increment."""
     deck, _ = force_driven_deck()
-    run = run_deck("contact_force_driven_error", deck)
+    deck = deck.replace(f"TOP, 2, {-2.0 / (NX2 + 1)}", f"TOP, 2, {2.0 / (NX2 + 1)}")
+    run = run_deck("contact_pulled_away", deck)
     assert run.rc != 0
-    assert "singular stiffness" in run.stderr and "OPEN PENALTY" in run.stderr, run.stderr
+    assert "singular stiffness at node" in run.stderr and "held only by open contact" in run.stderr, run.stderr
     assert "NaN" not in open(run.listing_path).read()
+    assert "=== INCREMENT" not in open(run.listing_path).read()
 
 
 def test_body_held_only_by_contact_solved():
-    """The same with a larger open penalty (CHOLMOD), and with the default
-    one on the skyline solver, whose pivot test accepts it: all slave nodes
-    close and the contact force equals the load, no NaN anywhere."""
-    for tag, params, solver in (("open", ", OPEN PENALTY=1e-6", ""), ("skyline", "", "SKYLINE")):
+    """Force-driven upper block starting 1e-3 above the lower one, held by
+    nothing but the contact: the stiffness with every CFE open is singular,
+    the open CFEs are stabilised until the status settles, then the
+    iteration goes on with the nominal open penalty. With every solver and
+    the default open penalty (and with a larger one): all slave nodes close,
+    the contact force equals the load and the pressure the uniform one."""
+    for tag, params, solver in (("cholmod", "", ""), ("umfpack", "", "UMFPACK"), ("skyline", "", "SKYLINE"),
+                                ("open", ", OPEN PENALTY=1e-6", "")):
         deck, load = force_driven_deck(params, solver)
         run = run_deck("contact_force_driven_" + tag, deck)
         assert "NaN" not in open(run.listing_path).read()

@@ -142,7 +142,7 @@ contains
     end do
     kmax = body%kmax
     do e = 1, cs%n
-      call cfe_input(m, cs%c(e), u, ein, nodes)
+      call cfe_input(m, cs%c(e), u, cs%stabilised, ein, nodes)
       call element_routine(act_tangent, ein, eout)
       counts%coupling = counts%coupling + 1
       call sys_add(sys, m%ne + e, eout%ke(1:eout%ndof, 1:eout%ndof))

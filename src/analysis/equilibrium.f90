@@ -23,6 +23,11 @@ module equilibrium
     ! factor reuse policy: the factor is valid for the statuses it was made for
     logical :: factor_valid = .false.
     logical, allocatable :: factor_states(:)
+    logical :: factor_stabilised = .false.
+    !> The stabilisation of open contact was used in this increment (once
+    !> at most: singular again with the nominal open penalty means a body
+    !> that contact cannot hold).
+    logical :: stabilisation_used = .false.
     logical :: described = .false.
     ! counters of the step
     integer :: factorisations = 0, iterations = 0
@@ -75,11 +80,15 @@ contains
     type(iteration_info_t) :: info
     real(dp), allocatable :: fint(:, :)
     integer :: it, a, d, nchanged
+    logical :: restabilised
     allocate(fint(2, m%nn))
     ok = .false.
+    cs%stabilised = .false.
+    eq%stabilisation_used = .false.
     call internal_forces(m, body, cs, u, fint, eq%counts)
     do it = 1, m%contact_max_iter
-      call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs)
+      call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised)
+      if (restabilised) call internal_forces(m, body, cs, u, fint, eq%counts)
       call free_residual(dm, fext, fint, eq%rhs)
       call sys_solve(sys, eq%rhs)
       do a = 1, m%nn
@@ -105,6 +114,14 @@ contains
         info%changed = eq%changed
         call tell_iteration(obs, info)
       end if
+      if (nchanged == 0 .and. cs%stabilised) then
+        ! settled while stabilised: on with the nominal open penalty
+        cs%stabilised = .false.
+        call internal_forces(m, body, cs, u, fint, eq%counts)
+        call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
+                            'iterating on with the nominal one')
+        cycle
+      end if
       if (nchanged == 0 .and. eq%residual < m%contact_tolerance) then
         ok = .true.
         iters = it
@@ -128,23 +145,37 @@ contains
   end subroutine internal_forces
 
   !> Assembles and factors the stiffness unless the factor in hand was made
-  !> for the current contact status.
-  subroutine factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs)
+  !> for the current contact status. A singular stiffness with open CFEs
+  !> (a body held only by open contact) is factored again with the
+  !> stabilised open penalty (contact_set_t); restabilised says so.
+  subroutine factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
     type(body_t), intent(in) :: body
-    type(contact_set_t), intent(in) :: cs
+    type(contact_set_t), intent(inout) :: cs
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: u(:, :)
     type(linear_system_t), intent(inout) :: sys
     type(observer_ref_t), intent(in) :: obs(:)
+    logical, intent(out) :: restabilised
     integer :: status, bad
-    if (eq%factor_valid) then
+    restabilised = .false.
+    ! (with every CFE closed, stabilising changes no penalty)
+    if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states .eqv. cs%c(1:cs%n)%closed)) return
     end if
     call assemble_stiffness(m, cs, body, u, sys, eq%kmax, eq%counts)
     call sys_factor(sys, status, bad)
+    if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
+      cs%stabilised = .true.
+      eq%stabilisation_used = .true.
+      restabilised = .true.
+      call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
+                          'until the status settles')
+      call assemble_stiffness(m, cs, body, u, sys, eq%kmax, eq%counts)
+      call sys_factor(sys, status, bad)
+    end if
     if (status == factor_singular) call singular(m, cs, dm, bad)
     if (status == factor_fallback) then
       call tell_note(obs, sys%note)
@@ -155,6 +186,7 @@ contains
       eq%described = .true.
     end if
     eq%factor_states = cs%c(1:cs%n)%closed
+    eq%factor_stabilised = cs%stabilised
     eq%factor_valid = .true.
     eq%factorisations = eq%factorisations + 1
   end subroutine factor_if_needed
@@ -184,7 +216,7 @@ contains
     character(len=:), allocatable :: hint
     hint = ''
     if (cs%n > 0) hint = '; a body held only by open contact has no stiffness: give it a support, ' // &
-      'start it in contact, or raise OPEN PENALTY on *CONTACT PAIR'
+      'or a load or displacement that brings it into contact'
     if (bad > 0 .and. bad <= dm%neq) call fatal('singular stiffness at node ' // &
       itoa(m%node_id(dm%node_of_eq(bad))) // ', dof ' // itoa(dm%dof_of_eq(bad)) // &
       ' (missing boundary condition?)' // hint)

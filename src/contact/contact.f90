@@ -23,6 +23,9 @@ module contact
   real(dp), parameter :: edge_tol = 1.0e-6_dp
   !> Status changes named in a message.
   integer, parameter :: max_named = 20
+  !> Open penalty (fraction of the closed one) while a body that only open
+  !> contact holds is being brought into contact; see contact_set_t.
+  real(dp), parameter :: stabilised_open_ratio = 1.0e-6_dp
 
   type :: cfe_t
     integer :: pair = 0
@@ -48,6 +51,14 @@ module contact
     type(cfe_t), allocatable :: c(:)
     !> Slave nodes of each pair that found no master segment.
     integer, allocatable :: uncoupled(:), uncoupled_pair(:)
+    !> Stabilised: open CFEs take at least stabilised_open_ratio of their
+    !> closed penalty. The equilibrium iteration turns this on when the
+    !> stiffness is singular with open CFEs (a body that only open contact
+    !> holds, e.g. starting apart under a load) and off again once the
+    !> status has settled, so that converged answers always have the
+    !> nominal open penalty; the open state resists relative motion only,
+    !> so it biases nothing at zero relative motion.
+    logical :: stabilised = .false.
   end type contact_set_t
 
 contains
@@ -306,10 +317,11 @@ contains
 
   !> Purpose: element data of CFE c for the element routine, and its node
   !> list (slave nodes first, then the master element's nodes).
-  subroutine cfe_input(m, c, u, ein, nodes)
+  subroutine cfe_input(m, c, u, stabilised, ein, nodes)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
     real(dp), intent(in) :: u(:, :)
+    logical, intent(in) :: stabilised     ! contact_set_t%stabilised
     type(elem_in_t), intent(out) :: ein
     integer, intent(out) :: nodes(:)
     integer :: k, nen
@@ -330,8 +342,11 @@ contains
     ein%xi = c%xi
     ein%normal = c%normal
     ein%gap0 = c%gap0
+    ein%closed = c%closed
     if (c%closed) then
       ein%penalty = c%k_closed
+    else if (stabilised) then
+      ein%penalty = max(c%k_open, stabilised_open_ratio * c%k_closed)
     else
       ein%penalty = c%k_open
     end if
@@ -350,7 +365,7 @@ contains
     type(elem_out_t) :: eout
     integer :: j, i, nodes(max_en)
     do j = 1, cs%n
-      call cfe_input(m, cs%c(j), u, ein, nodes)
+      call cfe_input(m, cs%c(j), u, cs%stabilised, ein, nodes)
       call element_routine(act_residual, ein, eout)
       ncalls = ncalls + 1
       do i = 1, ein%nen

@@ -47,7 +47,7 @@ contains
     integer, intent(in) :: action
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
-    real(dp) :: b(2, 2 * ein%nen), c(2, 2)
+    real(dp) :: b(2, 2 * ein%nen), c(2, 2), rel(2)
     integer :: nd, i, j
     nd = 2 * ein%nen
     eout%ndof = nd
@@ -62,12 +62,22 @@ contains
     ! eq. (10): K_e = B_e^T C B_e
     if (wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = matmul(transpose(b), matmul(c, b))
     if (wants(action, act_residual)) then
+      rel = matmul(b, ein%ue(1:nd))
       ! eq. (8): [[U]] = B_e D_e + [[U]]_0
-      eout%jump = matmul(b, ein%ue(1:nd)) + ein%gap0
+      eout%jump = rel + ein%gap0
       eout%gap = dot_product(ein%normal, eout%jump)
-      eout%normal_force = ein%penalty * eout%gap
-      ! eq. (9): F_int = B_e^T C B_e D_e + B_e^T C [[U]]_0 = B_e^T C [[U]]
-      eout%fe(1:nd) = matmul(transpose(b), matmul(c, eout%jump))
+      if (ein%closed) then
+        ! eq. (9): F_int = B_e^T C B_e D_e + B_e^T C [[U]]_0 = B_e^T C [[U]]
+        eout%normal_force = ein%penalty * eout%gap
+        eout%fe(1:nd) = matmul(transpose(b), matmul(c, eout%jump))
+      else
+        ! The open state's small penalty (the paper's c -> 0) only resists
+        ! relative motion: without the [[U]]_0 term an open element pulls
+        ! nothing across an initial gap, so it stabilises a body held only
+        ! by contact without biasing it.
+        eout%normal_force = ein%penalty * dot_product(ein%normal, rel)
+        eout%fe(1:nd) = matmul(transpose(b), matmul(c, rel))
+      end if
     end if
   end subroutine cfe
 end module cfe_element

@@ -40,6 +40,10 @@ module element_interface
     real(dp) :: normal(2) = 0.0_dp
     real(dp) :: penalty = 0.0_dp
     real(dp) :: gap0(2) = 0.0_dp
+    !> Closed: the penalty acts on the gap [[U]] (eq. 9). Open: it acts on
+    !> the relative motion B_e D_e only, so that an open CFE carries no
+    !> force at zero relative motion whatever its initial gap.
+    logical :: closed = .true.
   end type elem_in_t
 
   type :: elem_out_t
