@@ -4,7 +4,7 @@ $(OBJDIR)/blas_info.o:
 $(OBJDIR)/cholmod_binding.o:
 $(OBJDIR)/linear_solver.o: $(OBJDIR)/cholmod_binding.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/metis_binding.o $(OBJDIR)/skyline.o $(OBJDIR)/solver_codes.o $(OBJDIR)/sparse_matrix.o $(OBJDIR)/strings.o $(OBJDIR)/umfpack_binding.o
 $(OBJDIR)/metis_binding.o:
-$(OBJDIR)/ordering.o:
+$(OBJDIR)/ordering.o: $(OBJDIR)/messages.o $(OBJDIR)/metis_binding.o $(OBJDIR)/strings.o
 $(OBJDIR)/skyline.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/sparse_matrix.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/umfpack_binding.o:
