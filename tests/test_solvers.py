@@ -144,3 +144,21 @@ def test_no_free_dof_each_solver():
         run = run_deck("solvers_no_free_dof", with_solver(deck, solver)).ok()
         u = displacements(run)
         assert len(u) == 12 and np.all(u == 0.0), (solver, u)
+
+
+def test_thread_policy_one_blas_thread_unless_asked():
+    """The solvers run the BLAS on one thread (two teams of threads spun
+    against each other on small machines) unless the environment asks for
+    more, and the listing says which."""
+    names = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS", "OMP_THREAD_LIMIT", "OMP_MAX_ACTIVE_LEVELS")
+    saved = {k: os.environ.pop(k) for k in names if k in os.environ}
+    try:
+        run = run_deck("solvers_threads_default", with_solver(GOOD, "TYPE=CHOLMOD")).ok()
+        assert re.search(r"^blas OpenBLAS .*\(1 thread\)$", open(run.listing_path).read(), re.M)
+        if (os.cpu_count() or 1) >= 2:   # OpenBLAS caps its threads at the cores
+            os.environ["OPENBLAS_NUM_THREADS"] = "2"
+            run = run_deck("solvers_threads_asked", with_solver(GOOD, "TYPE=CHOLMOD")).ok()
+            assert re.search(r"^blas OpenBLAS .*\(2 threads\)$", open(run.listing_path).read(), re.M)
+    finally:
+        os.environ.pop("OPENBLAS_NUM_THREADS", None)
+        os.environ.update(saved)

@@ -8,6 +8,7 @@ module cholmod_backend
   use kinds, only: dp
   use strings, only: itoa, rtoa
   use messages, only: fatal
+  use blas_info, only: set_solver_threads
   use solver_codes, only: order_metis
   use sparse_matrix, only: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec
   use ordering, only: metis_order
@@ -64,6 +65,7 @@ contains
     self%analysed = .true.
     self%factor_entries = 0.0_dp
     if (self%n == 0) return
+    call set_solver_threads()
     if (.not. c_associated(self%handle)) self%handle = cfe_cholmod_start()
     if (.not. c_associated(self%handle)) call fatal('CHOLMOD could not start (out of memory?)')
     given = c_null_ptr

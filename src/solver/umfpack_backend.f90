@@ -8,6 +8,7 @@ module umfpack_backend
   use kinds, only: dp
   use strings, only: itoa, rtoa
   use messages, only: fatal
+  use blas_info, only: set_solver_threads
   use solver_codes, only: order_metis
   use sparse_matrix, only: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec, csc_add_upper
   use umfpack_binding, only: umfpack_di_defaults, umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
@@ -72,6 +73,7 @@ contains
     self%analysed = .true.
     self%factor_entries = 0.0_dp
     if (self%n == 0) return
+    call set_solver_threads()
     call umfpack_di_defaults(self%control)
     self%control(umfpack_prl) = 0.0_c_double
     self%control(umfpack_ordering) = merge(umfpack_ordering_metis, umfpack_ordering_amd, &
