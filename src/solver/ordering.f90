@@ -1,9 +1,15 @@
-!> Reverse Cuthill-McKee ordering of a graph given in compressed form, with
-!> a pseudo-peripheral starting node per connected component.
+!> Fill-reducing orderings: reverse Cuthill-McKee of a graph given in
+!> compressed form, with a pseudo-peripheral starting node per connected
+!> component (the skyline's numbering), and METIS nested dissection of a
+!> symmetric matrix's pattern (for CHOLMOD).
 module ordering
+  use, intrinsic :: iso_c_binding, only: c_int, c_null_ptr
+  use metis_binding, only: metis_nodend, metis_setdefaultoptions, metis_noptions, metis_ok
+  use messages, only: fatal
+  use strings, only: itoa
   implicit none
   private
-  public :: rcm_order
+  public :: rcm_order, metis_order
 
 contains
 
@@ -103,4 +109,49 @@ contains
       end do
     end subroutine sort_by_degree
   end subroutine rcm_order
+
+  !> Nested-dissection order (METIS_NodeND) of the symmetric matrix whose
+  !> upper triangle has the 1-based compressed-column pattern colptr,
+  !> rowind; perm(new) = old, 0-based as CHOLMOD wants it.
+  subroutine metis_order(n, colptr, rowind, perm)
+    integer, intent(in) :: n, colptr(:), rowind(:)
+    integer(c_int), allocatable, intent(out) :: perm(:)
+    integer(c_int), allocatable :: xadj(:), adj(:), iperm(:), cnt(:)
+    integer(c_int) :: options(metis_noptions), nv, ok
+    integer :: col, k, r
+    allocate(perm(n), iperm(n))
+    ! METIS divides by the vertex count: nothing to order is not its case
+    if (n == 0) return
+    ! the graph: both triangles of the pattern, without the diagonal
+    allocate(cnt(n), xadj(n + 1))
+    cnt = 0
+    do col = 1, n
+      do k = colptr(col), colptr(col + 1) - 1
+        r = rowind(k)
+        if (r == col) cycle
+        cnt(r) = cnt(r) + 1
+        cnt(col) = cnt(col) + 1
+      end do
+    end do
+    xadj(1) = 0
+    do col = 1, n
+      xadj(col + 1) = xadj(col) + cnt(col)
+    end do
+    allocate(adj(max(xadj(n + 1), 1)))
+    cnt = xadj(1:n)
+    do col = 1, n
+      do k = colptr(col), colptr(col + 1) - 1
+        r = rowind(k)
+        if (r == col) cycle
+        adj(cnt(r) + 1) = col - 1
+        cnt(r) = cnt(r) + 1
+        adj(cnt(col) + 1) = r - 1
+        cnt(col) = cnt(col) + 1
+      end do
+    end do
+    ok = metis_setdefaultoptions(options)
+    nv = int(n, c_int)
+    ok = metis_nodend(nv, xadj, adj, c_null_ptr, options, perm, iperm)
+    if (ok /= metis_ok) call fatal('METIS_NodeND failed with status ' // itoa(int(ok)))
+  end subroutine metis_order
 end module ordering

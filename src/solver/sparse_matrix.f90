@@ -7,7 +7,7 @@ module sparse_matrix
   use kinds, only: dp
   implicit none
   private
-  public :: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec, csc_position
+  public :: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec, csc_position, csc_add_upper
 
   type :: csc_t
     integer :: n = 0
@@ -193,4 +193,23 @@ contains
       end do
     end do
   end subroutine csc_matvec
+
+  !> Adds the symmetric matrix kept as its upper triangle in upper to full,
+  !> which keeps both triangles of a pattern holding upper's.
+  subroutine csc_add_upper(full, upper)
+    type(csc_t), intent(inout) :: full
+    type(csc_t), intent(in) :: upper
+    integer :: col, k, r, kk
+    do col = 1, upper%n
+      do k = upper%colptr(col), upper%colptr(col + 1) - 1
+        r = upper%rowind(k)
+        kk = csc_position(full, r, col)
+        full%val(kk) = full%val(kk) + upper%val(k)
+        if (r /= col) then
+          kk = csc_position(full, col, r)
+          full%val(kk) = full%val(kk) + upper%val(k)
+        end if
+      end do
+    end do
+  end subroutine csc_add_upper
 end module sparse_matrix

@@ -5,7 +5,8 @@ module umfpack_binding
   implicit none
   private
   public :: umfpack_di_defaults, umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
-            umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_control, umfpack_info, &
+            umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_get_numeric, &
+            umfpack_control, umfpack_info, &
             umfpack_ok, umfpack_warning_singular, umfpack_sys_a, umfpack_ordering, &
             umfpack_ordering_amd, umfpack_ordering_metis, umfpack_status, umfpack_lnz, umfpack_unz, &
             umfpack_peak_memory, umfpack_prl, umfpack_rcond
@@ -58,6 +59,17 @@ module umfpack_binding
       real(c_double), intent(in) :: control(*)
       real(c_double), intent(out) :: info(*)
     end function umfpack_di_solve
+
+    !> Parts of the factorisation P R A Q = L U; a null pointer skips a
+    !> part. Used for Q (column order), Dx (diag(U)), do_recip and Rs (the
+    !> row scaling R: multiply by Rs when do_recip = 1, else divide).
+    integer(c_int) function umfpack_di_get_numeric(lp, lj, lx, up, ui, ux, p, q, dx, do_recip, rs, numeric) &
+        bind(C, name='umfpack_di_get_numeric')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lp, lj, lx, up, ui, ux, p, q, dx
+      integer(c_int), intent(out) :: do_recip
+      type(c_ptr), value :: rs, numeric
+    end function umfpack_di_get_numeric
 
     subroutine umfpack_di_free_symbolic(symbolic) bind(C, name='umfpack_di_free_symbolic')
       import :: c_ptr
