@@ -35,6 +35,11 @@ module equilibrium
     ! the last iteration
     real(dp) :: kmax = 0.0_dp           ! stiffness scale of the residual test
     real(dp) :: residual = 0.0_dp       ! relative out-of-balance force
+    !> The largest force scale of the converged increments so far: an
+    !> increment that unloads everything (all forces round-off) is judged
+    !> against the forces the model has carried, as CalculiX judges against
+    !> the average force of the history.
+    real(dp) :: force_history = 0.0_dp
     character(len=:), allocatable :: changed   ! slave nodes that switched last
     real(dp), allocatable :: rhs(:)
   end type equilibrium_t
@@ -81,6 +86,7 @@ contains
     real(dp), allocatable :: fint(:, :)
     integer :: it, a, d, nchanged
     logical :: restabilised
+    real(dp) :: scale
     allocate(fint(2, m%nn))
     ok = .false.
     cs%stabilised = .false.
@@ -104,7 +110,7 @@ contains
       ! the residual of the new status
       if (nchanged > 0) call internal_forces(m, body, cs, u, fint, eq%counts)
       rf = fint - fext
-      eq%residual = relative_residual(dm, cs, fext, u, rf, eq%kmax)
+      eq%residual = relative_residual(dm, cs, fext, u, rf, eq%kmax, eq%force_history, scale)
       eq%iterations = eq%iterations + 1
       if (cs%n > 0) then
         info%iteration = it
@@ -125,6 +131,7 @@ contains
       if (nchanged == 0 .and. eq%residual < m%contact_tolerance) then
         ok = .true.
         iters = it
+        eq%force_history = max(eq%force_history, scale)
         return
       end if
     end do
@@ -194,16 +201,18 @@ contains
   !> Out-of-balance force on the free equations relative to the force
   !> scale: loads, reactions, contact forces, and (for a body that only
   !> moves rigidly) the stiffness times the displacement scaled to a strain
-  !> of 1e-6, so that round-off is not mistaken for an out-of-balance force.
-  real(dp) function relative_residual(dm, cs, fext, u, rf, kmax) result(r)
+  !> of 1e-6, so that round-off is not mistaken for an out-of-balance force;
+  !> never below the force scale of the converged history. ref returns the
+  !> force scale of this state.
+  real(dp) function relative_residual(dm, cs, fext, u, rf, kmax, history, ref) result(r)
     type(dofmap_t), intent(in) :: dm
     type(contact_set_t), intent(in) :: cs
-    real(dp), intent(in) :: fext(:, :), u(:, :), rf(:, :), kmax
-    real(dp) :: ref
+    real(dp), intent(in) :: fext(:, :), u(:, :), rf(:, :), kmax, history
+    real(dp), intent(out) :: ref
     ! norm2 scales internally: no overflow for large but finite forces
     ref = max(norm2(pack(rf, dm%eq == 0)), norm2(fext), sum(abs(cs%c(1:cs%n)%force)), &
               1.0e-6_dp * kmax * maxval(abs(u)), tiny(1.0_dp))
-    r = norm2(pack(rf, dm%eq > 0)) / ref
+    r = norm2(pack(rf, dm%eq > 0)) / max(ref, history)
   end function relative_residual
 
   !> Stops on a singular stiffness, naming the node and dof where the

@@ -5,5 +5,5 @@ $(OBJDIR)/analysis_events.o: $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(O
 $(OBJDIR)/assembly.o: $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/element_library.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/model.o
 $(OBJDIR)/dof_numbering.o: $(OBJDIR)/contact.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/model.o $(OBJDIR)/ordering.o
 $(OBJDIR)/equilibrium.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
-$(OBJDIR)/increment_results.o: $(OBJDIR)/assembly.o $(OBJDIR)/contact.o $(OBJDIR)/contact_results.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
+$(OBJDIR)/increment_results.o: $(OBJDIR)/assembly.o $(OBJDIR)/contact.o $(OBJDIR)/contact_results.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/load_state.o: $(OBJDIR)/kinds.o $(OBJDIR)/model.o

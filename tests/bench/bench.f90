@@ -117,11 +117,7 @@ contains
 
   !> Stored entries of the assembled matrix (the skyline: its profile).
   integer(8) function nnz()
-    if (kind == solver_skyline) then
-      nnz = sys%sky%nnz
-    else
-      nnz = size(sys%a%val, kind=8)
-    end if
+    nnz = sys_stored_entries(sys)
   end function nnz
 
   !> VmHWM of this process, from /proc/self/status.
