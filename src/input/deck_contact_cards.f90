@@ -3,8 +3,8 @@ submodule (deck_parser) deck_contact_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t
   use deck_input, only: param_value, has_param
-  use deck_cursor, only: line_text, err, next_data, no_data, allow_params, get_int, param_real, need_nset, &
-                         new_surface
+  use deck_cursor, only: max_cutbacks, max_contact_iterations, line_text, err, next_data, no_data, &
+                         allow_params, param_real, param_int, need_nset, new_surface
   use model, only: contact_pair_t, surf_element, surf_node, find_name
   use model_growth, only: grow
   use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
@@ -93,25 +93,18 @@ contains
   end function slave_surface
 
   !> Purpose: *CONTACT CONTROLS: TOLERANCE= (positive), MAXIT= (contact
-  !> status iterations per increment) and CUTBACKS= (increment bisections).
+  !> status iterations per increment, 1..max_contact_iterations) and
+  !> CUTBACKS= (increment bisections, 0..max_cutbacks: each one is a level
+  !> of recursion in the analysis, so the count is bounded).
   module subroutine read_contact_controls(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t) :: f
     call allow_params(p, kw, 'TOLERANCE,MAXIT,CUTBACKS')
     m%contact_tolerance = param_real(p, kw, 'TOLERANCE', m%contact_tolerance)
     if (m%contact_tolerance <= 0.0_dp) call err(p, 'TOLERANCE must be positive')
-    if (has_param(kw, 'MAXIT')) then
-      f%s = param_value(kw, 'MAXIT')
-      m%contact_max_iter = get_int(p, f, 'value of MAXIT')
-      if (m%contact_max_iter < 1) call err(p, 'MAXIT must be positive')
-    end if
-    if (has_param(kw, 'CUTBACKS')) then
-      f%s = param_value(kw, 'CUTBACKS')
-      m%max_cutbacks = get_int(p, f, 'value of CUTBACKS')
-      if (m%max_cutbacks < 0) call err(p, 'CUTBACKS must not be negative')
-    end if
+    m%contact_max_iter = param_int(p, kw, 'MAXIT', m%contact_max_iter, 1, max_contact_iterations)
+    m%max_cutbacks = param_int(p, kw, 'CUTBACKS', m%max_cutbacks, 0, max_cutbacks)
     call no_data(p, kw)
   end subroutine read_contact_controls
 

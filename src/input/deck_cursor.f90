@@ -7,21 +7,31 @@
 !> module procedures local linkage, so its submodules could not call
 !> them: the link fails with "undefined reference to __deck_parser_MOD_err".)
 module deck_cursor
-  use kinds, only: dp
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use kinds, only: dp, name_len
   use strings, only: to_upper, parse_real, parse_int, field_t, itoa
   use deck_input, only: deck_t, keyword_t, deck_error, param_value, has_param, is_keyword
   use model, only: model_t, find_name
   use model_growth, only: grow
   implicit none
   private
-  public :: parser_t, max_id
+  public :: parser_t, max_id, max_increments, max_cutbacks, max_contact_iterations
   public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
-            get_real, get_int, param_real, &
+            name_param, check_name_length, get_real, get_int, param_real, param_int, &
             node_of, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
             new_surface, in_step
 
   !> Node and element ids are 1..max_id (an id indexes a lookup table).
   integer, parameter :: max_id = 100000000
+  !> Increments of one step (period / initial increment, also INC=):
+  !> each increment is a solution, and the count is stored as an integer.
+  integer, parameter :: max_increments = 100000
+  !> CUTBACKS= of *CONTACT CONTROLS: each cutback halves the increment
+  !> through one more level of recursion; 2^-50 of a step is far below
+  !> anything meaningful.
+  integer, parameter :: max_cutbacks = 50
+  !> MAXIT= of *CONTACT CONTROLS: contact status iterations per increment.
+  integer, parameter :: max_contact_iterations = 1000
 
   !> Parser state that only lives while reading.
   type :: parser_t
@@ -95,17 +105,50 @@ contains
     if (len(v) == 0) call err(p, '*' // kw%name // ' needs ' // name // '=')
   end function required_param
 
+  !> A name given as NAME=value (required): upper-cased, at most name_len
+  !> characters (longer names would be cut and could clash).
+  function name_param(p, kw, name) result(v)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: v
+    v = to_upper(required_param(p, kw, name))
+    call check_name_length(p, v)
+  end function name_param
+
+  subroutine check_name_length(p, name)
+    type(parser_t), intent(in) :: p
+    character(len=*), intent(in) :: name
+    if (len_trim(name) > name_len) call err(p, 'name longer than ' // itoa(name_len) // ' characters')
+  end subroutine check_name_length
+
+  !> A real field, which must be a finite number: NaN, Infinity and
+  !> values beyond the range of real(dp) (1e400) are errors naming `what`.
   real(dp) function get_real(p, f, what)
     type(parser_t), intent(in) :: p
     type(field_t), intent(in) :: f
     character(len=*), intent(in) :: what
     logical :: ok
     call parse_real(f%s, get_real, ok)
+    if (ok) ok = ieee_is_finite(get_real)
     if (.not. ok) then
       if (len(f%s) == 0) call err(p, 'missing ' // what)
+      if (reads_as_infinite(f%s)) call err(p, '"' // f%s // '" is not a finite number (' // what // ')')
       call err(p, '"' // f%s // '" is not a number (' // what // ')')
     end if
   end function get_real
+
+  !> Text that Fortran reads as NaN or Infinity (also an overflowing
+  !> literal): told apart from text that is no number at all only to
+  !> word the message.
+  logical function reads_as_infinite(s)
+    character(len=*), intent(in) :: s
+    real(dp) :: x
+    integer :: ios
+    x = 0.0_dp
+    read(s, *, iostat=ios) x
+    reads_as_infinite = ios == 0 .and. .not. ieee_is_finite(x)
+  end function reads_as_infinite
 
   integer function get_int(p, f, what)
     type(parser_t), intent(in) :: p
@@ -115,6 +158,10 @@ contains
     call parse_int(f%s, get_int, ok)
     if (.not. ok) then
       if (len(f%s) == 0) call err(p, 'missing ' // what)
+      ! Digits after an optional sign: a number, but too large.
+      if (verify(f%s(1:1), '+-0123456789') == 0 .and. verify(f%s(2:), '0123456789') == 0 .and. &
+          scan(f%s, '0123456789') > 0) &
+        call err(p, '"' // f%s // '" is out of the integer range (' // what // ')')
       call err(p, '"' // f%s // '" is not an integer (' // what // ')')
     end if
   end function get_int
@@ -130,6 +177,21 @@ contains
     f%s = param_value(kw, name)
     param_real = get_real(p, f, 'value of ' // name)
   end function param_real
+
+  !> An integer parameter NAME=k with lo <= k <= hi, or default if absent.
+  integer function param_int(p, kw, name, default, lo, hi)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: default, lo, hi
+    type(field_t) :: f
+    param_int = default
+    if (.not. has_param(kw, name)) return
+    f%s = param_value(kw, name)
+    param_int = get_int(p, f, 'value of ' // name)
+    if (param_int < lo .or. param_int > hi) &
+      call err(p, name // ' must lie in ' // itoa(lo) // '..' // itoa(hi))
+  end function param_int
 
   integer function node_of(p, m, id)
     type(parser_t), intent(in) :: p

@@ -4,7 +4,7 @@ submodule (deck_parser) deck_material_cards
   use strings, only: split_fields, to_upper, field_t
   use deck_input, only: param_value, has_param
   use deck_cursor, only: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
-                         get_real, need_elset
+                         name_param, get_real, need_elset
   use model, only: material_t, section_t, find_name
   use model_growth, only: grow
   implicit none
@@ -20,7 +20,7 @@ contains
     type(keyword_t), intent(in) :: kw
     character(len=:), allocatable :: name
     call allow_params(p, kw, 'NAME')
-    name = to_upper(required_param(p, kw, 'NAME'))
+    name = name_param(p, kw, 'NAME')
     if (find_name(m%materials(1:p%nmat)%name, name) > 0) call err(p, 'duplicate material ' // name)
     call no_data(p, kw)
     call grow(m%materials, p%nmat + 1)
@@ -71,7 +71,7 @@ contains
     m%sections(p%nsec) = section_t()
     associate(s => m%sections(p%nsec))
       s%elset = need_elset(p, m, required_param(p, kw, 'ELSET'))
-      s%material_name = to_upper(required_param(p, kw, 'MATERIAL'))
+      s%material_name = name_param(p, kw, 'MATERIAL')
       s%src%line = p%i
       s%thickness = 1.0_dp
       if (next_data(p)) then

@@ -1,10 +1,10 @@
 !> Mesh cards: *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE.
 submodule (deck_parser) deck_mesh_cards
-  use kinds, only: dp, name_len
+  use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param
   use deck_cursor, only: max_id, line_text, err, next_data, no_data, allow_params, required_param, &
-                         get_real, get_int, node_of, elem_of, is_int, &
+                         name_param, check_name_length, get_real, get_int, node_of, elem_of, is_int, &
                          nset_index, elset_index, need_nset, need_elset, new_surface
   use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name
   use growable, only: append, grow
@@ -220,7 +220,7 @@ contains
     character(len=*), intent(in) :: name
     iset = nset_index(p, m, name)
     if (iset > 0) return
-    if (len_trim(name) > name_len) call err(p, 'set name longer than 80 characters')
+    call check_name_length(p, name)
     call grow(m%nsets, p%nsets + 1)
     p%nsets = p%nsets + 1
     iset = p%nsets
@@ -234,7 +234,7 @@ contains
     character(len=*), intent(in) :: name
     iset = elset_index(p, m, name)
     if (iset > 0) return
-    if (len_trim(name) > name_len) call err(p, 'set name longer than 80 characters')
+    call check_name_length(p, name)
     call grow(m%elsets, p%nelsets + 1)
     p%nelsets = p%nelsets + 1
     iset = p%nelsets
@@ -277,7 +277,7 @@ contains
     integer :: k, ne, nn, isurf
     integer, allocatable :: elems(:), edges(:), nodes(:), ends(:)
     call allow_params(p, kw, 'NAME,TYPE,INTERNAL')
-    name = to_upper(required_param(p, kw, 'NAME'))
+    name = name_param(p, kw, 'NAME')
     stype = 'ELEMENT'
     if (has_param(kw, 'TYPE')) stype = to_upper(param_value(kw, 'TYPE'))
     if (stype /= 'ELEMENT' .and. stype /= 'NODE') call err(p, 'surface TYPE must be ELEMENT or NODE')

@@ -10,6 +10,7 @@
 !>   deck_model_checks    checks that need the whole deck
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
+  use messages, only: fatal
   use deck_input, only: keyword_t, read_deck, parse_keyword, deck_warning, is_keyword
   use deck_cursor, only: parser_t, err, line_text, next_data, allow_params, in_step
   use model, only: model_t
@@ -129,6 +130,8 @@ contains
     type(keyword_t) :: kw
 
     call read_deck(path, p%deck)
+    if (p%deck%n == 0) call fatal('deck "' // trim(path) // &
+        '" has no keyword lines (it is empty or holds only comments and blank lines): nothing to analyse')
     m%deck_name = path
     m%heading = ''
     ! Empty but allocated: the readers grow them, and a deck may leave
@@ -208,6 +211,8 @@ contains
           'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &
           'RESTART', 'MONITOR', 'DENSITY')
       call skip_card(p, kw)
+    case ('')
+      call err(p, 'keyword line without a keyword after the *')
     case default
       call err(p, 'keyword *' // kw%name // ' is not implemented in cfe2d')
     end select

@@ -3,10 +3,11 @@
 !> *END STEP.
 submodule (deck_parser) deck_step_cards
   use kinds, only: dp
-  use strings, only: split_fields, to_upper, field_t
+  use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
-  use deck_cursor, only: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
-                         get_real, get_int, node_of, is_int, need_nset, need_elset
+  use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
+                         name_param, check_name_length, get_real, get_int, param_int, node_of, is_int, &
+                         need_nset, need_elset
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, amp_step_time, amp_total_time, find_name
   use growable, only: append
   use model_growth, only: grow
@@ -25,7 +26,7 @@ contains
     character(len=:), allocatable :: name, tm
     integer :: n, k, np, na
     call allow_params(p, kw, 'NAME,TIME,DEFINITION,VALUE')
-    name = to_upper(required_param(p, kw, 'NAME'))
+    name = name_param(p, kw, 'NAME')
     if (find_name(m%amplitudes(1:p%namp)%name, name) > 0) call err(p, 'duplicate amplitude ' // name)
     if (has_param(kw, 'DEFINITION')) then
       if (to_upper(param_value(kw, 'DEFINITION')) /= 'TABULAR') call err(p, 'only DEFINITION=TABULAR is implemented')
@@ -218,12 +219,11 @@ contains
   end subroutine read_cload
 
   !> Purpose: *STEP: opens a step (NAME=, INC= the largest number of
-  !> increments); its cards follow up to *END STEP.
+  !> increments, 1..max_increments); its cards follow up to *END STEP.
   module subroutine read_step(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t) :: f
     if (p%step /= 0) call err(p, '*STEP inside a *STEP (missing *END STEP?)')
     call allow_params(p, kw, 'NAME,INC,NLGEOM,PERTURBATION,AMPLITUDE')
     if (has_param(kw, 'NLGEOM')) then
@@ -244,26 +244,27 @@ contains
     p%nreq = 0
     m%steps(p%step) = step_t()
     associate(s => m%steps(p%step))
+      call check_name_length(p, param_value(kw, 'NAME'))
       s%name = param_value(kw, 'NAME')
       s%src%line = p%i
       s%period = -1.0_dp
       allocate(s%bcs(0), s%loads(0), s%requests(0))
-      if (has_param(kw, 'INC')) then
-        f%s = param_value(kw, 'INC')
-        s%max_inc = get_int(p, f, 'value of INC')
-        if (s%max_inc < 1) call err(p, 'INC must be positive')
-      end if
+      s%max_inc = param_int(p, kw, 'INC', s%max_inc, 1, max_increments)
     end associate
   end subroutine read_step
 
   !> Purpose: *STATIC: `initial increment, time period[, min, max]`
-  !> (default 1, 1); the step runs period / increment equal increments.
+  !> (default 1, 1). The step runs period / increment equal increments:
+  !> both must be positive (and finite, as every real), and the count,
+  !> computed in real arithmetic so that it cannot wrap, must not exceed
+  !> max_increments nor INC= of *STEP.
   module subroutine read_static(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
-    integer :: n
+    integer :: n, k
+    real(dp) :: ratio, x
     call allow_params(p, kw, 'DIRECT,SOLVER')
     associate(s => m%steps(p%step))
       if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
@@ -276,13 +277,32 @@ contains
         if (n >= 2) then
           if (len(f(2)%s) > 0) s%period = get_real(p, f(2), 'time period')
         end if
+        ! Minimum and maximum increments: fixed increments make them moot,
+        ! but they must still be numbers.
+        do k = 3, n
+          if (len(f(k)%s) > 0) x = get_real(p, f(k), 'minimum or maximum increment')
+        end do
         if (s%dt <= 0.0_dp .or. s%period <= 0.0_dp) call err(p, 'time increment and period must be positive')
         if (s%dt > s%period) s%dt = s%period
       end if
-      if (nint(s%period / s%dt) > s%max_inc) &
-        call err(p, 'the step needs more increments than INC= on *STEP allows')
+      ratio = s%period / s%dt
+      if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // count_text(ratio) // &
+          ' increments (time period / initial increment); at most ' // itoa(max_increments) // ' are allowed')
+      if (nint(ratio) > s%max_inc) call err(p, 'the step needs ' // itoa(nint(ratio)) // &
+          ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
     end associate
   end subroutine read_static
+
+  !> A number of increments too large for an integer, as text.
+  function count_text(ratio) result(s)
+    real(dp), intent(in) :: ratio
+    character(len=:), allocatable :: s
+    if (ratio > huge(1.0_dp)) then
+      s = 'more than 1e308'
+    else
+      s = rtoa(ratio, 3)
+    end if
+  end function count_text
 
   !> Purpose: *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE: output of the
   !> step, a set (NSET= or ELSET=, default all) and quantities on the data
