@@ -1,9 +1,15 @@
 """A battery of broken decks: each must stop cfe2d with a non-zero exit and
-a message "file:line: error: ..." naming the offending line, and never with
-a crash or a Fortran runtime error."""
+a message "file:line: error: ..." naming the offending line (or
+"cfe2d: error: ..." when no line is at fault), and never with a crash, a
+Fortran runtime error or a hang."""
 import os
+import subprocess
 
-from helpers import run_deck
+from helpers import CFE2D, Run, run_deck, workdir
+
+# Seconds a broken deck may take: every one is rejected while reading, so
+# anything longer is a hang (a FIFO or /dev/zero being read).
+TIMEOUT = 60
 
 GOOD = """*HEADING
 two-element bar
@@ -79,16 +85,90 @@ CASES = [
     ("missing include", replace("*NSET, NSET=LEFT", "*INCLUDE, INPUT=nosuch.inp\n*NSET, NSET=LEFT"),
      "*INCLUDE", 'include file'),
     ("negative thickness", replace("MATERIAL=STEEL\n1.", "MATERIAL=STEEL\n-1."), "-1.", "thickness must be positive"),
+    # Includes that are not regular files: read, they would never end
+    # (/dev/zero), block (a FIFO) or fail obscurely (a directory).
+    ("include of a device", replace("*NSET, NSET=LEFT", "*INCLUDE, INPUT=/dev/zero\n*NSET, NSET=LEFT"),
+     "*INCLUDE", '"/dev/zero" is not a regular file'),
+    ("include of a FIFO", replace("*NSET, NSET=LEFT", "*INCLUDE, INPUT=pipe.inp\n*NSET, NSET=LEFT"),
+     "*INCLUDE", "is not a regular file", lambda d: os.mkfifo(os.path.join(d, "pipe.inp"))),
+    ("include of a directory", replace("*NSET, NSET=LEFT", "*INCLUDE, INPUT=sub\n*NSET, NSET=LEFT"),
+     "*INCLUDE", "is a directory", lambda d: os.mkdir(os.path.join(d, "sub"))),
+    # Step time: the increment count period / dt is checked in real
+    # arithmetic (an integer conversion overflows or wraps).
+    ("denormal time increment", replace("*STATIC\n", "*STATIC\n1e-320, 1\n"), "1e-320, 1", "at most 100000"),
+    ("time increment below period * 1e-12", replace("*STATIC\n", "*STATIC\n1e-13, 1\n"), "1e-13, 1",
+     "at most 100000"),
+    ("huge time period", replace("*STATIC\n", "*STATIC\n1, 1e308\n"), "1, 1e308", "at most 100000"),
+    ("increments beyond 2^32", replace("*STATIC\n", "*STATIC\n1, 4294967299\n"), "1, 4294967299",
+     "4.29E+09 increments"),
+    ("increments just above the cap", replace("*STATIC\n", "*STATIC\n1, 100000.6\n"), "1, 100000.6",
+     "at most 100000"),
+    ("zero time increment", replace("*STATIC\n", "*STATIC\n0.0, 1.0\n"), "0.0, 1.0", "must be positive"),
+    ("NaN time period", replace("*STATIC\n", "*STATIC\n1, nan\n"), "1, nan",
+     '"nan" is not a finite number (time period)'),
+    ("INC beyond the cap", replace("*STEP", "*STEP, INC=100001"), "INC=100001", "INC must lie in 1..100000"),
+    ("increments beyond INC", replace("*STEP\n*STATIC\n", "*STEP, INC=3\n*STATIC\n0.25, 1\n"), "0.25, 1",
+     "the step needs 4 increments, more than INC=3"),
+    # Reals must be finite: NaN, Infinity and overflowing literals are
+    # errors naming the field.
+    ("overflowing coordinate", replace("5, 1, 1\n", "5, 1, 1e400\n"), "5, 1, 1e400",
+     '"1e400" is not a finite number (y coordinate)'),
+    ("NaN Young's modulus", replace("1000., 0.25", "nan, 0.25"), "nan, 0.25",
+     '"nan" is not a finite number (Young\'s modulus)'),
+    ("infinite load", replace("3, 1, 5.", "3, 1, inf"), "3, 1, inf", '"inf" is not a finite number (load value)'),
+    ("negative overflow in a prescribed value", replace("LEFT, 1, 2", "LEFT, 1, 1, -1e309\nLEFT, 2, 2"),
+     "LEFT, 1, 1, -1e309", "is not a finite number (prescribed value)"),
+    ("infinite parameter", replace("*STEP", "*CONTACT CONTROLS, TOLERANCE=Infinity\n*STEP"), "TOLERANCE=Infinity",
+     "is not a finite number (value of TOLERANCE)"),
+    ("node id beyond the integer range", replace("6, 2, 1\n", "6, 2, 1\n99999999999, 3, 3\n"),
+     "99999999999, 3, 3", "out of the integer range (node id)"),
+    ("node id beyond the id range", replace("6, 2, 1\n", "6, 2, 1\n100000001, 3, 3\n"),
+     "100000001, 3, 3", "node id out of range 1..100000000"),
+    # Contact controls: each cutback is a level of recursion.
+    ("CUTBACKS beyond the cap", replace("*STEP", "*CONTACT CONTROLS, CUTBACKS=20000\n*STEP"), "CUTBACKS=20000",
+     "CUTBACKS must lie in 0..50"),
+    ("CUTBACKS just above the cap", replace("*STEP", "*CONTACT CONTROLS, CUTBACKS=51\n*STEP"), "CUTBACKS=51",
+     "CUTBACKS must lie in 0..50"),
+    ("MAXIT beyond the cap", replace("*STEP", "*CONTACT CONTROLS, MAXIT=1001\n*STEP"), "MAXIT=1001",
+     "MAXIT must lie in 1..1000"),
+    ("name longer than 80 characters", replace("NAME=STEEL", "NAME=" + "S" * 81), "S" * 81,
+     "name longer than 80 characters"),
 ]
 
 
-def check(name, deck, text, fragment, files=None, where=None):
-    tag = "bad_" + "".join(c if c.isalnum() else "_" for c in name)
-    run = run_deck(tag, deck, files=files)
-    assert run.rc != 0, f"exit status 0 for a bad deck ({name})"
-    err = run.stderr
+def run_bounded(tag, deck=None, path=None, files=None, setup=None):
+    """run_deck with a time limit (a hang is a failure, not a stuck test
+    run); setup(dir) may add files beside the deck (FIFOs, directories)."""
+    if deck is not None:
+        d = workdir(tag)
+        path = os.path.join(d, tag + ".inp")
+        with open(path, "w", newline="") as f:
+            f.write(deck)
+        if setup:
+            setup(d)
+        for fn, text in (files or {}).items():
+            os.makedirs(os.path.dirname(os.path.join(d, fn)), exist_ok=True)
+            with open(os.path.join(d, fn), "w") as f:
+                f.write(text)
+    outdir = workdir(tag + "_out")
+    try:
+        proc = subprocess.run([CFE2D, "-q", "-o", outdir, path], capture_output=True, text=True, timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        raise AssertionError(f"cfe2d still running after {TIMEOUT} s on {path}")
+    return Run(path, proc, os.path.join(outdir, tag + ".out"))
+
+
+def assert_clean_failure(run, name):
+    assert run.rc == 1, f"exit status {run.rc} for a bad deck ({name}):\n{run.stderr}"
     for bad in ("Fortran runtime error", "Backtrace", "Segmentation", "SIGSEGV", "STOP"):
-        assert bad not in err, f"crash-like output: {err!r}"
+        assert bad not in run.stderr, f"crash-like output: {run.stderr!r}"
+
+
+def check(name, deck, text, fragment, setup=None, files=None, where=None):
+    tag = "bad_" + "".join(c if c.isalnum() else "_" for c in name)
+    run = run_bounded(tag, deck, files=files, setup=setup)
+    assert_clean_failure(run, name)
+    err = run.stderr
     fname = where or run.deck
     lineno = line_of(open(fname).read(), text)
     expect = f"{fname}:{lineno}: error:"
@@ -98,8 +178,8 @@ def check(name, deck, text, fragment, files=None, where=None):
 
 
 def cases():
-    for name, deck, text, frag in CASES:
-        yield f"bad deck: {name}", (lambda d=deck, t=text, f=frag, n=name: check(n, d, t, f))
+    for name, deck, text, frag, *setup in CASES:
+        yield f"bad deck: {name}", (lambda d=deck, t=text, f=frag, n=name, s=setup: check(n, d, t, f, *s))
 
 
 def test_error_inside_included_file():
@@ -134,3 +214,72 @@ def test_output_request_keyword_only_warns():
     run = run_deck("warn_node_output", deck)
     assert run.rc == 0, run.stderr
     assert f"{run.deck}:{line_of(deck, '*NODE OUTPUT')}: warning:" in run.stderr, run.stderr
+
+
+def test_deck_without_keywords():
+    """An empty deck, one of comments only, one of blank and CR-LF lines:
+    no line is at fault, so the message is cfe2d: error: and says why."""
+    decks = {"empty": "", "comments": "** a comment\n**\n** another\n", "blank": "\n   \n\t\n",
+             "crlf": "\r\n\r\n  \r\n** comment\r\n"}
+    for name, text in decks.items():
+        run = run_bounded("bad_no_keyword_" + name, text)
+        assert_clean_failure(run, name)
+        assert "cfe2d: error:" in run.stderr and "has no keyword lines" in run.stderr, (name, run.stderr)
+
+
+def test_deck_that_is_not_a_regular_file():
+    """The deck itself: a device, a FIFO (opening it would block) or a
+    directory."""
+    d = workdir("notfile_deck")
+    fifo = os.path.join(d, "pipe.inp")
+    os.mkfifo(fifo)
+    for path, fragment in (("/dev/zero", "is not a regular file"), (fifo, "is not a regular file"),
+                           (d, "is a directory")):
+        run = run_bounded("notfile_deck_run", path=path)
+        assert_clean_failure(run, path)
+        assert f'cfe2d: error: deck "{path}" {fragment}' in run.stderr, run.stderr
+
+
+def test_recursive_include():
+    """A file that includes itself, directly or through another file, is
+    named at the *INCLUDE that closes the loop (not after 16 levels)."""
+    deck = replace("*NSET, NSET=LEFT", "*INCLUDE, INPUT=bad_include_self.inp\n*NSET, NSET=LEFT")
+    run = run_bounded("bad_include_self", deck)
+    assert_clean_failure(run, "self include")
+    assert f"{run.deck}:{line_of(deck, '*INCLUDE')}: error: recursive *INCLUDE" in run.stderr, run.stderr
+
+    deck = replace("*NSET, NSET=LEFT", "*INCLUDE, INPUT=a.inp\n*NSET, NSET=LEFT")
+    files = {"a.inp": "** a\n*INCLUDE, INPUT=sub/b.inp\n", "sub/b.inp": "*INCLUDE, INPUT=../a.inp\n"}
+    run = run_bounded("bad_include_loop", deck, files=files)
+    b = os.path.join(os.path.dirname(run.deck), "sub", "b.inp")
+    assert_clean_failure(run, "include loop")
+    assert f"{b}:1: error: recursive *INCLUDE" in run.stderr, run.stderr
+    assert "is already being read" in run.stderr, run.stderr
+
+
+def include_chain(levels, content):
+    """Files l1.inp ... l<levels>.inp, each including the next; the last
+    holds `content`."""
+    files = {f"l{k}.inp": f"** level {k}\n*INCLUDE, INPUT=l{k + 1}.inp\n" for k in range(1, levels)}
+    files[f"l{levels}.inp"] = content
+    return files
+
+
+def test_include_depth_limit():
+    """17 nested levels are one too many (16 pass: test_deck_features)."""
+    mesh = GOOD[GOOD.index("*NODE"):GOOD.index("*NSET, NSET=LEFT")]
+    deck = GOOD.replace(mesh, "*INCLUDE, INPUT=l1.inp\n")
+    run = run_bounded("bad_include_depth", deck, files=include_chain(17, mesh))
+    last = os.path.join(os.path.dirname(run.deck), "l16.inp")
+    assert_clean_failure(run, "depth")
+    assert f"{last}:2: error: *INCLUDE nested more than 16 levels deep" in run.stderr, run.stderr
+
+
+def test_line_too_long():
+    """A line of 4097 characters is an error naming its line (4096 pass:
+    test_deck_features); it is not quoted, being too long to help."""
+    deck = replace("5, 1, 1\n", "5, 1, 1" + " " * (4097 - 7) + "\n")
+    run = run_bounded("bad_line_too_long", deck)
+    assert_clean_failure(run, "long line")
+    assert f"{run.deck}:{line_of(deck, '5, 1, 1')}: error: line longer than 4096 characters" in run.stderr, \
+        run.stderr

@@ -4,6 +4,7 @@ commas, comments and mixed case, faces S1..S4 of quads and triangles,
 named boundary conditions, amplitudes in step and total time, OP=NEW,
 loads carried over between steps, reactions per set."""
 import os
+import re
 
 import numpy as np
 
@@ -56,18 +57,21 @@ LEFT, XSYMM
 FILES = {"mesh.inp": MESH, "sub/elements.inp": ELEMENTS, "sets.inp": SETS}
 
 
-def run_block(name, step_text, extra=""):
-    # write the nested include tree
+def run_block(name, step_text, extra="", files=None, mesh_include="mesh.inp", newline="\n"):
+    """The block deck with its nested include tree; files replaces or adds
+    include files, mesh_include is the file the deck includes first, and
+    newline the line end written."""
     from helpers import workdir
     d = workdir("feat_" + name)
-    for fn, text in FILES.items():
+    tree = dict(FILES, **(files or {}))
+    for fn, text in tree.items():
         os.makedirs(os.path.dirname(os.path.join(d, fn)), exist_ok=True)
-        with open(os.path.join(d, fn), "w") as f:
+        with open(os.path.join(d, fn), "w", newline=newline) as f:
             f.write(text)
     path = os.path.join(d, name + ".inp")
-    with open(path, "w") as f:
-        f.write(block_deck(step_text, extra))
-    return run_deck("feat_" + name + "_out", path=path).ok()
+    with open(path, "w", newline=newline) as f:
+        f.write(block_deck(step_text, extra).replace("INPUT=mesh.inp", "INPUT=" + mesh_include))
+    return run_deck("feat_" + name + "_out", path=path)
 
 
 def tension_u(force_total):
@@ -84,7 +88,7 @@ RIGHT, 1, 3.0
 U
 *END STEP
 """
-    run = run_block("tension", step)
+    run = run_block("tension", step).ok()
     inc = run.listing.increments[-1]
     u = inc.block("NODE U", set="RIGHT")["U1"]
     assert np.allclose(u, tension_u(6.0), rtol=1e-10), u
@@ -124,7 +128,7 @@ U
 *END STEP
 """
     step = step.replace("*CLOAD, OP=NEW\n", "*CLOAD, OP=NEW\nRIGHT, 2, 0.0\n")
-    run = run_block("amplitudes", step)
+    run = run_block("amplitudes", step).ok()
     u = [i.block("NODE U", set="RIGHT")["U1"][0] for i in run.listing.increments]
     expect = [tension_u(6.0), tension_u(3.0), tension_u(6.0 * 2.0), 0.0]
     assert len(u) == 4
@@ -205,8 +209,93 @@ def test_reaction_sums_balance_loads():
 RF
 *END STEP
 """
-    run = run_block("reactions", step, extra="*NSET, NSET=BOTTOMLEFT\n1\n")
+    run = run_block("reactions", step, extra="*NSET, NSET=BOTTOMLEFT\n1\n").ok()
     inc = run.listing.increments[-1]
     rf = inc.block("NODE RF", set="LEFT")
     assert abs(sum(rf["RF1"]) + 2.0) < 1e-9
     assert rel_err(inc.block("REACTIONS").as_dict()["LEFT"][0], -2.0) < 1e-9
+
+
+TENSION_STEP = """*STEP
+*STATIC
+*CLOAD
+RIGHT, 1, 3.0
+*NODE PRINT, NSET=RIGHT
+U
+*END STEP
+"""
+
+
+def tension_end_u(run):
+    return run.listing.increments[-1].block("NODE U", set="RIGHT")["U1"]
+
+
+def test_sixteen_include_levels():
+    """The deepest nesting allowed: l1.inp ... l13.inp, then mesh.inp,
+    sub/elements.inp and sets.inp at level 16 (17 levels fail:
+    test_bad_decks)."""
+    chain = {f"l{k}.inp": f"** level {k}\n*INCLUDE, INPUT=l{k + 1}.inp\n" for k in range(1, 13)}
+    chain["l13.inp"] = "*INCLUDE, INPUT=mesh.inp\n"
+    run = run_block("depth16", TENSION_STEP, files=chain, mesh_include="l1.inp").ok()
+    assert np.allclose(tension_end_u(run), tension_u(6.0), rtol=1e-10)
+
+
+def test_crlf_line_ends():
+    """Every file written with CR-LF line ends (Windows) reads the same."""
+    run = run_block("crlf", TENSION_STEP, newline="\r\n").ok()
+    assert np.allclose(tension_end_u(run), tension_u(6.0), rtol=1e-10)
+
+
+def test_longest_line():
+    """A line of exactly 4096 characters is read whole: its last field,
+    the y coordinate, ends at column 4096 (4097 fail: test_bad_decks)."""
+    head, tail = "5, 1.0, ", "1.0"
+    line = head + " " * (4096 - len(head) - len(tail)) + tail
+    assert len(line) == 4096
+    mesh = MESH.replace("5, 1.0, 1.0\n", line + "\n")
+    assert line in mesh
+    run = run_block("longline", TENSION_STEP, files={"mesh.inp": mesh}).ok()
+    assert np.allclose(tension_end_u(run), tension_u(6.0), rtol=1e-10)
+
+
+def test_limits_are_inclusive():
+    """INC=100000, MAXIT=1000 and CUTBACKS=50 are the documented caps
+    themselves: accepted."""
+    step = TENSION_STEP.replace("*STEP\n", "*STEP, INC=100000\n")
+    run = run_block("caps", step, extra="*CONTACT CONTROLS, MAXIT=1000, CUTBACKS=50\n").ok()
+    assert np.allclose(tension_end_u(run), tension_u(6.0), rtol=1e-10)
+
+
+def test_huge_finite_load_is_read():
+    """1e160 is a finite real: the reader takes it (what the analysis makes
+    of its overflow is not the reader's business). If the run completes,
+    the answer is linear in the load."""
+    run = run_block("hugeload", TENSION_STEP.replace("RIGHT, 1, 3.0", "RIGHT, 1, 1e160"))
+    assert "not a finite number" not in run.stderr and ".inp:" not in run.stderr, run.stderr
+    if run.rc == 0:
+        # Fortran's ES edit descriptor drops the E of a three-digit
+        # exponent (1.999999999999998+157), which the listing reader leaves
+        # as text.
+        u = [float(re.sub(r"(\d)([+-]\d{3})$", r"\1E\2", str(v))) for v in tension_end_u(run)]
+        assert np.allclose(u, tension_u(2e160), rtol=1e-10), u
+    else:
+        assert run.stderr.startswith("cfe2d: error:"), run.stderr
+
+
+def test_long_lists_are_read_in_linear_time():
+    """60000 nodes in a set, a *BOUNDARY and two *CLOAD lines on that set
+    (120000 entries each) and a 60000-point amplitude: read in about half
+    a second. Appending one entry at a time by reallocation (quadratic)
+    took 180 s for 80000 on the same machine; the bound leaves a wide
+    margin for a loaded machine. The deck stops after reading (a step
+    without *STATIC), so only the reader is timed."""
+    import time
+    n = 60000
+    lines = ["*NODE, NSET=ALL"] + [f"{i}, {i * 0.1}, 0" for i in range(1, n + 1)]
+    lines += ["*BOUNDARY", "ALL, 1, 2", "*AMPLITUDE, NAME=A"] + [f"{i}., {i * 0.5}" for i in range(n)]
+    lines += ["*STEP", "*CLOAD", "ALL, 1, 1.", "ALL, 2, 1.", "*END STEP"]
+    t0 = time.time()
+    run = run_deck("feat_long_lists", "\n".join(lines) + "\n")
+    elapsed = time.time() - t0
+    assert run.rc == 1 and "step has no procedure" in run.stderr, run.stderr
+    assert elapsed < 20.0, f"{elapsed:.1f} s to read {n} entries"

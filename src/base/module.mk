@@ -1,5 +1,6 @@
 # Layer: base. Modules and the objects of the modules each one uses.
-MODULES += kinds messages solver_codes strings
+MODULES += growable kinds messages solver_codes strings
+$(OBJDIR)/growable.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/kinds.o:
 $(OBJDIR)/messages.o:
 $(OBJDIR)/solver_codes.o:

@@ -2,15 +2,35 @@
 !> significant lines, each remembering its file and line number so that
 !> every later error can point at the text that caused it.
 module deck_input
-  use strings, only: to_upper, split_fields, field_t
+  use, intrinsic :: iso_c_binding, only: c_char, c_int, c_long_long, c_null_char
+  use, intrinsic :: iso_fortran_env, only: iostat_end, iostat_eor
+  use strings, only: to_upper, split_fields, field_t, itoa
   use messages, only: fatal, fatal_at
+  use growable, only: new_capacity
   implicit none
   private
   public :: deck_t, deck_line_t, keyword_t, read_deck, parse_keyword, &
-            deck_error, deck_warning, param_value, has_param, is_keyword
+            deck_error, deck_warning, param_value, has_param, is_keyword, &
+            max_line, max_include_depth
 
+  !> Longest line read (characters, blanks included); a longer one is an
+  !> error rather than silently cut.
   integer, parameter :: max_line = 4096
+  !> Deepest *INCLUDE nesting: the deck is level 0, a file it includes
+  !> level 1, and so on up to this level.
   integer, parameter :: max_include_depth = 16
+
+  ! Kinds of file system entries returned by cfe2d_file_kind (file_kind.c).
+  integer, parameter :: kind_missing = 0, kind_regular = 1, kind_directory = 2
+
+  interface
+    function c_file_kind(path, device, inode) bind(C, name='cfe2d_file_kind') result(kind)
+      import :: c_char, c_int, c_long_long
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_long_long), intent(out) :: device, inode
+      integer(c_int) :: kind
+    end function c_file_kind
+  end interface
 
   type :: deck_line_t
     character(len=:), allocatable :: text
@@ -33,54 +53,71 @@ module deck_input
     integer :: np = 0
   end type keyword_t
 
+  !> The files being read, outermost first, identified by device and
+  !> inode so that a file reached again under another path is recognised.
+  type :: include_chain_t
+    integer(c_long_long) :: device(0:max_include_depth) = 0
+    integer(c_long_long) :: inode(0:max_include_depth) = 0
+  end type include_chain_t
+
 contains
 
+  !> Purpose: read the deck at `path` and every file it includes into one
+  !> list of significant lines (no comments, no blank lines).
+  !> The deck must be a regular file; so must every included file.
   subroutine read_deck(path, deck)
     character(len=*), intent(in) :: path
     type(deck_t), intent(out) :: deck
+    type(include_chain_t) :: chain
     allocate(deck%lines(1024), deck%files(8))
-    call read_file(path, deck, 0)
+    select case (file_kind(path, chain%device(0), chain%inode(0)))
+    case (kind_missing)
+      call fatal('cannot open deck file "' // trim(path) // '"')
+    case (kind_directory)
+      call fatal('deck "' // trim(path) // '" is a directory, not a regular file')
+    case (kind_regular)
+    case default
+      call fatal('deck "' // trim(path) // '" is not a regular file (a device, FIFO or socket)')
+    end select
+    call read_file(path, deck, 0, chain)
   end subroutine read_deck
 
-  recursive subroutine read_file(path, deck, depth)
+  integer function file_kind(path, device, inode)
+    character(len=*), intent(in) :: path
+    integer(c_long_long), intent(out) :: device, inode
+    file_kind = int(c_file_kind(trim(path) // c_null_char, device, inode))
+  end function file_kind
+
+  recursive subroutine read_file(path, deck, depth, chain)
     character(len=*), intent(in) :: path
     type(deck_t), intent(inout) :: deck
     integer, intent(in) :: depth
-    character(len=max_line) :: buf
-    integer :: u, ios, lineno, ifile, k
+    type(include_chain_t), intent(inout) :: chain
+    character(len=max_line + 1) :: buf
+    integer :: u, ios, lineno, ifile
     type(keyword_t) :: kw
-    character(len=:), allocatable :: inc, dir
-    logical :: found
+    character(len=:), allocatable :: inc
 
     open(newunit=u, file=path, status='old', action='read', iostat=ios)
     if (ios /= 0) call fatal('cannot open deck file "' // trim(path) // '"')
     call add_file(deck, path, ifile)
     lineno = 0
     do
-      read(u, '(a)', iostat=ios) buf
-      if (ios /= 0) exit
+      read(u, '(a)', advance='no', iostat=ios) buf
+      if (ios == iostat_end) exit
       lineno = lineno + 1
+      ! ios == 0: the buffer (one character more than allowed) filled up
+      ! before the end of the line.
+      if (ios == 0) call fatal_at(path, lineno, '', 'line longer than ' // itoa(max_line) // ' characters')
+      if (ios /= iostat_eor) call fatal_at(path, lineno, '', 'cannot read this line (not a text file?)')
       call clean(buf)
-      if (len_trim(buf) == max_line) then
-        call fatal_at(path, lineno, '', 'line longer than 4095 characters')
-      end if
       if (len_trim(buf) == 0) cycle
       if (is_comment(buf)) cycle
       if (is_keyword(buf)) then
         call parse_keyword(buf, kw)
         if (kw%name == 'INCLUDE') then
-          inc = param_value(kw, 'INPUT')
-          if (len(inc) == 0) call fatal_at(path, lineno, buf, '*INCLUDE needs INPUT=<file>')
-          if (depth >= max_include_depth) call fatal_at(path, lineno, buf, &
-              '*INCLUDE nested too deeply (a file including itself?)')
-          if (inc(1:1) /= '/') then
-            k = index(path, '/', back=.true.)
-            dir = path(1:k)
-            inc = dir // inc
-          end if
-          inquire(file=inc, exist=found)
-          if (.not. found) call fatal_at(path, lineno, buf, 'include file "' // inc // '" not found')
-          call read_file(inc, deck, depth + 1)
+          inc = include_path(path, lineno, buf, kw, depth, chain)
+          call read_file(inc, deck, depth + 1, chain)
           cycle
         end if
       end if
@@ -88,6 +125,43 @@ contains
     end do
     close(u)
   end subroutine read_file
+
+  !> Purpose: the file named by an *INCLUDE card (relative to the including
+  !> file), checked before it is opened: it must exist, be a regular file,
+  !> not be one of the files being read, and not nest too deeply.
+  function include_path(path, lineno, text, kw, depth, chain) result(inc)
+    character(len=*), intent(in) :: path, text
+    integer, intent(in) :: lineno, depth
+    type(keyword_t), intent(in) :: kw
+    type(include_chain_t), intent(inout) :: chain
+    character(len=:), allocatable :: inc
+    integer(c_long_long) :: device, inode
+    integer :: k
+    inc = param_value(kw, 'INPUT')
+    if (len(inc) == 0) call fatal_at(path, lineno, text, '*INCLUDE needs INPUT=<file>')
+    if (inc(1:1) /= '/') then
+      k = index(path, '/', back=.true.)
+      inc = path(1:k) // inc
+    end if
+    select case (file_kind(inc, device, inode))
+    case (kind_missing)
+      call fatal_at(path, lineno, text, 'include file "' // inc // '" not found')
+    case (kind_directory)
+      call fatal_at(path, lineno, text, 'include file "' // inc // '" is a directory, not a regular file')
+    case (kind_regular)
+    case default
+      call fatal_at(path, lineno, text, 'include file "' // inc // &
+                    '" is not a regular file (a device, FIFO or socket)')
+    end select
+    do k = 0, depth
+      if (chain%device(k) == device .and. chain%inode(k) == inode) call fatal_at(path, lineno, text, &
+          'recursive *INCLUDE: "' // inc // '" is already being read (it includes itself)')
+    end do
+    if (depth >= max_include_depth) call fatal_at(path, lineno, text, &
+        '*INCLUDE nested more than ' // itoa(max_include_depth) // ' levels deep')
+    chain%device(depth + 1) = device
+    chain%inode(depth + 1) = inode
+  end function include_path
 
   !> Tabs and carriage returns (decks written on Windows) become blanks.
   subroutine clean(buf)
@@ -117,8 +191,9 @@ contains
     character(len=*), intent(in) :: path
     integer, intent(out) :: ifile
     type(field_t), allocatable :: tmp(:)
+    ! deck_t's own types: growable's generic grow cannot take them.
     if (deck%nfiles == size(deck%files)) then
-      allocate(tmp(2 * deck%nfiles))
+      allocate(tmp(new_capacity(deck%nfiles, deck%nfiles + 1)))
       tmp(1:deck%nfiles) = deck%files(1:deck%nfiles)
       call move_alloc(tmp, deck%files)
     end if
@@ -133,7 +208,7 @@ contains
     integer, intent(in) :: ifile, lineno
     type(deck_line_t), allocatable :: tmp(:)
     if (deck%n == size(deck%lines)) then
-      allocate(tmp(2 * deck%n))
+      allocate(tmp(new_capacity(deck%n, deck%n + 1)))
       tmp(1:deck%n) = deck%lines(1:deck%n)
       call move_alloc(tmp, deck%lines)
     end if
@@ -172,17 +247,21 @@ contains
     end do
   end subroutine parse_keyword
 
+  !> Runs of blanks as one blank (blanks at the start are kept).
   pure function collapse(s) result(r)
     character(len=*), intent(in) :: s
     character(len=:), allocatable :: r
-    integer :: i
-    r = ''
+    character(len=len(s)) :: buf
+    integer :: i, n
+    n = 0
     do i = 1, len_trim(s)
       if (s(i:i) == ' ' .and. i > 1) then
         if (s(i - 1:i - 1) == ' ') cycle
       end if
-      r = r // s(i:i)
+      n = n + 1
+      buf(n:n) = s(i:i)
     end do
+    r = buf(1:n)
   end function collapse
 
   function param_value(kw, name) result(v)

@@ -1,0 +1,267 @@
+!> The parser's state (the deck and the current line) and what every
+!> card reader does with it: errors that quote the card (file:line:
+!> error:), data-line iteration, parameter and number parsing, id and set
+!> lookup; and the limits the readers enforce.
+!> Used by deck_parser and its card-reader submodules only. (These would
+!> be private entities of deck_parser, but gfortran 12 gives private
+!> module procedures local linkage, so its submodules could not call
+!> them: the link fails with "undefined reference to __deck_parser_MOD_err".)
+module deck_cursor
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use kinds, only: dp, name_len
+  use strings, only: to_upper, parse_real, parse_int, field_t, itoa
+  use deck_input, only: deck_t, keyword_t, deck_error, param_value, has_param, is_keyword
+  use model, only: model_t, find_name
+  use model_growth, only: grow
+  implicit none
+  private
+  public :: parser_t, max_id, max_increments, max_cutbacks, max_contact_iterations
+  public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
+            name_param, check_name_length, get_real, get_int, param_real, param_int, &
+            node_of, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
+            new_surface, in_step
+
+  !> Node and element ids are 1..max_id (an id indexes a lookup table).
+  integer, parameter :: max_id = 100000000
+  !> Increments of one step (period / initial increment, also INC=):
+  !> each increment is a solution, and the count is stored as an integer.
+  integer, parameter :: max_increments = 100000
+  !> CUTBACKS= of *CONTACT CONTROLS: each cutback halves the increment
+  !> through one more level of recursion; 2^-50 of a step is far below
+  !> anything meaningful.
+  integer, parameter :: max_cutbacks = 50
+  !> MAXIT= of *CONTACT CONTROLS: contact status iterations per increment.
+  integer, parameter :: max_contact_iterations = 1000
+
+  !> Parser state that only lives while reading.
+  type :: parser_t
+    type(deck_t) :: deck
+    integer :: i = 0             ! current line
+    integer :: step = 0          ! current step, 0 outside *STEP
+    integer :: step_line = 0
+    integer :: material = 0      ! material that *ELASTIC applies to
+    integer :: nsets = 0, nelsets = 0, nsurf = 0, nmat = 0, nsec = 0, namp = 0
+    integer :: nsteps = 0, npairs = 0, nmbc = 0
+    integer :: nbc = 0, nload = 0, nreq = 0   ! of the current step
+  end type parser_t
+
+contains
+
+  function line_text(p) result(t)
+    type(parser_t), intent(in) :: p
+    character(len=:), allocatable :: t
+    t = p%deck%lines(p%i)%text
+  end function line_text
+
+  !> Stop with file:line: error: msg, quoting the current line.
+  subroutine err(p, msg)
+    type(parser_t), intent(in) :: p
+    character(len=*), intent(in) :: msg
+    associate(l => p%deck%lines(p%i))
+      call deck_error(p%deck, l%file, l%line, msg, l%text)
+    end associate
+  end subroutine err
+
+  !> True and advances if the next line is a data line.
+  logical function next_data(p)
+    type(parser_t), intent(inout) :: p
+    next_data = .false.
+    if (p%i + 1 > p%deck%n) return
+    if (is_keyword(p%deck%lines(p%i + 1)%text)) return
+    p%i = p%i + 1
+    next_data = .true.
+  end function next_data
+
+  subroutine require_data(p, what)
+    type(parser_t), intent(inout) :: p
+    character(len=*), intent(in) :: what
+    if (.not. next_data(p)) call err(p, 'missing data line (' // what // ')')
+  end subroutine require_data
+
+  subroutine no_data(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    if (next_data(p)) call err(p, 'unexpected data line after *' // kw%name)
+  end subroutine no_data
+
+  !> Stops on a parameter the keyword does not know.
+  subroutine allow_params(p, kw, allowed)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: allowed
+    integer :: k
+    do k = 1, kw%np
+      if (index(',' // allowed // ',', ',' // kw%pname(k)%s // ',') == 0) &
+        call err(p, 'unknown parameter ' // kw%pname(k)%s // ' on *' // kw%name)
+    end do
+  end subroutine allow_params
+
+  function required_param(p, kw, name) result(v)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: v
+    v = param_value(kw, name)
+    if (len(v) == 0) call err(p, '*' // kw%name // ' needs ' // name // '=')
+  end function required_param
+
+  !> A name given as NAME=value (required): upper-cased, at most name_len
+  !> characters (longer names would be cut and could clash).
+  function name_param(p, kw, name) result(v)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: v
+    v = to_upper(required_param(p, kw, name))
+    call check_name_length(p, v)
+  end function name_param
+
+  subroutine check_name_length(p, name)
+    type(parser_t), intent(in) :: p
+    character(len=*), intent(in) :: name
+    if (len_trim(name) > name_len) call err(p, 'name longer than ' // itoa(name_len) // ' characters')
+  end subroutine check_name_length
+
+  !> A real field, which must be a finite number: NaN, Infinity and
+  !> values beyond the range of real(dp) (1e400) are errors naming `what`.
+  real(dp) function get_real(p, f, what)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f
+    character(len=*), intent(in) :: what
+    logical :: ok
+    call parse_real(f%s, get_real, ok)
+    if (ok) ok = ieee_is_finite(get_real)
+    if (.not. ok) then
+      if (len(f%s) == 0) call err(p, 'missing ' // what)
+      if (reads_as_infinite(f%s)) call err(p, '"' // f%s // '" is not a finite number (' // what // ')')
+      call err(p, '"' // f%s // '" is not a number (' // what // ')')
+    end if
+  end function get_real
+
+  !> Text that Fortran reads as NaN or Infinity (also an overflowing
+  !> literal): told apart from text that is no number at all only to
+  !> word the message.
+  logical function reads_as_infinite(s)
+    character(len=*), intent(in) :: s
+    real(dp) :: x
+    integer :: ios
+    x = 0.0_dp
+    read(s, *, iostat=ios) x
+    reads_as_infinite = ios == 0 .and. .not. ieee_is_finite(x)
+  end function reads_as_infinite
+
+  integer function get_int(p, f, what)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f
+    character(len=*), intent(in) :: what
+    logical :: ok
+    call parse_int(f%s, get_int, ok)
+    if (.not. ok) then
+      if (len(f%s) == 0) call err(p, 'missing ' // what)
+      ! Digits after an optional sign: a number, but too large.
+      if (verify(f%s(1:1), '+-0123456789') == 0 .and. verify(f%s(2:), '0123456789') == 0 .and. &
+          scan(f%s, '0123456789') > 0) &
+        call err(p, '"' // f%s // '" is out of the integer range (' // what // ')')
+      call err(p, '"' // f%s // '" is not an integer (' // what // ')')
+    end if
+  end function get_int
+
+  real(dp) function param_real(p, kw, name, default)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: default
+    type(field_t) :: f
+    param_real = default
+    if (.not. has_param(kw, name)) return
+    f%s = param_value(kw, name)
+    param_real = get_real(p, f, 'value of ' // name)
+  end function param_real
+
+  !> An integer parameter NAME=k with lo <= k <= hi, or default if absent.
+  integer function param_int(p, kw, name, default, lo, hi)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: default, lo, hi
+    type(field_t) :: f
+    param_int = default
+    if (.not. has_param(kw, name)) return
+    f%s = param_value(kw, name)
+    param_int = get_int(p, f, 'value of ' // name)
+    if (param_int < lo .or. param_int > hi) &
+      call err(p, name // ' must lie in ' // itoa(lo) // '..' // itoa(hi))
+  end function param_int
+
+  integer function node_of(p, m, id)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: id
+    node_of = 0
+    if (id >= 1 .and. id <= size(m%node_index)) node_of = m%node_index(id)
+    if (node_of == 0) call err(p, 'undefined node ' // itoa(id))
+  end function node_of
+
+  integer function elem_of(p, m, id)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: id
+    elem_of = 0
+    if (id >= 1 .and. id <= size(m%elem_index)) elem_of = m%elem_index(id)
+    if (elem_of == 0) call err(p, 'undefined element ' // itoa(id))
+  end function elem_of
+
+  logical function is_int(s)
+    character(len=*), intent(in) :: s
+    integer :: k
+    call parse_int(s, k, is_int)
+  end function is_int
+
+  integer function nset_index(p, m, name)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: name
+    nset_index = find_name(m%nsets(1:p%nsets)%name, to_upper(name))
+  end function nset_index
+
+  integer function elset_index(p, m, name)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: name
+    elset_index = find_name(m%elsets(1:p%nelsets)%name, to_upper(name))
+  end function elset_index
+
+  integer function need_nset(p, m, name)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: name
+    need_nset = nset_index(p, m, name)
+    if (need_nset == 0) call err(p, 'undefined node set ' // to_upper(name))
+  end function need_nset
+
+  integer function need_elset(p, m, name)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: name
+    need_elset = elset_index(p, m, name)
+    if (need_elset == 0) call err(p, 'undefined element set ' // to_upper(name))
+  end function need_elset
+
+  !> A new, empty surface slot (element and node surfaces, and the node
+  !> surface a *CONTACT PAIR makes of a node set).
+  integer function new_surface(p, m) result(isurf)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    call grow(m%surfaces, p%nsurf + 1)
+    p%nsurf = p%nsurf + 1
+    isurf = p%nsurf
+  end function new_surface
+
+  subroutine in_step(p, kw, inside)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    logical, intent(in) :: inside
+    if (inside .and. p%step == 0) call err(p, '*' // kw%name // ' must be inside *STEP ... *END STEP')
+    if (.not. inside .and. p%step /= 0) call err(p, '*' // kw%name // ' is model data and cannot be inside *STEP')
+  end subroutine in_step
+end module deck_cursor

@@ -1,0 +1,387 @@
+!> Mesh cards: *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE.
+submodule (deck_parser) deck_mesh_cards
+  use kinds, only: dp
+  use strings, only: split_fields, to_upper, field_t, itoa
+  use deck_input, only: param_value, has_param
+  use deck_cursor, only: max_id, line_text, err, next_data, no_data, allow_params, required_param, &
+                         name_param, check_name_length, get_real, get_int, node_of, elem_of, is_int, &
+                         nset_index, elset_index, need_nset, need_elset, new_surface
+  use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name
+  use growable, only: append, grow
+  use model_growth, only: grow
+  use element_catalogue, only: catalogue, find_element_type, shape_line2
+  use mesh_topology, only: build_topology, edge_owner
+  implicit none
+
+contains
+
+  !> Purpose: *NODE: one node per data line, `id, x, y[, z]` (z, as gmsh
+  !> writes it, is read and ignored); NSET= collects the nodes in a set.
+  module subroutine read_nodes(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n, id, iset, nitems
+    integer, allocatable :: items(:)
+    real(dp) :: z
+    call allow_params(p, kw, 'NSET,SYSTEM')
+    if (has_param(kw, 'SYSTEM')) then
+      if (to_upper(param_value(kw, 'SYSTEM')) /= 'R') call err(p, 'only SYSTEM=R (rectangular) is implemented')
+    end if
+    nitems = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n < 3) call err(p, '*NODE data line needs: node id, x, y')
+      if (n > 4) call err(p, '*NODE data line has more than 3 coordinates')
+      id = get_int(p, f(1), 'node id')
+      if (id < 1 .or. id > max_id) call err(p, 'node id out of range 1..' // itoa(max_id))
+      call grow(m%node_index, id, fill=0)
+      if (m%node_index(id) /= 0) call err(p, 'duplicate node id ' // f(1)%s)
+      call grow(m%node_id, m%nn + 1)
+      call grow(m%x, m%nn + 1)
+      m%nn = m%nn + 1
+      m%node_id(m%nn) = id
+      m%x(1, m%nn) = get_real(p, f(2), 'x coordinate')
+      m%x(2, m%nn) = get_real(p, f(3), 'y coordinate')
+      if (n == 4) z = get_real(p, f(4), 'z coordinate')
+      m%node_index(id) = m%nn
+      call append(items, nitems, m%nn)
+    end do
+    if (nitems == 0) call err(p, 'missing data line (*NODE without nodes)')
+    if (has_param(kw, 'NSET')) then
+      iset = add_nset(p, m, required_param(p, kw, 'NSET'))
+      call extend_set(m%nsets(iset)%items, items(1:nitems))
+    end if
+  end subroutine read_nodes
+
+  !> Purpose: *ELEMENT, TYPE=: one element per data line, `id, n1, n2, ...`
+  !> with the node count of the type; ELSET= collects them in a set.
+  module subroutine read_elements(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    character(len=:), allocatable :: tname
+    integer :: et, nen, n, id, k, iset, nitems
+    integer, allocatable :: items(:)
+    call allow_params(p, kw, 'TYPE,ELSET')
+    tname = to_upper(required_param(p, kw, 'TYPE'))
+    et = find_element_type(tname)
+    if (et == 0) call err(p, 'element type ' // tname // ' is not implemented (' // catalogue_names() // ')')
+    nen = catalogue(et)%nodes
+    nitems = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= nen + 1) call err(p, 'element ' // tname // ' needs an id and ' // itoa(nen) // ' nodes')
+      id = get_int(p, f(1), 'element id')
+      if (id < 1 .or. id > max_id) call err(p, 'element id out of range 1..' // itoa(max_id))
+      call grow(m%elem_index, id, fill=0)
+      if (m%elem_index(id) /= 0) call err(p, 'duplicate element id ' // f(1)%s)
+      call grow(m%elem_id, m%ne + 1)
+      call grow(m%etype, m%ne + 1)
+      call grow(m%conn, m%ne + 1)
+      call grow(m%elem_src, m%ne + 1)
+      m%ne = m%ne + 1
+      m%elem_id(m%ne) = id
+      m%etype(m%ne) = et
+      m%conn(:, m%ne) = 0
+      do k = 1, nen
+        m%conn(k, m%ne) = node_of(p, m, get_int(p, f(k + 1), 'node of element'))
+      end do
+      do k = 2, nen
+        if (any(m%conn(1:k - 1, m%ne) == m%conn(k, m%ne))) call err(p, 'element uses the same node twice')
+      end do
+      m%elem_src(m%ne)%line = p%i
+      m%elem_index(id) = m%ne
+      call append(items, nitems, m%ne)
+    end do
+    if (nitems == 0) call err(p, 'missing data line (*ELEMENT without elements)')
+    if (has_param(kw, 'ELSET')) then
+      iset = add_elset(p, m, param_value(kw, 'ELSET'))
+      call extend_set(m%elsets(iset)%items, items(1:nitems))
+    end if
+  end subroutine read_elements
+
+  !> The element type names of the catalogue, for error messages.
+  function catalogue_names() result(s)
+    character(len=:), allocatable :: s
+    integer :: it
+    s = trim(catalogue(1)%name)
+    do it = 2, size(catalogue)
+      s = s // ', ' // trim(catalogue(it)%name)
+    end do
+  end function catalogue_names
+
+  !> Purpose: *NSET, NSET=: node ids and set names, first-last-increment
+  !> triples with GENERATE, or (ELSET=) all nodes of an element set. A
+  !> repeated name extends the set.
+  module subroutine read_nset(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    integer :: iset, nitems, es, k
+    integer, allocatable :: items(:)
+    character(len=:), allocatable :: name
+    call allow_params(p, kw, 'NSET,GENERATE,ELSET,UNSORTED,INTERNAL')
+    name = required_param(p, kw, 'NSET')
+    nitems = 0
+    allocate(items(0))
+    if (has_param(kw, 'ELSET')) then
+      ! The nodes of an element set, e.g. of gmsh's line elements.
+      es = need_elset(p, m, param_value(kw, 'ELSET'))
+      do k = 1, size(m%elsets(es)%items)
+        associate(e => m%elsets(es)%items(k))
+          call append(items, nitems, m%conn(1:elem_nodes(m, e), e))
+        end associate
+      end do
+      call no_data(p, kw)
+    else
+      do while (next_data(p))
+        call read_id_list(p, m, has_param(kw, 'GENERATE'), .true., items, nitems)
+      end do
+    end if
+    iset = add_nset(p, m, name)
+    call extend_set(m%nsets(iset)%items, items(1:nitems))
+  end subroutine read_nset
+
+  !> Purpose: *ELSET, ELSET=: element ids and set names, or first-last-
+  !> increment triples with GENERATE. A repeated name extends the set.
+  module subroutine read_elset(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    integer :: iset, nitems
+    integer, allocatable :: items(:)
+    character(len=:), allocatable :: name
+    call allow_params(p, kw, 'ELSET,GENERATE,UNSORTED,INTERNAL')
+    name = required_param(p, kw, 'ELSET')
+    nitems = 0
+    allocate(items(0))
+    do while (next_data(p))
+      call read_id_list(p, m, has_param(kw, 'GENERATE'), .false., items, nitems)
+    end do
+    iset = add_elset(p, m, name)
+    call extend_set(m%elsets(iset)%items, items(1:nitems))
+  end subroutine read_elset
+
+  !> One data line of *NSET/*ELSET: ids and set names, or (GENERATE)
+  !> first, last[, increment]; internal indices appended to items.
+  subroutine read_id_list(p, m, generate, nodes, items, nitems)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    logical, intent(in) :: generate, nodes
+    integer, allocatable, intent(inout) :: items(:)
+    integer, intent(inout) :: nitems
+    type(field_t), allocatable :: f(:)
+    integer :: n, k, a, b, c, id
+    call split_fields(line_text(p), f, n)
+    if (generate) then
+      if (n < 2 .or. n > 3) call err(p, 'GENERATE data line needs: first, last[, increment]')
+      a = get_int(p, f(1), 'first id')
+      b = get_int(p, f(2), 'last id')
+      c = 1
+      if (n == 3) c = get_int(p, f(3), 'increment')
+      if (c <= 0 .or. b < a) call err(p, 'GENERATE needs first <= last and a positive increment')
+      do id = a, b, c
+        call append(items, nitems, entity_of(p, m, nodes, id))
+      end do
+      return
+    end if
+    do k = 1, n
+      if (len(f(k)%s) == 0) call err(p, 'empty entry in list')
+      if (is_int(f(k)%s)) then
+        call append(items, nitems, entity_of(p, m, nodes, get_int(p, f(k), 'id')))
+      else if (nodes) then
+        call append(items, nitems, m%nsets(need_nset(p, m, f(k)%s))%items)
+      else
+        call append(items, nitems, m%elsets(need_elset(p, m, f(k)%s))%items)
+      end if
+    end do
+  end subroutine read_id_list
+
+  !> Internal index of node (nodes) or element id.
+  integer function entity_of(p, m, nodes, id)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    logical, intent(in) :: nodes
+    integer, intent(in) :: id
+    if (nodes) then
+      entity_of = node_of(p, m, id)
+    else
+      entity_of = elem_of(p, m, id)
+    end if
+  end function entity_of
+
+  !> Existing set of that name (a repeated *NSET extends it) or a new one.
+  integer function add_nset(p, m, name) result(iset)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    character(len=*), intent(in) :: name
+    iset = nset_index(p, m, name)
+    if (iset > 0) return
+    call check_name_length(p, name)
+    call grow(m%nsets, p%nsets + 1)
+    p%nsets = p%nsets + 1
+    iset = p%nsets
+    m%nsets(iset)%name = to_upper(name)
+    allocate(m%nsets(iset)%items(0))
+  end function add_nset
+
+  integer function add_elset(p, m, name) result(iset)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    character(len=*), intent(in) :: name
+    iset = elset_index(p, m, name)
+    if (iset > 0) return
+    call check_name_length(p, name)
+    call grow(m%elsets, p%nelsets + 1)
+    p%nelsets = p%nelsets + 1
+    iset = p%nelsets
+    m%elsets(iset)%name = to_upper(name)
+    allocate(m%elsets(iset)%items(0))
+  end function add_elset
+
+  !> Append items not yet in the set, keeping the order of first mention.
+  !> Items are positive internal indices; set holds no repeats.
+  subroutine extend_set(set, items)
+    integer, allocatable, intent(inout) :: set(:)
+    integer, intent(in) :: items(:)
+    integer, allocatable :: all(:)
+    logical, allocatable :: seen(:)
+    integer :: k, n
+    if (size(items) == 0) return
+    allocate(seen(max(maxval(items), maxval(set))))
+    seen = .false.
+    seen(set) = .true.
+    allocate(all(size(set) + size(items)))
+    n = size(set)
+    all(1:n) = set
+    do k = 1, size(items)
+      if (seen(items(k))) cycle
+      seen(items(k)) = .true.
+      n = n + 1
+      all(n) = items(k)
+    end do
+    set = all(1:n)
+  end subroutine extend_set
+
+  !> Purpose: *SURFACE, NAME=: TYPE=ELEMENT (default) lists element faces
+  !> (`element or elset, Sk`, or an elset of line elements lying on solid
+  !> element boundaries); TYPE=NODE lists nodes and node sets.
+  module subroutine read_surface(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: name, stype
+    integer :: k, ne, nn, isurf
+    integer, allocatable :: elems(:), edges(:), nodes(:), ends(:)
+    call allow_params(p, kw, 'NAME,TYPE,INTERNAL')
+    name = name_param(p, kw, 'NAME')
+    stype = 'ELEMENT'
+    if (has_param(kw, 'TYPE')) stype = to_upper(param_value(kw, 'TYPE'))
+    if (stype /= 'ELEMENT' .and. stype /= 'NODE') call err(p, 'surface TYPE must be ELEMENT or NODE')
+    if (find_name(m%surfaces(1:p%nsurf)%name, name) > 0) call err(p, 'duplicate surface ' // name)
+    ne = 0
+    nn = 0
+    allocate(elems(0), edges(0), nodes(0))
+    do while (next_data(p))
+      if (stype == 'NODE') then
+        call surface_nodes_line(p, m, nodes, nn)
+      else
+        call surface_faces_line(p, m, elems, edges, ne)
+      end if
+    end do
+    if (ne == 0 .and. nn == 0) call err(p, 'missing data line (empty surface)')
+    isurf = new_surface(p, m)
+    associate(s => m%surfaces(isurf))
+      s%name = name
+      if (stype == 'NODE') then
+        s%kind = surf_node
+        allocate(s%elem(0), s%edge(0), s%nodes(0))
+        call extend_set(s%nodes, nodes(1:nn))
+      else
+        s%kind = surf_element
+        s%elem = elems(1:ne)
+        s%edge = edges(1:ne)
+        ! Node list of the surface: the ends of its edges, once each.
+        allocate(s%nodes(0), ends(2 * ne))
+        do k = 1, ne
+          call edge_nodes(m, s%elem(k), s%edge(k), ends(2 * k - 1), ends(2 * k))
+        end do
+        call extend_set(s%nodes, ends)
+      end if
+    end associate
+  end subroutine read_surface
+
+  !> A data line of a node surface: `node or node set[, area]`.
+  subroutine surface_nodes_line(p, m, nodes, nn)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    integer, allocatable, intent(inout) :: nodes(:)
+    integer, intent(inout) :: nn
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call split_fields(line_text(p), f, n)
+    if (n > 2) call err(p, 'node surface data line needs: node or node set[, area]')
+    if (is_int(f(1)%s)) then
+      call append(nodes, nn, node_of(p, m, get_int(p, f(1), 'node')))
+    else
+      call append(nodes, nn, m%nsets(need_nset(p, m, f(1)%s))%items)
+    end if
+  end subroutine surface_nodes_line
+
+  !> A data line of an element surface: `element or elset, Sk` for solid
+  !> elements, `element or elset` for line elements (each becomes the
+  !> edge of the solid element it lies on).
+  subroutine surface_faces_line(p, m, elems, edges, ne)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer, allocatable, intent(inout) :: elems(:), edges(:)
+    integer, intent(inout) :: ne
+    type(field_t), allocatable :: f(:)
+    character(len=:), allocatable :: face
+    integer, allocatable :: list(:)
+    integer :: n, k, e, edge, owner, nedge
+    call split_fields(line_text(p), f, n)
+    if (n > 2) call err(p, 'element surface data line needs: element or element set[, face S1..S4]')
+    if (is_int(f(1)%s)) then
+      list = [elem_of(p, m, get_int(p, f(1), 'element'))]
+    else
+      list = m%elsets(need_elset(p, m, f(1)%s))%items
+    end if
+    face = ''
+    if (n == 2) face = to_upper(f(2)%s)
+    nedge = ne
+    do k = 1, size(list)
+      e = list(k)
+      if (catalogue(m%etype(e))%shape == shape_line2) then
+        if (len(face) > 0) call err(p, 'a face id is not allowed for line elements')
+        call owner_edge(p, m, m%conn(1, e), m%conn(2, e), owner, edge)
+        call append(elems, ne, owner)
+      else
+        if (len(face) == 0) call err(p, 'solid elements need a face id S1..S4')
+        edge = 0
+        if (len(face) == 2 .and. face(1:1) == 'S') edge = index('123456789', face(2:2))
+        if (edge == 0 .or. edge > catalogue(m%etype(e))%nedges) &
+          call err(p, 'face ' // face // ' does not exist for ' // trim(catalogue(m%etype(e))%name))
+        call append(elems, ne, e)
+      end if
+      call append(edges, nedge, edge)
+    end do
+  end subroutine surface_faces_line
+
+  !> Local edge of a continuum element that joins nodes a and b; used to
+  !> turn gmsh line elements into faces. The edge table is rebuilt when
+  !> elements were added since it was last built.
+  subroutine owner_edge(p, m, a, b, e, k)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: a, b
+    integer, intent(out) :: e, k
+    if (m%topo%ne /= m%ne) call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
+    call edge_owner(m%topo, a, b, e, k)
+    if (e == 0) call err(p, 'line element is not an edge of any solid element')
+    if (m%topo%neighbour(k, e) > 0) call err(p, 'line element lies between two solid elements, not on a boundary')
+  end subroutine owner_edge
+end submodule deck_mesh_cards

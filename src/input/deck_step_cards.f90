@@ -1,0 +1,365 @@
+!> Step and load cards: *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CLOAD,
+!> the output requests (*NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE) and
+!> *END STEP.
+submodule (deck_parser) deck_step_cards
+  use kinds, only: dp
+  use strings, only: split_fields, to_upper, field_t, itoa, rtoa
+  use deck_input, only: param_value, has_param, deck_warning
+  use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
+                         name_param, check_name_length, get_real, get_int, param_int, node_of, is_int, &
+                         need_nset, need_elset
+  use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, amp_step_time, amp_total_time, find_name
+  use growable, only: append
+  use model_growth, only: grow
+  implicit none
+
+contains
+
+  !> Purpose: *AMPLITUDE, NAME=: a tabular amplitude, `t1, a1, t2, a2, ...`
+  !> over any number of data lines, times strictly increasing.
+  module subroutine read_amplitude(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    real(dp), allocatable :: t(:), a(:)
+    character(len=:), allocatable :: name, tm
+    integer :: n, k, np, na
+    call allow_params(p, kw, 'NAME,TIME,DEFINITION,VALUE')
+    name = name_param(p, kw, 'NAME')
+    if (find_name(m%amplitudes(1:p%namp)%name, name) > 0) call err(p, 'duplicate amplitude ' // name)
+    if (has_param(kw, 'DEFINITION')) then
+      if (to_upper(param_value(kw, 'DEFINITION')) /= 'TABULAR') call err(p, 'only DEFINITION=TABULAR is implemented')
+    end if
+    if (has_param(kw, 'VALUE')) then
+      if (to_upper(param_value(kw, 'VALUE')) /= 'ABSOLUTE') call err(p, 'only VALUE=ABSOLUTE is implemented')
+    end if
+    call grow(m%amplitudes, p%namp + 1)
+    p%namp = p%namp + 1
+    m%amplitudes(p%namp) = amplitude_t(name=name, time=amp_step_time)
+    if (has_param(kw, 'TIME')) then
+      tm = to_upper(param_value(kw, 'TIME'))
+      if (tm == 'TOTAL TIME') then
+        m%amplitudes(p%namp)%time = amp_total_time
+      else if (tm /= 'STEP TIME') then
+        call err(p, 'TIME must be STEP TIME or TOTAL TIME')
+      end if
+    end if
+    allocate(t(0), a(0))
+    np = 0
+    na = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (mod(n, 2) /= 0) call err(p, '*AMPLITUDE data come in pairs: time, value')
+      do k = 1, n, 2
+        call append(t, np, get_real(p, f(k), 'time'))
+        call append(a, na, get_real(p, f(k + 1), 'amplitude value'))
+        if (np > 1) then
+          if (t(np) <= t(np - 1)) call err(p, 'amplitude times must increase')
+        end if
+      end do
+    end do
+    if (np == 0) call err(p, 'missing data line (time, value pairs)')
+    m%amplitudes(p%namp)%t = t(1:np)
+    m%amplitudes(p%namp)%a = a(1:np)
+  end subroutine read_amplitude
+
+  !> The amplitude named by AMPLITUDE= (0 if none).
+  integer function amplitude_param(p, m, kw)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(keyword_t), intent(in) :: kw
+    amplitude_param = 0
+    if (.not. has_param(kw, 'AMPLITUDE')) return
+    amplitude_param = find_name(m%amplitudes(1:p%namp)%name, to_upper(param_value(kw, 'AMPLITUDE')))
+    if (amplitude_param == 0) call err(p, 'undefined amplitude ' // to_upper(param_value(kw, 'AMPLITUDE')))
+  end function amplitude_param
+
+  !> Nodes named by the first field of a *BOUNDARY or *CLOAD line, and
+  !> the node set they came from (0 for a single node).
+  subroutine target_nodes(p, m, s, nodes, iset)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: s
+    integer, allocatable, intent(out) :: nodes(:)
+    integer, intent(out) :: iset
+    type(field_t) :: f
+    iset = 0
+    if (is_int(s)) then
+      f%s = s
+      nodes = [node_of(p, m, get_int(p, f, 'node'))]
+    else
+      if (len(s) == 0) call err(p, 'missing node or node set')
+      iset = need_nset(p, m, s)
+      nodes = m%nsets(iset)%items
+    end if
+  end subroutine target_nodes
+
+  !> Purpose: *BOUNDARY: prescribed displacements, `node or nset, first
+  !> dof[, last dof[, value]]` or a named condition (ENCASTRE, PINNED,
+  !> XSYMM, YSYMM). Model data outside *STEP, history data inside.
+  module subroutine read_boundary(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: nodes(:)
+    integer :: n, k, d, d1, d2, iset, amp, nnew
+    real(dp) :: v
+    character(len=:), allocatable :: op
+    call allow_params(p, kw, 'OP,AMPLITUDE,TYPE')
+    if (has_param(kw, 'TYPE')) then
+      if (to_upper(param_value(kw, 'TYPE')) /= 'DISPLACEMENT') call err(p, 'only TYPE=DISPLACEMENT is implemented')
+    end if
+    op = op_param(p, kw)
+    if (p%step == 0 .and. (op == 'NEW' .or. has_param(kw, 'AMPLITUDE'))) &
+      call err(p, 'OP=NEW and AMPLITUDE= are only allowed inside *STEP')
+    amp = amplitude_param(p, m, kw)
+    if (p%step > 0 .and. op == 'NEW') m%steps(p%step)%new_bcs = .true.
+    nnew = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n > 4) call err(p, '*BOUNDARY data line needs: node or set, first dof[, last dof[, value]]')
+      call target_nodes(p, m, f(1)%s, nodes, iset)
+      call boundary_dofs(p, f, n, d1, d2, v)
+      do k = 1, size(nodes)
+        do d = d1, d2
+          call add_bc(p, m, bc_t(node=nodes(k), dof=d, set=iset, amp=amp, value=v))
+          nnew = nnew + 1
+        end do
+      end do
+    end do
+    if (nnew == 0) call err(p, 'missing data line (node or set, first dof[, last dof[, value]])')
+  end subroutine read_boundary
+
+  !> The dof range and value of a *BOUNDARY data line (fields f(2:n)).
+  subroutine boundary_dofs(p, f, n, d1, d2, v)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f(:)
+    integer, intent(in) :: n
+    integer, intent(out) :: d1, d2
+    real(dp), intent(out) :: v
+    v = 0.0_dp
+    if (n >= 2 .and. .not. is_int(f(min(n, 2))%s)) then
+      ! Abaqus named conditions.
+      if (n > 2) call err(p, 'a named boundary condition takes no further fields')
+      select case (to_upper(f(2)%s))
+      case ('ENCASTRE', 'PINNED'); d1 = 1; d2 = 2
+      case ('XSYMM'); d1 = 1; d2 = 1
+      case ('YSYMM'); d1 = 2; d2 = 2
+      case default; call err(p, '"' // f(2)%s // '" is not a dof number or a known condition')
+      end select
+    else
+      if (n < 2) call err(p, 'missing first dof')
+      d1 = get_int(p, f(2), 'first dof')
+      d2 = d1
+      if (n >= 3) then
+        if (len(f(3)%s) > 0) d2 = get_int(p, f(3), 'last dof')
+      end if
+      if (n == 4) v = get_real(p, f(4), 'prescribed value')
+    end if
+    if (d1 < 1 .or. d2 > 2 .or. d2 < d1) call err(p, 'dofs must satisfy 1 <= first <= last <= 2 in 2D')
+  end subroutine boundary_dofs
+
+  !> One prescribed dof: to the model outside a step, to the step inside.
+  subroutine add_bc(p, m, bc)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(bc_t), intent(in) :: bc
+    if (p%step == 0) then
+      call grow(m%model_bcs, p%nmbc + 1)
+      p%nmbc = p%nmbc + 1
+      m%model_bcs(p%nmbc) = bc
+    else
+      call grow(m%steps(p%step)%bcs, p%nbc + 1)
+      p%nbc = p%nbc + 1
+      m%steps(p%step)%bcs(p%nbc) = bc
+    end if
+  end subroutine add_bc
+
+  !> OP=MOD (default) or OP=NEW.
+  function op_param(p, kw) result(op)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: op
+    op = 'MOD'
+    if (has_param(kw, 'OP')) op = to_upper(param_value(kw, 'OP'))
+    if (op /= 'MOD' .and. op /= 'NEW') call err(p, 'OP must be MOD or NEW')
+  end function op_param
+
+  !> Purpose: *CLOAD: concentrated forces, `node or nset, dof, value`.
+  !> Any finite value is accepted (huge loads are the analysis' concern).
+  module subroutine read_cload(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: nodes(:)
+    integer :: n, k, d, iset, amp, nnew
+    real(dp) :: v
+    call allow_params(p, kw, 'OP,AMPLITUDE')
+    if (op_param(p, kw) == 'NEW') m%steps(p%step)%new_loads = .true.
+    amp = amplitude_param(p, m, kw)
+    nnew = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= 3) call err(p, '*CLOAD data line needs: node or set, dof, value')
+      call target_nodes(p, m, f(1)%s, nodes, iset)
+      d = get_int(p, f(2), 'dof')
+      if (d < 1 .or. d > 2) call err(p, 'dof must be 1 or 2 in 2D')
+      v = get_real(p, f(3), 'load value')
+      call grow(m%steps(p%step)%loads, p%nload + size(nodes))
+      do k = 1, size(nodes)
+        m%steps(p%step)%loads(p%nload + k) = cload_t(node=nodes(k), dof=d, amp=amp, value=v)
+      end do
+      p%nload = p%nload + size(nodes)
+      nnew = nnew + size(nodes)
+    end do
+    if (nnew == 0) call err(p, 'missing data line (node or set, dof, value)')
+  end subroutine read_cload
+
+  !> Purpose: *STEP: opens a step (NAME=, INC= the largest number of
+  !> increments, 1..max_increments); its cards follow up to *END STEP.
+  module subroutine read_step(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    if (p%step /= 0) call err(p, '*STEP inside a *STEP (missing *END STEP?)')
+    call allow_params(p, kw, 'NAME,INC,NLGEOM,PERTURBATION,AMPLITUDE')
+    if (has_param(kw, 'NLGEOM')) then
+      if (to_upper(param_value(kw, 'NLGEOM')) /= 'NO') &
+        call err(p, 'geometric nonlinearity (NLGEOM) is not implemented: cfe2d is small-deformation')
+    end if
+    if (has_param(kw, 'PERTURBATION')) call err(p, 'PERTURBATION steps are not implemented')
+    if (has_param(kw, 'AMPLITUDE')) then
+      if (to_upper(param_value(kw, 'AMPLITUDE')) /= 'RAMP') call err(p, 'only AMPLITUDE=RAMP is implemented on *STEP')
+    end if
+    call no_data(p, kw)
+    call grow(m%steps, p%nsteps + 1)
+    p%nsteps = p%nsteps + 1
+    p%step = p%nsteps
+    p%step_line = p%i
+    p%nbc = 0
+    p%nload = 0
+    p%nreq = 0
+    m%steps(p%step) = step_t()
+    associate(s => m%steps(p%step))
+      call check_name_length(p, param_value(kw, 'NAME'))
+      s%name = param_value(kw, 'NAME')
+      s%src%line = p%i
+      s%period = -1.0_dp
+      allocate(s%bcs(0), s%loads(0), s%requests(0))
+      s%max_inc = param_int(p, kw, 'INC', s%max_inc, 1, max_increments)
+    end associate
+  end subroutine read_step
+
+  !> Purpose: *STATIC: `initial increment, time period[, min, max]`
+  !> (default 1, 1). The step runs period / increment equal increments:
+  !> both must be positive (and finite, as every real), and the count,
+  !> computed in real arithmetic so that it cannot wrap, must not exceed
+  !> max_increments nor INC= of *STEP.
+  module subroutine read_static(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n, k
+    real(dp) :: ratio, x
+    call allow_params(p, kw, 'DIRECT,SOLVER')
+    associate(s => m%steps(p%step))
+      if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
+      s%dt = 1.0_dp
+      s%period = 1.0_dp
+      if (next_data(p)) then
+        call split_fields(line_text(p), f, n)
+        if (n > 4) call err(p, '*STATIC data line needs: initial increment, time period[, min, max]')
+        if (len(f(1)%s) > 0) s%dt = get_real(p, f(1), 'initial time increment')
+        if (n >= 2) then
+          if (len(f(2)%s) > 0) s%period = get_real(p, f(2), 'time period')
+        end if
+        ! Minimum and maximum increments: fixed increments make them moot,
+        ! but they must still be numbers.
+        do k = 3, n
+          if (len(f(k)%s) > 0) x = get_real(p, f(k), 'minimum or maximum increment')
+        end do
+        if (s%dt <= 0.0_dp .or. s%period <= 0.0_dp) call err(p, 'time increment and period must be positive')
+        if (s%dt > s%period) s%dt = s%period
+      end if
+      ratio = s%period / s%dt
+      if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // count_text(ratio) // &
+          ' increments (time period / initial increment); at most ' // itoa(max_increments) // ' are allowed')
+      if (nint(ratio) > s%max_inc) call err(p, 'the step needs ' // itoa(nint(ratio)) // &
+          ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
+    end associate
+  end subroutine read_static
+
+  !> A number of increments too large for an integer, as text.
+  function count_text(ratio) result(s)
+    real(dp), intent(in) :: ratio
+    character(len=:), allocatable :: s
+    if (ratio > huge(1.0_dp)) then
+      s = 'more than 1e308'
+    else
+      s = rtoa(ratio, 3)
+    end if
+  end function count_text
+
+  !> Purpose: *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE: output of the
+  !> step, a set (NSET= or ELSET=, default all) and quantities on the data
+  !> lines (unknown quantities are warned about and skipped).
+  module subroutine read_request(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    type(request_t) :: r
+    integer :: n, k
+    character(len=:), allocatable :: q
+    r%nodal = kw%name(1:4) == 'NODE'
+    r%to_file = index(kw%name, 'FILE') > 0
+    if (r%nodal) then
+      call allow_params(p, kw, 'NSET,FREQUENCY,TOTALS,GLOBAL,SUMMARY,OUTPUT')
+      if (has_param(kw, 'NSET')) r%set = need_nset(p, m, param_value(kw, 'NSET'))
+    else
+      call allow_params(p, kw, 'ELSET,FREQUENCY,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL')
+      if (has_param(kw, 'ELSET')) r%set = need_elset(p, m, param_value(kw, 'ELSET'))
+    end if
+    call require_data(p, 'output quantities')
+    do
+      call split_fields(line_text(p), f, n)
+      do k = 1, n
+        q = to_upper(f(k)%s)
+        select case (q)
+        case ('U'); r%u = .true.
+        case ('RF'); r%rf = .true.
+        case ('S'); r%s = .true.
+        case ('E'); r%e = .true.
+        case ('CSTRESS', 'CDISP', 'CONTACT'); r%cstress = .true.
+        case ('')
+        case default
+          call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
+        end select
+      end do
+      if (.not. next_data(p)) exit
+    end do
+    if (r%nodal .and. r%e) call err(p, 'E is an element quantity: ask for it in *EL PRINT or *EL FILE')
+    call grow(m%steps(p%step)%requests, p%nreq + 1)
+    p%nreq = p%nreq + 1
+    m%steps(p%step)%requests(p%nreq) = r
+  end subroutine read_request
+
+  !> Purpose: *END STEP: closes the step; its lists are cut to length.
+  module subroutine read_end_step(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    call allow_params(p, kw, '')
+    call no_data(p, kw)
+    associate(s => m%steps(p%step))
+      s%bcs = s%bcs(1:p%nbc)
+      s%loads = s%loads(1:p%nload)
+      s%requests = s%requests(1:p%nreq)
+    end associate
+    p%step = 0
+  end subroutine read_end_step
+end submodule deck_step_cards
