@@ -2,12 +2,10 @@
 module kinds
   implicit none
   private
-  public :: dp, program_version, name_len, line_len
+  public :: dp, program_version, name_len
 
   integer, parameter :: dp = selected_real_kind(15, 307)
   character(len=*), parameter :: program_version = '0.1.0'
   !> Length of set, material, surface and amplitude names (Abaqus allows 80).
   integer, parameter :: name_len = 80
-  !> Longest deck line kept; Abaqus limits data lines to 256 characters.
-  integer, parameter :: line_len = 512
 end module kinds
