@@ -27,12 +27,13 @@ OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
 TESTS := test_elements test_skyline test_cfe test_solvers test_numbering
 
-.PHONY: all debug run check bench deps clean help fuzz
+.PHONY: all debug sanitize run check bench deps clean help fuzz
 all: bin/cfe2d
 
 help:
 	@echo "make            build bin/cfe2d (optimised)"
 	@echo "make debug      build build-debug/cfe2d with -std=f2008 -Wall -fcheck=all -g -fbacktrace"
+	@echo "make sanitize   build build-asan/cfe2d with -fsanitize=address,undefined"
 	@echo "make run        install what is missing, then run the main example"
 	@echo "make check      install what is missing, build, run every test"
 	@echo "make bench      solver benchmark (about 1e4, 1e5, 1e6 dofs)"
@@ -47,6 +48,14 @@ debug:
 	$(MAKE) BUILD=build-debug FFLAGS="$(DBGFLAGS)" build-debug/cfe2d
 
 build-debug/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
+	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
+
+# The sanitizer build: address and undefined-behaviour checks, apart in build-asan/.
+SANFLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined
+sanitize:
+	$(MAKE) BUILD=build-asan FFLAGS="$(SANFLAGS)" CFLAGS="$(SANFLAGS)" build-asan/cfe2d
+
+build-asan/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
 
 bin $(OBJDIR) $(MODDIR) $(BUILD)/tests:
@@ -85,6 +94,7 @@ run: deps bin/cfe2d
 check: deps
 	$(MAKE) bin/cfe2d $(TESTS:%=$(BUILD)/tests/%)
 	$(MAKE) debug
+	$(MAKE) sanitize
 	$(PYTHON) tests/run_tests.py --build $(BUILD)
 
 # Mutation fuzzer over the project's decks (scripts/fuzz.py; `make check` runs a short slice).
@@ -94,4 +104,4 @@ fuzz: bin/cfe2d
 	$(PYTHON) scripts/fuzz.py $(FUZZ_ARGS)
 
 clean:
-	rm -rf build build-debug bin
+	rm -rf build build-debug build-asan bin

@@ -1,0 +1,66 @@
+"""The sanitizer build (-fsanitize=address,undefined, `make sanitize`):
+the examples, every broken deck of the battery and the flagship's coarse
+mesh run without an address or undefined-behaviour report, with the exit
+status of the optimised build. Leaks at exit are not checked: the program
+ends through exit() with its arrays still allocated, by design."""
+import glob
+import os
+import shutil
+import subprocess
+
+from helpers import ROOT, Skip, WORK
+
+ASAN = os.path.join(ROOT, "build-asan", "cfe2d")
+ENV = dict(os.environ, ASAN_OPTIONS="detect_leaks=0:abort_on_error=0", UBSAN_OPTIONS="print_stacktrace=1")
+REPORTS = ("ERROR: AddressSanitizer", "runtime error:", "Fortran runtime", "Backtrace")
+
+
+def run(deck, outdir):
+    os.makedirs(outdir, exist_ok=True)
+    return subprocess.run([ASAN, "-q", "-o", outdir, deck], capture_output=True, text=True, timeout=900, env=ENV)
+
+
+def clean(r, what):
+    for rep in REPORTS:
+        assert rep not in r.stderr, (what, r.stderr[-3000:])
+
+
+def need_build():
+    if not os.path.exists(ASAN):
+        raise Skip("build-asan/cfe2d not built (make sanitize)")
+
+
+def test_sanitizer_examples():
+    need_build()
+    for name in ("cantilever", "blocks"):
+        r = run(os.path.join(ROOT, "input", "examples", name + ".inp"), os.path.join(WORK, "asan_" + name))
+        clean(r, name)
+        assert r.returncode == 0, r.stderr
+
+
+def test_sanitizer_bad_decks():
+    need_build()
+    decks = sorted(glob.glob(os.path.join(WORK, "bad_*", "bad_*.inp")))
+    assert len(decks) >= 25, "run after the bad-deck battery"
+    for deck in decks:
+        r = run(deck, os.path.join(WORK, "asan_bad"))
+        clean(r, deck)
+        assert r.returncode == 1 and ": error:" in r.stderr, (deck, r.returncode, r.stderr[-2000:])
+
+
+def test_sanitizer_flagship_coarse():
+    """The flagship deck on the coarse mesh (h = 0.1 mm, 17 534 equations),
+    the whole contact history."""
+    need_build()
+    if shutil.which("gmsh") is None:
+        raise Skip("gmsh is not installed")
+    out = os.path.join(WORK, "asan_hertz_coarse")
+    os.makedirs(out, exist_ok=True)
+    subprocess.run(["gmsh", "-2", "-format", "inp", "-setnumber", "Mesh.SaveGroupsOfNodes", "1",
+                    "-setnumber", "h", "0.1", "-o", os.path.join(out, "hertz_mesh.inp"),
+                    os.path.join(ROOT, "input", "hertz", "hertz.geo")], check=True, capture_output=True)
+    shutil.copy(os.path.join(ROOT, "input", "hertz", "hertz.inp"), out)
+    r = run(os.path.join(out, "hertz.inp"), out)
+    clean(r, "hertz coarse")
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert open(os.path.join(out, "hertz.out")).read().count("=== INCREMENT") == 20
