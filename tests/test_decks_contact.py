@@ -119,11 +119,12 @@ def test_hard_is_the_automatic_penalty_and_friction_zero_a_warning():
 
 def test_surface_to_surface_is_two_pass_with_half_the_slope_each():
     """TYPE=SURFACE TO SURFACE: SYMMETRIC two-pass contact, each pass with
-    K/2 per area, so that the interface yields K per unit overclosure."""
+    K/2 per area, so that the interface yields K per unit overclosure. The
+    *SURFACE INTERACTION comes after the pair, as in CalculiX's ring1.inp."""
     own = run_deck("decks_own_symmetric",
                    blocks(f"*CONTACT PAIR, SYMMETRIC, PENALTY={K / 2}\nUPPERFACE, MASTER\n")).ok()
     ccx = run_deck("decks_s2s", blocks(
-        interaction() + "*CONTACT PAIR, INTERACTION=SI1, TYPE=SURFACE TO SURFACE\nUPPERFACE, MASTER\n")).ok()
+        "*CONTACT PAIR,INTERACTION=SI1,TYPE=SURFACE TO SURFACE\nUPPERFACE,MASTER\n" + interaction())).ok()
     same_answer(own, ccx)
     slave, summ, _ = last(ccx)
     p = E * (3 * G0 - G0) / (H1 + H2)

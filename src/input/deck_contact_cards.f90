@@ -6,7 +6,7 @@ submodule (deck_parser) deck_contact_cards
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_cutbacks, max_contact_iterations, line_text, err, next_data, no_data, &
                          allow_params, param_real, param_int, need_nset, new_surface, get_real, &
-                         behaviour_linear
+                         behaviour_linear, add_pair_interaction, check_name_length
   use model, only: contact_pair_t, surface_t, surf_element, surf_node, find_name, edge_nodes
   use model_growth, only: grow
   use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
@@ -29,12 +29,13 @@ contains
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     type(contact_pair_t) :: c
-    integer :: n, npair, first
+    integer :: n, npair, first, card
     logical :: two_pass
+    card = p%i
     call allow_params(p, kw, 'PENALTY,OPEN PENALTY,NODAL,SEARCH DISTANCE,UPDATE SEARCH,TYPE,SYMMETRIC,' // &
                       'INTERACTION,SMALL SLIDING,ADJUST')
     two_pass = has_param(kw, 'SYMMETRIC') .or. surface_to_surface(p, kw)
-    call pair_penalty(p, kw, two_pass, c)
+    call pair_penalty(p, kw, c)
     c%open_ratio = param_real(p, kw, 'OPEN PENALTY', 1.0e-12_dp)
     if (c%open_ratio < 0.0_dp .or. c%open_ratio >= 1.0_dp) call err(p, 'OPEN PENALTY (a ratio) must lie in [0, 1)')
     c%search_distance = param_real(p, kw, 'SEARCH DISTANCE', -1.0_dp)
@@ -54,6 +55,8 @@ contains
       c%twin = 0
       if (has_param(kw, 'ADJUST')) call adjust_slave_nodes(p, m, param_value(kw, 'ADJUST'), c)
       call add_pair(p, m, c)
+      if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
+                                                                  to_upper(param_value(kw, 'INTERACTION')))
       npair = npair + 1
       if (two_pass) then
         ! Two-pass contact: the same pair again with the roles swapped.
@@ -66,6 +69,8 @@ contains
         c%master_surface = m%pairs(first)%slave_surface
         c%twin = first
         call add_pair(p, m, c)
+        if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
+                                                                    to_upper(param_value(kw, 'INTERACTION')))
       end if
     end do
     if (npair == 0) call err(p, 'missing data line (slave, master)')
@@ -94,31 +99,19 @@ contains
     end select
   end function surface_to_surface
 
-  !> The penalty of a pair: cfe2d's PENALTY= (per area, or per node with
-  !> NODAL) or the *SURFACE INTERACTION named by INTERACTION=, whose
-  !> LINEAR slope K is the penalty per area (split between the two passes
-  !> of a two-pass pair, so that the interface still yields K per unit
-  !> overclosure) and whose HARD law is the automatic penalty.
-  subroutine pair_penalty(p, kw, two_pass, c)
+  !> The penalty of a pair given by cfe2d's PENALTY= (per area, or per
+  !> node with NODAL); with INTERACTION= it comes from the *SURFACE
+  !> INTERACTION, resolved once the deck is read (interaction_penalties).
+  subroutine pair_penalty(p, kw, c)
     type(parser_t), intent(in) :: p
     type(keyword_t), intent(in) :: kw
-    logical, intent(in) :: two_pass
     type(contact_pair_t), intent(inout) :: c
-    character(len=:), allocatable :: name
-    integer :: k, it
     if (has_param(kw, 'INTERACTION')) then
       if (has_param(kw, 'PENALTY') .or. has_param(kw, 'NODAL')) &
         call err(p, 'give either INTERACTION= or PENALTY= (the interaction''s *SURFACE BEHAVIOR is the penalty)')
-      name = to_upper(param_value(kw, 'INTERACTION'))
-      it = 0
-      do k = 1, p%ninter
-        if (p%inter(k)%name == name) it = k
-      end do
-      if (it == 0) call err(p, 'undefined surface interaction ' // name // &
-                            ' (*SURFACE INTERACTION must come before the *CONTACT PAIR)')
+      if (len(param_value(kw, 'INTERACTION')) == 0) call err(p, 'INTERACTION= needs the name of a *SURFACE INTERACTION')
+      call check_name_length(p, param_value(kw, 'INTERACTION'))
       c%penalty = -1.0_dp
-      if (p%inter(it)%behaviour == behaviour_linear) c%penalty = p%inter(it)%slope
-      if (two_pass .and. c%penalty > 0.0_dp) c%penalty = 0.5_dp * c%penalty
       c%nodal = .false.
       return
     end if
@@ -127,6 +120,35 @@ contains
     c%nodal = has_param(kw, 'NODAL')
     if (c%nodal .and. .not. has_param(kw, 'PENALTY')) call err(p, 'NODAL needs PENALTY=')
   end subroutine pair_penalty
+
+  !> Purpose: the pairs read with INTERACTION= take the penalty of their
+  !> *SURFACE INTERACTION (defined anywhere in the deck, as CalculiX allows):
+  !> a LINEAR slope K is the penalty per area, split between the two passes
+  !> of a two-pass pair so that the interface still yields K per unit
+  !> overclosure; HARD (or no *SURFACE BEHAVIOR, as in Abaqus) is the
+  !> automatic penalty.
+  module subroutine interaction_penalties(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer :: j, k, it
+    do j = 1, p%npair_inter
+      associate(pi => p%pair_inter(j))
+        it = 0
+        do k = 1, p%ninter
+          if (p%inter(k)%name == pi%name) it = k
+        end do
+        if (it == 0) then
+          p%i = pi%line
+          call err(p, 'undefined surface interaction ' // trim(pi%name))
+        end if
+        associate(c => m%pairs(pi%pair))
+          c%penalty = -1.0_dp
+          if (p%inter(it)%behaviour == behaviour_linear) c%penalty = p%inter(it)%slope
+          if (c%twin /= 0 .and. c%penalty > 0.0_dp) c%penalty = 0.5_dp * c%penalty
+        end associate
+      end associate
+    end do
+  end subroutine interaction_penalties
 
   !> Purpose: ADJUST= of *CONTACT PAIR (CalculiX): before the analysis,
   !> slave nodes are moved onto the master surface along its normal. With
@@ -162,6 +184,7 @@ contains
       call master_projection(m, m%surfaces(c%master_surface), nodes(k), d, nvec, ok)
       if (.not. ok) cycle
       if (.not. by_set .and. d > tol) cycle
+      if (d == 0.0_dp) cycle      ! on the master already
       m%x(:, nodes(k)) = m%x(:, nodes(k)) - d * nvec
       moved = moved + 1
       largest = max(largest, abs(d))

@@ -17,6 +17,7 @@ module deck_cursor
   private
   public :: parser_t, max_id, max_increments, max_cutbacks, max_contact_iterations
   public :: interaction_t, behaviour_none, behaviour_linear, behaviour_hard, new_interaction
+  public :: pair_interaction_t, add_pair_interaction
   public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
             name_param, check_name_length, get_real, get_int, param_real, param_int, &
             node_of, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
@@ -48,6 +49,14 @@ module deck_cursor
     integer :: line = 0             ! the *SURFACE INTERACTION line
   end type interaction_t
 
+  !> INTERACTION= of a *CONTACT PAIR: resolved once the deck is read, as
+  !> CalculiX lets the *SURFACE INTERACTION come after the pair.
+  type :: pair_interaction_t
+    integer :: pair = 0            ! index into model%pairs
+    integer :: line = 0            ! the *CONTACT PAIR line
+    character(len=name_len) :: name = ''
+  end type pair_interaction_t
+
   !> Parser state that only lives while reading.
   type :: parser_t
     type(deck_t) :: deck
@@ -62,6 +71,8 @@ module deck_cursor
     type(interaction_t), allocatable :: inter(:)
     integer :: ninter = 0
     integer :: interaction = 0   ! the block that *SURFACE BEHAVIOR and *FRICTION describe
+    type(pair_interaction_t), allocatable :: pair_inter(:)
+    integer :: npair_inter = 0
     logical :: heading_from_deck = .false.     ! the title came from the deck, not an include
     real(dp), allocatable :: node_thickness(:) ! *NODAL THICKNESS by internal node, < 0: none
     integer :: nodal_thickness_line = 0        ! the last *NODAL THICKNESS card
@@ -302,6 +313,23 @@ contains
     p%inter(k) = interaction_t()
     p%interaction = k
   end function new_interaction
+
+  !> Records that pair `pair` (read on line `line`) takes the penalty of
+  !> the interaction `name`.
+  subroutine add_pair_interaction(p, pair, line, name)
+    type(parser_t), intent(inout) :: p
+    integer, intent(in) :: pair, line
+    character(len=*), intent(in) :: name
+    type(pair_interaction_t), allocatable :: tmp(:)
+    if (.not. allocated(p%pair_inter)) allocate(p%pair_inter(4))
+    if (p%npair_inter == size(p%pair_inter)) then
+      allocate(tmp(2 * p%npair_inter))
+      tmp(1:p%npair_inter) = p%pair_inter(1:p%npair_inter)
+      call move_alloc(tmp, p%pair_inter)
+    end if
+    p%npair_inter = p%npair_inter + 1
+    p%pair_inter(p%npair_inter) = pair_interaction_t(pair=pair, line=line, name=name)
+  end subroutine add_pair_interaction
 
   subroutine in_step(p, kw, inside)
     type(parser_t), intent(in) :: p

@@ -22,6 +22,7 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     integer :: s
+    call interaction_penalties(p, m)
     call check_sections(p, m)
     call apply_section_states(p, m)
     call apply_nodal_thickness(p, m)

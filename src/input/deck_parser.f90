@@ -139,6 +139,10 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_equation
+    module subroutine interaction_penalties(p, m)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+    end subroutine interaction_penalties
     module subroutine reject_card(p, kw)
       type(parser_t), intent(inout) :: p
       type(keyword_t), intent(in) :: kw
