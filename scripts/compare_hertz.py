@@ -24,7 +24,7 @@ the element types (CPS*, CPE*). --E, --nu and --plane override them.
 
 Usage: compare_hertz.py RESULT_DIR [--job hertz] [--deck DECK] [--radius 10]
        [--E E1 [E2]] [--nu NU1 [NU2]] [--plane stress|strain] [--symmetry 1]
-       [--x0 0] [--load-set CYL_TOP] [--plots]
+       [--x0 0] [--load-set CYL_TOP] [--plots] [--quiet]
 """
 import argparse
 import csv
@@ -239,6 +239,7 @@ def main(argv=None):
     ap.add_argument("--x0", type=float, default=0.0, help="x of the cylinder's axis (the symmetry plane)")
     ap.add_argument("--load-set", default="CYL_TOP", help="node set whose mean U2 is reported as u_top")
     ap.add_argument("--plots", action="store_true", help="also draw the PNG plots")
+    ap.add_argument("--quiet", action="store_true", help="write <job>_hertz.txt only")
     args = ap.parse_args(argv)
     job = os.path.join(args.result_dir, args.job)
     deck = args.deck or job + ".inp"
@@ -254,8 +255,9 @@ def main(argv=None):
     title = (f"# Hertz comparison of {job}: R = {args.radius}, plane {plane}, E1 = {mats[0][0]:g}, "
              f"nu1 = {mats[0][1]:g}, E2 = {mats[1][0]:g}, nu2 = {mats[1][1]:g}, E* = {estar:.6g}, "
              f"symmetry factor {args.symmetry:g}")
-    print(title)
-    print(text)
+    if not args.quiet:
+        print(title)
+        print(text)
     with open(job + "_hertz.txt", "w") as f:
         f.write(title + "\n" + text + "\n")
     if args.plots:

@@ -38,7 +38,8 @@ def run_case(name, g0=0.0, edit=None):
             f.write(deck)
         run = run_deck(name, path=path).ok()
         out = os.path.dirname(run.listing_path)
-        rows = compare_hertz.main([out, "--job", "nafems1", "--deck", path, "--radius", "50", "--symmetry", "2"])
+        rows = compare_hertz.main([out, "--job", "nafems1", "--deck", path, "--radius", "50", "--symmetry", "2",
+                                   "--quiet"])
         _CACHE[name] = (run, rows)
     return _CACHE[name]
 
