@@ -1,19 +1,30 @@
 #!/usr/bin/env python3
-"""Compare the contact pressures of a cfe2d run with Hertz.
+"""Compare the contact pressures of a cfe2d run with Hertz (line contact).
 
 For every increment with closed contact elements, the load P is the FE
-contact force (sum of the slave nodal forces), and the FE pressures on the
-slave and on the master side are compared with Hertz's solution for that P:
+contact force (the sum of the slave nodal forces, times the symmetry factor
+of a half model), and the FE pressures on the slave and on the master side
+are compared with Hertz's solution for that P:
 
   a_FE, p0_FE   from a least-squares fit of the Hertz ellipse
                 p^2 = p0^2 (1 - x^2/a^2) to the nodal pressures with
-                |x| < 0.8 a_Hertz (slave side)
+                |x - x0| < 0.8 a_Hertz (slave side)
   node p0 err   the largest nodal pressure against p0 (no fitting)
-  L2            sqrt(sum (p - p_H)^2 / sum p_H^2) over |x| < a_Hertz
-  s-m           max |p_slave - p_master(x_slave)| / p0 over |x| < 0.8 a
+  L2            sqrt(sum (p - p_H)^2 / sum p_H^2) over |x - x0| < a_Hertz
+  s-m           max |p_slave - p_master(x_slave)| / p0 over |x - x0| < 0.8 a
 
-Usage: compare_hertz.py RESULT_DIR [--job hertz] [--radius 10] [--E 210000]
-       [--nu 0.3] [--plane stress] [--plots]
+The run may be force- or displacement-driven: P always comes from the
+contact force; u_top is the mean vertical displacement of a printed node
+set (--load-set) when the listing has it.
+
+E* and the stress state come from the deck (<result_dir>/<job>.inp, or
+--deck): the materials of its sections (two materials: the two bodies;
+one: both), and plane stress or strain from STATE= on *SOLID SECTION or
+the element types (CPS*, CPE*). --E, --nu and --plane override them.
+
+Usage: compare_hertz.py RESULT_DIR [--job hertz] [--deck DECK] [--radius 10]
+       [--E E1 [E2]] [--nu NU1 [NU2]] [--plane stress|strain] [--symmetry 1]
+       [--x0 0] [--load-set CYL_TOP] [--plots] [--quiet]
 """
 import argparse
 import csv
@@ -27,7 +38,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cfe2d_listing import read_listing  # noqa: E402
 from hertz import HertzLine, effective_modulus  # noqa: E402
 
-__all__ = ["read_contact_table", "compare", "format_table"]
+__all__ = ["read_contact_table", "compare", "format_table", "read_deck_cards", "deck_materials",
+           "deck_stress_state", "line_contact_modulus", "top_displacement"]
 
 
 def read_contact_table(path):
@@ -64,13 +76,15 @@ def fit_ellipse(x, p, window):
     return float(np.sqrt(c0)), float(np.sqrt(-c0 / c1))
 
 
-def compare(table, radius, estar, x0=0.0, displacement=None):
-    """Rows of the comparison, one per increment in contact."""
+def compare(table, radius, estar, x0=0.0, displacement=None, symmetry=1):
+    """Rows of the comparison, one per increment in contact. symmetry: the
+    whole contact force over the modelled one (2 for a half model cut at
+    x0: its slave nodes lie on one side of x0)."""
     rows = []
     for key in sorted(table):
         inc = table[key]
         s, m = inc["slave"], inc["master"]
-        P = float(np.sum(s["force"]))
+        P = symmetry * float(np.sum(s["force"]))
         closed = int(np.sum(s["closed"]))
         row = {"step": key[0], "increment": key[1], "time": inc["time"], "P": P, "closed": closed,
                "u": displacement.get(key, float("nan")) if displacement else float("nan"),
@@ -117,6 +131,91 @@ def format_table(rows):
     return "\n".join(lines)
 
 
+def read_deck_cards(path):
+    """The cards of a keyword deck and the files it *INCLUDEs, in order:
+    a list of (keyword, {PARAMETER: value}, [data lines as field lists])."""
+    cards = []
+
+    def read(p):
+        with open(p) as f:
+            for raw in f:
+                line = raw.strip()
+                if not line or line.startswith("**"):
+                    continue
+                if line.startswith("*"):
+                    fields = [x.strip() for x in line[1:].split(",")]
+                    name = " ".join(fields[0].upper().split())
+                    params = {}
+                    for fld in fields[1:]:
+                        if fld:
+                            k, _, v = fld.partition("=")
+                            params[" ".join(k.upper().split())] = v.strip()
+                    if name == "INCLUDE":
+                        read(os.path.join(os.path.dirname(p), params["INPUT"]))
+                        continue
+                    cards.append((name, params, []))
+                elif cards:
+                    cards[-1][2].append([x.strip() for x in line.rstrip(",").split(",")])
+
+    read(path)
+    return cards
+
+
+def deck_materials(cards):
+    """{material name: (E, nu)} of the isotropic *ELASTIC materials."""
+    out, current = {}, None
+    for name, params, data in cards:
+        if name == "MATERIAL":
+            current = params["NAME"].upper()
+        elif name == "ELASTIC" and current is not None and data:
+            out[current] = (float(data[0][0]), float(data[0][1]))
+    return out
+
+
+_STATES = {"CPS": "stress", "CPE": "strain", "CAX": "axisymmetric",
+           "PLANE STRESS": "stress", "PLANE STRAIN": "strain", "AXISYMMETRIC": "axisymmetric"}
+
+
+def deck_stress_state(cards):
+    """"stress", "strain" or "axisymmetric": STATE= of the sections, or
+    the continuum element types where a section does not say."""
+    sections = [p for n, p, _ in cards if n == "SOLID SECTION"]
+    states = {_STATES[p["STATE"].upper()] for p in sections if "STATE" in p}
+    if not sections or any("STATE" not in p for p in sections):
+        for n, p, _ in cards:
+            prefix = p.get("TYPE", "").upper()[:3]
+            if n == "ELEMENT" and prefix in _STATES:
+                states.add(_STATES[prefix])
+    if len(states) != 1:
+        raise ValueError(f"cannot tell the stress state from the deck ({sorted(states) or 'none'}); give --plane")
+    return states.pop()
+
+
+def line_contact_modulus(cards, plane=None, e=None, nu=None):
+    """(E*, plane, [(E1, nu1), (E2, nu2)]) of the line contact the deck
+    describes: the materials of its sections (one material: both bodies),
+    plane stress or strain; plane, e and nu (lists of one or two values)
+    override what the deck says."""
+    plane = plane or deck_stress_state(cards)
+    if plane not in ("stress", "strain"):
+        raise ValueError(f"plane {plane}: Hertz line contact needs plane stress or plane strain")
+    if e is None:
+        mats = deck_materials(cards)
+        used = []
+        for n, p, _ in cards:
+            if n == "SOLID SECTION" and p["MATERIAL"].upper() not in used:
+                used.append(p["MATERIAL"].upper())
+        if not 1 <= len(used) <= 2:
+            raise ValueError(f"{len(used)} section materials: give --E and --nu of the two bodies")
+        pairs = [mats[u] for u in used]
+    else:
+        nu = nu or [0.3]
+        pairs = [(e[0], nu[0]), (e[-1], nu[-1])]
+    if len(pairs) == 1:
+        pairs = pairs * 2
+    return effective_modulus(pairs[0][0], pairs[0][1], pairs[1][0], pairs[1][1], plane=plane), plane, pairs
+
+
 def top_displacement(listing_path, nset="CYL_TOP"):
     """Prescribed displacement of the loaded edge per increment."""
     out = {}
@@ -130,25 +229,43 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("result_dir")
     ap.add_argument("--job", default="hertz")
+    ap.add_argument("--deck", help="the deck run (default RESULT_DIR/JOB.inp)")
     ap.add_argument("--radius", type=float, default=10.0)
-    ap.add_argument("--E", type=float, default=210000.0)
-    ap.add_argument("--nu", type=float, default=0.3)
-    ap.add_argument("--plane", choices=["stress", "strain"], default="stress")
+    ap.add_argument("--E", type=float, nargs="+", help="Young's moduli of the two bodies (one: both)")
+    ap.add_argument("--nu", type=float, nargs="+", help="Poisson's ratios of the two bodies (one: both)")
+    ap.add_argument("--plane", choices=["stress", "strain"], help="stress state (default: from the deck)")
+    ap.add_argument("--symmetry", type=float, default=1.0,
+                    help="whole contact force / modelled one (2 for a half model)")
+    ap.add_argument("--x0", type=float, default=0.0, help="x of the cylinder's axis (the symmetry plane)")
+    ap.add_argument("--load-set", default="CYL_TOP", help="node set whose mean U2 is reported as u_top")
     ap.add_argument("--plots", action="store_true", help="also draw the PNG plots")
+    ap.add_argument("--quiet", action="store_true", help="write <job>_hertz.txt only")
     args = ap.parse_args(argv)
     job = os.path.join(args.result_dir, args.job)
+    deck = args.deck or job + ".inp"
+    cards = read_deck_cards(deck) if os.path.exists(deck) else []
+    if not cards and args.E is None:
+        args.E, args.nu = [210000.0], args.nu or [0.3]     # the flagship's steel
+    estar, plane, mats = line_contact_modulus(cards, plane=args.plane or (None if cards else "stress"),
+                                              e=args.E, nu=args.nu)
     table = read_contact_table(job + "_contact.csv")
-    disp = top_displacement(job + ".out")
-    estar = effective_modulus(args.E, args.nu, plane=args.plane)
-    rows = compare(table, args.radius, estar, displacement=disp)
+    disp = top_displacement(job + ".out", args.load_set)
+    rows = compare(table, args.radius, estar, x0=args.x0, displacement=disp, symmetry=args.symmetry)
     text = format_table(rows)
-    print(text)
+    title = (f"# Hertz comparison of {job}: R = {args.radius}, plane {plane}, E1 = {mats[0][0]:g}, "
+             f"nu1 = {mats[0][1]:g}, E2 = {mats[1][0]:g}, nu2 = {mats[1][1]:g}, E* = {estar:.6g}, "
+             f"symmetry factor {args.symmetry:g}")
+    if not args.quiet:
+        print(title)
+        print(text)
     with open(job + "_hertz.txt", "w") as f:
-        f.write(f"# Hertz comparison of {job}: R = {args.radius}, E* = {estar:.6g} (plane {args.plane})\n")
-        f.write(text + "\n")
+        f.write(title + "\n" + text + "\n")
     if args.plots:
-        import plots_hertz
-        plots_hertz.draw_all(args.result_dir, args.job, table, rows, args.radius, estar)
+        if args.symmetry != 1:
+            print("(plots are drawn for whole models only)")
+        else:
+            import plots_hertz
+            plots_hertz.draw_all(args.result_dir, args.job, table, rows, args.radius, estar)
     return rows
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what cfe2d needs to build, run and test, and only what is
 # missing: gfortran, LAPACK/BLAS, SuiteSparse, METIS and gmsh from Debian,
-# numpy and matplotlib from PyPI. Safe to run again: it says what it finds.
+# numpy, matplotlib and meshio from PyPI. Safe to run again: it says what it finds.
 set -euo pipefail
 
 PYTHON=${PYTHON:-python3}
@@ -30,12 +30,12 @@ else
 fi
 
 py_missing=()
-for mod in numpy matplotlib; do
+for mod in numpy matplotlib meshio; do
   "$PYTHON" -c "import $mod" 2>/dev/null || py_missing+=("$mod")
 done
 if [ ${#py_missing[@]} -gt 0 ]; then
   echo "install-deps: installing Python packages: ${py_missing[*]}"
   "$PYTHON" -m pip install --quiet --disable-pip-version-check "${py_missing[@]}"
 else
-  echo "install-deps: Python packages present (numpy matplotlib)"
+  echo "install-deps: Python packages present (numpy matplotlib meshio)"
 fi

@@ -7,6 +7,7 @@ program cfe2d
   use analysis, only: run_analysis
   use analysis_events, only: observer_ref_t
   use results_gmsh, only: result_file_t, open_result_file
+  use results_vtu, only: vtu_series_t, open_vtu_series
   use progress, only: progress_t
   use messages, only: fatal, terminate
   implicit none
@@ -16,13 +17,15 @@ program cfe2d
   type(listing_t), target :: lst
   type(result_file_t), target :: res
   type(progress_t), target :: prog
+  type(vtu_series_t), target :: vtu
   type(observer_ref_t), allocatable :: observers(:)
-  logical :: quiet
+  logical :: quiet, want_vtu
   integer :: i, k, ios, digits, nobs
 
   deck = ''
   outdir = ''
   quiet = .false.
+  want_vtu = .false.
   digits = 7
   i = 1
   do while (i <= command_argument_count())
@@ -36,6 +39,8 @@ program cfe2d
       call terminate(0)
     case ('-q', '--quiet')
       quiet = .true.
+    case ('--vtu')
+      want_vtu = .true.
     case ('-d', '--digits')
       i = i + 1
       if (i > command_argument_count()) call fatal('--digits needs a number')
@@ -79,13 +84,18 @@ program cfe2d
   end if
   call write_header(lst, m)
   ! The writers that observe the analysis; a new output format is one more line here.
-  allocate(observers(3))
+  allocate(observers(4))
   nobs = 1
   observers(1)%o => lst
   if (any_file_request(m)) then
     call open_result_file(job // '.msh', m, res)
     nobs = nobs + 1
     observers(nobs)%o => res
+  end if
+  if (want_vtu .or. m%vtu) then
+    call open_vtu_series(job, vtu)
+    nobs = nobs + 1
+    observers(nobs)%o => vtu
   end if
   if (.not. quiet) then
     nobs = nobs + 1
@@ -110,11 +120,14 @@ contains
     print '(a)', ''
     print '(a)', 'Runs the keyword deck and writes <job>.out (listing) and, with contact,'
     print '(a)', '<job>_contact.csv, and with *NODE FILE or *EL FILE the gmsh result file'
-    print '(a)', '<job>.msh, next to the deck or in --output-dir.'
+    print '(a)', '<job>.msh, next to the deck or in --output-dir. With --vtu (or FORMAT=VTU on'
+    print '(a)', '*NODE FILE or *EL FILE) also ParaView files: <job>_NNNN.vtu per increment and'
+    print '(a)', 'the time series <job>.pvd.'
     print '(a)', ''
     print '(a)', '  -o, --output-dir DIR   write the results into DIR'
     print '(a)', '  -d, --digits N         significant digits of reals in the listing (default 7)'
     print '(a)', '  -q, --quiet            no progress lines'
+    print '(a)', '      --vtu              also write ParaView files (<job>_NNNN.vtu, <job>.pvd)'
     print '(a)', '  -h, --help             this text'
     print '(a)', '  -v, --version          program version'
   end subroutine usage

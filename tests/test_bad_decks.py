@@ -60,7 +60,8 @@ CASES = [
     ("unimplemented Abaqus keyword", replace("*CLOAD", "*DLOAD\n1, P, 3.\n*CLOAD"), "*DLOAD", "*DLOAD is not implemented"),
     ("unknown parameter", replace("*NODE, NSET=ALLN", "*NODE, NSET=ALLN, COLOUR=RED"), "COLOUR", "unknown parameter COLOUR"),
     ("malformed number", replace("5, 1, 1\n", "5, 1, 1.x\n"), "5, 1, 1.x", '"1.x" is not a number'),
-    ("missing coordinate", replace("5, 1, 1\n", "5, 1\n"), "5, 1", "needs: node id, x, y"),
+    # (a missing coordinate is 0, as in CalculiX: tests/test_decks_calculix.py)
+    ("coordinate not a number", replace("5, 1, 1\n", "5, 1, y1\n"), "5, 1, y1", "not a number (y coordinate)"),
     ("missing data line", replace("*ELASTIC\n1000., 0.25\n", "*ELASTIC\n"), "*ELASTIC", "missing data line"),
     ("undefined node", replace("2, 2, 3, 6, 5", "2, 2, 3, 66, 5"), "2, 2, 3, 66, 5", "undefined node 66"),
     ("undefined node set", replace("LEFT, 1, 2", "LEFTSIDE, 1, 2"), "LEFTSIDE", "undefined node set LEFTSIDE"),

@@ -1,11 +1,13 @@
 !> Contact and solver cards: *CONTACT PAIR, *CONTACT CONTROLS, *SOLVER.
+!> (The *SURFACE INTERACTION block a pair may name: deck_interaction_cards.)
 submodule (deck_parser) deck_contact_cards
   use kinds, only: dp
-  use strings, only: split_fields, to_upper, field_t
-  use deck_input, only: param_value, has_param
+  use strings, only: split_fields, to_upper, field_t, parse_real, itoa, rtoa
+  use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_cutbacks, max_contact_iterations, line_text, err, next_data, no_data, &
-                         allow_params, param_real, param_int, need_nset, new_surface
-  use model, only: contact_pair_t, surf_element, surf_node, find_name
+                         allow_params, param_real, param_int, need_nset, new_surface, get_real, &
+                         behaviour_linear, add_pair_interaction, check_name_length
+  use model, only: contact_pair_t, surface_t, surf_element, surf_node, find_name, edge_nodes
   use model_growth, only: grow
   use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
                           order_amd, order_metis
@@ -16,27 +18,29 @@ contains
   !> Purpose: *CONTACT PAIR: `slave, master` per data line, the slave a
   !> surface or a node set, the master an element surface; the parameters
   !> (penalty, search) apply to every pair of the card. SYMMETRIC adds the
-  !> pair with the roles swapped (two-pass contact).
+  !> pair with the roles swapped (two-pass contact). The CalculiX/Abaqus
+  !> form names a *SURFACE INTERACTION (INTERACTION=) for the penalty;
+  !> TYPE=SURFACE TO SURFACE is two-pass, SMALL SLIDING keeps the first
+  !> pairing (without it, CalculiX's large sliding, the pairing is searched
+  !> again every increment), ADJUST= moves slave nodes onto the master.
   module subroutine read_contact_pair(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     type(contact_pair_t) :: c
-    integer :: n, npair, first
-    call allow_params(p, kw, 'PENALTY,OPEN PENALTY,NODAL,SEARCH DISTANCE,UPDATE SEARCH,TYPE,SYMMETRIC')
-    if (has_param(kw, 'TYPE')) then
-      if (to_upper(param_value(kw, 'TYPE')) /= 'NODE TO SURFACE') &
-        call err(p, 'only TYPE=NODE TO SURFACE is implemented')
-    end if
-    c%penalty = param_real(p, kw, 'PENALTY', -1.0_dp)
-    if (has_param(kw, 'PENALTY') .and. c%penalty <= 0.0_dp) call err(p, 'PENALTY must be positive')
+    integer :: n, npair, first, card
+    logical :: two_pass
+    card = p%i
+    call allow_params(p, kw, 'PENALTY,OPEN PENALTY,NODAL,SEARCH DISTANCE,UPDATE SEARCH,TYPE,SYMMETRIC,' // &
+                      'INTERACTION,SMALL SLIDING,ADJUST')
+    two_pass = has_param(kw, 'SYMMETRIC') .or. surface_to_surface(p, kw)
+    call pair_penalty(p, kw, c)
     c%open_ratio = param_real(p, kw, 'OPEN PENALTY', 1.0e-12_dp)
     if (c%open_ratio < 0.0_dp .or. c%open_ratio >= 1.0_dp) call err(p, 'OPEN PENALTY (a ratio) must lie in [0, 1)')
-    c%nodal = has_param(kw, 'NODAL')
-    if (c%nodal .and. .not. has_param(kw, 'PENALTY')) call err(p, 'NODAL needs PENALTY=')
     c%search_distance = param_real(p, kw, 'SEARCH DISTANCE', -1.0_dp)
-    c%update_search = has_param(kw, 'UPDATE SEARCH')
+    c%update_search = has_param(kw, 'UPDATE SEARCH') .or. &
+        (has_param(kw, 'INTERACTION') .and. .not. two_pass .and. .not. has_param(kw, 'SMALL SLIDING'))
     npair = 0
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
@@ -49,22 +53,180 @@ contains
       if (c%master_surface == c%slave_surface) call err(p, 'slave and master are the same surface')
       c%src%line = p%i
       c%twin = 0
+      if (has_param(kw, 'ADJUST')) call adjust_slave_nodes(p, m, param_value(kw, 'ADJUST'), c)
       call add_pair(p, m, c)
+      if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
+                                                                  to_upper(param_value(kw, 'INTERACTION')))
       npair = npair + 1
-      if (has_param(kw, 'SYMMETRIC')) then
+      if (two_pass) then
         ! Two-pass contact: the same pair again with the roles swapped.
         if (m%surfaces(c%slave_surface)%kind /= surf_element) &
-          call err(p, 'SYMMETRIC needs an element-based slave surface (it is the master of the second pass)')
+          call err(p, 'two-pass contact (SYMMETRIC, TYPE=SURFACE TO SURFACE) needs an element-based slave ' // &
+                   'surface (it is the master of the second pass)')
         first = p%npairs
         m%pairs(first)%twin = first + 1
         c%slave_surface = m%pairs(first)%master_surface
         c%master_surface = m%pairs(first)%slave_surface
         c%twin = first
         call add_pair(p, m, c)
+        if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
+                                                                    to_upper(param_value(kw, 'INTERACTION')))
       end if
     end do
     if (npair == 0) call err(p, 'missing data line (slave, master)')
   end subroutine read_contact_pair
+
+  !> TYPE= of *CONTACT PAIR: NODE TO SURFACE (cfe2d's own, one pass) or
+  !> SURFACE TO SURFACE (true: made two-pass, see docs/contact.md).
+  logical function surface_to_surface(p, kw)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: t
+    surface_to_surface = .false.
+    if (.not. has_param(kw, 'TYPE')) return
+    t = to_upper(param_value(kw, 'TYPE'))
+    select case (t)
+    case ('NODE TO SURFACE')
+    case ('SURFACE TO SURFACE')
+      surface_to_surface = .true.
+    case ('MORTAR')
+      call err(p, 'TYPE=MORTAR (Lagrange multipliers) is not implemented; NODE TO SURFACE and ' // &
+               'SURFACE TO SURFACE (penalty) are')
+    case ('MASSLESS')
+      call err(p, 'TYPE=MASSLESS belongs to explicit dynamics, which cfe2d does not do')
+    case default
+      call err(p, 'TYPE must be NODE TO SURFACE or SURFACE TO SURFACE')
+    end select
+  end function surface_to_surface
+
+  !> The penalty of a pair given by cfe2d's PENALTY= (per area, or per
+  !> node with NODAL); with INTERACTION= it comes from the *SURFACE
+  !> INTERACTION, resolved once the deck is read (interaction_penalties).
+  subroutine pair_penalty(p, kw, c)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    type(contact_pair_t), intent(inout) :: c
+    if (has_param(kw, 'INTERACTION')) then
+      if (has_param(kw, 'PENALTY') .or. has_param(kw, 'NODAL')) &
+        call err(p, 'give either INTERACTION= or PENALTY= (the interaction''s *SURFACE BEHAVIOR is the penalty)')
+      if (len(param_value(kw, 'INTERACTION')) == 0) call err(p, 'INTERACTION= needs the name of a *SURFACE INTERACTION')
+      call check_name_length(p, param_value(kw, 'INTERACTION'))
+      c%penalty = -1.0_dp
+      c%nodal = .false.
+      return
+    end if
+    c%penalty = param_real(p, kw, 'PENALTY', -1.0_dp)
+    if (has_param(kw, 'PENALTY') .and. c%penalty <= 0.0_dp) call err(p, 'PENALTY must be positive')
+    c%nodal = has_param(kw, 'NODAL')
+    if (c%nodal .and. .not. has_param(kw, 'PENALTY')) call err(p, 'NODAL needs PENALTY=')
+  end subroutine pair_penalty
+
+  !> Purpose: the pairs read with INTERACTION= take the penalty of their
+  !> *SURFACE INTERACTION (defined anywhere in the deck, as CalculiX allows):
+  !> a LINEAR slope K is the penalty per area, split between the two passes
+  !> of a two-pass pair so that the interface still yields K per unit
+  !> overclosure; HARD (or no *SURFACE BEHAVIOR, as in Abaqus) is the
+  !> automatic penalty.
+  module subroutine interaction_penalties(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer :: j, k, it
+    do j = 1, p%npair_inter
+      associate(pi => p%pair_inter(j))
+        it = 0
+        do k = 1, p%ninter
+          if (p%inter(k)%name == pi%name) it = k
+        end do
+        if (it == 0) then
+          p%i = pi%line
+          call err(p, 'undefined surface interaction ' // trim(pi%name))
+        end if
+        associate(c => m%pairs(pi%pair))
+          c%penalty = -1.0_dp
+          if (p%inter(it)%behaviour == behaviour_linear) c%penalty = p%inter(it)%slope
+          if (c%twin /= 0 .and. c%penalty > 0.0_dp) c%penalty = 0.5_dp * c%penalty
+        end associate
+      end associate
+    end do
+  end subroutine interaction_penalties
+
+  !> Purpose: ADJUST= of *CONTACT PAIR (CalculiX): before the analysis,
+  !> slave nodes are moved onto the master surface along its normal. With
+  !> a number, the slave nodes whose clearance is at most that number
+  !> (penetrating ones always); with a node set, the nodes of the set.
+  !> Only nodes whose projection falls on a master edge move; the count
+  !> and the largest move are reported as a warning on the card.
+  subroutine adjust_slave_nodes(p, m, value, c)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    character(len=*), intent(in) :: value
+    type(contact_pair_t), intent(in) :: c
+    type(field_t) :: f
+    integer, allocatable :: nodes(:)
+    real(dp) :: tol, d, nvec(2), largest
+    logical :: by_set, ok
+    integer :: k, moved
+    by_set = .false.
+    tol = 0.0_dp
+    call parse_real(value, tol, ok)
+    if (ok) then
+      f%s = value
+      tol = get_real(p, f, 'value of ADJUST')
+      if (tol < 0.0_dp) call err(p, 'ADJUST= must be a non-negative distance or a node set')
+      nodes = m%surfaces(c%slave_surface)%nodes
+    else
+      by_set = .true.
+      nodes = m%nsets(need_nset(p, m, value))%items
+    end if
+    moved = 0
+    largest = 0.0_dp
+    do k = 1, size(nodes)
+      call master_projection(m, m%surfaces(c%master_surface), nodes(k), d, nvec, ok)
+      if (.not. ok) cycle
+      if (.not. by_set .and. d > tol) cycle
+      if (d == 0.0_dp) cycle      ! on the master already
+      m%x(:, nodes(k)) = m%x(:, nodes(k)) - d * nvec
+      moved = moved + 1
+      largest = max(largest, abs(d))
+    end do
+    call deck_warning(p%deck, p%i, 'ADJUST moved ' // itoa(moved) // ' slave node(s) onto the master surface ' // &
+                      '(by at most ' // rtoa(largest, 3) // ')')
+  end subroutine adjust_slave_nodes
+
+  !> Signed distance d of node s from the nearest master edge on which its
+  !> orthogonal projection falls (positive: clearance, on the outer side)
+  !> and that edge's outward unit normal; ok false if there is none. The
+  !> same rule as the contact search: a node more than half an edge length
+  !> behind an edge is on the far side of the master body.
+  subroutine master_projection(m, ms, s, d, nvec, ok)
+    type(model_t), intent(in) :: m
+    type(surface_t), intent(in) :: ms
+    integer, intent(in) :: s
+    real(dp), intent(out) :: d, nvec(2)
+    logical, intent(out) :: ok
+    real(dp), parameter :: edge_tol = 1.0e-6_dp
+    real(dp) :: ab(2), t, len, dj, nj(2)
+    integer :: j, a, b
+    ok = .false.
+    d = huge(1.0_dp)
+    nvec = 0.0_dp
+    do j = 1, size(ms%elem)
+      call edge_nodes(m, ms%elem(j), ms%edge(j), a, b)
+      if (a == s .or. b == s) cycle
+      ab = m%x(:, b) - m%x(:, a)
+      len = norm2(ab)
+      t = dot_product(m%x(:, s) - m%x(:, a), ab) / len**2
+      if (t < -edge_tol .or. t > 1.0_dp + edge_tol) cycle
+      nj = [ab(2), -ab(1)] / len
+      dj = dot_product(m%x(:, s) - m%x(:, a), nj)
+      if (dj < -0.5_dp * len) cycle
+      if (abs(dj) < abs(d)) then
+        d = dj
+        nvec = nj
+        ok = .true.
+      end if
+    end do
+  end subroutine master_projection
 
   subroutine add_pair(p, m, pair)
     type(parser_t), intent(inout) :: p

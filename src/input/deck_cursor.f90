@@ -16,6 +16,8 @@ module deck_cursor
   implicit none
   private
   public :: parser_t, max_id, max_increments, max_cutbacks, max_contact_iterations
+  public :: interaction_t, behaviour_none, behaviour_linear, behaviour_hard, new_interaction
+  public :: pair_interaction_t, add_pair_interaction
   public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
             name_param, check_name_length, get_real, get_int, param_real, param_int, &
             node_of, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
@@ -33,6 +35,28 @@ module deck_cursor
   !> MAXIT= of *CONTACT CONTROLS: contact status iterations per increment.
   integer, parameter :: max_contact_iterations = 1000
 
+  !> Pressure-overclosure behaviours of a surface interaction that cfe2d
+  !> maps onto its penalty (the others stop at their *SURFACE BEHAVIOR).
+  integer, parameter :: behaviour_none = 0, behaviour_linear = 1, behaviour_hard = 2
+
+  !> A *SURFACE INTERACTION block as read. Each *CONTACT PAIR naming it
+  !> takes its penalty into its contact_pair_t, so the block itself only
+  !> lives while reading.
+  type :: interaction_t
+    character(len=name_len) :: name = ''
+    integer :: behaviour = behaviour_none
+    real(dp) :: slope = -1.0_dp     ! K of LINEAR (pressure per overclosure); < 0: automatic penalty
+    integer :: line = 0             ! the *SURFACE INTERACTION line
+  end type interaction_t
+
+  !> INTERACTION= of a *CONTACT PAIR: resolved once the deck is read, as
+  !> CalculiX lets the *SURFACE INTERACTION come after the pair.
+  type :: pair_interaction_t
+    integer :: pair = 0            ! index into model%pairs
+    integer :: line = 0            ! the *CONTACT PAIR line
+    character(len=name_len) :: name = ''
+  end type pair_interaction_t
+
   !> Parser state that only lives while reading.
   type :: parser_t
     type(deck_t) :: deck
@@ -43,6 +67,17 @@ module deck_cursor
     integer :: nsets = 0, nelsets = 0, nsurf = 0, nmat = 0, nsec = 0, namp = 0
     integer :: nsteps = 0, npairs = 0, nmbc = 0
     integer :: nbc = 0, nload = 0, nreq = 0   ! of the current step
+    ! Cards of decks written for CalculiX/Abaqus:
+    type(interaction_t), allocatable :: inter(:)
+    integer :: ninter = 0
+    integer :: interaction = 0   ! the block that *SURFACE BEHAVIOR and *FRICTION describe
+    type(pair_interaction_t), allocatable :: pair_inter(:)
+    integer :: npair_inter = 0
+    logical :: heading_from_deck = .false.     ! the title came from the deck, not an include
+    real(dp), allocatable :: node_thickness(:) ! *NODAL THICKNESS by internal node, < 0: none
+    integer :: nodal_thickness_line = 0        ! the last *NODAL THICKNESS card
+    integer :: heading_line = 0                ! the *HEADING whose title is kept
+    integer :: nequations = 0
   end type parser_t
 
 contains
@@ -236,6 +271,10 @@ contains
     type(model_t), intent(in) :: m
     character(len=*), intent(in) :: name
     need_nset = nset_index(p, m, name)
+    if (need_nset == 0 .and. elset_index(p, m, name) > 0) call err(p, 'undefined node set ' // &
+        to_upper(name) // ': there is an element set of that name (gmsh writes node sets only with ' // &
+        '-setnumber Mesh.SaveGroupsOfNodes 1; or define it with *NSET, NSET=' // to_upper(name) // &
+        ', ELSET=' // to_upper(name) // ')')
     if (need_nset == 0) call err(p, 'undefined node set ' // to_upper(name))
   end function need_nset
 
@@ -244,6 +283,8 @@ contains
     type(model_t), intent(in) :: m
     character(len=*), intent(in) :: name
     need_elset = elset_index(p, m, name)
+    if (need_elset == 0 .and. nset_index(p, m, name) > 0) call err(p, 'undefined element set ' // &
+        to_upper(name) // ' (there is a node set of that name)')
     if (need_elset == 0) call err(p, 'undefined element set ' // to_upper(name))
   end function need_elset
 
@@ -256,6 +297,39 @@ contains
     p%nsurf = p%nsurf + 1
     isurf = p%nsurf
   end function new_surface
+
+  !> A new, empty surface interaction slot; p%interaction points at it.
+  integer function new_interaction(p) result(k)
+    type(parser_t), intent(inout) :: p
+    type(interaction_t), allocatable :: tmp(:)
+    if (.not. allocated(p%inter)) allocate(p%inter(4))
+    if (p%ninter == size(p%inter)) then
+      allocate(tmp(2 * p%ninter))
+      tmp(1:p%ninter) = p%inter(1:p%ninter)
+      call move_alloc(tmp, p%inter)
+    end if
+    p%ninter = p%ninter + 1
+    k = p%ninter
+    p%inter(k) = interaction_t()
+    p%interaction = k
+  end function new_interaction
+
+  !> Records that pair `pair` (read on line `line`) takes the penalty of
+  !> the interaction `name`.
+  subroutine add_pair_interaction(p, pair, line, name)
+    type(parser_t), intent(inout) :: p
+    integer, intent(in) :: pair, line
+    character(len=*), intent(in) :: name
+    type(pair_interaction_t), allocatable :: tmp(:)
+    if (.not. allocated(p%pair_inter)) allocate(p%pair_inter(4))
+    if (p%npair_inter == size(p%pair_inter)) then
+      allocate(tmp(2 * p%npair_inter))
+      tmp(1:p%npair_inter) = p%pair_inter(1:p%npair_inter)
+      call move_alloc(tmp, p%pair_inter)
+    end if
+    p%npair_inter = p%npair_inter + 1
+    p%pair_inter(p%npair_inter) = pair_interaction_t(pair=pair, line=line, name=name)
+  end subroutine add_pair_interaction
 
   subroutine in_step(p, kw, inside)
     type(parser_t), intent(in) :: p

@@ -2,7 +2,7 @@
 submodule (deck_parser) deck_mesh_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
-  use deck_input, only: param_value, has_param
+  use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_id, line_text, err, next_data, no_data, allow_params, required_param, &
                          name_param, check_name_length, get_real, get_int, node_of, elem_of, is_int, &
                          nset_index, elset_index, need_nset, need_elset, new_surface
@@ -15,36 +15,46 @@ submodule (deck_parser) deck_mesh_cards
 
 contains
 
-  !> Purpose: *NODE: one node per data line, `id, x, y[, z]` (z, as gmsh
-  !> writes it, is read and ignored); NSET= collects the nodes in a set.
+  !> Purpose: *NODE: one node per data line, `id[, x[, y[, z]]]`, as
+  !> lenient as CalculiX: a missing or empty coordinate is 0, z (gmsh
+  !> writes it) is read and ignored, and so are fields after z (with a
+  !> warning on the first such line). NSET= collects the nodes in a set.
   module subroutine read_nodes(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
-    integer :: n, id, iset, nitems
+    integer :: n, id, iset, nitems, k
     integer, allocatable :: items(:)
-    real(dp) :: z
+    real(dp) :: xyz(3)
+    logical :: warned
     call allow_params(p, kw, 'NSET,SYSTEM')
     if (has_param(kw, 'SYSTEM')) then
       if (to_upper(param_value(kw, 'SYSTEM')) /= 'R') call err(p, 'only SYSTEM=R (rectangular) is implemented')
     end if
     nitems = 0
+    warned = .false.
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
-      if (n < 3) call err(p, '*NODE data line needs: node id, x, y')
-      if (n > 4) call err(p, '*NODE data line has more than 3 coordinates')
       id = get_int(p, f(1), 'node id')
       if (id < 1 .or. id > max_id) call err(p, 'node id out of range 1..' // itoa(max_id))
+      xyz = 0.0_dp
+      do k = 2, n
+        if (len(f(k)%s) == 0) cycle
+        if (k <= 4) then
+          xyz(k - 1) = get_real(p, f(k), coordinate_name(k - 1))
+        else if (.not. warned) then
+          call deck_warning(p%deck, p%i, 'fields after the third coordinate are ignored (as CalculiX does)')
+          warned = .true.
+        end if
+      end do
       call grow(m%node_index, id, fill=0)
       if (m%node_index(id) /= 0) call err(p, 'duplicate node id ' // f(1)%s)
       call grow(m%node_id, m%nn + 1)
       call grow(m%x, m%nn + 1)
       m%nn = m%nn + 1
       m%node_id(m%nn) = id
-      m%x(1, m%nn) = get_real(p, f(2), 'x coordinate')
-      m%x(2, m%nn) = get_real(p, f(3), 'y coordinate')
-      if (n == 4) z = get_real(p, f(4), 'z coordinate')
+      m%x(:, m%nn) = xyz(1:2)
       m%node_index(id) = m%nn
       call append(items, nitems, m%nn)
     end do
@@ -54,6 +64,13 @@ contains
       call extend_set(m%nsets(iset)%items, items(1:nitems))
     end if
   end subroutine read_nodes
+
+  pure function coordinate_name(k) result(s)
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    character(len=1), parameter :: axis(3) = ['x', 'y', 'z']
+    s = axis(k) // ' coordinate'
+  end function coordinate_name
 
   !> Purpose: *ELEMENT, TYPE=: one element per data line, `id, n1, n2, ...`
   !> with the node count of the type; ELSET= collects them in a set.

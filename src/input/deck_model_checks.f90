@@ -4,10 +4,13 @@
 !> element topology (edges and neighbours) is built last.
 submodule (deck_parser) deck_model_checks
   use kinds, only: dp
-  use strings, only: itoa
+  use strings, only: itoa, rtoa, to_upper
+  use deck_input, only: deck_warning
   use deck_cursor, only: err
-  use model, only: is_continuum, find_name
-  use element_catalogue, only: catalogue
+  use model, only: is_continuum, find_name, section_t
+  use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
+                               state_axisymmetric
+  use growable, only: grow
   use mesh_topology, only: build_topology
   implicit none
 
@@ -19,7 +22,11 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     integer :: s
+    call interaction_penalties(p, m)
     call check_sections(p, m)
+    call apply_section_states(p, m)
+    call apply_nodal_thickness(p, m)
+    call warn_plane_stress(p, m)
     call check_elements(p, m)
     if (size(m%steps) == 0) then
       p%i = p%deck%n
@@ -59,6 +66,128 @@ contains
       end do
     end do
   end subroutine check_sections
+
+  !> Purpose: STATE= of *SOLID SECTION: each element of the section takes
+  !> the catalogue type of the asked stress state with the same shape
+  !> (CPS4 -> CPE4 for PLANE STRAIN), so an unedited gmsh mesh (CPS*) can
+  !> be plane strain. A type without such a counterpart is an error.
+  subroutine apply_section_states(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    character(len=:), allocatable :: old, new
+    integer :: e, s, it
+    do e = 1, m%ne
+      if (m%elem_section(e) == 0) cycle
+      s = m%elem_section(e)
+      if (m%sections(s)%state == 0) cycle
+      if (catalogue(m%etype(e))%state == m%sections(s)%state) cycle
+      old = trim(catalogue(m%etype(e))%name)
+      new = state_prefix(m%sections(s)%state) // old(4:)
+      it = 0
+      if (any(old(1:3) == [state_prefix(state_plane_stress), state_prefix(state_plane_strain), &
+                           state_prefix(state_axisymmetric)])) it = find_element_type(new)
+      if (it == 0) then
+        p%i = m%sections(s)%src%line
+        call err(p, 'element type ' // old // ' (element ' // itoa(m%elem_id(e)) // ') has no ' // &
+                 state_name(m%sections(s)%state) // ' counterpart in cfe2d''s catalogue')
+      end if
+      m%etype(e) = it
+    end do
+  end subroutine apply_section_states
+
+  !> The element name prefix of a stress state (Abaqus naming).
+  pure function state_prefix(state) result(s)
+    integer, intent(in) :: state
+    character(len=3) :: s
+    select case (state)
+    case (state_plane_stress); s = 'CPS'
+    case (state_plane_strain); s = 'CPE'
+    case default; s = 'CAX'
+    end select
+  end function state_prefix
+
+  !> Purpose: sections with NODAL THICKNESS take their elements' thickness
+  !> from *NODAL THICKNESS. An element whose nodes have one thickness gets
+  !> it (through a copy of its section where elements differ); a thickness
+  !> that varies inside an element is not implemented (an error).
+  subroutine apply_nodal_thickness(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer :: e, s, k, nsec0
+    real(dp) :: t
+    if (p%nodal_thickness_line > 0 .and. .not. any(m%sections%nodal_thickness)) then
+      call deck_warning(p%deck, p%nodal_thickness_line, 'no *SOLID SECTION has NODAL THICKNESS: the ' // &
+                        'section thickness applies and *NODAL THICKNESS is ignored (as in CalculiX)')
+    end if
+    if (.not. any(m%sections%nodal_thickness)) return
+    call grow(p%node_thickness, m%nn, fill=-1.0_dp)
+    nsec0 = size(m%sections)
+    do e = 1, m%ne
+      s = m%elem_section(e)
+      if (s == 0) cycle
+      if (.not. m%sections(s)%nodal_thickness) cycle
+      p%i = m%sections(s)%src%line
+      associate(t_nodes => p%node_thickness(m%conn(1:catalogue(m%etype(e))%nodes, e)))
+        if (any(t_nodes < 0.0_dp)) call err(p, 'NODAL THICKNESS: a node of element ' // itoa(m%elem_id(e)) // &
+            ' has no *NODAL THICKNESS')
+        if (maxval(t_nodes) - minval(t_nodes) > 1.0e-12_dp * maxval(t_nodes)) call err(p, &
+            'NODAL THICKNESS: the thickness varies inside element ' // itoa(m%elem_id(e)) // ' (' // &
+            rtoa(minval(t_nodes), 4) // ' to ' // rtoa(maxval(t_nodes), 4) // &
+            '); a thickness varying inside an element is not implemented')
+        t = t_nodes(1)
+      end associate
+      ! the section itself, or its copy with this thickness
+      if (.not. m%sections(s)%thickness_given) then
+        m%sections(s)%thickness = t
+        m%sections(s)%thickness_given = .true.
+      else if (m%sections(s)%thickness /= t) then
+        k = copy_with_thickness(m, s, t, nsec0)
+        m%elem_section(e) = k
+      end if
+    end do
+  end subroutine apply_nodal_thickness
+
+  !> Index of the copy of section s with thickness t (made if needed;
+  !> copies are appended after the first nsec0 sections).
+  integer function copy_with_thickness(m, s, t, nsec0) result(k)
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: s, nsec0
+    real(dp), intent(in) :: t
+    type(section_t) :: c
+    do k = nsec0 + 1, size(m%sections)
+      if (m%sections(k)%src%line == m%sections(s)%src%line .and. m%sections(k)%thickness == t) return
+    end do
+    c = m%sections(s)
+    c%thickness = t
+    m%sections = [m%sections, c]
+    k = size(m%sections)
+  end function copy_with_thickness
+
+  !> Purpose: warnings for a model that is probably meant to be plane
+  !> strain but is plane stress: a plane-stress section without a
+  !> thickness line, and plane-stress elements in a deck whose title says
+  !> plane strain. Both name STATE=PLANE STRAIN as the way out.
+  subroutine warn_plane_stress(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    logical :: stress(size(m%sections))
+    integer :: e
+    stress = .false.
+    do e = 1, m%ne
+      if (m%elem_section(e) == 0) cycle
+      if (catalogue(m%etype(e))%state == state_plane_stress) stress(m%elem_section(e)) = .true.
+    end do
+    do e = 1, size(m%sections)
+      if (.not. stress(e) .or. m%sections(e)%thickness_given .or. m%sections(e)%state /= 0) cycle
+      call deck_warning(p%deck, m%sections(e)%src%line, 'plane-stress elements (CPS) without a thickness ' // &
+          'line: thickness 1 is used; for plane strain add STATE=PLANE STRAIN')
+    end do
+    if (any(stress) .and. p%heading_line > 0) then
+      if (index(to_upper(m%heading), 'PLANE STRAIN') > 0) call deck_warning(p%deck, p%heading_line, &
+          'the title says plane strain, but elements are plane stress (CPS); add STATE=PLANE STRAIN to their ' // &
+          '*SOLID SECTION or use CPE elements')
+    end if
+  end subroutine warn_plane_stress
 
   !> Every solid element has a section and a positive Jacobian at each
   !> corner.

@@ -7,6 +7,9 @@
 !>   deck_step_cards      *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CLOAD,
 !>                        output requests, *END STEP
 !>   deck_contact_cards   *CONTACT PAIR, *CONTACT CONTROLS, *SOLVER
+!>   deck_interaction_cards  *SURFACE INTERACTION, *SURFACE BEHAVIOR, *FRICTION
+!>   deck_compat_cards    *NODAL THICKNESS, *EQUATION, and the cards of other
+!>                        programs that would change the physics (rejected)
 !>   deck_model_checks    checks that need the whole deck
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
@@ -113,6 +116,37 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_solver
+    ! Decks written for CalculiX/Abaqus (deck_interaction_cards, deck_compat_cards):
+    module subroutine read_surface_interaction(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_surface_interaction
+    module subroutine read_surface_behavior(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_surface_behavior
+    module subroutine read_friction(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_friction
+    module subroutine read_nodal_thickness(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_nodal_thickness
+    module subroutine read_equation(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_equation
+    module subroutine interaction_penalties(p, m)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+    end subroutine interaction_penalties
+    module subroutine reject_card(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine reject_card
     module subroutine check_model(p, m)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -140,6 +174,7 @@ contains
              m%elem_src(0), m%node_index(0), m%elem_index(0))
     allocate(m%nsets(0), m%elsets(0), m%surfaces(0), m%materials(0), m%sections(0), &
              m%amplitudes(0), m%steps(0), m%pairs(0), m%model_bcs(0))
+    allocate(m%equations(0))
 
     p%i = 1
     do while (p%i <= p%deck%n)
@@ -169,6 +204,7 @@ contains
     m%steps = m%steps(1:p%nsteps)
     m%pairs = m%pairs(1:p%npairs)
     m%model_bcs = m%model_bcs(1:p%nmbc)
+    m%equations = m%equations(1:p%nequations)
     m%node_id = m%node_id(1:m%nn)
     m%x = m%x(:, 1:m%nn)
     m%elem_id = m%elem_id(1:m%ne)
@@ -185,6 +221,8 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
+    ! A *SURFACE INTERACTION block ends at the first card that does not describe it.
+    if (kw%name /= 'SURFACE BEHAVIOR' .and. kw%name /= 'FRICTION') p%interaction = 0
     select case (kw%name)
     case ('HEADING');       call read_heading(p, m, kw)
     case ('NODE');          call in_step(p, kw, .false.); call read_nodes(p, m, kw)
@@ -207,6 +245,14 @@ contains
     case ('SOLVER');        call in_step(p, kw, .false.); call read_solver(p, m, kw)
     case ('CONTACT PAIR');  call in_step(p, kw, .false.); call read_contact_pair(p, m, kw)
     case ('CONTACT CONTROLS'); call read_contact_controls(p, m, kw)
+    case ('SURFACE INTERACTION'); call in_step(p, kw, .false.); call read_surface_interaction(p, kw)
+    case ('SURFACE BEHAVIOR'); call in_step(p, kw, .false.); call read_surface_behavior(p, kw)
+    case ('FRICTION');      call in_step(p, kw, .false.); call read_friction(p, kw)
+    case ('NODAL THICKNESS'); call in_step(p, kw, .false.); call read_nodal_thickness(p, m, kw)
+    case ('EQUATION');      call in_step(p, kw, .false.); call read_equation(p, m, kw)
+    case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', &
+          'CONTROLS')
+      call skip_card(p, kw)
     case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', 'CONTACT PRINT', &
           'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &
           'RESTART', 'MONITOR', 'DENSITY')
@@ -214,18 +260,29 @@ contains
     case ('')
       call err(p, 'keyword line without a keyword after the *')
     case default
-      call err(p, 'keyword *' // kw%name // ' is not implemented in cfe2d')
+      ! not implemented: the reason when it is another procedure or material law
+      call reject_card(p, kw)
     end select
   end subroutine dispatch
 
   !> Purpose: *HEADING: the first data line is the title; others are kept
-  !> out of the model.
+  !> out of the model. The deck's own title wins over one from a file it
+  !> includes (gmsh writes a *Heading into every mesh); otherwise the
+  !> first title stays.
   subroutine read_heading(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
+    logical :: from_deck
     call allow_params(p, kw, '')
-    if (next_data(p)) m%heading = trim(adjustl(line_text(p)))
+    if (next_data(p)) then
+      from_deck = p%deck%lines(p%i)%file == 1
+      if (len(m%heading) == 0 .or. (from_deck .and. .not. p%heading_from_deck)) then
+        m%heading = trim(adjustl(line_text(p)))
+        p%heading_from_deck = from_deck
+        p%heading_line = p%i
+      end if
+    end if
     do while (next_data(p))
     end do
   end subroutine read_heading

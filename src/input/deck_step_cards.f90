@@ -317,11 +317,12 @@ contains
     character(len=:), allocatable :: q
     r%nodal = kw%name(1:4) == 'NODE'
     r%to_file = index(kw%name, 'FILE') > 0
+    if (r%to_file) call file_format(p, m, kw)
     if (r%nodal) then
-      call allow_params(p, kw, 'NSET,FREQUENCY,TOTALS,GLOBAL,SUMMARY,OUTPUT')
+      call allow_params(p, kw, 'NSET,FREQUENCY,TOTALS,GLOBAL,SUMMARY,OUTPUT,FORMAT')
       if (has_param(kw, 'NSET')) r%set = need_nset(p, m, param_value(kw, 'NSET'))
     else
-      call allow_params(p, kw, 'ELSET,FREQUENCY,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL')
+      call allow_params(p, kw, 'ELSET,FREQUENCY,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL,FORMAT')
       if (has_param(kw, 'ELSET')) r%set = need_elset(p, m, param_value(kw, 'ELSET'))
     end if
     call require_data(p, 'output quantities')
@@ -347,6 +348,20 @@ contains
     p%nreq = p%nreq + 1
     m%steps(p%step)%requests(p%nreq) = r
   end subroutine read_request
+
+  !> FORMAT= of *NODE FILE and *EL FILE: MSH (default: the gmsh file only)
+  !> or VTU (the ParaView files too; the gmsh file is written anyway).
+  subroutine file_format(p, m, kw)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    if (.not. has_param(kw, 'FORMAT')) return
+    select case (to_upper(param_value(kw, 'FORMAT')))
+    case ('MSH')
+    case ('VTU'); m%vtu = .true.
+    case default; call err(p, 'FORMAT must be MSH or VTU')
+    end select
+  end subroutine file_format
 
   !> Purpose: *END STEP: closes the step; its lists are cut to length.
   module subroutine read_end_step(p, m, kw)

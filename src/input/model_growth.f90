@@ -10,7 +10,8 @@
 module model_growth
   use growable, only: new_capacity
   use model, only: node_set_t, elem_set_t, surface_t, material_t, section_t, amplitude_t, &
-                   step_t, contact_pair_t, bc_t, cload_t, request_t, src_t
+                   step_t, contact_pair_t, bc_t, cload_t, request_t, src_t, &
+                   equation_t
   implicit none
   private
   public :: grow
@@ -18,7 +19,8 @@ module model_growth
   !> grow(a, n): capacity of a at least n, contents kept (a may be unallocated).
   interface grow
     module procedure grow_nsets, grow_elsets, grow_surfaces, grow_materials, grow_sections, grow_amplitudes, &
-                     grow_steps, grow_pairs, grow_bcs, grow_cloads, grow_requests, grow_srcs
+                     grow_steps, grow_pairs, grow_bcs, grow_cloads, grow_requests, grow_srcs, &
+                     grow_equations
   end interface grow
 
 contains
@@ -179,4 +181,16 @@ contains
     call move_alloc(tmp, a)
   end subroutine grow_srcs
 
+  pure subroutine grow_equations(a, n)
+    type(equation_t), allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n
+    type(equation_t), allocatable :: tmp(:)
+    integer :: old
+    old = 0
+    if (allocated(a)) old = size(a)
+    if (allocated(a) .and. n <= old) return
+    allocate(tmp(new_capacity(old, n)))
+    if (old > 0) tmp(1:old) = a
+    call move_alloc(tmp, a)
+  end subroutine grow_equations
 end module model_growth

@@ -10,6 +10,7 @@ module model
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
+            equation_t, &
             is_continuum, elem_nodes, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, append_int
@@ -54,6 +55,14 @@ module model
     integer :: material = 0
     real(dp) :: thickness = 1.0_dp
     type(src_t) :: src
+    ! Decks written for CalculiX/Abaqus and meshes from gmsh:
+    !> STATE= on *SOLID SECTION: the stress state (element_catalogue
+    !> state_*) its elements take whatever their type name says; 0 keeps
+    !> each element type's own.
+    integer :: state = 0
+    logical :: thickness_given = .false.   ! a data line gave the thickness
+    !> NODAL THICKNESS: the thickness comes from *NODAL THICKNESS.
+    logical :: nodal_thickness = .false.
   end type section_t
 
   !> One prescribed dof. set is the node set it came from (0 for a single
@@ -108,6 +117,14 @@ module model
     type(src_t) :: src
   end type contact_pair_t
 
+  !> *EQUATION: sum_k coef(k) * u(dof(k)) of node(k) = 0, one linear
+  !> multi-point constraint (read, not yet imposed by the analysis).
+  type :: equation_t
+    integer, allocatable :: node(:), dof(:)
+    real(dp), allocatable :: coef(:)
+    type(src_t) :: src
+  end type equation_t
+
   type :: model_t
     character(len=:), allocatable :: heading, deck_name
     integer :: nn = 0, ne = 0
@@ -133,6 +150,9 @@ module model
     real(dp) :: contact_tolerance = 1.0e-6_dp
     integer :: contact_max_iter = 30
     integer :: max_cutbacks = 5
+    ! Decks written for CalculiX/Abaqus, ParaView output:
+    logical :: vtu = .false.                          ! FORMAT=VTU on *NODE FILE / *EL FILE
+    type(equation_t), allocatable :: equations(:)     ! *EQUATION
   end type model_t
 
 contains

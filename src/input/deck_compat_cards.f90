@@ -1,0 +1,155 @@
+!> Cards of decks written for CalculiX or Abaqus that cfe2d reads for
+!> what they mean to a static, small-strain, linear elastic 2D analysis:
+!> *NODAL THICKNESS, *EQUATION (read, not yet imposed), and the cards
+!> that would change the physics (other procedures, other material laws),
+!> which stop the run with the reason.
+submodule (deck_parser) deck_compat_cards
+  use kinds, only: dp
+  use strings, only: split_fields, field_t, itoa
+  use deck_cursor, only: line_text, err, next_data, allow_params, get_real, get_int, is_int, node_of, need_nset
+  use model, only: equation_t
+  use model_growth, only: grow
+  use growable, only: grow
+  implicit none
+
+contains
+
+  !> Purpose: *NODAL THICKNESS: `node or node set, thickness[, second
+  !> thickness]`. Used by the sections with NODAL THICKNESS (checked once
+  !> the deck is read); the second thickness (beams) is ignored.
+  module subroutine read_nodal_thickness(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: nodes(:)
+    real(dp) :: t
+    integer :: n, nlines
+    call allow_params(p, kw, '')
+    p%nodal_thickness_line = p%i
+    call grow(p%node_thickness, m%nn, fill=-1.0_dp)
+    nlines = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n < 2 .or. n > 3) call err(p, '*NODAL THICKNESS data line needs: node or node set, thickness')
+      nodes = target_of(p, m, f(1))
+      t = get_real(p, f(2), 'thickness')
+      if (t <= 0.0_dp) call err(p, 'the thickness must be positive')
+      if (n == 3) then
+        if (get_real(p, f(3), 'second thickness') <= 0.0_dp) call err(p, 'the second thickness must be positive')
+      end if
+      p%node_thickness(nodes) = t
+      nlines = nlines + 1
+    end do
+    if (nlines == 0) call err(p, 'missing data line (node or node set, thickness)')
+  end subroutine read_nodal_thickness
+
+  !> Nodes named by a node id or a node set name.
+  function target_of(p, m, f) result(nodes)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(field_t), intent(in) :: f
+    integer, allocatable :: nodes(:)
+    if (is_int(f%s)) then
+      nodes = [node_of(p, m, get_int(p, f, 'node'))]
+    else
+      nodes = m%nsets(need_nset(p, m, f%s))%items
+    end if
+  end function target_of
+
+  !> Purpose: *EQUATION: per constraint, a line with the number of terms,
+  !> then `node, dof, coefficient` triples (four per line at most, as many
+  !> lines as needed); a node set gives one constraint per node (sets of
+  !> one node, and node ids, take part in each). The constraints are put
+  !> into m%equations; imposing them is the analysis' part, not written
+  !> yet, so the card then stops the run naming its line.
+  module subroutine read_equation(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n, nterms, card
+    call allow_params(p, kw, '')
+    card = p%i
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= 1) call err(p, '*EQUATION: expected the number of terms of the next constraint')
+      nterms = get_int(p, f(1), 'number of terms')
+      if (nterms < 1 .or. nterms > 1000) call err(p, 'the number of terms must lie in 1..1000')
+      call read_equation_terms(p, m, nterms, card)
+    end do
+    if (p%i == card) call err(p, 'missing data line (number of terms)')
+    ! The analysis does not impose m%equations yet: remove this stop when
+    ! it does (see docs/keywords.md, *EQUATION).
+    p%i = card
+    call err(p, '*EQUATION (linear multi-point constraints) is not implemented yet: the constraints ' // &
+             'are read but the analysis cannot impose them')
+  end subroutine read_equation
+
+  !> The `node, dof, coefficient` triples of one *EQUATION constraint,
+  !> appended to m%equations (one constraint per node of its node sets).
+  subroutine read_equation_terms(p, m, nterms, card)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: nterms, card
+    type(field_t), allocatable :: f(:)
+    type(equation_t) :: eq
+    integer, allocatable :: first(:), count(:), all_nodes(:)
+    integer :: n, k, j, nread, ncopies
+    allocate(eq%node(nterms), eq%dof(nterms), eq%coef(nterms), first(nterms), count(nterms), all_nodes(0))
+    nread = 0
+    do while (nread < nterms)
+      if (.not. next_data(p)) call err(p, '*EQUATION: fewer terms than announced (' // itoa(nterms) // ')')
+      call split_fields(line_text(p), f, n)
+      if (mod(n, 3) /= 0 .or. nread + n / 3 > nterms) &
+        call err(p, '*EQUATION data line needs node, dof, coefficient triples (' // itoa(nterms) // ' in all)')
+      do k = 1, n, 3
+        nread = nread + 1
+        first(nread) = size(all_nodes) + 1
+        all_nodes = [all_nodes, target_of(p, m, f(k))]
+        count(nread) = size(all_nodes) - first(nread) + 1
+        eq%dof(nread) = get_int(p, f(k + 1), 'dof')
+        if (eq%dof(nread) < 1 .or. eq%dof(nread) > 2) call err(p, 'dof must be 1 or 2 in 2D')
+        eq%coef(nread) = get_real(p, f(k + 2), 'coefficient')
+      end do
+    end do
+    if (eq%coef(1) == 0.0_dp) call err(p, 'the first coefficient (of the dependent dof) must not be zero')
+    ncopies = maxval(count)
+    if (any(count /= 1 .and. count /= ncopies)) &
+      call err(p, '*EQUATION: the node sets of one constraint must have the same number of nodes')
+    eq%src%line = card
+    do j = 1, ncopies
+      do k = 1, nterms
+        eq%node(k) = all_nodes(first(k) + min(j, count(k)) - 1)
+      end do
+      call grow(m%equations, p%nequations + 1)
+      p%nequations = p%nequations + 1
+      m%equations(p%nequations) = eq
+    end do
+  end subroutine read_equation_terms
+
+  !> Purpose: cards that would change the physics of a static small-strain
+  !> elastic analysis and that cfe2d does not implement: stop with the
+  !> reason on the card's line.
+  module subroutine reject_card(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    select case (kw%name)
+    case ('DYNAMIC', 'MODAL DYNAMIC', 'STEADY STATE DYNAMICS', 'FREQUENCY', 'BUCKLE', 'COMPLEX FREQUENCY', &
+          'VISCO', 'HEAT TRANSFER', 'COUPLED TEMPERATURE-DISPLACEMENT', 'UNCOUPLED TEMPERATURE-DISPLACEMENT', &
+          'ELECTROMAGNETICS', 'GREEN', 'SENSITIVITY', 'CFD', 'SOIL')
+      call err(p, 'the procedure *' // kw%name // ' is not implemented: cfe2d runs static (*STATIC), ' // &
+               'small-strain steps')
+    case ('PLASTIC', 'CYCLIC HARDENING', 'CREEP', 'HYPERELASTIC', 'HYPERFOAM', 'DEFORMATION PLASTICITY', &
+          'USER MATERIAL', 'DEPVAR', 'ANISOTROPIC HYPERELASTIC', 'VISCOELASTIC', 'MOHR COULOMB')
+      call err(p, 'the material law *' // kw%name // ' is not implemented: cfe2d''s materials are linear ' // &
+               'elastic (*ELASTIC)')
+    case ('CHANGE FRICTION', 'CHANGE SURFACE BEHAVIOR', 'CHANGE CONTACT TYPE', 'CONTACT DAMPING', &
+          'GAP CONDUCTANCE', 'GAP HEAT GENERATION')
+      call err(p, '*' // kw%name // ' is not implemented: cfe2d''s contact is frictionless, static and ' // &
+               'keeps the law of its *SURFACE INTERACTION')
+    case default
+      call err(p, 'keyword *' // kw%name // ' is not implemented in cfe2d')
+    end select
+  end subroutine reject_card
+end submodule deck_compat_cards

@@ -1,0 +1,150 @@
+!> Contact interaction cards as CalculiX and Abaqus write them:
+!> *SURFACE INTERACTION opens a block, *SURFACE BEHAVIOR and *FRICTION
+!> describe it, and a *CONTACT PAIR, INTERACTION= takes its penalty (see
+!> docs/contact.md, "Decks written for CalculiX or Abaqus"). What cfe2d
+!> cannot do (friction, a soft exponential or tabular law, tied contact)
+!> stops at the card that asks for it.
+submodule (deck_parser) deck_interaction_cards
+  use kinds, only: dp
+  use strings, only: split_fields, to_upper, field_t, rtoa
+  use deck_input, only: param_value, has_param, deck_warning
+  use deck_cursor, only: line_text, err, next_data, require_data, allow_params, name_param, get_real, &
+                         new_interaction, behaviour_linear, behaviour_hard
+  implicit none
+
+contains
+
+  !> Purpose: *SURFACE INTERACTION, NAME=: opens a block that the cards
+  !> after it (*SURFACE BEHAVIOR, *FRICTION) describe, up to the first
+  !> card of another kind.
+  module subroutine read_surface_interaction(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: name
+    integer :: k
+    call allow_params(p, kw, 'NAME')
+    name = name_param(p, kw, 'NAME')
+    do k = 1, p%ninter
+      if (p%inter(k)%name == name) call err(p, 'duplicate surface interaction ' // name)
+    end do
+    k = new_interaction(p)
+    p%inter(k)%name = name
+    p%inter(k)%line = p%i
+    ! Abaqus' optional data line is the out-of-plane thickness of a 2D
+    ! contact; cfe2d's contact areas use the section thickness.
+    if (next_data(p)) call err(p, 'a data line (the out-of-plane thickness) on *SURFACE INTERACTION is ' // &
+        'not implemented: the contact area takes the thickness of the *SOLID SECTION')
+  end subroutine read_surface_interaction
+
+  !> Purpose: *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=: the normal law of
+  !> the current interaction. LINEAR takes `K[, sigma_inf[, c0]]`: K is
+  !> cfe2d's penalty per unit area; sigma_inf and c0 (CalculiX's tension
+  !> at large clearance and the clearance within which it makes contact
+  !> springs) are checked as numbers and not used. HARD (Abaqus' default)
+  !> is the automatic penalty; with a data line it is LINEAR, as in
+  !> CalculiX. EXPONENTIAL, TABULAR and TIED are errors.
+  module subroutine read_surface_behavior(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: law
+    call allow_params(p, kw, 'PRESSURE-OVERCLOSURE')
+    if (p%interaction == 0) call err(p, '*SURFACE BEHAVIOR outside a *SURFACE INTERACTION block')
+    law = 'HARD'
+    if (has_param(kw, 'PRESSURE-OVERCLOSURE')) law = to_upper(param_value(kw, 'PRESSURE-OVERCLOSURE'))
+    associate(it => p%inter(p%interaction))
+      select case (law)
+      case ('LINEAR', 'HARD')
+        it%behaviour = behaviour_hard
+        if (law == 'LINEAR') it%behaviour = behaviour_linear
+        it%slope = -1.0_dp
+        if (next_data(p)) then
+          it%behaviour = behaviour_linear
+          it%slope = linear_slope(p)
+        else if (law == 'LINEAR') then
+          call deck_warning(p%deck, p%i, 'PRESSURE-OVERCLOSURE=LINEAR without a data line (K, sigma_inf): ' // &
+              'the automatic penalty (as HARD) is used')
+        end if
+      case ('EXPONENTIAL')
+        call exponential_error(p)
+      case ('TABULAR')
+        call err(p, 'PRESSURE-OVERCLOSURE=TABULAR is not implemented; LINEAR (K, the slope of the ' // &
+                 'pressure-overclosure curve) or HARD are')
+      case ('TIED')
+        call err(p, 'PRESSURE-OVERCLOSURE=TIED (contact that never separates) is not implemented; ' // &
+                 'LINEAR and HARD are')
+      case default
+        call err(p, 'PRESSURE-OVERCLOSURE=' // law // ' is not known (LINEAR, HARD)')
+      end select
+    end associate
+  end subroutine read_surface_behavior
+
+  !> K of a LINEAR data line (the current line), the automatic penalty
+  !> (-1) with a warning when it is empty or not positive, as CalculiX
+  !> falls back on its default there.
+  real(dp) function linear_slope(p) result(k)
+    type(parser_t), intent(inout) :: p
+    type(field_t), allocatable :: f(:)
+    real(dp) :: x
+    integer :: n, j
+    call split_fields(line_text(p), f, n)
+    if (n > 3) call err(p, 'PRESSURE-OVERCLOSURE=LINEAR data line needs: K[, sigma_inf[, c0]]')
+    k = -1.0_dp
+    if (len(f(1)%s) > 0) k = get_real(p, f(1), 'slope K of the pressure-overclosure curve')
+    do j = 2, n
+      if (len(f(j)%s) > 0) x = get_real(p, f(j), 'sigma_inf or c0')
+    end do
+    if (k <= 0.0_dp) then
+      call deck_warning(p%deck, p%i, 'no positive slope K: the automatic penalty (as HARD) is used')
+      k = -1.0_dp
+    end if
+  end function linear_slope
+
+  !> PRESSURE-OVERCLOSURE=EXPONENTIAL: a pressure at a clearance (soft
+  !> contact) that cfe2d's bilinear penalty cannot give. Stops, naming the
+  !> LINEAR slope that matches the law at zero clearance when c0 and p0
+  !> are on the next line.
+  subroutine exponential_error(p)
+    type(parser_t), intent(inout) :: p
+    type(field_t), allocatable :: f(:)
+    real(dp) :: c0, p0
+    integer :: n
+    if (next_data(p)) then
+      call split_fields(line_text(p), f, n)
+      if (n >= 2) then
+        c0 = get_real(p, f(1), 'c0')
+        p0 = get_real(p, f(2), 'p0')
+        if (c0 > 0.0_dp .and. p0 > 0.0_dp) then
+          p%i = p%i - 1
+          call err(p, 'PRESSURE-OVERCLOSURE=EXPONENTIAL (soft contact, a pressure before touching) ' // &
+              'is not implemented; LINEAR with K = p0 ln(100) / c0 = ' // rtoa(p0 * log(100.0_dp) / c0, 4) // &
+              ' has its slope at zero clearance, or use HARD')
+        end if
+      end if
+      p%i = p%i - 1
+    end if
+    call err(p, 'PRESSURE-OVERCLOSURE=EXPONENTIAL (soft contact, a pressure before touching) is not ' // &
+             'implemented; use LINEAR (K, sigma_inf) or HARD')
+  end subroutine exponential_error
+
+  !> Purpose: *FRICTION: `mu[, stick slope]` of the current interaction.
+  !> cfe2d's contact is frictionless: mu = 0 is a warning (it changes
+  !> nothing), any other value an error.
+  module subroutine read_friction(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    real(dp) :: mu
+    integer :: n
+    call allow_params(p, kw, '')
+    if (p%interaction == 0) call err(p, '*FRICTION outside a *SURFACE INTERACTION block')
+    call require_data(p, 'friction coefficient[, stick slope]')
+    call split_fields(line_text(p), f, n)
+    if (n > 2) call err(p, '*FRICTION data line needs: friction coefficient[, stick slope]')
+    mu = get_real(p, f(1), 'friction coefficient')
+    if (mu < 0.0_dp) call err(p, 'the friction coefficient must not be negative')
+    if (mu > 0.0_dp) call err(p, 'friction is not implemented: cfe2d''s contact is frictionless ' // &
+        '(a friction coefficient of 0 is accepted)')
+    call deck_warning(p%deck, p%i, 'friction coefficient 0: frictionless, as cfe2d''s contact is; ' // &
+        '*FRICTION is ignored')
+  end subroutine read_friction
+end submodule deck_interaction_cards
