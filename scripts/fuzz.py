@@ -1,0 +1,1062 @@
+#!/usr/bin/env python3
+"""Mutation fuzzer of cfe2d's deck reader and analysis.
+
+Takes the project's own decks (input/examples, input/hertz with a small
+gmsh mesh, decks written by the tests), mutates them with a fixed seed
+(cards dropped, duplicated, moved or spliced in from another deck; numbers
+replaced by 0, -1, 1e308, 1e-320, nan, inf, huge integers; lines truncated,
+joined, deleted, made very long; CR-LF endings, binary bytes; *INCLUDE of
+missing, self-including, directory and special files such as /dev/zero and
+a FIFO), runs every mutant on both builds under a time and a memory limit
+and classifies each run:
+
+  ok-error    non-zero exit with a "file:line: error:" or "cfe2d: error:" line
+  ok-run      exit 0, a listing with increments, no NaN/Infinity or
+              malformed number in the .out, .csv and .msh outputs
+  crash       a signal, a Fortran runtime error or backtrace, an exit status
+              other than 0/1, or a non-zero exit with no proper message
+  hang        the time limit (or the output file size limit) was reached
+  silent-bad  exit 0 but NaN/Infinity/malformed numbers in an output, no
+              increment in the listing, a step that ran no increment or
+              stopped before the end of its time period, or a model with
+              no solid element
+
+Failures are told apart by their class and a signature (the runtime error
+and its source line, the signal, where a hang was: blocked in the kernel or
+busy, and in which routines, from gdb on the debug build). Every failing
+mutant (up to --keep per signature) is written to
+--out/failures/<mutant>-<class>/: deck/ (the deck, its included files and
+case.txt) and runs.txt (each build's class and stderr). --minimise shrinks
+the first mutant of each distinct failure by delta debugging on its lines
+while the same class and signature persist, into --out/distinct/. The
+summary goes to stdout and --out/summary.txt; the exit status is 1 when any
+crash, hang or silent-bad run was seen (or a seed deck misbehaved).
+
+  python3 scripts/fuzz.py --seed 1 --count 500 --out results/fuzz
+  python3 scripts/fuzz.py --count 200 --minimise --time-limit 5
+  python3 scripts/fuzz.py --replay tests/fuzz/empty_deck      # one saved deck folder
+  python3 scripts/fuzz.py --seed 1 --index 17 --out /tmp/m17  # one mutant again
+
+A saved deck folder holds the deck files and case.txt with key=value lines:
+main= (the deck to run), fifo= and dir= (made before the run: git keeps
+neither), expect= (ok-error, ok-run, or ok-error,ok-run when either is right;
+for the regressions in tests/fuzz).
+"""
+import argparse
+import os
+import random
+import re
+import resource
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+DEFAULT_BUILDS = ("bin/cfe2d", "build-debug/cfe2d")
+
+# Worst last: a deck's class is the worst class over the builds.
+SEVERITY = ["ok-run", "ok-error", "silent-bad", "hang", "crash"]
+FAILURES = ("crash", "hang", "silent-bad")
+
+SPECIAL_NUMBERS = [b"0", b"-1", b"1e308", b"-1e308", b"1e-320", b"nan", b"inf", b"-inf",
+                   b"2147483647", b"-2147483648", b"4294967299", b"1e20", b"1e160", b"20000",
+                   b"1e-300", b"0.0", b"-0", b"99999999999999999999"]
+
+# Hertz seed mesh: coarser than run_hertz.py's coarsest (0.1 mm gives 8800
+# nodes) so that one run stays well under a second: about 900 nodes.
+HERTZ_MESH = {"h": "0.5", "Lp": "20", "Hp": "20"}
+
+
+# ----------------------------------------------------------------------------------- decks
+
+@dataclass
+class Deck:
+    """A deck with the files it includes, and what must exist beside it."""
+    name: str
+    main: str
+    files: dict                                    # relative path -> bytes
+    fifos: list = field(default_factory=list)      # relative paths made with os.mkfifo
+    dirs: list = field(default_factory=list)       # relative paths made as folders
+    notes: list = field(default_factory=list)      # the mutations applied
+    expect: str = "ok-run"                         # the class of the unmutated deck
+
+    def copy(self):
+        return Deck(self.name, self.main, dict(self.files), list(self.fifos), list(self.dirs),
+                    list(self.notes), self.expect)
+
+    @property
+    def job(self):
+        return os.path.splitext(os.path.basename(self.main))[0]
+
+    def write(self, folder, meta=None):
+        """Purpose: lay the deck out in folder, with case.txt describing it.
+        Arguments: folder (created), meta: extra key=value pairs for case.txt."""
+        os.makedirs(folder, exist_ok=True)
+        for rel, data in self.files.items():
+            path = os.path.join(folder, rel)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "wb") as f:
+                f.write(data)
+        for rel in self.dirs:
+            os.makedirs(os.path.join(folder, rel), exist_ok=True)
+        for rel in self.fifos:
+            path = os.path.join(folder, rel)
+            if not os.path.exists(path):
+                os.makedirs(os.path.dirname(path), exist_ok=True)
+                os.mkfifo(path)
+        lines = [f"main={self.main}"] + [f"fifo={p}" for p in self.fifos] + [f"dir={p}" for p in self.dirs]
+        lines += [f"# mutation: {n}" for n in self.notes]
+        lines += [f"{k}={v}" for k, v in (meta or {}).items()]
+        with open(os.path.join(folder, "case.txt"), "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
+def load_case(folder):
+    """Purpose: read a saved deck folder (see the module docstring).
+    Returns (Deck, meta dict of case.txt's other keys)."""
+    meta, fifos, dirs = {}, [], []
+    with open(os.path.join(folder, "case.txt")) as f:
+        for line in f:
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            key, _, value = line.partition("=")
+            if key == "fifo":
+                fifos.append(value)
+            elif key == "dir":
+                dirs.append(value)
+            else:
+                meta[key] = value
+    files = {}
+    for base, subdirs, names in os.walk(folder):
+        for name in names:
+            path = os.path.join(base, name)
+            rel = os.path.relpath(path, folder)
+            if rel == "case.txt" or rel in fifos or not os.path.isfile(path):
+                continue
+            with open(path, "rb") as f:
+                files[rel] = f.read()
+    main = meta.pop("main", None)
+    if main is None or main not in files:
+        raise ValueError(f"{folder}/case.txt: main= must name a deck file of the folder")
+    return Deck(os.path.basename(os.path.normpath(folder)), main, files, fifos, dirs), meta
+
+
+def example_seeds():
+    seeds = []
+    folder = os.path.join(ROOT, "input", "examples")
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".inp"):
+            with open(os.path.join(folder, name), "rb") as f:
+                seeds.append(Deck("examples/" + name[:-4], name, {name: f.read()}))
+    return seeds
+
+
+def hertz_seeds(tmp, log):
+    """The Hertz decks with a coarse mesh made by gmsh (none without gmsh)."""
+    mesh = os.path.join(tmp, "hertz_mesh.inp")
+    cmd = ["gmsh", "-2", "-format", "inp", "-setnumber", "Mesh.SaveGroupsOfNodes", "1"]
+    for key, value in HERTZ_MESH.items():
+        cmd += ["-setnumber", key, value]
+    cmd += ["-o", mesh, os.path.join(ROOT, "input", "hertz", "hertz.geo")]
+    try:
+        subprocess.run(cmd, check=True, capture_output=True, timeout=120)
+        with open(mesh, "rb") as f:
+            mesh_text = f.read()
+    except (OSError, subprocess.SubprocessError) as e:
+        log(f"fuzz: no Hertz seeds (gmsh failed: {e})")
+        return []
+    seeds = []
+    folder = os.path.join(ROOT, "input", "hertz")
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".inp"):
+            with open(os.path.join(folder, name), "rb") as f:
+                seeds.append(Deck("hertz/" + name[:-4], name, {name: f.read(), "hertz_mesh.inp": mesh_text}))
+    return seeds
+
+
+def test_seeds(log):
+    """Decks written by the tests' own generators (skipped if they change shape)."""
+    sys.path.insert(0, os.path.join(ROOT, "tests"))
+    seeds = []
+    makers = [("tests/bad_decks_good", _good_deck), ("tests/contact_push", _contact_push),
+              ("tests/contact_force", _contact_force), ("tests/contact_unsettled", _contact_unsettled),
+              ("tests/features_include", _features), ("tests/patch_tri", _patch_tri)]
+    for name, make in makers:
+        try:
+            main, files, *expect = make()
+        except Exception as e:  # a test module was rewritten: fuzz the others
+            log(f"fuzz: seed {name} skipped ({type(e).__name__}: {e})")
+            continue
+        seeds.append(Deck(name, main, {k: v.encode() for k, v in files.items()}, expect=(expect or ["ok-run"])[0]))
+    return seeds
+
+
+def _good_deck():
+    import test_bad_decks
+    return "good.inp", {"good.inp": test_bad_decks.GOOD}
+
+
+def _contact_push():
+    import test_contact as tc
+    return "push.inp", {"push.inp": tc.blocks_deck([tc.push_step(3 * tc.G0, 2)])}
+
+
+def _contact_force():
+    import test_contact as tc
+    return "force.inp", {"force.inp": tc.force_driven_deck(", OPEN PENALTY=1e-6")[0]}
+
+
+def _contact_unsettled():
+    import test_contact as tc
+    deck = tc.blocks_deck([tc.push_step(0.5 * tc.G0), tc.push_step(3 * tc.G0)])
+    deck = deck.replace("*CONTACT PAIR", "*CONTACT CONTROLS, MAXIT=1, CUTBACKS=2\n*CONTACT PAIR")
+    return "unsettled.inp", {"unsettled.inp": deck}, "ok-error"   # stops after 2 bisections
+
+
+def _features():
+    import test_deck_features as tf
+    step = "*STEP\n*STATIC\n0.5, 1.0\n*CLOAD, AMPLITUDE=UPDOWN\nRIGHT, 1, 3.0\n*NODE PRINT, NSET=RIGHT\nU, RF\n" \
+           "*EL PRINT\nS\n*END STEP\n"
+    amp = "*AMPLITUDE, NAME=UPDOWN\n0., 0., 0.5, 1., 1., 0.5\n"
+    return "features.inp", {"features.inp": tf.block_deck(step, amp), **tf.FILES}
+
+
+def _patch_tri():
+    from decks import grid, node_lines, tri_lines
+    nodes, ids, quads = grid(4, 3, 0.0, 2.0, 0.0, 1.5, distort=0.6)
+    left = ", ".join(str(ids[0, j]) for j in range(4))
+    right = ", ".join(str(ids[4, j]) for j in range(4))
+    deck = (f"*HEADING\ntriangles\n*NODE, NSET=ALL\n{node_lines(nodes)}*ELEMENT, TYPE=CPE3, ELSET=PATCH\n"
+            f"{tri_lines(quads)}*NSET, NSET=LEFT\n{left}\n*NSET, NSET=RIGHT\n{right}\n*MATERIAL, NAME=M\n"
+            "*ELASTIC\n1000., 0.25\n*SOLID SECTION, ELSET=PATCH, MATERIAL=M\n0.7\n*SOLVER, TYPE=SKYLINE\n"
+            "*BOUNDARY\nLEFT, ENCASTRE\n*STEP, INC=10\n*STATIC\n0.25, 1.0\n*BOUNDARY\nRIGHT, 1, 1, 0.01\n"
+            "*NODE FILE\nU, S\n*EL FILE\nS\n*NODE PRINT\nU, RF\n*EL PRINT\nS, E\n*END STEP\n")
+    return "patch.inp", {"patch.inp": deck}
+
+
+def load_seeds(tmp, log):
+    return example_seeds() + hertz_seeds(tmp, log) + test_seeds(log)
+
+
+# ------------------------------------------------------------------------------- mutations
+
+def _is_keyword(line):
+    s = line.lstrip()
+    return s.startswith(b"*") and not s.startswith(b"**")
+
+
+def _cards(lines):
+    """(start, end) line ranges of the keyword cards: a keyword line and what follows it."""
+    starts = [k for k, line in enumerate(lines) if _is_keyword(line)]
+    return [(s, e) for s, e in zip(starts, starts[1:] + [len(lines)])]
+
+
+def _eol(line):
+    for end in (b"\r\n", b"\n", b"\r"):
+        if line.endswith(end):
+            return end
+    return b""
+
+
+def _pick_file(rng, deck):
+    """The main deck mostly; an included file now and then."""
+    others = sorted(r for r in deck.files if r != deck.main)
+    if others and rng.random() < 0.2:
+        return rng.choice(others)
+    return deck.main
+
+
+def _lines(deck, rel):
+    return deck.files[rel].splitlines(keepends=True)
+
+
+def _set_lines(deck, rel, lines):
+    deck.files[rel] = b"".join(lines)
+
+
+def m_drop_card(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    cards = _cards(lines)
+    if not cards:
+        return None
+    s, e = rng.choice(cards)
+    _set_lines(deck, rel, lines[:s] + lines[e:])
+    return f"{rel}: dropped card at line {s + 1} ({lines[s].strip()[:40]!r})"
+
+
+def m_dup_card(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    cards = _cards(lines)
+    if not cards:
+        return None
+    s, e = rng.choice(cards)
+    _set_lines(deck, rel, lines[:e] + lines[s:e] + lines[e:])
+    return f"{rel}: duplicated card at line {s + 1} ({lines[s].strip()[:40]!r})"
+
+
+def m_move_card(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    cards = _cards(lines)
+    if len(cards) < 2:
+        return None
+    s, e = rng.choice(cards)
+    card, rest = lines[s:e], lines[:s] + lines[e:]
+    spots = [a for a, _ in _cards(rest)] + [len(rest)]
+    at = rng.choice(spots)
+    _set_lines(deck, rel, rest[:at] + card + rest[at:])
+    return f"{rel}: moved card at line {s + 1} ({lines[s].strip()[:40]!r}) to line {at + 1}"
+
+
+def m_splice_card(rng, deck, pool):
+    """A card of another deck (e.g. *CONTACT CONTROLS) inserted at a card boundary."""
+    if not pool:
+        return None
+    rel = deck.main
+    lines = _lines(deck, rel)
+    card = rng.choice(pool)
+    spots = [a for a, _ in _cards(lines)] + [len(lines)]
+    at = rng.choice(spots)
+    _set_lines(deck, rel, lines[:at] + card + lines[at:])
+    return f"{rel}: spliced {card[0].strip()[:40]!r} at line {at + 1}"
+
+
+_NUMBER = re.compile(rb"(?<![\w.+-])[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?(?![\w.])")
+
+
+def _bulk_lines(lines):
+    """Indexes of the data lines of *NODE and *ELEMENT cards (the mesh)."""
+    bulk = set()
+    for s, e in _cards(lines):
+        word = re.sub(rb"\s+", b" ", lines[s].split(b",")[0].strip().upper())
+        if word in (b"*NODE", b"*ELEMENT"):
+            bulk.update(range(s + 1, e))
+    return bulk
+
+
+def m_number(rng, deck, pool):
+    """A number replaced by a special value; mostly outside the mesh, where the
+    numbers steer the analysis (increments, loads, controls)."""
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    candidates = [k for k, line in enumerate(lines) if _NUMBER.search(line) and not line.lstrip().startswith(b"**")]
+    bulk = _bulk_lines(lines)
+    steering = [k for k in candidates if k not in bulk]
+    if steering and rng.random() < 0.7:
+        candidates = steering
+    if not candidates:
+        return None
+    k = rng.choice(candidates)
+    value = rng.choice(SPECIAL_NUMBERS)
+    spans = [m.span() for m in _NUMBER.finditer(lines[k])]
+    if rng.random() < 0.2:
+        chosen = spans
+    else:
+        chosen = [rng.choice(spans)]
+    line = lines[k]
+    for a, b in reversed(chosen):
+        line = line[:a] + value + line[b:]
+    old = lines[k].strip()[:40]
+    lines[k] = line
+    _set_lines(deck, rel, lines)
+    return f"{rel}:{k + 1}: {len(chosen)} number(s) -> {value.decode()} in {old!r}"
+
+
+def m_truncate_line(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    if not lines:
+        return None
+    k = rng.randrange(len(lines))
+    body = lines[k][:len(lines[k]) - len(_eol(lines[k]))]
+    cut = rng.randrange(len(body) + 1)
+    lines[k] = body[:cut] + _eol(lines[k])
+    _set_lines(deck, rel, lines)
+    return f"{rel}:{k + 1}: truncated to {cut} characters"
+
+
+def m_truncate_file(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    data = deck.files[rel]
+    cut = rng.randrange(len(data) + 1)
+    deck.files[rel] = data[:cut]
+    return f"{rel}: file truncated at byte {cut} of {len(data)}"
+
+
+def m_join_lines(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    if len(lines) < 2:
+        return None
+    k = rng.randrange(len(lines) - 1)
+    glue = rng.choice([b"", b", ", b" ", b","])
+    lines[k:k + 2] = [lines[k][:len(lines[k]) - len(_eol(lines[k]))] + glue + lines[k + 1]]
+    _set_lines(deck, rel, lines)
+    return f"{rel}:{k + 1}: joined with the next line by {glue!r}"
+
+
+def m_delete_line(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    if not lines:
+        return None
+    k = rng.randrange(len(lines))
+    del lines[k]
+    _set_lines(deck, rel, lines)
+    return f"{rel}:{k + 1}: line deleted"
+
+
+def m_dup_line(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    if not lines:
+        return None
+    k = rng.randrange(len(lines))
+    lines.insert(k, lines[k])
+    _set_lines(deck, rel, lines)
+    return f"{rel}:{k + 1}: line duplicated"
+
+
+def m_line_endings(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    how = rng.choice([b"\r\n", b"\r\n", b"\r", b"\n\n"])
+    lines = _lines(deck, rel)
+    _set_lines(deck, rel, [line[:len(line) - len(_eol(line))] + how for line in lines])
+    return f"{rel}: line endings -> {how!r}"
+
+
+def m_binary(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    data = deck.files[rel]
+    junk = rng.choice([b"\x00", b"\xff\xfe", b"\xef\xbb\xbf", b"\x1a", b"\t", b"\x0c", b"\x7f",
+                       bytes(rng.randrange(256) for _ in range(rng.randrange(1, 32)))])
+    at = 0 if rng.random() < 0.1 else rng.randrange(len(data) + 1)
+    deck.files[rel] = data[:at] + junk + data[at:]
+    return f"{rel}: {len(junk)} binary byte(s) {junk[:8]!r} at byte {at}"
+
+
+def m_long_line(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    n = rng.choice([300, 1025, 4097, 70000, 1_000_000])
+    kind = rng.choice(["comment", "data", "keyword", "digits", "name"])
+    text = {"comment": b"**" + b"x" * n, "data": (b"1, " * (n // 3 + 1))[:n], "keyword": b"*" + b"A" * n,
+            "digits": b"1" * n, "name": b"*NSET, NSET=" + b"N" * n}[kind]
+    k = rng.randrange(len(lines) + 1)
+    if rng.random() < 0.5 and lines and k < len(lines):
+        lines[k] = lines[k][:len(lines[k]) - len(_eol(lines[k]))] + text[:n] + _eol(lines[k])
+        note = f"{rel}:{k + 1}: line lengthened by {n} characters ({kind})"
+    else:
+        lines.insert(k, text + b"\n")
+        note = f"{rel}:{k + 1}: inserted a {len(text)}-character {kind} line"
+    _set_lines(deck, rel, lines)
+    return note
+
+
+def _include_target(rng, deck, rel):
+    """A troublesome *INCLUDE target; adds to the deck whatever it needs."""
+    kind = rng.choice(["missing", "self", "dir", "dev_zero", "fifo", "dev_null", "urandom", "cycle",
+                       "etc", "empty_name", "long_name", "empty_file", "missing_dir"])
+    here = os.path.dirname(rel)
+    if kind == "self":
+        return kind, os.path.basename(rel).encode()
+    if kind == "dir":
+        deck.dirs.append(os.path.join(here, "subdir"))
+        return kind, b"subdir"
+    if kind == "fifo":
+        deck.fifos.append(os.path.join(here, "pipe.inp"))
+        return kind, b"pipe.inp"
+    if kind == "cycle":
+        deck.files[os.path.join(here, "cycle_a.inp")] = b"*INCLUDE, INPUT=cycle_b.inp\n"
+        deck.files[os.path.join(here, "cycle_b.inp")] = b"** b includes a\n*INCLUDE, INPUT=cycle_a.inp\n"
+        return kind, b"cycle_a.inp"
+    if kind == "empty_file":
+        deck.files[os.path.join(here, "empty.inp")] = b""
+        return kind, b"empty.inp"
+    return kind, {"missing": b"missing.inp", "dev_zero": b"/dev/zero", "dev_null": b"/dev/null",
+                  "urandom": b"/dev/urandom", "etc": b"/etc", "empty_name": b"",
+                  "long_name": b"d" * 5000 + b".inp", "missing_dir": b"no/such/folder/x.inp"}[kind]
+
+
+def m_include(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    kind, target = _include_target(rng, deck, rel)
+    spots = [a for a, _ in _cards(lines)] + [len(lines)]
+    at = rng.choice(spots)
+    lines.insert(at, b"*INCLUDE, INPUT=" + target + b"\n")
+    _set_lines(deck, rel, lines)
+    return f"{rel}:{at + 1}: *INCLUDE of a {kind} ({target[:40].decode()})"
+
+
+def m_keyword(rng, deck, pool):
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    cards = _cards(lines)
+    if not cards:
+        return None
+    k = rng.choice(cards)[0]
+    line, eol = lines[k][:len(lines[k]) - len(_eol(lines[k]))], _eol(lines[k])
+    how = rng.choice(["no star", "lower", "drop params", "dup param", "empty value", "no value",
+                      "unknown param", "spaces", "double comma", "only star"])
+    head, _, params = line.partition(b",")
+    parts = [p for p in params.split(b",") if p.strip()]
+    if how == "no star":
+        line = line.replace(b"*", b"", 1)
+    elif how == "lower":
+        line = line.lower()
+    elif how == "drop params":
+        line = head
+    elif how == "dup param" and parts:
+        line = line + b"," + rng.choice(parts)
+    elif how == "empty value" and parts:
+        p = rng.randrange(len(parts))
+        parts[p] = parts[p].split(b"=")[0] + b"="
+        line = head + b"," + b",".join(parts)
+    elif how == "no value" and parts:
+        p = rng.randrange(len(parts))
+        parts[p] = parts[p].split(b"=")[0]
+        line = head + b"," + b",".join(parts)
+    elif how == "unknown param":
+        line = line + b", FOO=1"
+    elif how == "spaces":
+        line = b"  " + line.replace(b" ", b"   ").replace(b"=", b" = ") + b"  "
+    elif how == "double comma":
+        line = line + b",,"
+    elif how == "only star":
+        line = b"*"
+    else:
+        return None
+    lines[k] = line + eol
+    _set_lines(deck, rel, lines)
+    return f"{rel}:{k + 1}: keyword line {how}: {line[:50]!r}"
+
+
+def m_gut(rng, deck, pool):
+    """The whole deck replaced by nothing useful: empty, comments, blank lines."""
+    kind = rng.choice(["empty", "comments", "blank crlf", "blank", "bom", "heading only"])
+    deck.files[deck.main] = {"empty": b"", "comments": b"** only\n** comments\n", "blank crlf": b"\r\n\r\n\r\n",
+                             "blank": b"\n \n\t\n", "bom": b"\xef\xbb\xbf", "heading only": b"*HEADING\nx\n"}[kind]
+    return f"{deck.main}: whole deck -> {kind}"
+
+
+MUTATORS = [(m_drop_card, 10), (m_dup_card, 8), (m_move_card, 8), (m_splice_card, 8), (m_number, 30),
+            (m_truncate_line, 6), (m_truncate_file, 2), (m_join_lines, 5), (m_delete_line, 6),
+            (m_dup_line, 4), (m_line_endings, 3), (m_binary, 4), (m_long_line, 3), (m_include, 4),
+            (m_keyword, 6), (m_gut, 1)]
+
+
+def card_pool(seeds):
+    """Short cards of the seed decks, for m_splice_card."""
+    pool, seen = [], set()
+    for seed in seeds:
+        lines = _lines(seed, seed.main)
+        for s, e in _cards(lines):
+            card = lines[s:e]
+            if e - s <= 12 and b"INCLUDE" not in card[0].upper() and b"".join(card) not in seen:
+                seen.add(b"".join(card))
+                pool.append(card)
+    return pool
+
+
+def mutant(seeds, pool, seed, index):
+    """Purpose: the index-th mutant of the run with this seed (reproducible alone).
+    Returns a Deck with its notes."""
+    rng = random.Random(f"cfe2d-fuzz:{seed}:{index}")
+    deck = rng.choice(seeds).copy()
+    deck.notes = []
+    count = rng.choices([1, 2, 3, 4], weights=[55, 25, 12, 8])[0]
+    funcs, weights = zip(*MUTATORS)
+    tries = 0
+    while len(deck.notes) < count and tries < 20:
+        tries += 1
+        note = rng.choices(funcs, weights=weights)[0](rng, deck, pool)
+        if note:
+            deck.notes.append(note)
+    return deck
+
+
+# ---------------------------------------------------------------------------- run, classify
+
+@dataclass
+class Result:
+    build: str
+    cls: str
+    sig: str
+    rc: int
+    seconds: float
+    stderr: bytes           # head and tail of stderr
+
+
+@dataclass
+class Limits:
+    time: float = 10.0      # seconds per run
+    mem_mb: int = 2048      # address space per run
+    file_mb: int = 512      # largest file a run may write
+
+
+_ERROR_LINE = re.compile(rb"^(?:.+:\d+: error: |cfe2d: error: )", re.M)
+_CRASH_TEXT = re.compile(rb"Fortran runtime error|Program received signal|Backtrace for this error|"
+                         rb"Error termination|Operating system error|^At line \d+ of file|double free|"
+                         rb"free\(\): |malloc\(\): |stack smashing|corrupted size", re.M)
+_BAD_NUMBER = re.compile(rb"(?i)(?<![\w.])[-+]?(?:nan|inf|infinity)(?![\w.])")
+# Fortran's Ew.d and ESw.d drop the E when the exponent has three digits.
+_NO_E_EXPONENT = re.compile(rb"\d\.\d*[-+]\d{3}(?![\d.])")
+_STARS = re.compile(rb"\*{4,}")
+
+
+def _preexec(limits):
+    def setup():
+        mem = limits.mem_mb * 1024 * 1024
+        resource.setrlimit(resource.RLIMIT_AS, (mem, mem))
+        size = limits.file_mb * 1024 * 1024
+        resource.setrlimit(resource.RLIMIT_FSIZE, (size, size))
+        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    return setup
+
+
+def run_build(exe, deck_dir, deck, out_dir, limits):
+    """Purpose: run one build on a laid-out deck and classify the run.
+    Arguments: exe, the cfe2d executable; deck_dir, where deck.write put the deck;
+    out_dir, the (new) output folder; limits, a Limits. Returns a Result."""
+    os.makedirs(out_dir, exist_ok=True)
+    err_path = out_dir + ".stderr"
+    t0 = time.time()
+    timed_out = ""
+    with open(err_path, "wb") as err:
+        proc = subprocess.Popen([exe, "-q", "-o", out_dir, deck.main], cwd=deck_dir, stdin=subprocess.DEVNULL,
+                                stdout=subprocess.DEVNULL, stderr=err, preexec_fn=_preexec(limits),
+                                start_new_session=True)
+        try:
+            rc = proc.wait(timeout=limits.time)
+        except subprocess.TimeoutExpired:
+            timed_out = hang_probe(proc.pid)
+            os.killpg(proc.pid, signal.SIGKILL)
+            rc = proc.wait()
+    seconds = time.time() - t0
+    stderr = _head_tail(err_path)
+    cls, sig = classify(rc, timed_out, stderr, out_dir, deck.job)
+    return Result(os.path.relpath(exe, ROOT) if exe.startswith(ROOT) else exe, cls, sig, rc, seconds, stderr)
+
+
+def hang_probe(pid):
+    """Purpose: where a process that ran out of time is: blocked in the kernel
+    (and on what) or busy, and in which routines of src/ (a backtrace by gdb,
+    when gdb is there and the build has debug information).
+    Returns a short description (never empty)."""
+    states = []
+    for _ in range(3):
+        try:
+            with open(f"/proc/{pid}/stat") as f:
+                states.append(f.read().rsplit(")", 1)[1].split()[0])
+            with open(f"/proc/{pid}/wchan") as f:
+                wchan = f.read().strip()
+        except OSError:
+            return "hung"
+        time.sleep(0.05)
+    what = "busy" if "R" in states else f"blocked ({wchan})" if wchan not in ("", "0") else "sleeping"
+    if not shutil.which("gdb"):
+        return what
+    try:
+        bt = subprocess.run(["gdb", "-p", str(pid), "-batch", "-nx", "-ex", "bt 60"], capture_output=True,
+                            timeout=30).stdout
+    except (OSError, subprocess.SubprocessError):
+        return what
+    names = []
+    for m in re.finditer(rb"^#\d+\s+(?:0x[0-9a-f]+ in )?(\S+) \(.*\) at (src/\S+):\d+$", bt, re.M):
+        name = m.group(1).decode(errors="replace").split("::")[-1]
+        if name != "main" and (not names or names[-1] != name):
+            names.append(name)
+    # outermost first, without the main program; the innermost frames of a
+    # loop vary from one sample to the next, so only the outer three count
+    path = list(reversed(names))[1:4]
+    return what + (" in " + " > ".join(path) if path else "")
+
+
+def _head_tail(path, keep=4096):
+    size = os.path.getsize(path)
+    with open(path, "rb") as f:
+        if size <= 2 * keep:
+            return f.read()
+        head = f.read(keep)
+        f.seek(size - keep)
+        return head + b"\n[... %d bytes left out ...]\n" % (size - 2 * keep) + f.read()
+
+
+def classify(rc, timed_out, stderr, out_dir, job):
+    """Purpose: the class of one run and a signature telling failures apart.
+    Arguments: rc, the exit status (negative: signal); timed_out, '' or what
+    hang_probe said; stderr bytes;
+    out_dir and job, where the outputs are. Returns (class, signature)."""
+    if timed_out:
+        listing = os.path.join(out_dir, job + ".out")
+        stage = "in the analysis" if os.path.exists(listing) else "before the listing"
+        return "hang", f"time limit reached {stage}, {timed_out}"
+    if rc == -signal.SIGXFSZ:
+        return "hang", "output file size limit reached"
+    crash = _crash_signature(rc, stderr)
+    if crash:
+        return "crash", crash
+    if rc != 0:
+        return "ok-error", ""
+    bad = output_problem(out_dir, job)
+    return ("silent-bad", bad) if bad else ("ok-run", "")
+
+
+def _location(stderr):
+    m = re.search(rb"At line (\d+) of file (\S+)", stderr)
+    if m:
+        return f"{m.group(2).decode(errors='replace')}:{m.group(1).decode()}"
+    m = re.search(rb"\bat (src/\S+?:\d+)", stderr)
+    return m.group(1).decode(errors="replace") if m else ""
+
+
+def _crash_signature(rc, stderr):
+    """'' when the run did not crash, else what and where."""
+    where = _location(stderr)
+    at = f" at {where}" if where else ""
+    m = re.search(rb"Fortran runtime error: ([^\n]*)", stderr)
+    if m:
+        msg = re.sub(r"-?\d+", "#", m.group(1).decode(errors="replace")).strip()
+        return f"runtime error{at}: {msg[:100]}"
+    m = re.search(rb"Program received signal (SIG\w+)", stderr)
+    if m:
+        return f"{m.group(1).decode()}{at}"
+    if rc < 0:
+        try:
+            return f"{signal.Signals(-rc).name}{at}"
+        except ValueError:
+            return f"signal {-rc}{at}"
+    m = _CRASH_TEXT.search(stderr)
+    if m:
+        line = stderr[m.start():].split(b"\n", 1)[0].decode(errors="replace")
+        return f"{re.sub(r'-?[0-9]+', '#', line)[:80]}{at}"
+    if rc not in (0, 1):
+        return f"exit status {rc}"
+    if rc == 1 and not _ERROR_LINE.search(stderr):
+        return "exit 1 without a file:line: error: or cfe2d: error: message"
+    return ""
+
+
+def output_problem(out_dir, job):
+    """Purpose: what is wrong with the outputs of a run that exited 0 ('' if nothing)."""
+    listing = os.path.join(out_dir, job + ".out")
+    if not os.path.exists(listing):
+        return "no listing"
+    with open(listing, "rb") as f:
+        text = f.read()
+    if re.search(rb"^solid_elements 0\s*$", text, re.M):
+        return "the model has no solid element (nothing was analysed)"
+    steps = re.findall(rb"^--- STEP step=(\d+)", text, re.M)
+    incs = set(re.findall(rb"^=== INCREMENT step=(\d+)", text, re.M))
+    if not incs:
+        return "no increment in the listing"
+    for step in steps:
+        if step not in incs:
+            return "a step ran no increment"
+    for name in sorted(os.listdir(out_dir)):
+        if os.path.splitext(name)[1] in (".out", ".csv", ".msh"):
+            bad = _number_problem(os.path.join(out_dir, name))
+            if bad:
+                return f"{bad} in the {os.path.splitext(name)[1]} output"
+    return _short_step(text)
+
+
+def _short_step(text):
+    """'a step stopped before the end of its time period' if the last increment
+    of a step is not at the step's time_period."""
+    periods = dict(re.findall(rb"^--- STEP step=(\d+).*?^time_period\s+(\S+)", text, re.M | re.S))
+    last = {}
+    for step, t in re.findall(rb"^=== INCREMENT step=(\d+) increment=\d+ time=(\S+)", text, re.M):
+        last[step] = t
+    for step, t in last.items():
+        try:
+            period, reached = float(periods[step]), float(t)
+        except (KeyError, ValueError):
+            continue
+        if abs(reached - period) > 1e-5 * abs(period):
+            return "a step stopped before the end of its time period"
+    return ""
+
+
+def _number_problem(path):
+    with open(path, "rb") as f:
+        text = f.read()
+    if path.endswith(".out"):
+        # the deck's name and heading are echoed as given
+        text = re.sub(rb"^(?:heading|deck) .*$", b"", text, flags=re.M)
+    if _BAD_NUMBER.search(text):
+        return "NaN or Infinity"
+    if _NO_E_EXPONENT.search(text):
+        return "a number without E before its 3-digit exponent"
+    if _STARS.search(text):
+        return "a field of asterisks"
+    return ""
+
+
+def run_deck(deck, builds, limits, work):
+    """Purpose: lay out deck in a new folder under work and run every build on it.
+    Returns the list of Results, one per build."""
+    folder = tempfile.mkdtemp(prefix="run-", dir=work)
+    try:
+        deck_dir = os.path.join(folder, "deck")
+        deck.write(deck_dir)
+        return [run_build(exe, deck_dir, deck, os.path.join(folder, f"out{k}"), limits)
+                for k, exe in enumerate(builds)]
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def verdict(results):
+    """The deck's class (the worst over the builds) and the signature of that failure;
+    a signature naming a source line is preferred (the debug build's)."""
+    worst = max(results, key=lambda r: SEVERITY.index(r.cls)).cls
+    same = [r for r in results if r.cls == worst]
+    best = max(same, key=lambda r: ("src/" in r.sig, r.build))
+    return worst, best.sig, best
+
+
+# ---------------------------------------------------------------------------------- minimise
+
+def minimise(deck, target, exe, limits, work, budget, seconds=300.0):
+    """Purpose: shrink deck by deleting files and lines while exe still fails with target.
+    Arguments: target, the (class, signature) to keep; budget, the most runs to spend;
+    seconds, the most time to spend. Returns (smaller Deck, runs used)."""
+    runs, seen, t_end = [0], {}, time.time() + seconds
+
+    def fails(candidate):
+        key = (tuple(sorted(candidate.files.items())), tuple(candidate.fifos), tuple(candidate.dirs))
+        if key not in seen:
+            if runs[0] >= budget or time.time() > t_end:
+                return False
+            runs[0] += 1
+            r = run_deck(candidate, [exe], limits, work)[0]
+            seen[key] = (r.cls, r.sig) == target
+        return seen[key]
+
+    deck = deck.copy()
+    for rel in sorted(deck.files):
+        if rel != deck.main:
+            trial = deck.copy()
+            del trial.files[rel]
+            if fails(trial):
+                deck = trial
+    for rel in [deck.main] + sorted(r for r in deck.files if r != deck.main):
+        lines = _ddmin(_lines(deck, rel), lambda ls: fails(_with_lines(deck, rel, ls)))
+        deck = _with_lines(deck, rel, lines)
+    for attr in ("fifos", "dirs"):
+        for item in list(getattr(deck, attr)):
+            trial = deck.copy()
+            getattr(trial, attr).remove(item)
+            if fails(trial):
+                deck = trial
+    return deck, runs[0]
+
+
+def _with_lines(deck, rel, lines):
+    d = deck.copy()
+    d.files[rel] = b"".join(lines)
+    return d
+
+
+def _ddmin(items, fails):
+    """Delta debugging on a list (Zeller's ddmin): keep one chunk alone, or
+    remove one chunk, while the failure persists; halves, quarters, ... down
+    to single items. Returns the smaller list."""
+    if items and fails([]):
+        return []
+    n = 2
+    while len(items) >= 2:
+        size = -(-len(items) // n)
+        chunks = [items[k:k + size] for k in range(0, len(items), size)]
+        smaller = next((c for c in chunks if fails(c)), None)
+        if smaller is not None:
+            items, n = smaller, 2
+            continue
+        if len(chunks) > 2:
+            for k in range(len(chunks)):
+                rest = [x for j, c in enumerate(chunks) if j != k for x in c]
+                if fails(rest):
+                    items, n = rest, max(n - 1, 2)
+                    break
+            else:
+                rest = None
+            if rest is not None:
+                continue
+        if n >= len(items):
+            break
+        n = min(len(items), 2 * n)
+    return items
+
+
+# ------------------------------------------------------------------------------------ driver
+
+@dataclass
+class Report:
+    decks: int = 0
+    runs: int = 0
+    seconds: float = 0.0
+    counts: dict = field(default_factory=lambda: {c: 0 for c in SEVERITY})
+    disagree: int = 0
+    failures: list = field(default_factory=list)     # (index, class, signature, folder)
+    distinct: dict = field(default_factory=dict)     # (class, signature) -> [indexes]
+    seed_failures: list = field(default_factory=list)
+
+    def summary(self):
+        c = self.counts
+        return (f"fuzz: {self.decks} decks, {c['crash']} crashed, {c['hang']} hung, {c['silent-bad']} silent-bad, "
+                f"{c['ok-error']} ok-error, {c['ok-run']} ok-run ({self.runs} runs in {self.seconds:.0f} s; "
+                f"builds disagree on {self.disagree}; {len(self.distinct)} distinct failures)")
+
+
+def save_failure(out, index, deck, results, cls, sig):
+    folder = os.path.join(out, "failures", f"{index:05d}-{cls}")
+    deck.write(os.path.join(folder, "deck"), {"found": cls, "signature": sig})
+    with open(os.path.join(folder, "runs.txt"), "wb") as f:
+        for r in results:
+            f.write(f"=== {r.build}: {r.cls} {r.sig} (exit {r.rc}, {r.seconds:.1f} s)\n".encode())
+            f.write(r.stderr[-3000:] + b"\n")
+    return folder
+
+
+def fuzz(opts, log=print):
+    """Purpose: the whole fuzzing run described by opts (see main). Returns a Report."""
+    t0 = time.time()
+    report = Report()
+    os.makedirs(opts.out, exist_ok=True)
+    work = tempfile.mkdtemp(prefix="cfe2d-fuzz-")
+    try:
+        seeds = load_seeds(work, log)
+        pool = card_pool(seeds)
+        if opts.check_seeds:
+            check_seeds(seeds, opts, work, report, log)
+        indexes = [opts.index] if opts.index is not None else range(opts.count)
+        for k in indexes:
+            one_mutant(mutant(seeds, pool, opts.seed, k), k, opts, work, report, log)
+            if (report.decks % 100 == 0) and report.decks:
+                log(f"fuzz: ... {report.decks} decks, {time.time() - t0:.0f} s")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    report.seconds = time.time() - t0
+    return report
+
+
+def check_seeds(seeds, opts, work, report, log):
+    """The unmutated seeds must behave as they are meant to (mostly ok-run)."""
+    for seed in seeds:
+        results = run_deck(seed, opts.builds, opts.limits, work)
+        report.runs += len(results)
+        bad = [r for r in results if r.cls != seed.expect]
+        if bad:
+            report.seed_failures.append((seed.name, bad[0].cls, bad[0].sig))
+            log(f"fuzz: seed {seed.name} is not {seed.expect} on {bad[0].build}: {bad[0].cls} {bad[0].sig} "
+                f"{bad[0].stderr[-300:].decode(errors='replace')}")
+    log(f"fuzz: {len(seeds)} seed decks, {len(report.seed_failures)} not as expected")
+
+
+def one_mutant(deck, k, opts, work, report, log):
+    results = run_deck(deck, opts.builds, opts.limits, work)
+    report.decks += 1
+    report.runs += len(results)
+    cls, sig, primary = verdict(results)
+    report.counts[cls] += 1
+    if len({r.cls for r in results}) > 1:
+        report.disagree += 1
+    if cls not in FAILURES:
+        return
+    key = (cls, sig)
+    first = key not in report.distinct
+    report.distinct.setdefault(key, []).append(k)
+    folder = None
+    if len(report.distinct[key]) <= opts.keep:
+        folder = save_failure(opts.out, k, deck, results, cls, sig)
+    report.failures.append((k, cls, sig, folder))
+    log(f"fuzz: #{k} {cls} ({primary.build}): {sig} [{deck.name}: {'; '.join(deck.notes)[:200]}]")
+    if first and opts.minimise:
+        exe = os.path.join(ROOT, primary.build) if not os.path.isabs(primary.build) else primary.build
+        small, used = minimise(deck, key, exe, opts.min_limits, work, opts.min_budget, opts.minimise_seconds)
+        dest = os.path.join(opts.out, "distinct", f"{len(report.distinct):03d}-{cls}-{k:05d}")
+        small.write(dest, {"found": cls, "signature": sig, "build": primary.build})
+        nlines = sum(len(_lines(small, r)) for r in small.files)
+        log(f"fuzz:    minimised to {nlines} line(s) in {used} runs: {dest}")
+
+
+def replay(folder, opts, log=print):
+    """Run the builds on one saved deck folder; print and return the Results."""
+    deck, meta = load_case(folder)
+    work = tempfile.mkdtemp(prefix="cfe2d-fuzz-")
+    try:
+        results = run_deck(deck, opts.builds, opts.limits, work)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    for r in results:
+        log(f"{folder}: {r.build}: {r.cls} {r.sig} (exit {r.rc}, {r.seconds:.1f} s)"
+            + (f", expected {meta['expect']}" if "expect" in meta else ""))
+    return results, meta
+
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--count", type=int, default=200, help="number of mutants (default 200)")
+    ap.add_argument("--index", type=int, help="run only this mutant of the seed")
+    ap.add_argument("--time-limit", type=float, default=10.0, help="seconds per run (default 10)")
+    ap.add_argument("--mem-limit", type=int, default=2048, help="MiB of address space per run (default 2048)")
+    ap.add_argument("--file-limit", type=int, default=512, help="MiB per written file (default 512)")
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "fuzz"))
+    ap.add_argument("--builds", default=",".join(DEFAULT_BUILDS), help="comma-separated executables")
+    ap.add_argument("--keep", type=int, default=100,
+                    help="failing mutants saved per distinct failure (default 100; the rest are counted)")
+    ap.add_argument("--minimise", action="store_true", help="shrink the first mutant of each distinct failure")
+    ap.add_argument("--minimise-time-limit", type=float, help="seconds per minimising run (default --time-limit)")
+    ap.add_argument("--minimise-budget", type=int, default=1000, help="most runs per minimisation (default 1000)")
+    ap.add_argument("--minimise-seconds", type=float, default=300.0,
+                    help="most seconds per minimisation (default 300)")
+    ap.add_argument("--no-seed-check", dest="check_seeds", action="store_false",
+                    help="do not first run the unmutated seeds")
+    ap.add_argument("--replay", nargs="+", metavar="FOLDER", help="classify saved deck folders and stop")
+    args = ap.parse_args(argv)
+    args.builds = [b if os.path.isabs(b) else os.path.join(ROOT, b) for b in args.builds.split(",") if b]
+    args.limits = Limits(args.time_limit, args.mem_limit, args.file_limit)
+    args.min_limits = Limits(args.minimise_time_limit or args.time_limit, args.mem_limit, args.file_limit)
+    args.min_budget = args.minimise_budget
+    args.out = os.path.abspath(args.out)
+    return args
+
+
+def main(argv=None):
+    opts = parse_args(argv)
+    missing = [b for b in opts.builds if not os.access(b, os.X_OK)]
+    if missing:
+        print(f"fuzz: error: not built: {', '.join(missing)} (make -j2 && make debug)", file=sys.stderr)
+        return 2
+    if opts.replay:
+        bad = 0
+        for folder in opts.replay:
+            results, meta = replay(folder, opts)
+            want = meta.get("expect")
+            bad += any(r.cls in FAILURES or (want and r.cls not in want.split(",")) for r in results)
+        return 1 if bad else 0
+    report = fuzz(opts)
+    lines = [report.summary()]
+    for (cls, sig), ks in sorted(report.distinct.items(), key=lambda kv: kv[1][0]):
+        lines.append(f"  {cls:10s} x{len(ks):<4d} {sig}  (first: mutant {ks[0]})")
+    for name, cls, sig in report.seed_failures:
+        lines.append(f"  seed {name}: {cls} {sig}")
+    print("\n".join(lines))
+    with open(os.path.join(opts.out, "summary.txt"), "w") as f:
+        f.write(f"python3 scripts/fuzz.py {' '.join(sys.argv[1:] if argv is None else argv)}\n")
+        f.write("\n".join(lines) + "\n")
+    return 1 if report.failures or report.seed_failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,152 @@
+"""The mutation fuzzer (scripts/fuzz.py) on both builds: a short fixed-seed
+slice must find no crash, hang or silent bad result, and every minimised
+deck of tests/fuzz/ (a past failure) must now be handled as its case.txt
+expects: a clear error (ok-error) or a clean run (ok-run)."""
+import os
+import shutil
+import tempfile
+
+import fuzz
+from helpers import Skip
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REGRESSIONS = os.path.join(HERE, "fuzz")
+
+# About a minute on the 2-core machine for both builds (seeds included);
+# a hang costs 2 x SLICE_TIME_LIMIT.
+SLICE_SEED, SLICE_COUNT, SLICE_TIME_LIMIT = 1, 100, 5
+# A fixed deck is handled at once; a longer limit only slows the failures.
+REGRESSION_TIME_LIMIT = 5
+
+
+def builds():
+    exes = [os.path.join(fuzz.ROOT, b) for b in fuzz.DEFAULT_BUILDS]
+    missing = [e for e in exes if not os.access(e, os.X_OK)]
+    if missing:
+        raise Skip(f"not built: {', '.join(missing)}")
+    return exes
+
+
+def test_fuzz_short_slice():
+    exes = builds()
+    out = tempfile.mkdtemp(prefix="cfe2d-fuzz-slice-")
+    try:
+        opts = fuzz.parse_args(["--seed", str(SLICE_SEED), "--count", str(SLICE_COUNT), "--time-limit",
+                                str(SLICE_TIME_LIMIT), "--out", out, "--builds", ",".join(exes), "--keep", "0"])
+        report = fuzz.fuzz(opts, log=lambda msg: None)
+    finally:
+        shutil.rmtree(out, ignore_errors=True)
+    assert report.decks == SLICE_COUNT and report.runs >= 2 * SLICE_COUNT, report.summary()
+    problems = [f"seed {n}: {c} {s}" for n, c, s in report.seed_failures]
+    problems += [f"mutant {k} (python3 scripts/fuzz.py --seed {SLICE_SEED} --index {k} --time-limit "
+                 f"{SLICE_TIME_LIMIT}): {c}: {s}" for k, c, s, _ in report.failures]
+    assert not problems, report.summary() + "\n" + "\n".join(problems)
+
+
+LISTING = """cfe2d 0.1.0 - 2D contact with coupling finite elements
+--- MODEL
+item value
+deck {deck}
+heading {heading}
+nodes 6
+solid_elements 2
+
+--- STEP step=1 name=
+item value
+time_period  1.00000E+00
+increments 1
+
+=== INCREMENT step=1 increment=1 time=1.00000000E+00 total_time=1.00000000E+00 iterations=1 ===
+--- NODE U
+         3   {value}   0.000000E+00
+=== END INCREMENT
+"""
+
+
+def classify_listing(rc=0, stderr=b"", **fields):
+    values = dict(deck="job.inp", heading="bar", value="1.500000E-02")
+    values.update(fields)
+    out = tempfile.mkdtemp(prefix="cfe2d-fuzz-classify-")
+    try:
+        with open(os.path.join(out, "job.out"), "w") as f:
+            f.write(LISTING.format(**values))
+        return fuzz.classify(rc, "", stderr, out, "job")
+    finally:
+        shutil.rmtree(out, ignore_errors=True)
+
+
+def test_classifier_outputs():
+    assert classify_listing() == ("ok-run", "")
+    # the deck's own text is echoed as given: a "nan" in the heading is no result
+    assert classify_listing(heading="gap nan inf 2.0+300", deck="x1e+999.inp") == ("ok-run", "")
+    for bad in ("NaN", "-Infinity", "Infinity", "2.000000+160", "1.5-320", "**********"):
+        cls, sig = classify_listing(value=bad)
+        assert cls == "silent-bad" and ".out" in sig, (bad, cls, sig)
+    cls, sig = classify_listing(value="1.0E+00\n=== INCREMENT step=1 increment=2 time=5.0E-01 x")
+    assert (cls, sig) == ("silent-bad", "a step stopped before the end of its time period"), sig
+
+
+def test_classifier_exit_and_stderr():
+    assert classify_listing(1, b"job.inp:3: error: undefined node 66\n    | 2, 66\n")[0] == "ok-error"
+    assert classify_listing(1, b"cfe2d: error: cannot open deck file\n")[0] == "ok-error"
+    assert classify_listing(1, b"something went wrong\n") == \
+        ("crash", "exit 1 without a file:line: error: or cfe2d: error: message")
+    assert classify_listing(-11, b"") == ("crash", "SIGSEGV")
+    cls, sig = classify_listing(2, b"At line 86 of file src/input/deck_parser.f90\n"
+                                   b"Fortran runtime error: Index '0' of dimension 1 below lower bound of 1\n")
+    assert cls == "crash" and sig.startswith("runtime error at src/input/deck_parser.f90:86: Index '#'"), sig
+    # an error message does not excuse a runtime error
+    assert classify_listing(1, b"job.inp:3: error: x\nOperating system error: Cannot allocate memory\n")[0] == "crash"
+    assert classify_listing(3, b"job.inp:3: error: x\n") == ("crash", "exit status 3")
+    assert fuzz.classify(-9, "busy", b"", tempfile.gettempdir(), "no-such-job")[0] == "hang"
+
+
+def test_mutants_reproducible_and_varied():
+    seeds = [fuzz.Deck("a", "a.inp", {"a.inp": b"*HEADING\nx\n*NODE\n1, 0, 0\n2, 1.5, 0\n*STEP\n*STATIC\n"
+                                                  b"0.5, 1.0\n*END STEP\n"})]
+    pool = fuzz.card_pool(seeds)
+    first = [fuzz.mutant(seeds, pool, 7, k).files for k in range(30)]
+    again = [fuzz.mutant(seeds, pool, 7, k).files for k in range(30)]
+    assert first == again
+    assert len({tuple(sorted(f.items())) for f in first}) > 20
+    assert all(f != seeds[0].files for f in first[:5]), "a mutant must differ from its seed"
+
+
+def test_ddmin_finds_the_two_lines():
+    tried = []
+
+    def fails(lines):
+        tried.append(lines)
+        return 3 in lines and 17 in lines
+
+    assert fuzz._ddmin(list(range(100)), fails) == [3, 17]
+    assert len(tried) < 100
+
+
+def regression_folders():
+    if not os.path.isdir(REGRESSIONS):
+        return []
+    return sorted(os.path.join(REGRESSIONS, d) for d in os.listdir(REGRESSIONS)
+                  if os.path.exists(os.path.join(REGRESSIONS, d, "case.txt")))
+
+
+def check_regression(folder):
+    exes = builds()
+    opts = fuzz.parse_args(["--builds", ",".join(exes), "--time-limit", str(REGRESSION_TIME_LIMIT)])
+    results, meta = fuzz.replay(folder, opts, log=lambda msg: None)
+    want = meta.get("expect", "").split(",")
+    assert want and set(want) <= {"ok-error", "ok-run"}, \
+        f"{folder}/case.txt: expect= must be ok-error, ok-run or ok-error,ok-run"
+    wrong = [f"{r.build}: {r.cls} {r.sig} (exit {r.rc}); stderr: "
+             f"{r.stderr[:200].decode(errors='replace').strip()!r}" for r in results if r.cls not in want]
+    assert not wrong, f"expected {' or '.join(want)}:\n" + "\n".join(wrong)
+
+
+def test_fuzz_regressions_present():
+    # the folder must not silently lose its decks (each is a past failure)
+    assert len(regression_folders()) >= 5, regression_folders()
+
+
+def cases():
+    for folder in regression_folders():
+        yield f"regression {os.path.basename(folder)}", (lambda f=folder: check_regression(f))
