@@ -38,6 +38,10 @@ contains
         call err(p, 'step has no procedure (*STATIC)')
       end if
     end do
+    if (count([(is_continuum(m, s), s = 1, m%ne)]) == 0) then
+      p%i = m%steps(1)%src%line
+      call err(p, 'the model has no continuum element (only line elements, or none): nothing to analyse')
+    end if
     call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
   end subroutine check_model
 
