@@ -46,6 +46,7 @@ contains
     ein%nen = nen
     ein%kind = catalogue(m%etype(e))%shape
     ein%state = catalogue(m%etype(e))%state
+    ein%nip = catalogue(m%etype(e))%nip
     nodes(1:nen) = m%conn(1:nen, e)
     do k = 1, nen
       ein%xy(:, k) = m%x(:, nodes(k))

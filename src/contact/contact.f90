@@ -7,9 +7,9 @@ module contact
   use kinds, only: dp
   use strings, only: itoa
   use model
-  use element_catalogue, only: catalogue, shape_quad4
+  use element_catalogue, only: catalogue, is_triangle
   use mesh_topology, only: is_boundary_edge
-  use element_interface, only: elem_in_t, elem_out_t, kind_cfe, kind_quad4, kind_tri3, max_slave, max_en, act_residual
+  use element_interface, only: elem_in_t, elem_out_t, kind_cfe, max_slave, max_en, act_residual
   use element_library, only: element_routine
   implicit none
   private
@@ -287,7 +287,7 @@ contains
     integer, intent(in) :: et, k
     real(dp), intent(in) :: t
     real(dp) :: xi(2)
-    if (catalogue(et)%shape == shape_quad4) then
+    if (.not. is_triangle(catalogue(et)%shape)) then
       select case (k)
       case (1); xi = [-1.0_dp + 2.0_dp * t, -1.0_dp]
       case (2); xi = [1.0_dp, -1.0_dp + 2.0_dp * t]
@@ -334,11 +334,7 @@ contains
       ein%xy(:, k) = m%x(:, nodes(k))
       ein%ue(2 * k - 1:2 * k) = u(:, nodes(k))
     end do
-    if (catalogue(m%etype(c%elem))%shape == shape_quad4) then
-      ein%master_kind = kind_quad4
-    else
-      ein%master_kind = kind_tri3
-    end if
+    ein%master_kind = catalogue(m%etype(c%elem))%shape
     ein%xi = c%xi
     ein%normal = c%normal
     ein%gap0 = c%gap0
