@@ -86,9 +86,15 @@ contains
     eout%ndof = nd
     eout%nip = ein%nip
     call gauss_rule(ein%kind, ein%nip, xg, wg)
+    eout%detj_min = huge(1.0_dp)
     do ip = 1, ein%nip
       call shape_at(ein%kind, xg(:, ip), n, dn)
       call strain_matrix(nen, ein%xy(:, 1:nen), n(1:nen), dn(:, 1:nen), ein%state, b(:, 1:nd), detj, r)
+      if (ein%state == state_axisymmetric) then
+        eout%detj_min = min(eout%detj_min, detj * r)
+      else
+        eout%detj_min = min(eout%detj_min, detj)
+      end if
       if (need_k) then
         ! upper triangle of B^T D B, mirrored below after the loop
         db(:, 1:nd) = matmul(d, b(:, 1:nd)) * (volume_factor(ein%state, detj, r, ein%thickness) * wg(ip))

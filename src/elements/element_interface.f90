@@ -61,6 +61,9 @@ module element_interface
     real(dp) :: jump(2) = 0.0_dp
     real(dp) :: gap = 0.0_dp
     real(dp) :: normal_force = 0.0_dp
+    !> continuum element: the smallest det J (times r in axisymmetry) at
+    !> its integration points; not positive means an invalid element
+    real(dp) :: detj_min = 0.0_dp
   end type elem_out_t
 
 contains

@@ -208,12 +208,51 @@ contains
     end select
   end function load_rule
 
+  !> Weights w(1:6) such that sum w_i v_i is the value at xi of the
+  !> complete quadratic through the values v_i at the six points of the
+  !> degree-4 triangle rule.
+  pure function quadratic_fit_weights(xi) result(w)
+    real(dp), intent(in) :: xi(2)
+    real(dp) :: w(6), a(6, 6), xg(2, max_ip), wg(max_ip), f, tmp(6)
+    integer :: i, j, piv
+    call triangle_rule(6, xg, wg)
+    ! solve V^T w = q(xi) with V(i, :) the quadratic basis at point i
+    do i = 1, 6
+      a(:, i) = quadratic_basis(xg(:, i))
+    end do
+    w = quadratic_basis(xi)
+    do j = 1, 6                       ! Gaussian elimination, partial pivoting
+      piv = j - 1 + maxloc(abs(a(j:6, j)), 1)
+      tmp = a(j, :)
+      a(j, :) = a(piv, :)
+      a(piv, :) = tmp
+      f = w(j)
+      w(j) = w(piv)
+      w(piv) = f
+      do i = j + 1, 6
+        f = a(i, j) / a(j, j)
+        a(i, j:6) = a(i, j:6) - f * a(j, j:6)
+        w(i) = w(i) - f * w(j)
+      end do
+    end do
+    do j = 6, 1, -1
+      w(j) = (w(j) - dot_product(a(j, j + 1:6), w(j + 1:6))) / a(j, j)
+    end do
+  end function quadratic_fit_weights
+
+  pure function quadratic_basis(xi) result(q)
+    real(dp), intent(in) :: xi(2)
+    real(dp) :: q(6)
+    q = [1.0_dp, xi(1), xi(2), xi(1)**2, xi(1) * xi(2), xi(2)**2]
+  end function quadratic_basis
+
   !> Purpose: extrapolation of integration-point values to the nodes,
   !> v_node(k) = sum_i e(k, i) v_ip(i), for the rule of nip points. The
   !> values at the points are interpolated by the polynomial of the rule's
   !> own grid and evaluated at the node: 1 point constant; 3 triangle
-  !> points linear; 2x2 bilinear; 3x3 biquadratic (Lagrange through the
-  !> 3x3 Gauss points). A field of that degree is reproduced exactly.
+  !> points linear; 6 triangle points quadratic; 2x2 bilinear; 3x3
+  !> biquadratic (Lagrange through the 3x3 Gauss points). A field of that
+  !> degree is reproduced exactly.
   pure subroutine extrapolation(shape, nnode, nip, e)
     integer, intent(in) :: shape, nnode, nip
     real(dp), intent(out) :: e(max_nodes, max_ip)
@@ -224,12 +263,14 @@ contains
       xi = natural_of_node(shape, k)
       if (nip == 1) then
         e(k, 1) = 1.0_dp
-      else if (is_triangle(shape)) then
+      else if (is_triangle(shape) .and. nip == 3) then
         ! the three points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3) as a triangle
         ! of their own: its area coordinates at the node
         s = 2.0_dp * xi(1) - 1.0_dp / 3.0_dp
         t = 2.0_dp * xi(2) - 1.0_dp / 3.0_dp
         e(k, 1:3) = [1.0_dp - s - t, s, t]
+      else if (is_triangle(shape)) then
+        e(k, 1:6) = quadratic_fit_weights(xi)
       else if (nip == 4) then
         call quad4_shape(sqrt(3.0_dp) * xi(1), sqrt(3.0_dp) * xi(2), n, dn)
         e(k, 1:4) = n

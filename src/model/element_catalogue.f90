@@ -56,7 +56,10 @@ module element_catalogue
   !> boundary curves; they carry no stiffness and serve to define surfaces.
   !> CPS8R/CPE8R/CAX8R are the 8-node quadrilateral with 2x2 points; the
   !> 8-node element's spurious mode under 2x2 is not communicable through a
-  !> mesh of more than one element, as in Abaqus.
+  !> mesh of more than one element, as in Abaqus. CAX6 takes 6 points
+  !> (degree 4) where CPS6/CPE6 take 3: the hoop terms N_i u_r / r times
+  !> r dA of the axisymmetric triangle are of degree 3 for a quadratic
+  !> field (degree 4 with curved edges), and 3 points fail its patch tests.
   type(element_type_t), parameter :: catalogue(19) = [ &
     element_type_t('T3D2', shape_line2, 2, 2, 1, line_edges, 0, state_none, 1, 3), &
     element_type_t('T2D2', shape_line2, 2, 2, 1, line_edges, 0, state_none, 1, 3), &
@@ -70,7 +73,7 @@ module element_catalogue
     element_type_t('CAX4', shape_quad4, 4, 4, 4, quad_edges, 4, state_axisymmetric, 3, 9), &
     element_type_t('CPS6', shape_tri6, 6, 3, 3, tri6_edges, 3, state_plane_stress, 9, 22), &
     element_type_t('CPE6', shape_tri6, 6, 3, 3, tri6_edges, 3, state_plane_strain, 9, 22), &
-    element_type_t('CAX6', shape_tri6, 6, 3, 3, tri6_edges, 3, state_axisymmetric, 9, 22), &
+    element_type_t('CAX6', shape_tri6, 6, 3, 3, tri6_edges, 6, state_axisymmetric, 9, 22), &
     element_type_t('CPS8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_plane_stress, 16, 23), &
     element_type_t('CPE8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_plane_strain, 16, 23), &
     element_type_t('CAX8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_axisymmetric, 16, 23), &
