@@ -63,18 +63,23 @@ def contact_rows(run):
 def test_uniform_pressure_patch_nonmatching_quadratic():
     """CPS8 on CPS8, 7 slave faces over 5 master faces (no common
     refinement), pressed 0.03 across a gap of 0.01: every slave point's
-    pressure and every master node's pressure within 0.5 % of the series
-    value E (d - g0) / (h1 + h2); also CPS6 on CPS8 and CPS8 on CPS4."""
-    p = E * (0.03 - 0.01) / 2.0
+    pressure and every master node's pressure uniform to 1e-4 and within
+    0.5 % of the series value E (d - g0) / (h1 + h2 + h/10) (the last term
+    the automatic face penalty's compliance, 10 E / h per area with h the
+    node spacing); also CPS6 on CPS8, CPS8 on CPS4 and 3 over 7 faces."""
     for lower, upper, n1, n2 in (("Q8", "Q8", 5, 7), ("Q8", "T6", 5, 7), ("Q4", "Q8", 5, 7), ("Q8", "Q8", 7, 3)):
+        h = min(0.5 / n2, 1.0 / n1 / (1 if lower == "Q4" else 2))
+        p = E * (0.03 - 0.01) / (2.0 + h / 10)
         run = run_deck(f"patch_quad_{lower}_{upper}_{n1}_{n2}", two_blocks(lower, upper, n1, n2)).ok()
         s, mst, inc = contact_rows(run)
         ps = np.array(s["pressure"])
         pm = np.array(mst["pressure"])
         assert all(n == 0 for n in s["node"]) and all(st == "CLOSED" for st in s["state"]), s["state"]
         es, em = np.max(np.abs(ps - p)) / p, np.max(np.abs(pm - p)) / p
-        print(f"  {upper} slave on {lower} master, {n2} over {n1}: slave {es:.2e}, master {em:.2e}")
-        assert es < 5e-3 and em < 5e-3, (lower, upper, es, em)
+        spread = (max(ps.max(), pm.max()) - min(ps.min(), pm.min())) / p
+        print(f"  {upper} slave on {lower} master, {n2} over {n1}: slave {es:.2e}, master {em:.2e}, "
+              f"spread {spread:.2e}")
+        assert es < 5e-3 and em < 5e-3 and spread < 1e-4, (lower, upper, es, em, spread)
         total = inc.block("CONTACT SUMMARY")["total_force"][0]
         assert abs(total - p) < 5e-3 * p, total
 
@@ -102,15 +107,17 @@ def lame_u(p_in, p_out, a, b, r):
     return (1 + NU) / E * ((1 - 2 * NU) * A * r + B / r)
 
 
-def shrink_fit_pressure(a, b, c, delta):
+def shrink_fit_pressure(a, b, c, delta, h=0.0):
     """Slave (inner cylinder a < r < b + delta) and master (outer
     cylinder b < r < c) pressures of the fit, plane strain, same material,
     as the small-deformation model states it: the overlap delta is closed
     (u_outer(b) - u_inner(b + delta) = delta) and each coupling force acts
     on the slave area at b + delta and on the master area at b, so
-    p_master = p_slave (b + delta) / b."""
+    p_master = p_slave (b + delta) / b. h: the node spacing that sets the
+    automatic face penalty 10 E / h per area, whose compliance takes up
+    part of the overlap (0 for a rigid penalty)."""
     f = (b + delta) / b
-    ps = delta / (lame_u(f, 0.0, b, c, b) - lame_u(0.0, 1.0, a, b + delta, b + delta))
+    ps = delta / (lame_u(f, 0.0, b, c, b) - lame_u(0.0, 1.0, a, b + delta, b + delta) + h / (10 * E))
     return ps, ps * f
 
 
@@ -172,12 +179,17 @@ RF
 RA, RB, RC, DELTA = 1.0, 1.5, 2.5, 0.02
 
 
+def face_spacing(r, n):
+    """Node spacing of n 3-node faces on a quarter circle of radius r."""
+    return r * math.sin(math.pi / 4 / n)
+
+
 def test_shrink_fit_plane_strain_curved_faces():
     """Quarter model, CPE8 (and CPE6) in CPE8 with curved faces, 28 slave
     faces over 14 master faces: the pressure at every slave point and
     every master node within 0.5 % of the closed form (two Lame
     cylinders), the total force p_slave (b + delta) pi / 2 within 0.5 %."""
-    ps, pm = shrink_fit_pressure(RA, RB, RC, DELTA)
+    ps, pm = shrink_fit_pressure(RA, RB, RC, DELTA, h=face_spacing(RB + DELTA, 28))
     for inner in ("Q8", "T6"):
         mi, mo, deck = shrink_deck(inner, "Q8", "E")
         run = run_deck(f"shrink_pe_{inner}", deck).ok()
@@ -194,17 +206,17 @@ def test_shrink_fit_plane_strain_curved_faces():
 def test_shrink_fit_curved_non_nested_geometric_mismatch():
     """Curved faces divided without a common refinement (20 slave faces
     over 14 master faces): the two piecewise-quadratic circles differ by up
-    to 6e-7 between them, and the automatic penalty (1000 E / h per area)
-    turns that into a pressure scatter of tens of percent between
-    neighbouring slave points, while the master nodal pressures stay
-    within 2 % and the total force within 0.5 %. A penalty of 1e5 per
-    area (1e-3 of the overlap taken up as penetration) brings every slave
-    point within 2 %. (A measurement of the method's limit, see
-    docs/contact.md.)"""
-    ps, pm = shrink_fit_pressure(RA, RB, RC, DELTA)
-    for pair, slave_tol in (("", None), (", PENALTY=1e5", 2e-2)):
+    to 6e-7 between them. With the automatic face penalty (10 E / h per
+    area) every slave point is within 3 %, every master node within 2 %,
+    the total force
+    within 0.5 %; a penalty 40 times stiffer (1e7 per area) turns the
+    mismatch into a scatter of tens of percent between neighbouring slave
+    points (printed, a measurement of the method's limit: see
+    docs/contact.md), while the master nodes stay within 2 %."""
+    for pair, slave_tol in (("", 3e-2), (", PENALTY=1e7", None)):
+        ps, pm = shrink_fit_pressure(RA, RB, RC, DELTA, h=0.0 if pair else face_spacing(RB + DELTA, 20))
         mi, mo, deck = shrink_deck("Q8", "Q8", "E", n_inner=20, n_outer=14, pair=pair)
-        run = run_deck("shrink_pe_20_14" + ("_soft" if pair else ""), deck).ok()
+        run = run_deck("shrink_pe_20_14" + ("_stiff" if pair else ""), deck).ok()
         s, mst, inc = contact_rows(run)
         es = np.max(np.abs(np.array(s["pressure"]) - ps)) / ps
         em = np.max(np.abs(np.array(mst["pressure"]) - pm)) / pm
@@ -222,8 +234,9 @@ def test_shrink_fit_axisymmetric_ring_totals():
     non-matching 5 over 3 faces; CAX4 in CAX4, 6 over 3): the pressure
     within 0.5 %, and the contact force is the whole ring's
     p 2 pi (b + delta) h."""
-    ps, pm = shrink_fit_pressure(RA, RB, RC, DELTA)
     for shape in ("Q8", "Q4"):
+        # the face penalty's spacing: half the slave faces' 0.1 (CAX4: node-to-segment, 1000 E / h)
+        ps, pm = shrink_fit_pressure(RA, RB, RC, DELTA, h=0.05 if shape == "Q8" else 0.0)
         mi, mo, deck = shrink_deck(shape, shape, "AX")
         run = run_deck(f"shrink_ax_{shape}", deck).ok()
         s, mst, inc = contact_rows(run)
