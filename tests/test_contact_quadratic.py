@@ -52,6 +52,8 @@ TOPLEFT, 1, 1
 TOP, 2, 2, {-d}
 *NODE PRINT, NSET=GROUND
 RF
+*NODE FILE
+CSTRESS
 *END STEP
 """
     return deck
@@ -85,6 +87,15 @@ def test_uniform_pressure_patch_nonmatching_quadratic():
         assert es < 5e-3 and em < 5e-3 and spread < 1e-4, (lower, upper, es, em, spread)
         total = inc.block("CONTACT SUMMARY")["total_force"][0]
         assert abs(total - p) < 5e-3 * p, total
+        # the result file's nodal contact pressure: slave nodes (forces of
+        # the Gauss points over consistent areas) and master nodes alike
+        from gmsh_results import read_msh
+        res = read_msh(run.listing_path[:-4] + ".msh")
+        _, pv = res.node_view("Contact pressure", 0)
+        ids = list(res.node_ids)
+        slave_nodes = [n for n in ids if n > 10000 and abs(res.xy[ids.index(n)][1] - 1.01) < 1e-9]
+        vals = np.array([pv[ids.index(n)][0] for n in slave_nodes])
+        assert len(vals) == 2 * n2 + 1 and np.max(np.abs(vals - p)) < 1e-9 * p, (lower, upper, vals)
 
 
 def test_node_to_segment_on_quadratic_slave_shows_the_problem():

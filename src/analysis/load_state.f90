@@ -21,7 +21,7 @@ module load_state
   use distributed_loads, only: face_pressure_load, body_force_load
   implicit none
   private
-  public :: load_state_t, load_pattern_t, begin_step, values_at, amplitude_value, pattern_forces
+  public :: load_state_t, load_pattern_t, begin_step, values_at, amplitude_value
 
   type :: load_pattern_t
     integer :: elem = 0, label = 0, face = 0     ! what it is (dload_t)
@@ -246,17 +246,6 @@ contains
       end associate
     end do
   end subroutine add_patterns
-
-  !> Purpose: the nodal forces of the distributed loads alone at step time
-  !> t (for tests and reports).
-  subroutine pattern_forces(m, ls, t, f)
-    type(model_t), intent(in) :: m
-    type(load_state_t), intent(in) :: ls
-    real(dp), intent(in) :: t
-    real(dp), intent(out) :: f(:, :)
-    f = 0.0_dp
-    call add_patterns(m, ls, t, 1.0_dp, f)
-  end subroutine pattern_forces
 
   subroutine prescribe(ls, bc, immediate)
     type(load_state_t), intent(inout) :: ls

@@ -24,7 +24,7 @@ module contact
   use mesh_topology, only: is_boundary_edge
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, &
                               edge_weights, area_factor, edge_length
-  use shape_functions, only: line_shape, gauss_line
+  use shape_functions, only: gauss_line
   use element_interface, only: elem_in_t, elem_out_t, kind_cfe, max_slave, max_en, act_residual
   use element_library, only: element_routine
   implicit none

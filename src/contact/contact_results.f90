@@ -4,7 +4,8 @@
 !> a slave face), the master rows (the CFE forces taken to the master edge
 !> nodes with the weights N_i(X_C), their consistent areas, pressures) and
 !> the pair's totals; and the nodal contact pressure field of the whole
-!> model (slave nodes of node-to-segment CFEs and master nodes).
+!> model (slave nodes: their CFE's, or for Gauss points of slave faces the
+!> nodal forces over consistent areas; master nodes).
 module contact_results
   use kinds, only: dp
   use model
@@ -73,8 +74,51 @@ contains
           r%has_pressure(pr%master_node(j)) = .true.
         end do
       end associate
+      call face_point_pressures(m, cs, ip, r%pressure, r%has_pressure)
     end do
   end subroutine compute_contact_results
+
+  !> Nodal pressures of the slave nodes of pair ip whose CFEs are Gauss
+  !> points of 3-node faces: the force the points put on each node
+  !> (weights N_j) over the node's consistent area. Unlike the point
+  !> pressures this does not see the points' alternating mode (forces that
+  !> cancel at the nodes, see contact).
+  subroutine face_point_pressures(m, cs, ip, pressure, has_pressure)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip
+    real(dp), intent(inout) :: pressure(:)
+    logical, intent(inout) :: has_pressure(:)
+    real(dp), allocatable :: f(:), a(:)
+    real(dp) :: ae(3)
+    type(edge_t) :: ed
+    integer :: j, q
+    if (.not. any(cs%c(1:cs%n)%pair == ip .and. cs%c(1:cs%n)%ns > 1)) return
+    allocate(f(m%nn), a(m%nn))
+    f = 0.0_dp
+    a = 0.0_dp
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
+      do j = 1, size(sl%elem)
+        ed = get_edge(m, m%x, sl%elem(j), sl%edge(j))
+        ae = edge_areas(ed)
+        a(ed%node(1:ed%nn)) = a(ed%node(1:ed%nn)) + ae(1:ed%nn)
+      end do
+    end associate
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        if (c%pair /= ip .or. c%ns == 1) cycle
+        do q = 1, c%ns
+          f(c%snode(q)) = f(c%snode(q)) - c%sw(q) * c%force
+        end do
+      end associate
+    end do
+    do j = 1, m%nn
+      if (a(j) > 0.0_dp) then
+        pressure(j) = f(j) / a(j)
+        has_pressure(j) = .true.
+      end if
+    end do
+  end subroutine face_point_pressures
 
   !> Purpose: results of pair ip. For a SYMMETRIC pair each node's force
   !> is what both passes put on it: its own CFE force and what it receives
