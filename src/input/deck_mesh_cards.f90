@@ -75,6 +75,7 @@ contains
     nitems = 0
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
+      call continued_element_line(p, nen + 1, f, n)
       if (n /= nen + 1) call err(p, 'element ' // tname // ' needs an id and ' // itoa(nen) // ' nodes')
       id = get_int(p, f(1), 'element id')
       if (id < 1 .or. id > max_id) call err(p, 'element id out of range 1..' // itoa(max_id))
@@ -104,6 +105,28 @@ contains
       call extend_set(m%elsets(iset)%items, items(1:nitems))
     end if
   end subroutine read_elements
+
+  !> An element data line that ends with a comma before all nodes are
+  !> given continues on the next line (as CalculiX writes 8-node elements:
+  !> eight fields, then the last node alone).
+  subroutine continued_element_line(p, nwant, f, n)
+    type(parser_t), intent(inout) :: p
+    integer, intent(in) :: nwant
+    type(field_t), allocatable, intent(inout) :: f(:)
+    integer, intent(inout) :: n
+    type(field_t), allocatable :: more(:)
+    character(len=:), allocatable :: t
+    integer :: nm
+    do while (n < nwant)
+      t = trim(line_text(p))
+      if (len(t) == 0) exit
+      if (t(len(t):len(t)) /= ',') exit
+      if (.not. next_data(p)) exit
+      call split_fields(line_text(p), more, nm)
+      f = [f(1:n), more(1:nm)]
+      n = n + nm
+    end do
+  end subroutine continued_element_line
 
   !> The element type names of the catalogue, for error messages.
   function catalogue_names() result(s)
