@@ -25,6 +25,9 @@ the element types (CPS*, CPE*). --E, --nu and --plane override them.
 Usage: compare_hertz.py RESULT_DIR [--job hertz] [--deck DECK] [--radius 10]
        [--E E1 [E2]] [--nu NU1 [NU2]] [--plane stress|strain] [--symmetry 1]
        [--x0 0] [--load-set CYL_TOP] [--plots] [--quiet]
+       compare_hertz.py RESULT_DIR --point --job hertz_point [--radius 10] ...
+       (point contact of a sphere, axisymmetric: a = (3PR/(4E*))^(1/3),
+       p0 = 3P/(2 pi a^2), P the whole ring's contact force)
 """
 import argparse
 import csv
@@ -36,9 +39,9 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cfe2d_listing import read_listing  # noqa: E402
-from hertz import HertzLine, effective_modulus  # noqa: E402
+from hertz import HertzLine, HertzPoint, effective_modulus, point_modulus  # noqa: E402
 
-__all__ = ["read_contact_table", "compare", "format_table", "read_deck_cards", "deck_materials",
+__all__ = ["read_contact_table", "compare", "compare_point", "format_table", "read_deck_cards", "deck_materials",
            "deck_stress_state", "line_contact_modulus", "top_displacement"]
 
 
@@ -98,6 +101,48 @@ def compare(table, radius, estar, x0=0.0, displacement=None, symmetry=1):
         inside_s, inside_m = np.abs(xs) < h.a, np.abs(xm) < h.a
         l2 = lambda x, p, w: float(np.sqrt(np.sum((p[w] - h(x[w])) ** 2) / np.sum(h(x[w]) ** 2)))  # noqa: E731
         core = np.abs(xs) < 0.8 * h.a
+        pm_at_s = np.interp(xs[core], xm, m["pressure"])
+        row.update({
+            "a_H": h.a, "a_FE": a_fe, "err_a": (a_fe - h.a) / h.a,
+            "p0_H": h.p0, "p0_FE": p0_fe, "err_p0": (p0_fe - h.p0) / h.p0,
+            "err_p0_node": (float(np.max(s["pressure"])) - h.p0) / h.p0,
+            "L2_slave": l2(xs, s["pressure"], inside_s), "L2_master": l2(xm, m["pressure"], inside_m),
+            "slave_master": float(np.max(np.abs(s["pressure"][core] - pm_at_s)) / h.p0),
+        })
+        rows.append(row)
+    return rows
+
+
+def compare_point(table, radius, estar, displacement=None, min_closed=3):
+    """Rows of the point-contact (axisymmetric) comparison, one per
+    increment: x of the contact table is the radius r, P the total contact
+    force (whole ring), Hertz's a = (3PR/(4E*))^(1/3), p0 = 3P/(2 pi a^2);
+    a_FE, p0_FE from the fit of the ellipse p^2 = p0^2 (1 - r^2/a^2) to the
+    slave pressures with r < 0.8 a (a slave row is a node or a Gauss point
+    of a slave face)."""
+    rows = []
+    for key in sorted(table):
+        inc = table[key]
+        s, m = inc["slave"], inc["master"]
+        P = float(np.sum(s["force"]))
+        closed = int(np.sum(s["closed"]))
+        row = {"step": key[0], "increment": key[1], "time": inc["time"], "P": P, "closed": closed,
+               "u": displacement.get(key, float("nan")) if displacement else float("nan"),
+               "max_penetration": float(max(0.0, -np.min(s["gap"][s["closed"]]))) if closed else 0.0}
+        if closed < min_closed or P <= 0:
+            rows.append(row)
+            continue
+        h = HertzPoint(P, radius, estar)
+        # The axis node of a 3-node master face has no area in
+        # axisymmetry (the integral of N r vanishes): its pressure is
+        # undefined (listed as 0) and left out.
+        keep = ~((m["x"] <= 0.0) & (m["pressure"] == 0.0))
+        m = {k: v[keep] for k, v in m.items()}
+        xs, xm = s["x"], m["x"]
+        p0_fe, a_fe = fit_ellipse(xs, s["pressure"], 0.8 * h.a)
+        inside_s, inside_m = xs < h.a, xm < h.a
+        l2 = lambda x, p, w: float(np.sqrt(np.sum((p[w] - h(x[w])) ** 2) / np.sum(h(x[w]) ** 2)))  # noqa: E731
+        core = xs < 0.8 * h.a
         pm_at_s = np.interp(xs[core], xm, m["pressure"])
         row.update({
             "a_H": h.a, "a_FE": a_fe, "err_a": (a_fe - h.a) / h.a,
@@ -240,15 +285,22 @@ def main(argv=None):
     ap.add_argument("--load-set", default="CYL_TOP", help="node set whose mean U2 is reported as u_top")
     ap.add_argument("--plots", action="store_true", help="also draw the PNG plots")
     ap.add_argument("--quiet", action="store_true", help="write <job>_hertz.txt only")
+    ap.add_argument("--point", action="store_true",
+                    help="point contact of an axisymmetric model (sphere on flat): x is the radius, P the "
+                         "ring total; the loaded edge is the node set SPHERE_TOP")
     args = ap.parse_args(argv)
     job = os.path.join(args.result_dir, args.job)
     deck = args.deck or job + ".inp"
     cards = read_deck_cards(deck) if os.path.exists(deck) else []
     if not cards and args.E is None:
         args.E, args.nu = [210000.0], args.nu or [0.3]     # the flagship's steel
-    estar, plane, mats = line_contact_modulus(cards, plane=args.plane or (None if cards else "stress"),
+    # (point contact needs only the materials: its E* has the plane-strain form)
+    plane = "strain" if args.point else args.plane or (None if cards else "stress")
+    estar, plane, mats = line_contact_modulus(cards, plane=plane,
                                               e=args.E, nu=args.nu)
     table = read_contact_table(job + "_contact.csv")
+    if args.point:
+        return point_main(job, table, args.radius, mats)
     disp = top_displacement(job + ".out", args.load_set)
     rows = compare(table, args.radius, estar, x0=args.x0, displacement=disp, symmetry=args.symmetry)
     text = format_table(rows)
@@ -266,6 +318,21 @@ def main(argv=None):
         else:
             import plots_hertz
             plots_hertz.draw_all(args.result_dir, args.job, table, rows, args.radius, estar)
+    return rows
+
+
+def point_main(job, table, radius, mats):
+    """--point: the axisymmetric comparison, printed and written to
+    <job>_hertz.txt; mats the (E, nu) of the two bodies (from the deck or
+    --E/--nu)."""
+    disp = top_displacement(job + ".out", "SPHERE_TOP")
+    estar = point_modulus(mats[0][0], mats[0][1], mats[1][0], mats[1][1])
+    rows = compare_point(table, radius, estar, displacement=disp)
+    text = format_table(rows)
+    print(text)
+    with open(job + "_hertz.txt", "w") as f:
+        f.write(f"# Hertz point contact of {job}: R = {radius}, E* = {estar:.6g} (axisymmetric)\n")
+        f.write(text + "\n")
     return rows
 
 

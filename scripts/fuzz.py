@@ -176,7 +176,10 @@ def hertz_seeds(tmp, log):
     for name in sorted(os.listdir(folder)):
         if name.endswith(".inp"):
             with open(os.path.join(folder, name), "rb") as f:
-                seeds.append(Deck("hertz/" + name[:-4], name, {name: f.read(), "hertz_mesh.inp": mesh_text}))
+                text = f.read()
+            # only the decks on the mesh made here (hertz_point.inp has its own)
+            if b"INPUT=hertz_mesh.inp" in text:
+                seeds.append(Deck("hertz/" + name[:-4], name, {name: text, "hertz_mesh.inp": mesh_text}))
     return seeds
 
 

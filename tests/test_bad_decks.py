@@ -57,7 +57,7 @@ def line_of(deck, text):
 # (name, deck, text of the line that must be named, message fragment)
 CASES = [
     ("unknown keyword", replace("*NSET, NSET=LEFT", "*FOO\n*NSET, NSET=LEFT"), "*FOO", "not implemented"),
-    ("unimplemented Abaqus keyword", replace("*CLOAD", "*DLOAD\n1, P, 3.\n*CLOAD"), "*DLOAD", "*DLOAD is not implemented"),
+    ("unimplemented Abaqus keyword", replace("*CLOAD", "*DYNAMIC\n0.1, 1.\n*CLOAD"), "*DYNAMIC", "*DYNAMIC is not implemented"),
     ("unknown parameter", replace("*NODE, NSET=ALLN", "*NODE, NSET=ALLN, COLOUR=RED"), "COLOUR", "unknown parameter COLOUR"),
     ("malformed number", replace("5, 1, 1\n", "5, 1, 1.x\n"), "5, 1, 1.x", '"1.x" is not a number'),
     # (a missing coordinate is 0, as in CalculiX: tests/test_decks_calculix.py)

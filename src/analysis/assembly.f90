@@ -6,6 +6,8 @@
 !> once per converged increment.
 module assembly
   use kinds, only: dp
+  use strings, only: itoa
+  use messages, only: fatal
   use model
   use element_catalogue, only: catalogue
   use contact, only: contact_set_t, cfe_input
@@ -46,6 +48,7 @@ contains
     ein%nen = nen
     ein%kind = catalogue(m%etype(e))%shape
     ein%state = catalogue(m%etype(e))%state
+    ein%nip = catalogue(m%etype(e))%nip
     nodes(1:nen) = m%conn(1:nen, e)
     do k = 1, nen
       ein%xy(:, k) = m%x(:, nodes(k))
@@ -81,6 +84,9 @@ contains
       call solid_input(m, e, u0, ein, nodes)
       call element_routine(act_tangent, ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
+      if (.not. eout%detj_min > 0.0_dp) call fatal('element ' // itoa(m%elem_id(e)) // ' (' // &
+        trim(catalogue(m%etype(e))%name) // ') has a zero or negative Jacobian at an integration point: ' // &
+        'a mid-side node far from the middle of its edge, or an axisymmetric element reaching x < 0')
       nd = eout%ndof
       call pack_upper(eout%ke(1:nd, 1:nd), body%ke(body%kptr(e):body%kptr(e + 1) - 1))
       do j = 1, nd

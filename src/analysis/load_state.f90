@@ -1,12 +1,36 @@
 !> The load state of a step: which dofs are prescribed, the values they
-!> and the concentrated loads start from and go to, their amplitudes, and
-!> the node sets whose reactions are summed; evaluated at any step time.
+!> and the concentrated loads start from and go to, their amplitudes, the
+!> distributed loads as load patterns, and the node sets whose reactions
+!> are summed; evaluated at any step time.
+!>
+!> A load pattern is one distributed load on one element (a face pressure,
+!> a body force, gravity, a centrifugal load) as consistent nodal forces
+!> per unit magnitude, with its magnitude at the start and at the end of
+!> the step and its own amplitude. Its magnitude at step time t is
+!> target * amplitude(t), or without an amplitude the linear ramp from
+!> start to target, as for *CLOAD. From step to step a pattern keeps the
+!> magnitude it ended with; a new definition of the same element, label
+!> and face replaces it (ramping from the old nodal forces to the new ones
+!> without an amplitude), OP=NEW removes them all.
 module load_state
   use kinds, only: dp
+  use strings, only: itoa
+  use messages, only: fatal
   use model
+  use element_catalogue, only: catalogue, max_nodes, state_axisymmetric
+  use distributed_loads, only: face_pressure_load, body_force_load
   implicit none
   private
-  public :: load_state_t, begin_step, values_at, amplitude_value
+  public :: load_state_t, load_pattern_t, begin_step, values_at, amplitude_value
+
+  type :: load_pattern_t
+    integer :: elem = 0, label = 0, face = 0     ! what it is (dload_t)
+    integer :: n = 0                             ! nodes it loads
+    integer :: node(max_nodes) = 0
+    real(dp) :: f(2, max_nodes) = 0.0_dp         ! nodal forces per unit magnitude
+    real(dp) :: start = 0.0_dp, target = 0.0_dp
+    integer :: amp = 0
+  end type load_pattern_t
 
   type :: load_state_t
     logical, allocatable :: presc(:, :)                  ! (2, nn)
@@ -14,6 +38,8 @@ module load_state
     integer, allocatable :: bc_amp(:, :), bc_set(:, :)
     real(dp), allocatable :: ld_start(:, :), ld_target(:, :)
     integer, allocatable :: ld_amp(:, :)
+    type(load_pattern_t), allocatable :: pat(:)          ! distributed loads, npat of them
+    integer :: npat = 0
     integer, allocatable :: set_ids(:)                   ! node sets with prescribed dofs
     real(dp) :: period = 1.0_dp
     real(dp) :: total_time = 0.0_dp                      ! total time at the step's start
@@ -48,14 +74,21 @@ contains
     integer, intent(in) :: is
     real(dp), intent(in) :: u(:, :), fext(:, :), total_time
     type(load_state_t), intent(inout) :: ls
+    real(dp), allocatable :: conc(:, :)
     integer :: j
+    conc = fext
     if (.not. allocated(ls%presc)) then
       allocate(ls%presc(2, m%nn), ls%bc_start(2, m%nn), ls%bc_target(2, m%nn), ls%bc_amp(2, m%nn), &
-               ls%bc_set(2, m%nn), ls%ld_start(2, m%nn), ls%ld_target(2, m%nn), ls%ld_amp(2, m%nn))
+               ls%bc_set(2, m%nn), ls%ld_start(2, m%nn), ls%ld_target(2, m%nn), ls%ld_amp(2, m%nn), ls%pat(16))
       ls%presc = .false.
       ls%bc_target = 0.0_dp
       ls%bc_set = 0
       ls%ld_target = 0.0_dp
+    else
+      ! distributed loads held where the previous step ended them, and
+      ! taken out of fext to leave its concentrated part
+      call hold_patterns(m, ls)
+      call add_patterns(m, ls, 0.0_dp, -1.0_dp, conc)
     end if
     associate(st => m%steps(is))
       ls%period = st%period
@@ -73,21 +106,146 @@ contains
       do j = 1, size(st%bcs)
         call prescribe(ls, st%bcs(j), .false.)
       end do
-      ls%ld_start = fext
+      ls%ld_start = conc
       ls%ld_amp = 0
       if (st%new_loads) then
         ls%ld_start = 0.0_dp
         ls%ld_target = 0.0_dp
       else
-        ls%ld_target = fext
+        ls%ld_target = conc
       end if
       do j = 1, size(st%loads)
         ls%ld_target(st%loads(j)%dof, st%loads(j)%node) = st%loads(j)%value
         ls%ld_amp(st%loads(j)%dof, st%loads(j)%node) = st%loads(j)%amp
       end do
+      if (st%new_dloads) ls%npat = 0
+      do j = 1, step_dloads(st)
+        call define_pattern(m, st%dloads(j), ls)
+      end do
     end associate
     call prescribed_sets(m, ls)
   end subroutine begin_step
+
+  !> The patterns at the end of the step just finished (ls still holds its
+  !> period and start time) become constant at that magnitude; those that
+  !> ended at zero are dropped.
+  subroutine hold_patterns(m, ls)
+    type(model_t), intent(in) :: m
+    type(load_state_t), intent(inout) :: ls
+    integer :: j, keep
+    real(dp) :: mag
+    keep = 0
+    do j = 1, ls%npat
+      mag = pattern_magnitude(m, ls, ls%pat(j), ls%period)
+      if (mag == 0.0_dp) cycle
+      keep = keep + 1
+      ls%pat(keep) = ls%pat(j)
+      ls%pat(keep)%start = mag
+      ls%pat(keep)%target = mag
+      ls%pat(keep)%amp = 0
+    end do
+    ls%npat = keep
+  end subroutine hold_patterns
+
+  !> A distributed load of the step: it replaces the current pattern of
+  !> the same element, label and face, which ramps down while the new one
+  !> ramps up (the nodal forces go linearly from the old to the new), or
+  !> is gone at once when the new one follows an amplitude.
+  subroutine define_pattern(m, d, ls)
+    type(model_t), intent(in) :: m
+    type(dload_t), intent(in) :: d
+    type(load_state_t), intent(inout) :: ls
+    type(load_pattern_t), allocatable :: tmp(:)
+    integer :: k
+    do k = 1, ls%npat
+      if (ls%pat(k)%elem /= d%elem .or. ls%pat(k)%label /= d%label .or. ls%pat(k)%face /= d%face) cycle
+      ls%pat(k)%target = 0.0_dp
+      if (d%amp > 0) ls%pat(k)%start = 0.0_dp
+      ls%pat(k)%label = -ls%pat(k)%label      ! retired: no longer the current one of its key
+    end do
+    if (ls%npat == size(ls%pat)) then
+      allocate(tmp(2 * size(ls%pat)))
+      tmp(1:ls%npat) = ls%pat(1:ls%npat)
+      call move_alloc(tmp, ls%pat)
+    end if
+    ls%npat = ls%npat + 1
+    associate(pt => ls%pat(ls%npat))
+      pt = load_pattern_t(elem=d%elem, label=d%label, face=d%face, amp=d%amp, start=0.0_dp, target=d%value)
+      call unit_forces(m, d, pt)
+    end associate
+  end subroutine define_pattern
+
+  !> Nodal forces of distributed load d per unit magnitude.
+  subroutine unit_forces(m, d, pt)
+    type(model_t), intent(in) :: m
+    type(dload_t), intent(in) :: d
+    type(load_pattern_t), intent(inout) :: pt
+    real(dp) :: xy(2, max_nodes), rho, g(2, 2), zero(2)
+    integer :: e, et, sec
+    e = d%elem
+    et = m%etype(e)
+    pt%n = catalogue(et)%nodes
+    pt%node(1:pt%n) = m%conn(1:pt%n, e)
+    xy(:, 1:pt%n) = m%x(:, pt%node(1:pt%n))
+    sec = m%elem_section(e)
+    zero = 0.0_dp
+    g = 0.0_dp
+    rho = m%materials(m%sections(sec)%material)%density
+    if ((d%label == dload_grav .or. d%label == dload_centrif) .and. &
+        .not. m%materials(m%sections(sec)%material)%has_density) &
+      call fatal('gravity or centrifugal load on element ' // itoa(m%elem_id(e)) // ' needs the density of ' // &
+                 'material ' // trim(m%materials(m%sections(sec)%material)%name) // ' (*DENSITY)')
+    associate(t => m%sections(sec)%thickness)
+      select case (d%label)
+      case (dload_p)
+        call face_pressure_load(et, xy, t, d%face, pt%f)
+      case (dload_bx)
+        call body_force_load(et, xy, t, [1.0_dp, 0.0_dp], g, zero, pt%f)
+      case (dload_by)
+        call body_force_load(et, xy, t, [0.0_dp, 1.0_dp], g, zero, pt%f)
+      case (dload_grav)
+        call body_force_load(et, xy, t, rho * d%dir, g, zero, pt%f)
+      case (dload_centrif)
+        ! rho omega^2 times the distance from the axis: (r, 0) about the
+        ! y axis in axisymmetry, (x - x0, y - y0) about a normal axis
+        g(1, 1) = rho
+        if (catalogue(et)%state /= state_axisymmetric) g(2, 2) = rho
+        call body_force_load(et, xy, t, zero, g, d%point, pt%f)
+      end select
+    end associate
+  end subroutine unit_forces
+
+  !> Magnitude of a pattern at step time t.
+  real(dp) function pattern_magnitude(m, ls, pt, t)
+    type(model_t), intent(in) :: m
+    type(load_state_t), intent(in) :: ls
+    type(load_pattern_t), intent(in) :: pt
+    real(dp), intent(in) :: t
+    if (pt%amp > 0) then
+      pattern_magnitude = pt%target * amp_at(m, ls, pt%amp, t)
+    else
+      pattern_magnitude = pt%start + (pt%target - pt%start) * (t / ls%period)
+    end if
+  end function pattern_magnitude
+
+  !> f = f + factor * (the nodal forces of every pattern at step time t).
+  subroutine add_patterns(m, ls, t, factor, f)
+    type(model_t), intent(in) :: m
+    type(load_state_t), intent(in) :: ls
+    real(dp), intent(in) :: t, factor
+    real(dp), intent(inout) :: f(:, :)
+    integer :: j, k
+    real(dp) :: mag
+    do j = 1, ls%npat
+      associate(pt => ls%pat(j))
+        mag = factor * pattern_magnitude(m, ls, pt, t)
+        if (mag == 0.0_dp) cycle
+        do k = 1, pt%n
+          f(:, pt%node(k)) = f(:, pt%node(k)) + mag * pt%f(:, k)
+        end do
+      end associate
+    end do
+  end subroutine add_patterns
 
   subroutine prescribe(ls, bc, immediate)
     type(load_state_t), intent(inout) :: ls
@@ -118,7 +276,8 @@ contains
   end subroutine prescribed_sets
 
   !> Purpose: prescribed displacements into u (free dofs set to zero, the
-  !> start of the equilibrium iteration) and loads into fext at step time t.
+  !> start of the equilibrium iteration) and loads into fext at step time t:
+  !> the concentrated loads and the distributed loads' patterns.
   subroutine values_at(m, ls, t, u, fext)
     type(model_t), intent(in) :: m
     type(load_state_t), intent(in) :: ls
@@ -144,6 +303,7 @@ contains
         end if
       end do
     end do
+    call add_patterns(m, ls, t, 1.0_dp, fext)
   end subroutine values_at
 
   real(dp) function amp_at(m, ls, ia, t)

@@ -2,8 +2,8 @@
 MODULES += analysis analysis_events assembly dof_numbering equilibrium increment_results load_state
 $(OBJDIR)/analysis.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/equilibrium.o $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/load_state.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/analysis_events.o: $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
-$(OBJDIR)/assembly.o: $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/element_library.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/model.o
+$(OBJDIR)/assembly.o: $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/element_library.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/dof_numbering.o: $(OBJDIR)/contact.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/model.o $(OBJDIR)/ordering.o
 $(OBJDIR)/equilibrium.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/increment_results.o: $(OBJDIR)/assembly.o $(OBJDIR)/contact.o $(OBJDIR)/contact_results.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
-$(OBJDIR)/load_state.o: $(OBJDIR)/kinds.o $(OBJDIR)/model.o
+$(OBJDIR)/load_state.o: $(OBJDIR)/distributed_loads.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o

@@ -1,13 +1,16 @@
 !> Contact results of an increment, computed once and read by every
 !> writer: per reported pair the slave rows (one per CFE: coupling point,
-!> gap, status, normal force, area, pressure), the master rows (the CFE
-!> forces taken to the master edge nodes with the weights N_i(X_C), their
-!> tributary areas, pressures) and the pair's totals; and the nodal
-!> contact pressure field of the whole model.
+!> gap, status, normal force, area, pressure; node 0 for a Gauss point of
+!> a slave face), the master rows (the CFE forces taken to the master edge
+!> nodes with the weights N_i(X_C), their consistent areas, pressures) and
+!> the pair's totals; and the nodal contact pressure field of the whole
+!> model (slave nodes: their CFE's, or for Gauss points of slave faces the
+!> nodal forces over consistent areas; master nodes).
 module contact_results
   use kinds, only: dp
   use model
   use contact, only: contact_set_t, coupling_node
+  use contact_geometry, only: edge_t, get_edge, edge_areas, edge_weights
   implicit none
   private
   public :: pair_results_t, contact_results_t, compute_contact_results
@@ -71,8 +74,51 @@ contains
           r%has_pressure(pr%master_node(j)) = .true.
         end do
       end associate
+      call face_point_pressures(m, cs, ip, r%pressure, r%has_pressure)
     end do
   end subroutine compute_contact_results
+
+  !> Nodal pressures of the slave nodes of pair ip whose CFEs are Gauss
+  !> points of 3-node faces: the force the points put on each node
+  !> (weights N_j) over the node's consistent area. Unlike the point
+  !> pressures this does not see the points' alternating mode (forces that
+  !> cancel at the nodes, see contact).
+  subroutine face_point_pressures(m, cs, ip, pressure, has_pressure)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip
+    real(dp), intent(inout) :: pressure(:)
+    logical, intent(inout) :: has_pressure(:)
+    real(dp), allocatable :: f(:), a(:)
+    real(dp) :: ae(3)
+    type(edge_t) :: ed
+    integer :: j, q
+    if (.not. any(cs%c(1:cs%n)%pair == ip .and. cs%c(1:cs%n)%ns > 1)) return
+    allocate(f(m%nn), a(m%nn))
+    f = 0.0_dp
+    a = 0.0_dp
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
+      do j = 1, size(sl%elem)
+        ed = get_edge(m, m%x, sl%elem(j), sl%edge(j))
+        ae = edge_areas(ed)
+        a(ed%node(1:ed%nn)) = a(ed%node(1:ed%nn)) + ae(1:ed%nn)
+      end do
+    end associate
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        if (c%pair /= ip .or. c%ns == 1) cycle
+        do q = 1, c%ns
+          f(c%snode(q)) = f(c%snode(q)) - c%sw(q) * c%force
+        end do
+      end associate
+    end do
+    do j = 1, m%nn
+      if (a(j) > 0.0_dp) then
+        pressure(j) = f(j) / a(j)
+        has_pressure(j) = .true.
+      end if
+    end do
+  end subroutine face_point_pressures
 
   !> Purpose: results of pair ip. For a SYMMETRIC pair each node's force
   !> is what both passes put on it: its own CFE force and what it receives
@@ -113,9 +159,10 @@ contains
     real(dp), intent(in) :: u(:, :)
     integer, intent(in) :: ip
     type(pair_results_t), intent(out) :: r
-    integer :: k, j, a, b, nm, ns, n
+    integer :: k, j, nm, ns, n, q
     integer, allocatable :: pos(:), sel(:)
-    real(dp) :: len, f
+    real(dp) :: a(3), w(3)
+    type(edge_t) :: ed
     r%pair = ip
     sel = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == ip)
     n = size(sel)
@@ -131,12 +178,13 @@ contains
       end do
       r%master_force = 0.0_dp
       r%master_area = 0.0_dp
+      ! consistent areas: the integral of N_i over the master faces
       do j = 1, size(ms%elem)
-        call edge_nodes(m, ms%elem(j), ms%edge(j), a, b)
-        len = norm2(m%x(:, b) - m%x(:, a))
-        f = 0.5_dp * len * m%sections(m%elem_section(ms%elem(j)))%thickness
-        r%master_area(pos(a)) = r%master_area(pos(a)) + f
-        r%master_area(pos(b)) = r%master_area(pos(b)) + f
+        ed = get_edge(m, m%x, ms%elem(j), ms%edge(j))
+        a = edge_areas(ed)
+        do q = 1, ed%nn
+          r%master_area(pos(ed%node(q))) = r%master_area(pos(ed%node(q))) + a(q)
+        end do
       end do
     end associate
     do j = 1, n
@@ -149,9 +197,16 @@ contains
         ! compressive force counted positive
         r%slave_force(j) = -c%force
         r%slave_area(j) = c%area
-        call edge_nodes(m, c%elem, c%edge, a, b)
-        r%master_force(pos(a)) = r%master_force(pos(a)) - (1.0_dp - c%t) * c%force
-        r%master_force(pos(b)) = r%master_force(pos(b)) - c%t * c%force
+        ed = get_edge(m, m%x, c%elem, c%edge)
+        if (ed%nn == 2) then
+          r%master_force(pos(ed%node(1))) = r%master_force(pos(ed%node(1))) - (1.0_dp - c%t) * c%force
+          r%master_force(pos(ed%node(2))) = r%master_force(pos(ed%node(2))) - c%t * c%force
+        else
+          w = edge_weights(ed, c%t)
+          do q = 1, 3
+            r%master_force(pos(ed%node(q))) = r%master_force(pos(ed%node(q))) - w(q) * c%force
+          end do
+        end if
         r%total = r%total - c%force
         r%resultant = r%resultant + c%force * c%normal
         if (c%closed) then

@@ -7,8 +7,9 @@
 !> nodes, nodes ns+1..nen the master element's nodes in its own order.
 module cfe_element
   use kinds, only: dp
-  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, act_tangent, act_residual, wants
-  use plane_elements, only: quad4_shape, tri3_shape
+  use element_catalogue, only: max_nodes
+  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, wants
+  use shape_functions, only: shape_at
   implicit none
   private
   public :: cfe, cfe_b_matrix
@@ -21,14 +22,10 @@ contains
   pure subroutine cfe_b_matrix(ein, b)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(out) :: b(2, 2 * ein%nen)
-    real(dp) :: n(4), dn(2, 4)
+    real(dp) :: n(max_nodes), dn(2, max_nodes)
     integer :: nm, k
     nm = ein%nen - ein%ns
-    if (ein%master_kind == kind_quad4) then
-      call quad4_shape(ein%xi(1), ein%xi(2), n, dn)
-    else
-      call tri3_shape(ein%xi(1), ein%xi(2), n(1:3), dn(:, 1:3))
-    end if
+    call shape_at(ein%master_kind, ein%xi, n, dn)
     b = 0.0_dp
     do k = 1, ein%ns
       b(1, 2 * k - 1) = ein%ws(k)

@@ -4,15 +4,16 @@
 !> catalogue.
 module element_interface
   use kinds, only: dp
-  use element_catalogue, only: max_nodes, max_ip, shape_tri3, shape_quad4, state_none
+  use element_catalogue, only: max_nodes, max_ip, shape_tri3, shape_quad4, shape_tri6, shape_quad8, state_none
   implicit none
   private
   public :: elem_in_t, elem_out_t, max_en, max_edof, max_ip, max_slave, &
-            kind_quad4, kind_tri3, kind_cfe, act_tangent, act_residual, act_stresses, wants
+            kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, act_tangent, act_residual, act_stresses, wants
 
-  !> Routine selectors: the continuum routines are the catalogue's shapes;
-  !> the coupling element is the contact layer's element.
-  integer, parameter :: kind_tri3 = shape_tri3, kind_quad4 = shape_quad4, kind_cfe = 100
+  !> Routine selectors: a continuum element is its catalogue shape (one
+  !> routine serves them all); the coupling element is the contact layer's.
+  integer, parameter :: kind_tri3 = shape_tri3, kind_quad4 = shape_quad4, kind_tri6 = shape_tri6, &
+                        kind_quad8 = shape_quad8, kind_cfe = 100
   !> Slave-side nodes of a coupling element (its coupling point is a
   !> weighted combination of them, section 5 of the paper).
   integer, parameter :: max_slave = 3
@@ -30,6 +31,7 @@ module element_interface
     ! continuum elements
     real(dp) :: e = 0.0_dp, nu = 0.0_dp, thickness = 1.0_dp
     integer :: state = state_none           ! element_catalogue stress state
+    integer :: nip = 0                      ! integration points (catalogue rule)
     ! coupling element: slave side (ns nodes, weights ws summing to 1),
     ! master kind, natural coordinates of X_C in the master, unit outward
     ! normal of the master edge, normal penalty and the initial gap [[U]]_0
@@ -59,6 +61,9 @@ module element_interface
     real(dp) :: jump(2) = 0.0_dp
     real(dp) :: gap = 0.0_dp
     real(dp) :: normal_force = 0.0_dp
+    !> continuum element: the smallest det J (times r in axisymmetry) at
+    !> its integration points; not positive means an invalid element
+    real(dp) :: detj_min = 0.0_dp
   end type elem_out_t
 
 contains

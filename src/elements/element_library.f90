@@ -2,8 +2,8 @@
 !> analysis and contact layers call. A new element routine is one module
 !> and one line here.
 module element_library
-  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_cfe
-  use plane_elements, only: quad4, tri3
+  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe
+  use continuum_element, only: continuum
   use cfe_element, only: cfe
   implicit none
   private
@@ -19,9 +19,8 @@ contains
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     select case (ein%kind)
-    case (kind_quad4); call quad4(action, ein, eout)
-    case (kind_tri3);  call tri3(action, ein, eout)
-    case (kind_cfe);   call cfe(action, ein, eout)
+    case (kind_tri3, kind_quad4, kind_tri6, kind_quad8); call continuum(action, ein, eout)
+    case (kind_cfe); call cfe(action, ein, eout)
     end select
   end subroutine element_routine
 end module element_library

@@ -1,7 +1,9 @@
 # Layer: elements. Modules and the objects of the modules each one uses.
-MODULES += cfe_element element_interface element_library materials plane_elements
-$(OBJDIR)/cfe_element.o: $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/plane_elements.o
+MODULES += cfe_element continuum_element distributed_loads element_interface element_library materials shape_functions
+$(OBJDIR)/cfe_element.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o
+$(OBJDIR)/continuum_element.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/materials.o $(OBJDIR)/shape_functions.o
+$(OBJDIR)/distributed_loads.o: $(OBJDIR)/continuum_element.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/element_interface.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o
-$(OBJDIR)/element_library.o: $(OBJDIR)/cfe_element.o $(OBJDIR)/element_interface.o $(OBJDIR)/plane_elements.o
+$(OBJDIR)/element_library.o: $(OBJDIR)/cfe_element.o $(OBJDIR)/continuum_element.o $(OBJDIR)/element_interface.o
 $(OBJDIR)/materials.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o
-$(OBJDIR)/plane_elements.o: $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/materials.o
+$(OBJDIR)/shape_functions.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o

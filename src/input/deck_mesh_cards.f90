@@ -9,7 +9,7 @@ submodule (deck_parser) deck_mesh_cards
   use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name
   use growable, only: append, grow
   use model_growth, only: grow
-  use element_catalogue, only: catalogue, find_element_type, shape_line2
+  use element_catalogue, only: catalogue, find_element_type, shape_line2, shape_line3, unsupported_reason
   use mesh_topology, only: build_topology, edge_owner
   implicit none
 
@@ -85,11 +85,14 @@ contains
     call allow_params(p, kw, 'TYPE,ELSET')
     tname = to_upper(required_param(p, kw, 'TYPE'))
     et = find_element_type(tname)
+    if (et == 0 .and. len(unsupported_reason(tname)) > 0) call err(p, 'element type ' // tname // ': ' // &
+                                                                    unsupported_reason(tname))
     if (et == 0) call err(p, 'element type ' // tname // ' is not implemented (' // catalogue_names() // ')')
     nen = catalogue(et)%nodes
     nitems = 0
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
+      call continued_element_line(p, nen + 1, f, n)
       if (n /= nen + 1) call err(p, 'element ' // tname // ' needs an id and ' // itoa(nen) // ' nodes')
       id = get_int(p, f(1), 'element id')
       if (id < 1 .or. id > max_id) call err(p, 'element id out of range 1..' // itoa(max_id))
@@ -119,6 +122,28 @@ contains
       call extend_set(m%elsets(iset)%items, items(1:nitems))
     end if
   end subroutine read_elements
+
+  !> An element data line that ends with a comma before all nodes are
+  !> given continues on the next line (as CalculiX writes 8-node elements:
+  !> eight fields, then the last node alone).
+  subroutine continued_element_line(p, nwant, f, n)
+    type(parser_t), intent(inout) :: p
+    integer, intent(in) :: nwant
+    type(field_t), allocatable, intent(inout) :: f(:)
+    integer, intent(inout) :: n
+    type(field_t), allocatable :: more(:)
+    character(len=:), allocatable :: t
+    integer :: nm
+    do while (n < nwant)
+      t = trim(line_text(p))
+      if (len(t) == 0) exit
+      if (t(len(t):len(t)) /= ',') exit
+      if (.not. next_data(p)) exit
+      call split_fields(line_text(p), more, nm)
+      f = [f(1:n), more(1:nm)]
+      n = n + nm
+    end do
+  end subroutine continued_element_line
 
   !> The element type names of the catalogue, for error messages.
   function catalogue_names() result(s)
@@ -321,12 +346,13 @@ contains
         s%kind = surf_element
         s%elem = elems(1:ne)
         s%edge = edges(1:ne)
-        ! Node list of the surface: the ends of its edges, once each.
-        allocate(s%nodes(0), ends(2 * ne))
+        ! Node list of the surface: the nodes of its edges (ends and
+        ! mid-side nodes), once each.
+        allocate(s%nodes(0), ends(3 * ne))
         do k = 1, ne
-          call edge_nodes(m, s%elem(k), s%edge(k), ends(2 * k - 1), ends(2 * k))
+          call edge_nodes(m, s%elem(k), s%edge(k), ends(3 * k - 2), ends(3 * k - 1), ends(3 * k))
         end do
-        call extend_set(s%nodes, ends)
+        call extend_set(s%nodes, pack(ends, ends > 0))
       end if
     end associate
   end subroutine read_surface
@@ -372,9 +398,10 @@ contains
     nedge = ne
     do k = 1, size(list)
       e = list(k)
-      if (catalogue(m%etype(e))%shape == shape_line2) then
+      if (catalogue(m%etype(e))%shape == shape_line2 .or. catalogue(m%etype(e))%shape == shape_line3) then
         if (len(face) > 0) call err(p, 'a face id is not allowed for line elements')
-        call owner_edge(p, m, m%conn(1, e), m%conn(2, e), owner, edge)
+        call owner_edge(p, m, m%conn(catalogue(m%etype(e))%edge(1, 1), e), m%conn(catalogue(m%etype(e))%edge(2, 1), e), &
+                        owner, edge)
         call append(elems, ne, owner)
       else
         if (len(face) == 0) call err(p, 'solid elements need a face id S1..S4')

@@ -10,6 +10,7 @@
 !>   deck_interaction_cards  *SURFACE INTERACTION, *SURFACE BEHAVIOR, *FRICTION
 !>   deck_compat_cards    *NODAL THICKNESS, *EQUATION, and the cards of other
 !>                        programs that would change the physics (rejected)
+!>   deck_load_cards      *DLOAD, *DSLOAD, *DENSITY
 !>   deck_model_checks    checks that need the whole deck
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
@@ -147,6 +148,21 @@ module deck_parser
       type(parser_t), intent(inout) :: p
       type(keyword_t), intent(in) :: kw
     end subroutine reject_card
+    module subroutine read_density(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_density
+    module subroutine read_dload(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_dload
+    module subroutine read_dsload(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_dsload
     module subroutine check_model(p, m)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -236,6 +252,9 @@ contains
     case ('AMPLITUDE');     call read_amplitude(p, m, kw)
     case ('BOUNDARY');      call read_boundary(p, m, kw)
     case ('CLOAD');         call in_step(p, kw, .true.); call read_cload(p, m, kw)
+    case ('DLOAD');         call in_step(p, kw, .true.); call read_dload(p, m, kw)
+    case ('DSLOAD');        call in_step(p, kw, .true.); call read_dsload(p, m, kw)
+    case ('DENSITY');       call in_step(p, kw, .false.); call read_density(p, m, kw)
     case ('STEP');          call read_step(p, m, kw)
     case ('STATIC');        call in_step(p, kw, .true.); call read_static(p, m, kw)
     case ('END STEP');      call in_step(p, kw, .true.); call read_end_step(p, m, kw)
@@ -255,7 +274,7 @@ contains
       call skip_card(p, kw)
     case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', 'CONTACT PRINT', &
           'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &
-          'RESTART', 'MONITOR', 'DENSITY')
+          'RESTART', 'MONITOR')
       call skip_card(p, kw)
     case ('')
       call err(p, 'keyword line without a keyword after the *')
@@ -287,9 +306,8 @@ contains
     end do
   end subroutine read_heading
 
-  !> Purpose: cards that cannot change the answer (pure output requests,
-  !> and a density, which a static run without gravity never uses): warn
-  !> and skip them with their data lines.
+  !> Purpose: cards that cannot change the answer (pure output requests):
+  !> warn and skip them with their data lines.
   subroutine skip_card(p, kw)
     type(parser_t), intent(inout) :: p
     type(keyword_t), intent(in) :: kw

@@ -4,23 +4,30 @@
 !> stress state, output type ids). Arrays everywhere are sized from here;
 !> no other module tests node counts to find out what an element is.
 !>
-!> Adding an element type: one entry in `catalogue` (and, for a new shape,
-!> the element routine in the elements layer with one line of dispatch).
+!> Node order and face numbering are Abaqus/CalculiX's: corners counter-
+!> clockwise first, then the mid-side nodes in the order of the faces; face
+!> Sk runs from corner k to corner k+1 (for a triangle S3 from 3 to 1).
+!>
+!> Adding an element type: one entry in `catalogue`; a new shape also needs
+!> its shape functions (elements layer, shape_functions) and, for a new
+!> integration rule, the rule and its extrapolation to the nodes there.
 module element_catalogue
   implicit none
   private
-  public :: element_type_t, catalogue, max_nodes, max_edges, max_ip, &
-            shape_line2, shape_tri3, shape_quad4, &
+  public :: element_type_t, catalogue, max_nodes, max_edges, max_ip, max_edge_nodes, &
+            shape_line2, shape_line3, shape_tri3, shape_quad4, shape_tri6, shape_quad8, &
             state_none, state_plane_stress, state_plane_strain, state_axisymmetric, &
-            find_element_type, state_name
+            find_element_type, state_name, is_triangle, edge_node_count, unsupported_reason
 
-  !> Geometric families; each has one element routine.
-  integer, parameter :: shape_line2 = 1, shape_tri3 = 2, shape_quad4 = 3
+  !> Geometric families (shape functions and natural coordinates).
+  integer, parameter :: shape_line2 = 1, shape_tri3 = 2, shape_quad4 = 3, shape_line3 = 4, &
+                        shape_tri6 = 5, shape_quad8 = 6
   !> Stress states of the continuum elements (state_none: not a continuum).
   integer, parameter :: state_none = 0, state_plane_stress = 1, state_plane_strain = 2, &
                         state_axisymmetric = 3
-  !> Largest node count, edge count and integration-point count of any type.
-  integer, parameter :: max_nodes = 4, max_edges = 4, max_ip = 4
+  !> Largest node count, edge count, integration-point count of any type,
+  !> and nodes on one edge (two corners and a mid-side node).
+  integer, parameter :: max_nodes = 8, max_edges = 4, max_ip = 9, max_edge_nodes = 3
 
   type :: element_type_t
     character(len=8) :: name = ''
@@ -40,16 +47,39 @@ module element_catalogue
   integer, parameter :: tri_edges(3, max_edges) = reshape([1, 2, 0, 2, 3, 0, 3, 1, 0, 0, 0, 0], [3, max_edges])
   integer, parameter :: quad_edges(3, max_edges) = reshape([1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1, 0], [3, max_edges])
   integer, parameter :: line_edges(3, max_edges) = reshape([1, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0], [3, max_edges])
+  integer, parameter :: tri6_edges(3, max_edges) = reshape([1, 2, 4, 2, 3, 5, 3, 1, 6, 0, 0, 0], [3, max_edges])
+  integer, parameter :: quad8_edges(3, max_edges) = reshape([1, 2, 5, 2, 3, 6, 3, 4, 7, 4, 1, 8], [3, max_edges])
+  !> A 3-node line is end, middle, end (Abaqus T3D3, as gmsh writes it).
+  integer, parameter :: line3_edges(3, max_edges) = reshape([1, 3, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0], [3, max_edges])
 
-  !> T2D2/T3D2 are line elements: gmsh writes them for boundary curves; they
-  !> carry no stiffness and serve to define surfaces.
-  type(element_type_t), parameter :: catalogue(6) = [ &
+  !> T3D2/T3D3 (and T2D2/T2D3) are line elements: gmsh writes them for
+  !> boundary curves; they carry no stiffness and serve to define surfaces.
+  !> CPS8R/CPE8R/CAX8R are the 8-node quadrilateral with 2x2 points; the
+  !> 8-node element's spurious mode under 2x2 is not communicable through a
+  !> mesh of more than one element, as in Abaqus. CAX6 takes 6 points
+  !> (degree 4) where CPS6/CPE6 take 3: the hoop terms N_i u_r / r times
+  !> r dA of the axisymmetric triangle are of degree 3 for a quadratic
+  !> field (degree 4 with curved edges), and 3 points fail its patch tests.
+  type(element_type_t), parameter :: catalogue(19) = [ &
     element_type_t('T3D2', shape_line2, 2, 2, 1, line_edges, 0, state_none, 1, 3), &
     element_type_t('T2D2', shape_line2, 2, 2, 1, line_edges, 0, state_none, 1, 3), &
+    element_type_t('T3D3', shape_line3, 3, 2, 1, line3_edges, 0, state_none, 8, 21), &
+    element_type_t('T2D3', shape_line3, 3, 2, 1, line3_edges, 0, state_none, 8, 21), &
     element_type_t('CPS3', shape_tri3, 3, 3, 3, tri_edges, 1, state_plane_stress, 2, 5), &
     element_type_t('CPE3', shape_tri3, 3, 3, 3, tri_edges, 1, state_plane_strain, 2, 5), &
+    element_type_t('CAX3', shape_tri3, 3, 3, 3, tri_edges, 1, state_axisymmetric, 2, 5), &
     element_type_t('CPS4', shape_quad4, 4, 4, 4, quad_edges, 4, state_plane_stress, 3, 9), &
-    element_type_t('CPE4', shape_quad4, 4, 4, 4, quad_edges, 4, state_plane_strain, 3, 9)]
+    element_type_t('CPE4', shape_quad4, 4, 4, 4, quad_edges, 4, state_plane_strain, 3, 9), &
+    element_type_t('CAX4', shape_quad4, 4, 4, 4, quad_edges, 4, state_axisymmetric, 3, 9), &
+    element_type_t('CPS6', shape_tri6, 6, 3, 3, tri6_edges, 3, state_plane_stress, 9, 22), &
+    element_type_t('CPE6', shape_tri6, 6, 3, 3, tri6_edges, 3, state_plane_strain, 9, 22), &
+    element_type_t('CAX6', shape_tri6, 6, 3, 3, tri6_edges, 6, state_axisymmetric, 9, 22), &
+    element_type_t('CPS8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_plane_stress, 16, 23), &
+    element_type_t('CPE8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_plane_strain, 16, 23), &
+    element_type_t('CAX8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_axisymmetric, 16, 23), &
+    element_type_t('CPS8R', shape_quad8, 8, 4, 4, quad8_edges, 4, state_plane_stress, 16, 23), &
+    element_type_t('CPE8R', shape_quad8, 8, 4, 4, quad8_edges, 4, state_plane_strain, 16, 23), &
+    element_type_t('CAX8R', shape_quad8, 8, 4, 4, quad8_edges, 4, state_axisymmetric, 16, 23)]
 
 contains
 
@@ -63,6 +93,23 @@ contains
     it = 0
   end function find_element_type
 
+  !> Purpose: why a known Abaqus/CalculiX element name is not in the
+  !> catalogue ('' when there is nothing particular to say).
+  pure function unsupported_reason(name) result(s)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: s
+    select case (name)
+    case ('CPS4R', 'CPE4R', 'CAX4R')
+      s = name(1:4) // ' with reduced integration needs hourglass control, which cfe2d does not have; ' // &
+          'use ' // name(1:4) // ' (full 2x2 integration)'
+    case ('M3D9', 'CPS9', 'CPE9')
+      s = 'the 9-node quadrilateral is not implemented; gmsh writes 8-node quadrilaterals (CPS8) with ' // &
+          '-setnumber Mesh.SecondOrderIncomplete 1'
+    case default
+      s = ''
+    end select
+  end function unsupported_reason
+
   pure function state_name(state) result(s)
     integer, intent(in) :: state
     character(len=:), allocatable :: s
@@ -73,4 +120,18 @@ contains
     case default; s = 'none'
     end select
   end function state_name
+
+  !> Does the shape use triangle (area) coordinates?
+  pure logical function is_triangle(shape)
+    integer, intent(in) :: shape
+    is_triangle = shape == shape_tri3 .or. shape == shape_tri6
+  end function is_triangle
+
+  !> Nodes on edge k of element type et: 2 (straight) or 3 (with a
+  !> mid-side node).
+  pure integer function edge_node_count(et, k)
+    integer, intent(in) :: et, k
+    edge_node_count = 2
+    if (catalogue(et)%edge(3, k) > 0) edge_node_count = 3
+  end function edge_node_count
 end module element_catalogue

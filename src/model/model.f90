@@ -9,14 +9,17 @@ module model
   implicit none
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
-            bc_t, cload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
+            bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
             equation_t, &
             is_continuum, elem_nodes, &
             surf_element, surf_node, &
-            amp_step_time, amp_total_time, find_name, edge_nodes, append_int
+            amp_step_time, amp_total_time, find_name, edge_nodes, append_int, step_dloads, &
+            dload_p, dload_bx, dload_by, dload_grav, dload_centrif
 
   integer, parameter :: surf_element = 1, surf_node = 2
   integer, parameter :: amp_step_time = 1, amp_total_time = 2
+  !> Labels of distributed loads (dload_t).
+  integer, parameter :: dload_p = 1, dload_bx = 2, dload_by = 3, dload_grav = 4, dload_centrif = 5
 
   !> Where something was defined in the deck: for errors found after reading.
   type :: src_t
@@ -47,6 +50,8 @@ module model
     logical :: has_elastic = .false.
     real(dp) :: e = 0.0_dp, nu = 0.0_dp
     type(src_t) :: src
+    logical :: has_density = .false.
+    real(dp) :: density = 0.0_dp          ! mass per unit volume (*DENSITY)
   end type material_t
 
   type :: section_t
@@ -77,6 +82,23 @@ module model
     real(dp) :: value = 0.0_dp
   end type cload_t
 
+  !> One distributed load on one element (*DLOAD, *DSLOAD), by its Abaqus
+  !> label: a pressure Pk on face k (dload_p), a body force per unit volume
+  !> along x or y (dload_bx, dload_by), gravity g along dir times the
+  !> density (dload_grav), or a centrifugal load density * omega^2 times
+  !> the distance from the axis through `point` (dload_centrif). value is
+  !> the magnitude at the end of the step (pressure, force per volume, g,
+  !> omega^2). Element, label and face identify a load from step to step.
+  type :: dload_t
+    integer :: elem = 0
+    integer :: label = 0
+    integer :: face = 0
+    integer :: amp = 0
+    real(dp) :: value = 0.0_dp
+    real(dp) :: dir(2) = 0.0_dp
+    real(dp) :: point(2) = 0.0_dp
+  end type dload_t
+
   type :: amplitude_t
     character(len=name_len) :: name = ''
     integer :: time = amp_step_time
@@ -101,6 +123,9 @@ module model
     type(cload_t), allocatable :: loads(:)
     type(request_t), allocatable :: requests(:)
     type(src_t) :: src
+    !> Distributed loads (*DLOAD, *DSLOAD) of the step, and OP=NEW on them.
+    type(dload_t), allocatable :: dloads(:)
+    logical :: new_dloads = .false.
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.
@@ -173,14 +198,28 @@ contains
   end function elem_nodes
 
   !> Nodes of local edge k of a solid element, counter-clockwise (Abaqus
-  !> face Sk runs from node k to node k+1).
-  pure subroutine edge_nodes(m, e, k, a, b)
+  !> face Sk runs from corner k to corner k+1): corners a and b, and the
+  !> mid-side node (0 on a straight 2-node edge).
+  pure subroutine edge_nodes(m, e, k, a, b, mid)
     type(model_t), intent(in) :: m
     integer, intent(in) :: e, k
     integer, intent(out) :: a, b
+    integer, intent(out), optional :: mid
     a = m%conn(catalogue(m%etype(e))%edge(1, k), e)
     b = m%conn(catalogue(m%etype(e))%edge(2, k), e)
+    if (present(mid)) then
+      mid = 0
+      if (catalogue(m%etype(e))%edge(3, k) > 0) mid = m%conn(catalogue(m%etype(e))%edge(3, k), e)
+    end if
   end subroutine edge_nodes
+
+  !> Number of distributed loads of a step (none if the step never had
+  !> a *DLOAD or *DSLOAD).
+  pure integer function step_dloads(st)
+    type(step_t), intent(in) :: st
+    step_dloads = 0
+    if (allocated(st%dloads)) step_dloads = size(st%dloads)
+  end function step_dloads
 
   !> Index of a name in a list of names (case already folded), 0 if absent.
   pure integer function find_name(names, name)

@@ -7,7 +7,7 @@ program test_cfe
   use element_interface, only: elem_in_t, elem_out_t, kind_cfe, kind_quad4, kind_tri3, act_tangent, act_residual
   use element_library, only: element_routine
   use cfe_element, only: cfe_b_matrix
-  use plane_elements, only: quad4_shape, tri3_shape
+  use shape_functions, only: quad4_shape, tri3_shape
   implicit none
   call check('CFE on Q4 master', kind_quad4, 4, [0.3_dp, 1.0_dp])
   call check('CFE on T3 master', kind_tri3, 3, [0.35_dp, 0.65_dp])

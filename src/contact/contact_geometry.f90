@@ -1,0 +1,169 @@
+!> Geometry of element edges for contact: a 2-node (straight) or 3-node
+!> (curved, quadratic) edge in a given configuration, points and tangents
+!> along it, the orthogonal projection of a point onto it, the consistent
+!> areas of its nodes (integral of N_i over the edge, times the thickness,
+!> or 2 pi r in axisymmetry), and the natural coordinates in the element
+!> of a point of the edge. Positions along an edge are t in [0, 1] from
+!> its first corner to its second (counter-clockwise around the element).
+module contact_geometry
+  use kinds, only: dp
+  use model, only: model_t, edge_nodes
+  use element_catalogue, only: catalogue, is_triangle, state_axisymmetric, edge_node_count
+  use shape_functions, only: line_shape, gauss_line
+  implicit none
+  private
+  public :: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, edge_weights, &
+            area_factor, edge_length
+
+  real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
+
+  type :: edge_t
+    integer :: elem = 0, k = 0
+    integer :: nn = 2                 ! nodes: 2 straight, 3 with a mid-side node
+    integer :: node(3) = 0            ! first corner, second corner, mid-side node
+    real(dp) :: x(2, 3) = 0.0_dp      ! their coordinates in the configuration asked for
+    logical :: axi = .false.
+    real(dp) :: thickness = 1.0_dp
+  end type edge_t
+
+contains
+
+  !> Purpose: edge k of element e with its nodes at x(:, node) (the
+  !> reference coordinates, or deformed ones).
+  pure function get_edge(m, x, e, k) result(ed)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    integer, intent(in) :: e, k
+    type(edge_t) :: ed
+    integer :: j
+    ed%elem = e
+    ed%k = k
+    ed%nn = edge_node_count(m%etype(e), k)
+    call edge_nodes(m, e, k, ed%node(1), ed%node(2), ed%node(3))
+    do j = 1, ed%nn
+      ed%x(:, j) = x(:, ed%node(j))
+    end do
+    ed%axi = catalogue(m%etype(e))%state == state_axisymmetric
+    ed%thickness = m%sections(m%elem_section(e))%thickness
+  end function get_edge
+
+  !> Purpose: shape-function weights w(1:nn) of the edge's nodes at t.
+  pure function edge_weights(ed, t) result(w)
+    type(edge_t), intent(in) :: ed
+    real(dp), intent(in) :: t
+    real(dp) :: w(3), ds(3)
+    if (ed%nn == 2) then
+      w = [1.0_dp - t, t, 0.0_dp]
+    else
+      call line_shape(3, 2.0_dp * t - 1.0_dp, w, ds)
+    end if
+  end function edge_weights
+
+  !> Purpose: point p and tangent dp/dt of the edge at t.
+  pure subroutine edge_at(ed, t, p, dpdt)
+    type(edge_t), intent(in) :: ed
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: p(2), dpdt(2)
+    real(dp) :: n(3), ds(3)
+    call line_shape(ed%nn, 2.0_dp * t - 1.0_dp, n, ds)
+    p = matmul(ed%x(:, 1:ed%nn), n(1:ed%nn))
+    dpdt = 2.0_dp * matmul(ed%x(:, 1:ed%nn), ds(1:ed%nn))
+  end subroutine edge_at
+
+  !> Chord length between the corners.
+  pure real(dp) function edge_length(ed)
+    type(edge_t), intent(in) :: ed
+    edge_length = norm2(ed%x(:, 2) - ed%x(:, 1))
+  end function edge_length
+
+  !> Purpose: orthogonal projection of xs onto the edge: its position t
+  !> (not clamped: outside [0, 1] the foot lies beyond the edge's ends),
+  !> the outward unit normal there and the signed distance d of xs along
+  !> it. A straight edge in closed form; a curved one by Newton's method
+  !> on (p(t) - xs) . p'(t) = 0 from the chord's projection.
+  pure subroutine project_to_edge(ed, xs, t, nvec, d)
+    type(edge_t), intent(in) :: ed
+    real(dp), intent(in) :: xs(2)
+    real(dp), intent(out) :: t, nvec(2), d
+    real(dp) :: ab(2), tvec(2), len, p(2), dp1(2), dp2(2), f, df, dt
+    integer :: it
+    ab = ed%x(:, 2) - ed%x(:, 1)
+    len = norm2(ab)
+    tvec = ab / len
+    t = dot_product(xs - ed%x(:, 1), tvec) / len
+    if (ed%nn == 2) then
+      nvec = [tvec(2), -tvec(1)]
+      d = dot_product(xs - ed%x(:, 1), nvec)
+      return
+    end if
+    ! p'' = 4 (x_a + x_b - 2 x_mid), constant along the quadratic edge
+    dp2 = 4.0_dp * (ed%x(:, 1) + ed%x(:, 2) - 2.0_dp * ed%x(:, 3))
+    do it = 1, 30
+      call edge_at(ed, t, p, dp1)
+      f = dot_product(p - xs, dp1)
+      df = dot_product(dp1, dp1) + dot_product(p - xs, dp2)
+      if (.not. df > 0.0_dp) exit
+      dt = -f / df
+      t = t + max(-0.5_dp, min(0.5_dp, dt))
+      if (abs(dt) < 1.0e-13_dp) exit
+    end do
+    call edge_at(ed, t, p, dp1)
+    nvec = [dp1(2), -dp1(1)] / norm2(dp1)
+    d = dot_product(xs - p, nvec)
+  end subroutine project_to_edge
+
+  !> Purpose: area per unit length at a point of the edge at radius r:
+  !> the thickness, or 2 pi r in axisymmetry (whole ring).
+  pure real(dp) function area_factor(ed, r)
+    type(edge_t), intent(in) :: ed
+    real(dp), intent(in) :: r
+    if (ed%axi) then
+      area_factor = two_pi * r
+    else
+      area_factor = ed%thickness
+    end if
+  end function area_factor
+
+  !> Purpose: consistent areas a(1:nn) of the edge's nodes, the integral of
+  !> N_i over the edge's area (length times thickness, or the ring surface
+  !> 2 pi r ds). A straight plane edge gives half its area to each corner.
+  pure function edge_areas(ed) result(a)
+    type(edge_t), intent(in) :: ed
+    real(dp) :: a(3), s(3), w(3), n(3), ds(3), p(2), dpdt(2)
+    integer :: ig
+    a = 0.0_dp
+    if (ed%nn == 2 .and. .not. ed%axi) then
+      a(1:2) = 0.5_dp * edge_length(ed) * ed%thickness
+      return
+    end if
+    call gauss_line(3, s, w)
+    do ig = 1, 3
+      call edge_at(ed, 0.5_dp * (s(ig) + 1.0_dp), p, dpdt)
+      call line_shape(ed%nn, s(ig), n, ds)
+      a = a + n * (0.5_dp * w(ig) * norm2(dpdt) * area_factor(ed, p(1)))
+    end do
+  end function edge_areas
+
+  !> Purpose: natural coordinates of the point at position t along local
+  !> edge k of an element of catalogue type et (the edge's parameter is
+  !> linear in the element's natural coordinates, for 2- and 3-node edges).
+  pure function edge_natural(et, k, t) result(xi)
+    integer, intent(in) :: et, k
+    real(dp), intent(in) :: t
+    real(dp) :: xi(2)
+    if (.not. is_triangle(catalogue(et)%shape)) then
+      select case (k)
+      case (1); xi = [-1.0_dp + 2.0_dp * t, -1.0_dp]
+      case (2); xi = [1.0_dp, -1.0_dp + 2.0_dp * t]
+      case (3); xi = [1.0_dp - 2.0_dp * t, 1.0_dp]
+      case default; xi = [-1.0_dp, 1.0_dp - 2.0_dp * t]
+      end select
+    else
+      select case (k)
+      case (1); xi = [t, 0.0_dp]
+      case (2); xi = [1.0_dp - t, t]
+      case default; xi = [0.0_dp, 1.0_dp - t]
+      end select
+    end if
+  end function edge_natural
+end module contact_geometry

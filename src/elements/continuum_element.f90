@@ -1,0 +1,127 @@
+!> The isoparametric continuum element of every catalogue shape (3- and
+!> 6-node triangles, 4- and 8-node quadrilaterals) in the three stress
+!> states: plane stress, plane strain and axisymmetry. The shape, the
+!> integration rule (number of points) and the stress state come from the
+!> element's catalogue entry.
+!>
+!> Axisymmetric elements: r = x, z = y; the strains are (e_rr, e_zz,
+!> gamma_rz, e_hoop) with the hoop strain u_r / r, and S33 is the hoop
+!> stress. Their matrices are integrated over the whole circumference,
+!> dV = 2 pi r dA, as CalculiX and Abaqus count axisymmetric forces: a
+!> concentrated load, a reaction and a contact force are totals over the
+!> ring (the section thickness is not used).
+module continuum_element
+  use kinds, only: dp
+  use element_catalogue, only: max_nodes, max_ip, state_axisymmetric
+  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants
+  use shape_functions, only: shape_at, gauss_rule, extrapolation
+  use materials, only: elastic_matrix
+  implicit none
+  private
+  public :: continuum, strain_matrix, volume_factor
+
+  real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
+
+contains
+
+  !> Purpose: the strain-displacement matrix at one point from the shape
+  !> functions n and their natural derivatives dn; rows (e11, e22, gamma12,
+  !> e33), the last the hoop strain u_r / r in axisymmetry and zero
+  !> otherwise. Returns det J and the radius r = sum N_k x_k.
+  pure subroutine strain_matrix(nen, xy, n, dn, state, b, detj, r)
+    integer, intent(in) :: nen, state
+    real(dp), intent(in) :: xy(2, nen), n(nen), dn(2, nen)
+    real(dp), intent(out) :: b(4, 2 * nen), detj, r
+    real(dp) :: jac(2, 2), jinv(2, 2), dx(2, nen)
+    integer :: k
+    jac = matmul(dn, transpose(xy))
+    detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    jinv(1, 1) = jac(2, 2) / detj
+    jinv(2, 2) = jac(1, 1) / detj
+    jinv(1, 2) = -jac(1, 2) / detj
+    jinv(2, 1) = -jac(2, 1) / detj
+    dx = matmul(jinv, dn)
+    r = dot_product(n, xy(1, :))
+    b = 0.0_dp
+    do k = 1, nen
+      b(1, 2 * k - 1) = dx(1, k)
+      b(2, 2 * k) = dx(2, k)
+      b(3, 2 * k - 1) = dx(2, k)
+      b(3, 2 * k) = dx(1, k)
+      if (state == state_axisymmetric) b(4, 2 * k - 1) = n(k) / r
+    end do
+  end subroutine strain_matrix
+
+  !> Purpose: volume per unit of natural area at a point: det J times the
+  !> thickness, or 2 pi r det J in axisymmetry.
+  pure real(dp) function volume_factor(state, detj, r, thickness)
+    integer, intent(in) :: state
+    real(dp), intent(in) :: detj, r, thickness
+    if (state == state_axisymmetric) then
+      volume_factor = two_pi * r * detj
+    else
+      volume_factor = detj * thickness
+    end if
+  end function volume_factor
+
+  !> Purpose: element arrays of a continuum element.
+  !> Arguments: action (act_* codes), ein (kind = catalogue shape, nip =
+  !> catalogue rule, state), eout: ke and fe = ke ue for act_tangent /
+  !> act_residual; for act_stresses the strains and stresses at the
+  !> integration points and the stresses extrapolated to the nodes
+  !> (shape_functions' extrapolation: exact for a stress field of the
+  !> rule's own degree).
+  pure subroutine continuum(action, ein, eout)
+    integer, intent(in) :: action
+    type(elem_in_t), intent(in) :: ein
+    type(elem_out_t), intent(out) :: eout
+    real(dp) :: d(4, 4), n(max_nodes), dn(2, max_nodes), b(4, 2 * max_nodes), db(4, 2 * max_nodes)
+    real(dp) :: xg(2, max_ip), wg(max_ip), ex(max_nodes, max_ip), detj, r, eps(4), sig(4)
+    integer :: ip, i, j, nen, nd
+    logical :: need_k
+    nen = ein%nen
+    nd = 2 * nen
+    need_k = wants(action, act_tangent) .or. wants(action, act_residual)
+    d = elastic_matrix(ein%e, ein%nu, ein%state)
+    eout%ndof = nd
+    eout%nip = ein%nip
+    call gauss_rule(ein%kind, ein%nip, xg, wg)
+    eout%detj_min = huge(1.0_dp)
+    do ip = 1, ein%nip
+      call shape_at(ein%kind, xg(:, ip), n, dn)
+      call strain_matrix(nen, ein%xy(:, 1:nen), n(1:nen), dn(:, 1:nen), ein%state, b(:, 1:nd), detj, r)
+      if (ein%state == state_axisymmetric) then
+        eout%detj_min = min(eout%detj_min, detj * r)
+      else
+        eout%detj_min = min(eout%detj_min, detj)
+      end if
+      if (need_k) then
+        ! upper triangle of B^T D B, mirrored below after the loop
+        db(:, 1:nd) = matmul(d, b(:, 1:nd)) * (volume_factor(ein%state, detj, r, ein%thickness) * wg(ip))
+        do j = 1, nd
+          do i = 1, j
+            eout%ke(i, j) = eout%ke(i, j) + b(1, i) * db(1, j) + b(2, i) * db(2, j) + b(3, i) * db(3, j) &
+                            + b(4, i) * db(4, j)
+          end do
+        end do
+      end if
+      if (wants(action, act_stresses)) then
+        eps = matmul(b(:, 1:nd), ein%ue(1:nd))
+        sig = matmul(d, eps)
+        eout%eps_ip(:, ip) = eps(1:3)
+        eout%sig_ip(:, ip) = [sig(1), sig(2), sig(4), sig(3)]
+      end if
+    end do
+    if (need_k) then
+      do j = 1, nd - 1
+        eout%ke(j + 1:nd, j) = eout%ke(j, j + 1:nd)
+      end do
+    end if
+    if (wants(action, act_residual)) eout%fe(1:nd) = matmul(eout%ke(1:nd, 1:nd), ein%ue(1:nd))
+    if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
+    if (wants(action, act_stresses)) then
+      call extrapolation(ein%kind, nen, ein%nip, ex)
+      eout%sig_node(:, 1:nen) = matmul(eout%sig_ip(:, 1:ein%nip), transpose(ex(1:nen, 1:ein%nip)))
+    end if
+  end subroutine continuum
+end module continuum_element

@@ -1,0 +1,265 @@
+!> Distributed-load cards: *DLOAD, *DSLOAD (history data) and *DENSITY
+!> (material data, which gravity and centrifugal loads need).
+submodule (deck_parser) deck_load_cards
+  use kinds, only: dp
+  use strings, only: split_fields, to_upper, field_t, itoa
+  use deck_input, only: param_value, has_param
+  use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, get_int, elem_of, &
+                         is_int, need_elset
+  use model, only: dload_t, surf_element, find_name, is_continuum, step_dloads, &
+                   dload_p, dload_bx, dload_by, dload_grav, dload_centrif
+  use element_catalogue, only: catalogue, state_axisymmetric
+  implicit none
+
+  !> Direction components this small (relative to the vector) count as zero.
+  real(dp), parameter :: axis_tol = 1.0e-9_dp
+
+contains
+
+  !> Purpose: *DENSITY: `density` of the current material (one data line;
+  !> temperature dependence is not implemented).
+  module subroutine read_density(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call allow_params(p, kw, '')
+    if (p%material == 0) call err(p, '*DENSITY outside a *MATERIAL')
+    call require_data(p, 'density')
+    call split_fields(line_text(p), f, n)
+    if (n > 2) call err(p, 'temperature-dependent *DENSITY data is not implemented')
+    associate(mat => m%materials(p%material))
+      mat%density = get_real(p, f(1), 'density')
+      if (mat%density <= 0.0_dp) call err(p, 'density must be positive')
+      mat%has_density = .true.
+    end associate
+    if (next_data(p)) call err(p, 'temperature-dependent *DENSITY data is not implemented')
+  end subroutine read_density
+
+  !> Purpose: *DLOAD: distributed loads on elements, `element or elset,
+  !> label, magnitude[, ...]` with the labels P1..P4 (face pressure), BX,
+  !> BY (BR, BZ in axisymmetry: body force per unit volume), GRAV (`g, nx,
+  !> ny, nz`: gravity, needs *DENSITY) and CENTRIF (`omega^2, point, axis`:
+  !> needs *DENSITY); OP=, AMPLITUDE= as for *CLOAD. OP=NEW without data
+  !> lines removes the distributed loads of earlier steps.
+  module subroutine read_dload(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    type(dload_t), allocatable :: new(:)
+    integer, allocatable :: elems(:)
+    integer :: n, k, amp, nnew
+    call allow_params(p, kw, 'OP,AMPLITUDE')
+    call load_options(p, m, kw, amp)
+    nnew = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n < 3) call err(p, '*DLOAD data line needs: element or element set, load label, magnitude')
+      if (is_int(f(1)%s)) then
+        elems = [elem_of(p, m, get_int(p, f(1), 'element'))]
+      else
+        elems = m%elsets(need_elset(p, m, f(1)%s))%items
+      end if
+      allocate(new(size(elems)))
+      do k = 1, size(elems)
+        new(k) = element_dload(p, m, elems(k), f, n, amp)
+      end do
+      call add_dloads(m, p%step, new)
+      nnew = nnew + size(new)
+      deallocate(new)
+    end do
+    ! OP=NEW alone removes the earlier distributed loads
+    if (nnew == 0 .and. .not. m%steps(p%step)%new_dloads) &
+      call err(p, 'missing data line (element or element set, load label, magnitude)')
+  end subroutine read_dload
+
+  !> Purpose: *DSLOAD: a pressure on an element-based surface, `surface,
+  !> P, magnitude`; OP=, AMPLITUDE= as for *CLOAD.
+  module subroutine read_dsload(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    type(dload_t), allocatable :: new(:)
+    integer :: n, k, amp, isurf, nnew
+    call allow_params(p, kw, 'OP,AMPLITUDE')
+    call load_options(p, m, kw, amp)
+    nnew = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= 3) call err(p, '*DSLOAD data line needs: surface, P, magnitude')
+      isurf = find_name(m%surfaces(1:p%nsurf)%name, to_upper(f(1)%s))
+      if (isurf == 0) call err(p, 'undefined surface ' // to_upper(f(1)%s))
+      if (m%surfaces(isurf)%kind /= surf_element) call err(p, 'surface ' // to_upper(f(1)%s) // &
+          ' is a node surface: *DSLOAD needs an element-based surface')
+      if (to_upper(f(2)%s) /= 'P') call err(p, 'load label ' // to_upper(f(2)%s) // &
+          ' is not implemented on *DSLOAD (only P, a pressure)')
+      associate(s => m%surfaces(isurf))
+        allocate(new(size(s%elem)))
+        do k = 1, size(s%elem)
+          new(k) = dload_t(elem=s%elem(k), label=dload_p, face=s%edge(k), amp=amp, &
+                           value=get_real(p, f(3), 'pressure'))
+        end do
+      end associate
+      call add_dloads(m, p%step, new)
+      nnew = nnew + size(new)
+      deallocate(new)
+    end do
+    if (nnew == 0 .and. .not. m%steps(p%step)%new_dloads) call err(p, 'missing data line (surface, P, magnitude)')
+  end subroutine read_dsload
+
+  !> OP= (NEW removes the distributed loads of earlier steps) and
+  !> AMPLITUDE= of *DLOAD and *DSLOAD.
+  subroutine load_options(p, m, kw, amp)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    integer, intent(out) :: amp
+    character(len=:), allocatable :: op
+    op = 'MOD'
+    if (has_param(kw, 'OP')) op = to_upper(param_value(kw, 'OP'))
+    if (op /= 'MOD' .and. op /= 'NEW') call err(p, 'OP must be MOD or NEW')
+    if (op == 'NEW') m%steps(p%step)%new_dloads = .true.
+    amp = 0
+    if (has_param(kw, 'AMPLITUDE')) then
+      amp = find_name(m%amplitudes(1:p%namp)%name, to_upper(param_value(kw, 'AMPLITUDE')))
+      if (amp == 0) call err(p, 'undefined amplitude ' // to_upper(param_value(kw, 'AMPLITUDE')))
+    end if
+  end subroutine load_options
+
+  subroutine add_dloads(m, is, new)
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: is
+    type(dload_t), intent(in) :: new(:)
+    if (step_dloads(m%steps(is)) == 0) then
+      m%steps(is)%dloads = new
+    else
+      m%steps(is)%dloads = [m%steps(is)%dloads, new]
+    end if
+  end subroutine add_dloads
+
+  !> The load a *DLOAD data line (fields f(1:n)) puts on element e.
+  type(dload_t) function element_dload(p, m, e, f, n, amp) result(d)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e, n, amp
+    type(field_t), intent(in) :: f(:)
+    character(len=:), allocatable :: label
+    logical :: axi
+    if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a line element (' // &
+        trim(catalogue(m%etype(e))%name) // '): distributed loads act on solid elements')
+    axi = catalogue(m%etype(e))%state == state_axisymmetric
+    label = to_upper(f(2)%s)
+    d = dload_t(elem=e, amp=amp, value=get_real(p, f(3), 'load magnitude'))
+    if (len(label) == 2 .and. label(1:1) == 'P' .and. index('123456789', label(2:2)) > 0) label = 'PK'
+    select case (label)
+    case ('PK')
+      label = to_upper(f(2)%s)
+      d%label = dload_p
+      d%face = index('123456789', label(2:2))
+      if (d%face > catalogue(m%etype(e))%nedges) call err(p, 'face ' // label(2:2) // ' does not exist for ' // &
+          trim(catalogue(m%etype(e))%name) // ' (faces 1..' // itoa(catalogue(m%etype(e))%nedges) // ')')
+      call no_more(p, n, 3, label)
+    case ('BX', 'BR')
+      if (label == 'BR' .and. .not. axi) &
+        call err(p, 'BR is the radial body force of axisymmetric elements (plane elements take BX)')
+      d%label = dload_bx
+      call no_more(p, n, 3, label)
+    case ('BY', 'BZ')
+      if (label == 'BZ' .and. .not. axi) call err(p, 'BZ acts out of the plane of a plane element (use BY; '// &
+          'BZ is the axial body force of axisymmetric elements only)')
+      d%label = dload_by
+      call no_more(p, n, 3, label)
+    case ('GRAV')
+      d%label = dload_grav
+      d%dir = gravity_direction(p, f, n, axi)
+      call need_density(p, m, e, label)
+    case ('CENTRIF')
+      d%label = dload_centrif
+      d%point = centrifugal_axis(p, f, n, axi)
+      call need_density(p, m, e, label)
+    case default
+      call err(p, 'load label ' // label // ' is not implemented (P1..P4, BX, BY, BR, BZ, GRAV, CENTRIF)')
+    end select
+  end function element_dload
+
+  subroutine no_more(p, n, nmax, label)
+    type(parser_t), intent(in) :: p
+    integer, intent(in) :: n, nmax
+    character(len=*), intent(in) :: label
+    if (n > nmax) call err(p, label // ' takes one magnitude: element or set, ' // label // ', magnitude')
+  end subroutine no_more
+
+  !> GRAV: `g, nx, ny[, nz]`, the unit direction in the plane (along the
+  !> axis in axisymmetry).
+  function gravity_direction(p, f, n, axi) result(dir)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f(:)
+    integer, intent(in) :: n
+    logical, intent(in) :: axi
+    real(dp) :: dir(2), v(3), len
+    if (n < 5 .or. n > 6) call err(p, 'GRAV needs: element or set, GRAV, g, nx, ny[, nz]')
+    v = 0.0_dp
+    v(1) = get_real(p, f(4), 'gravity direction x')
+    v(2) = get_real(p, f(5), 'gravity direction y')
+    if (n == 6) v(3) = get_real(p, f(6), 'gravity direction z')
+    len = norm2(v)
+    if (.not. len > 0.0_dp) call err(p, 'the gravity direction is a zero vector')
+    v = v / len
+    if (abs(v(3)) > axis_tol) call err(p, 'gravity out of the x-y plane is not possible in 2D')
+    if (axi .and. abs(v(1)) > axis_tol) call err(p, 'gravity across the axis of an axisymmetric element is ' // &
+        'not axisymmetric: its direction must be the axis (0, 1, 0) or (0, -1, 0)')
+    dir = v(1:2)
+  end function gravity_direction
+
+  !> CENTRIF: `omega^2, x0, y0, z0, ax, ay, az`: a point of the axis and
+  !> its direction; the axis must be the y axis in axisymmetry and normal
+  !> to the x-y plane otherwise. Returns the axis' point in the plane.
+  function centrifugal_axis(p, f, n, axi) result(pt)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f(:)
+    integer, intent(in) :: n
+    logical, intent(in) :: axi
+    real(dp) :: pt(2), x(3), a(3), len
+    integer :: k
+    if (n /= 9) call err(p, 'CENTRIF needs: element or set, CENTRIF, omega^2, x0, y0, z0, ax, ay, az')
+    do k = 1, 3
+      x(k) = get_real(p, f(3 + k), 'point of the rotation axis')
+      a(k) = get_real(p, f(6 + k), 'direction of the rotation axis')
+    end do
+    len = norm2(a)
+    if (.not. len > 0.0_dp) call err(p, 'the rotation axis direction is a zero vector')
+    a = a / len
+    if (axi) then
+      if (abs(a(1)) > axis_tol .or. abs(a(3)) > axis_tol .or. abs(x(1)) > axis_tol * max(1.0_dp, norm2(x)) &
+          .or. abs(x(3)) > axis_tol * max(1.0_dp, norm2(x))) &
+        call err(p, 'the rotation axis of an axisymmetric element must be its symmetry axis, the y axis ' // &
+                    '(point 0, y, 0; direction 0, 1, 0)')
+    else
+      if (abs(a(1)) > axis_tol .or. abs(a(2)) > axis_tol) &
+        call err(p, 'the rotation axis of a plane element must be normal to the x-y plane (direction 0, 0, 1)')
+    end if
+    pt = x(1:2)
+  end function centrifugal_axis
+
+  !> GRAV and CENTRIF need the density of the element's material; checked
+  !> here when the section and material are already known (model data
+  !> normally are), and at the start of the analysis otherwise.
+  subroutine need_density(p, m, e, label)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    character(len=*), intent(in) :: label
+    integer :: s, imat
+    do s = 1, p%nsec
+      if (.not. any(m%elsets(m%sections(s)%elset)%items == e)) cycle
+      imat = find_name(m%materials(1:p%nmat)%name, m%sections(s)%material_name)
+      if (imat == 0) return
+      if (.not. m%materials(imat)%has_density) call err(p, label // ' on element ' // itoa(m%elem_id(e)) // &
+          ' needs the density of material ' // trim(m%materials(imat)%name) // ' (*DENSITY)')
+      return
+    end do
+  end subroutine need_density
+end submodule deck_load_cards
