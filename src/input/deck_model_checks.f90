@@ -64,7 +64,11 @@ contains
       m%sections(s)%material = imat
       do k = 1, size(m%elsets(m%sections(s)%elset)%items)
         e = m%elsets(m%sections(s)%elset)%items(k)
-        if (.not. is_continuum(m, e)) cycle
+        ! CalculiX makes trusses of line elements given a section; here
+        ! they only describe boundaries and would carry nothing.
+        if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a line element (' // &
+          trim(catalogue(m%etype(e))%name) // '): with a section CalculiX makes it a truss; cfe2d has no truss ' // &
+          'elements (line elements only define sets and surfaces)')
         if (m%elem_section(e) /= 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is in two sections')
         m%elem_section(e) = s
       end do
