@@ -133,6 +133,9 @@ module model
     real(dp) :: contact_tolerance = 1.0e-6_dp
     integer :: contact_max_iter = 30
     integer :: max_cutbacks = 5
+    !> *SOLVER, CONTACT SOLVE=: solver_codes contact_solve_* (auto: the
+    !> condensed contact solve where it pays, else the full one).
+    integer :: contact_solve = 0
   end type model_t
 
 contains

@@ -12,7 +12,8 @@ module listing
   use messages, only: register_unit_to_close, fatal
   use solver_codes, only: solver_name, ordering_name
   use blas_info, only: blas_description
-  use analysis_events, only: analysis_observer_t, step_info_t, iteration_info_t, step_summary_t
+  use analysis_events, only: analysis_observer_t, step_info_t, iteration_info_t, step_summary_t, solver_info_t, &
+                             run_timing_t
   use increment_results, only: increment_results_t
   use contact_results, only: pair_results_t
   implicit none
@@ -31,6 +32,7 @@ module listing
     procedure :: note => write_note
     procedure :: increment_done => write_increment
     procedure :: step_finished => write_step_summary
+    procedure :: run_finished => write_timing
   end type listing_t
 
 contains
@@ -128,13 +130,14 @@ contains
     flush(u)
   end subroutine write_step_header
 
-  subroutine write_solver(self, step, description)
+  subroutine write_solver(self, info)
     class(listing_t), intent(inout) :: self
-    integer, intent(in) :: step
-    character(len=*), intent(in) :: description
-    write(self%unit, '(a,i0)') '--- SOLVER step=', step
+    type(solver_info_t), intent(in) :: info
+    write(self%unit, '(a,i0)') '--- SOLVER step=', info%step
     write(self%unit, '(a)') 'item value'
-    write(self%unit, '(a)') 'factor ' // description
+    write(self%unit, '(a)') 'factor ' // info%description
+    if (len(info%contact_solve) > 0) write(self%unit, '(a)') 'contact_solve ' // info%contact_solve
+    if (info%contact_equations > 0) write(self%unit, '(a,i0)') 'contact_equations ', info%contact_equations
     flush(self%unit)
   end subroutine write_solver
 
@@ -164,6 +167,7 @@ contains
     write(u, '(a)') 'item value'
     write(u, '(a,i0)') 'increments ', summary%increments
     write(u, '(a,i0)') 'numeric_factorisations ', summary%factorisations
+    write(u, '(a,i0)') 'condensed_factorisations ', summary%condensed_factorisations
     write(u, '(a,i0)') 'contact_iterations ', summary%iterations
     write(u, '(a,i0)') 'element_calls_continuum_stiffness ', summary%continuum_tangent
     write(u, '(a,i0)') 'element_calls_continuum_stresses ', summary%continuum_stresses
@@ -171,6 +175,41 @@ contains
     write(u, '(a,f0.3)') 'wall_seconds ', summary%wall_seconds
     flush(u)
   end subroutine write_step_summary
+
+  !> Purpose: the last block: where the wall time of the run went and how
+  !> many matrices were factored.
+  subroutine write_timing(self, timing)
+    class(listing_t), intent(inout) :: self
+    type(run_timing_t), intent(in) :: timing
+    integer :: u
+    u = self%unit
+    write(u, '(a)') ''
+    write(u, '(a)') '--- TIMING (wall seconds)'
+    write(u, '(a)') 'item value'
+    write(u, '(a,a)') 'read ', seconds(timing%read)
+    write(u, '(a,a)') 'setup ', seconds(timing%setup)
+    write(u, '(a,a)') 'assembly ', seconds(timing%assembly)
+    write(u, '(a,a)') 'analyse ', seconds(timing%analyse)
+    write(u, '(a,a)') 'factor ', seconds(timing%factor)
+    write(u, '(a,a)') 'condensed_iterations ', seconds(timing%condensed)
+    write(u, '(a,a)') 'full_iterations ', seconds(timing%solve)
+    write(u, '(a,a)') 'recovery ', seconds(timing%recovery)
+    write(u, '(a,a)') 'results ', seconds(timing%results)
+    write(u, '(a,a)') 'output ', seconds(timing%output)
+    write(u, '(a,a)') 'total ', seconds(timing%total)
+    write(u, '(a,i0)') 'numeric_factorisations ', timing%numeric_factorisations
+    write(u, '(a,i0)') 'condensed_factorisations ', timing%condensed_factorisations
+    flush(u)
+  end subroutine write_timing
+
+  !> Seconds with three decimals and a leading zero.
+  pure function seconds(t) result(s)
+    real(dp), intent(in) :: t
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write(buf, '(f24.3)') t
+    s = trim(adjustl(buf))
+  end function seconds
 
   !> Purpose: one increment: the requested blocks, reaction sums, contact
   !> results (and the contact table rows).
