@@ -49,9 +49,11 @@ module condensed_contact
     integer, allocatable :: eq_at(:)    ! (m) equation at a trailing position
     integer, allocatable :: cfe_pos(:, :)       ! (max_edof, ncfe) position of each CFE dof, 0 if none
     real(dp), allocatable :: ke0(:, :, :)       ! (max_edof, max_edof, ncfe) CFE tangents as in K0
-    real(dp), allocatable :: l22(:, :)  ! trailing block of the factor of K0
-    real(dp), allocatable :: s0(:, :)   ! Schur complement of K0 (lower triangle)
-    real(dp), allocatable :: s(:, :)    ! Cholesky factor of S of the current status
+    !> The trailing block L22 of the factor of K0 in the lower triangle;
+    !> the Schur complement S0 of K0 in the strict upper triangle (S0(i, j)
+    !> at (j, i)) and in s0_diag: one m x m array for both.
+    real(dp), allocatable :: l22(:, :), s0_diag(:)
+    real(dp), allocatable :: s(:, :)    ! Cholesky factor of S of the current status (lower)
     real(dp), allocatable :: diag22(:)  ! K0's diagonal on the contact equations
     real(dp), allocatable :: kdiag(:)   ! the diagonal of the current status
     real(dp), allocatable :: z(:)       ! (n) forward-solved right-hand side of the increment
@@ -167,8 +169,8 @@ contains
     open_set%c(1:cs%n)%closed = .false.
     open_set%stabilised = .false.
     call assemble_stiffness(m, open_set, body, cd%u0, sys, kmax, counts)
-    if (allocated(cd%l22)) deallocate(cd%l22, cd%s0, cd%s, cd%diag22, cd%kdiag, cd%q0, cd%x2, cd%eq_at)
-    allocate(cd%l22(mc, mc), cd%s0(mc, mc), cd%s(mc, mc), cd%diag22(mc), cd%kdiag(mc), cd%q0(mc), cd%x2(mc), &
+    if (allocated(cd%l22)) deallocate(cd%l22, cd%s0_diag, cd%s, cd%diag22, cd%kdiag, cd%q0, cd%x2, cd%eq_at)
+    allocate(cd%l22(mc, mc), cd%s0_diag(mc), cd%s(mc, mc), cd%diag22(mc), cd%kdiag(mc), cd%q0(mc), cd%x2(mc), &
              cd%eq_at(mc), tperm(mc))
     call sys_condensed_factor(sys, status, bad, cd%l22, cd%diag22)
     if (status /= factor_ok) return
@@ -177,9 +179,10 @@ contains
     cd%pos = [(0, p = 1, cd%n)]
     cd%pos(cd%eq_at) = [(p, p = 1, mc)]
     ! the factor was of K0 with its trailing diagonal doubled
-    call lower_gram(cd%l22, cd%s0)
+    call lower_gram(cd%l22, cd%s)
     do p = 1, mc
-      cd%s0(p, p) = cd%s0(p, p) - cd%diag22(p)
+      cd%s0_diag(p) = cd%s(p, p) - cd%diag22(p)
+      cd%l22(p, p + 1:mc) = cd%s(p + 1:mc, p)
     end do
     call map_cfes(cd, m, cs, dm, open_set, counts)
   end subroutine condensed_factor_k0
@@ -213,7 +216,8 @@ contains
   end subroutine map_cfes
 
   !> Purpose: factors S of the current contact status (cs: statuses and
-  !> stabilisation): S0 plus every CFE's tangent minus its tangent in K0.
+  !> stabilisation): S0 plus every CFE's tangent minus its tangent in K0
+  !> (the lower triangles; LAPACK leaves the upper one alone).
   !> Arguments: kbody the bodies' largest element diagonal; status
   !> factor_ok or factor_singular (bad: the equation whose pivot vanished,
   !> judged as the sparse backends judge theirs: relative to the diagonal
@@ -229,7 +233,10 @@ contains
     type(elem_out_t) :: eout
     integer :: j, a, b, pa, pb, nd, info, nodes(max_en)
     real(dp) :: dk, ratio
-    cd%s = cd%s0
+    do b = 1, cd%m
+      cd%s(b, b) = cd%s0_diag(b)
+      cd%s(b + 1:cd%m, b) = cd%l22(b, b + 1:cd%m)
+    end do
     cd%kdiag = cd%diag22
     cd%kmax = kbody
     do j = 1, cs%n

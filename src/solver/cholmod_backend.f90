@@ -44,7 +44,8 @@ contains
     integer, intent(in) :: n, ordering, xeq(:), eqs(:)
     call self%free()
     call self%keep_structure(n, ordering, xeq, eqs)
-    call csc_build(self%a, n, xeq, eqs, upper=.true.)
+    ! with a trailing block the matrix is assembled once (condensed solve)
+    call csc_build(self%a, n, xeq, eqs, upper=.true., with_map=self%nlast == 0)
     self%ap0 = int(self%a%colptr - 1, c_int)
     self%ai0 = int(self%a%rowind - 1, c_int)
   end subroutine setup

@@ -37,10 +37,6 @@ module linear_solver
     integer :: n = 0
     real(dp) :: factor_entries = 0.0_dp              ! nnz(L) (+ nnz(U)) or profile
     character(len=:), allocatable :: note            ! fallback message, if any
-    ! The element equation lists as given to sys_setup: kept only for
-    ! callers that still read them (the backend has its own copy); to be
-    ! removed once the analysis layer no longer does.
-    integer, allocatable :: xeq(:), eqs(:)
     class(solver_backend_t), allocatable, private :: b   ! the solver in use
   end type linear_system_t
 
@@ -76,13 +72,11 @@ contains
     s%kind = kind
     s%ordering = ordering
     s%n = n
-    s%xeq = xeq
-    s%eqs = eqs
     if (allocated(s%note)) deallocate(s%note)
     call new_backend(kind, s%b)
-    call s%b%setup(n, ordering, xeq, eqs)
     s%b%nlast = 0
     if (present(nlast)) s%b%nlast = max(0, min(nlast, n))
+    call s%b%setup(n, ordering, xeq, eqs)
     s%factor_entries = s%b%factor_entries
   end subroutine sys_setup
 
