@@ -19,21 +19,22 @@
 !> Measurements and the choice against the other ways in (a Schur
 !> complement by many right-hand sides, Woodbury): docs/benchmark.md.
 module condensed_contact
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
-  use model
+  use model, only: model_t, is_continuum, elem_nodes
   use solver_codes, only: solver_cholmod, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces
   use element_interface, only: elem_in_t, elem_out_t, max_en, max_edof, act_tangent
   use element_library, only: element_routine
-  use assembly, only: body_t, element_counts_t, assemble_stiffness, body_forces, free_residual
+  use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, number_dofs
   use linear_solver, only: linear_system_t, sys_condensed_factor, sys_trailing_order, sys_forward, sys_backward, &
                            sys_factor_flops, sys_nlast, factor_ok, factor_singular, pivot_ratio_min
-  use dense_cholesky, only: dense_factor, dense_solve, lower_times, lower_gram
+  use dense_cholesky, only: dense_factor, dense_solve, upper_times, lower_gram
   implicit none
   private
   public :: condensed_t, number_equations, condensed_factor_k0, condensed_status, condensed_begin, &
-            condensed_solve, condensed_recover, condensed_correct
+            condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -49,9 +50,10 @@ module condensed_contact
     integer, allocatable :: eq_at(:)    ! (m) equation at a trailing position
     integer, allocatable :: cfe_pos(:, :)       ! (max_edof, ncfe) position of each CFE dof, 0 if none
     real(dp), allocatable :: ke0(:, :, :)       ! (max_edof, max_edof, ncfe) CFE tangents as in K0
-    !> The trailing block L22 of the factor of K0 in the lower triangle;
-    !> the Schur complement S0 of K0 in the strict upper triangle (S0(i, j)
-    !> at (j, i)) and in s0_diag: one m x m array for both.
+    !> One m x m array for two matrices: the trailing block L22 of the
+    !> factor of K0 as its transpose in the upper triangle and diagonal,
+    !> the Schur complement S0 of K0 in the strict lower triangle (its
+    !> diagonal in s0_diag), so that S's columns are copied contiguously.
     real(dp), allocatable :: l22(:, :), s0_diag(:)
     real(dp), allocatable :: s(:, :)    ! Cholesky factor of S of the current status (lower)
     real(dp), allocatable :: diag22(:)  ! K0's diagonal on the contact equations
@@ -59,6 +61,8 @@ module condensed_contact
     real(dp), allocatable :: z(:)       ! (n) forward-solved right-hand side of the increment
     real(dp), allocatable :: q0(:), x2(:)       ! (m) condensed right-hand side, solution
     real(dp), allocatable :: u0(:, :)   ! displacements at the start of the increment
+    real(dp) :: umax_rest = 0.0_dp      ! largest |u0| off the contact equations
+    real(dp), allocatable :: fw(:, :)   ! (2, nn) work: CFE forces, zero between uses
     real(dp) :: kmax = 0.0_dp           ! largest element diagonal of the current status
   end type condensed_t
 
@@ -182,7 +186,8 @@ contains
     call lower_gram(cd%l22, cd%s)
     do p = 1, mc
       cd%s0_diag(p) = cd%s(p, p) - cd%diag22(p)
-      cd%l22(p, p + 1:mc) = cd%s(p + 1:mc, p)
+      cd%l22(p, p + 1:mc) = cd%l22(p + 1:mc, p)
+      cd%l22(p + 1:mc, p) = cd%s(p + 1:mc, p)
     end do
     call map_cfes(cd, m, cs, dm, open_set, counts)
   end subroutine condensed_factor_k0
@@ -235,7 +240,7 @@ contains
     real(dp) :: dk, ratio
     do b = 1, cd%m
       cd%s(b, b) = cd%s0_diag(b)
-      cd%s(b + 1:cd%m, b) = cd%l22(b, b + 1:cd%m)
+      cd%s(b + 1:cd%m, b) = cd%l22(b + 1:cd%m, b)
     end do
     cd%kdiag = cd%diag22
     cd%kmax = kbody
@@ -278,58 +283,123 @@ contains
 
   !> Purpose: condenses the right-hand side of an increment that starts
   !> from displacements u (prescribed values in place) under loads fext:
-  !> r = fext - f_int(bodies, u) on the free equations, z = L^-1 P r,
-  !> q0 = L22 z2; u is kept as the start of the increment.
-  subroutine condensed_begin(cd, m, body, dm, sys, fext, u)
+  !> r = fext - fbody on the free equations (fbody: the bodies' internal
+  !> forces at u), z = L^-1 P r, q0 = L22 z2; u is kept as the start of the
+  !> increment.
+  subroutine condensed_begin(cd, m, dm, sys, fext, u, fbody)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
-    type(body_t), intent(in) :: body
     type(dofmap_t), intent(in) :: dm
     type(linear_system_t), intent(inout) :: sys
-    real(dp), intent(in) :: fext(:, :), u(:, :)
-    real(dp), allocatable :: fint(:, :)
-    allocate(fint(2, m%nn))
+    real(dp), intent(in) :: fext(:, :), u(:, :), fbody(:, :)
+    integer :: a, d, e
     cd%u0 = u
-    if (.not. allocated(cd%z)) allocate(cd%z(cd%n))
-    if (size(cd%z) /= cd%n) then
-      deallocate(cd%z)
-      allocate(cd%z(cd%n))
+    if (.not. allocated(cd%fw)) then
+      allocate(cd%fw(2, m%nn))
+      cd%fw = 0.0_dp
     end if
-    call body_forces(m, body, u, fint)
-    call free_residual(dm, fext, fint, cd%z)
+    if (allocated(cd%z)) then
+      if (size(cd%z) /= cd%n) deallocate(cd%z)
+    end if
+    if (.not. allocated(cd%z)) allocate(cd%z(cd%n))
+    cd%umax_rest = 0.0_dp
+    do a = 1, m%nn
+      do d = 1, 2
+        e = dm%eq(d, a)
+        if (e > 0) then
+          if (cd%pos(e) > 0) cycle
+        end if
+        cd%umax_rest = max(cd%umax_rest, abs(u(d, a)))
+      end do
+    end do
+    call free_residual(dm, fext, fbody, cd%z)
     call sys_forward(sys, cd%z)
     cd%q0 = cd%z(cd%n - cd%m + 1:cd%n)
-    call lower_times(cd%l22, cd%q0, .false.)
+    call upper_times(cd%l22, cd%q0, .true.)
   end subroutine condensed_begin
 
-  !> Purpose: the contact equations for the current status (factored by
-  !> condensed_status): S x2 = q0 - (CFE forces at the increment's start).
-  !> u returns the start of the increment with x2 added on the contact
-  !> equations, enough for every gap; the other equations stay at the
-  !> start until condensed_recover. ncalls counts CFE routine calls.
-  subroutine condensed_solve(cd, m, cs, dm, u, ncalls)
+  !> Purpose: the CFEs' internal forces at displacements u on the contact
+  !> equations, f(m) in trailing order (the contact layer also keeps each
+  !> CFE's gap and force); every CFE force lives there (B_e^T n reaches
+  !> nothing else). ncalls counts CFE routine calls.
+  subroutine contact_part_forces(cd, m, cs, dm, u, f, ncalls)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(inout) :: cs
     type(dofmap_t), intent(in) :: dm
-    real(dp), intent(out) :: u(:, :)
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(out) :: f(:)
     integer(kind=8), intent(inout) :: ncalls
-    real(dp), allocatable :: fc(:, :)
-    integer :: p, e
-    allocate(fc(2, m%nn))
-    fc = 0.0_dp
-    ! the CFE forces are affine in u and live on the contact equations
-    call contact_forces(m, cs, cd%u0, fc, ncalls)
+    integer :: p, e, j, nen, nodes(max_en)
+    call contact_forces(m, cs, u, cd%fw, ncalls)
     do p = 1, cd%m
       e = cd%eq_at(p)
-      cd%x2(p) = cd%q0(p) - fc(dm%dof_of_eq(e), dm%node_of_eq(e))
+      f(p) = cd%fw(dm%dof_of_eq(e), dm%node_of_eq(e))
     end do
+    do j = 1, cs%n
+      call cfe_nodes(m, cs%c(j), nodes, nen)
+      cd%fw(:, nodes(1:nen)) = 0.0_dp
+    end do
+  end subroutine contact_part_forces
+
+  !> Purpose: f += K_body du, element by element, skipping the elements
+  !> where du is zero (between increments only prescribed values move).
+  subroutine add_body_forces(m, body, du, f)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    real(dp), intent(in) :: du(:, :)
+    real(dp), intent(inout) :: f(:, :)
+    real(dp) :: ue(2 * max_en), fe(2 * max_en), a
+    integer :: e, i, j, k, nen, nd
+    integer(kind=8) :: q
+    do e = 1, m%ne
+      if (.not. is_continuum(m, e)) cycle
+      nen = elem_nodes(m, e)
+      if (all(du(:, m%conn(1:nen, e)) == 0.0_dp)) cycle
+      nd = 2 * nen
+      do k = 1, nen
+        ue(2 * k - 1:2 * k) = du(:, m%conn(k, e))
+      end do
+      fe(1:nd) = 0.0_dp
+      ! the stored upper triangle, column by column
+      q = body%kptr(e)
+      do j = 1, nd
+        do i = 1, j
+          a = body%ke(q)
+          q = q + 1
+          fe(i) = fe(i) + a * ue(j)
+          if (i /= j) fe(j) = fe(j) + a * ue(i)
+        end do
+      end do
+      do k = 1, nen
+        f(:, m%conn(k, e)) = f(:, m%conn(k, e)) + fe(2 * k - 1:2 * k)
+      end do
+    end do
+  end subroutine add_body_forces
+
+  !> Purpose: the contact equations for the current status (factored by
+  !> condensed_status): S x2 = q0 - (CFE forces at the increment's start).
+  !> u(contact equations) returns the start of the increment plus x2,
+  !> enough for every gap; the caller keeps the other equations at the
+  !> start until condensed_recover. finite says whether x2 is.
+  subroutine condensed_solve(cd, m, cs, dm, u, finite, ncalls)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(inout) :: u(:, :)
+    logical, intent(out) :: finite
+    integer(kind=8), intent(inout) :: ncalls
+    real(dp) :: fc(cd%m)
+    ! the CFE forces are affine in u: at the start, they are the constant part
+    call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
+    cd%x2 = cd%q0 - fc
     call dense_solve(cd%s, cd%x2)
-    u = cd%u0
+    finite = all(ieee_is_finite(cd%x2))
     call add_contact_part(cd, dm, u)
   end subroutine condensed_solve
 
-  !> u(contact equations) += x2.
+  !> u(contact equations) = u0 + x2.
   subroutine add_contact_part(cd, dm, u)
     type(condensed_t), intent(in) :: cd
     type(dofmap_t), intent(in) :: dm
@@ -354,7 +424,7 @@ contains
     integer :: e
     w = cd%z
     t = cd%x2
-    call lower_times(cd%l22, t, .true.)
+    call upper_times(cd%l22, t, .false.)
     w(cd%n - cd%m + 1:cd%n) = t
     call sys_backward(sys, w)
     do e = 1, cd%n
@@ -373,9 +443,9 @@ contains
     real(dp), allocatable :: t(:)
     call sys_forward(sys, r)
     t = r(cd%n - cd%m + 1:cd%n)
-    call lower_times(cd%l22, t, .false.)
+    call upper_times(cd%l22, t, .true.)
     call dense_solve(cd%s, t)
-    call lower_times(cd%l22, t, .true.)
+    call upper_times(cd%l22, t, .false.)
     r(cd%n - cd%m + 1:cd%n) = t
     call sys_backward(sys, r)
   end subroutine condensed_correct

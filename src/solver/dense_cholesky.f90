@@ -1,13 +1,12 @@
 !> Dense symmetric positive definite matrices through LAPACK and BLAS
-!> (OpenBLAS): Cholesky factorisation and solves, products with a lower
-!> triangle, and the Gram matrix L L^T. Only the lower triangles are read
-!> and written. The condensed contact solve keeps its Schur complement
+!> (OpenBLAS): Cholesky factorisation and solves (lower triangles only),
+!> products with an upper triangle, and the Gram matrix L L^T. The condensed contact solve keeps its Schur complement
 !> here.
 module dense_cholesky
   use kinds, only: dp
   implicit none
   private
-  public :: dense_factor, dense_solve, lower_times, lower_gram
+  public :: dense_factor, dense_solve, upper_times, lower_gram
 
   interface
     subroutine dpotrf(uplo, n, a, lda, info)
@@ -67,14 +66,15 @@ contains
     call dpotrs('L', size(l, 1), 1, l, size(l, 1), b, size(b), info)
   end subroutine dense_solve
 
-  !> Purpose: x := L x (transposed: L^T x) with the lower triangle of l.
-  subroutine lower_times(l, x, transposed)
-    real(dp), intent(in) :: l(:, :)
+  !> Purpose: x := U x (transposed: U^T x) with the upper triangle and
+  !> diagonal of u.
+  subroutine upper_times(u, x, transposed)
+    real(dp), intent(in) :: u(:, :)
     real(dp), intent(inout) :: x(:)
     logical, intent(in) :: transposed
-    if (size(l, 1) == 0) return
-    call dtrmv('L', merge('T', 'N', transposed), 'N', size(l, 1), l, size(l, 1), x, 1)
-  end subroutine lower_times
+    if (size(u, 1) == 0) return
+    call dtrmv('U', merge('T', 'N', transposed), 'N', size(u, 1), u, size(u, 1), x, 1)
+  end subroutine upper_times
 
   !> Purpose: the lower triangle of s := L L^T, L the lower triangle of l
   !> (zero above the diagonal).
