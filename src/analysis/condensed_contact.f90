@@ -350,12 +350,19 @@ contains
     real(dp), intent(in) :: du(:, :)
     real(dp), intent(inout) :: f(:, :)
     real(dp) :: ue(2 * max_en), fe(2 * max_en), a
+    logical :: moved(size(du, 2)), any_moved
     integer :: e, i, j, k, nen, nd
     integer(kind=8) :: q
+    moved = du(1, :) /= 0.0_dp .or. du(2, :) /= 0.0_dp
+    if (.not. any(moved)) return
     do e = 1, m%ne
       if (.not. is_continuum(m, e)) cycle
       nen = elem_nodes(m, e)
-      if (all(du(:, m%conn(1:nen, e)) == 0.0_dp)) cycle
+      any_moved = .false.
+      do k = 1, nen
+        any_moved = any_moved .or. moved(m%conn(k, e))
+      end do
+      if (.not. any_moved) cycle
       nd = 2 * nen
       do k = 1, nen
         ue(2 * k - 1:2 * k) = du(:, m%conn(k, e))

@@ -105,24 +105,24 @@ int cfe_cholmod_analyse(void *handle, int n, int *ap, int *ai, double *ax, int *
     return CFE_OK;
 }
 
-/* Diagonal entry k (permuted numbering) of a numerically factored L. */
-static double diag_of_l(const cholmod_factor *L, size_t k)
+/* d[k] = L(k,k), the diagonal of a numerically factored L (factor order),
+ * read supernode by supernode (or column by column when simplicial). */
+static void diagonal_of_l(const cholmod_factor *L, double *d)
 {
     const double *x = L->x;
     if (L->is_super) {
         const int *super = L->super, *pi = L->pi, *px = L->px;
-        size_t s;
-        /* supernodes hold consecutive columns: find the one holding k */
-        size_t lo = 0, hi = L->nsuper;
-        while (hi - lo > 1) {
-            size_t mid = (lo + hi) / 2;
-            if ((size_t) super[mid] <= k) lo = mid; else hi = mid;
+        for (size_t s = 0; s < L->nsuper; s++) {
+            size_t nsrow = (size_t) (pi[s + 1] - pi[s]);
+            for (size_t k = (size_t) super[s]; k < (size_t) super[s + 1]; k++) {
+                size_t j = k - (size_t) super[s];
+                d[k] = x[(size_t) px[s] + j + j * nsrow];
+            }
         }
-        s = lo;
-        size_t nsrow = (size_t) (pi[s + 1] - pi[s]), j = k - (size_t) super[s];
-        return x[(size_t) px[s] + j + j * nsrow];
+    } else {
+        const int *p = L->p;
+        for (size_t k = 0; k < L->n; k++) d[k] = x[p[k]];
     }
-    return x[((const int *) L->p)[k]];
 }
 
 /* Numeric factorisation of the analysed pattern with values ax.
@@ -149,18 +149,21 @@ int cfe_cholmod_factor(void *handle, int n, int *ap, int *ai, double *ax, int ns
         return CFE_NOT_POSDEF;
     }
     if (h->c.status < CHOLMOD_OK) return h->c.status;
+    double *diag = malloc(L->n * sizeof *diag);
+    if (diag == NULL) return CFE_FAILED;
+    diagonal_of_l(L, diag);
     for (size_t k = 0; k + (size_t) nskip < L->n; k++) {
         int j = perm != NULL ? perm[k] : (int) k;
         /* sorted columns: the diagonal is the last entry of column j */
         double ajj = ap[j + 1] > ap[j] && ai[ap[j + 1] - 1] == j ? ax[ap[j + 1] - 1] : 0.0;
-        double d = diag_of_l(L, k);
-        double pivot = L->is_ll ? d * d : d;   /* LL' or LDL' */
+        double pivot = L->is_ll ? diag[k] * diag[k] : diag[k];   /* LL' or LDL' */
         double r = ajj > 0.0 ? pivot / ajj : 0.0;
         if (r < *ratio || *col < 0) {
             *ratio = r;
             *col = j;
         }
     }
+    free(diag);
     return CFE_OK;
 }
 
