@@ -202,17 +202,19 @@ contains
     real(dp), intent(in) :: time, v(:, :)
     integer, intent(in) :: ids(:)
     logical, intent(in) :: selected(:)
-    integer(int32), allocatable :: buf(:, :)
+    integer(int32), allocatable :: buf(:, :), bits(:, :)
     character(len=32) :: tbuf
     integer :: i, k, nc
     nc = size(v, 1)
     allocate(buf(1 + 2 * nc, count(selected)))
+    ! the values' bits in one transfer, then interleaved with the ids
+    bits = reshape(transfer(v, 0_int32, 2 * nc * size(v, 2)), [2 * nc, size(v, 2)])
     k = 0
     do i = 1, size(ids)
       if (.not. selected(i)) cycle
       k = k + 1
       buf(1, k) = int(ids(i), int32)
-      buf(2:, k) = transfer(v(:, i), buf(1, k), 2 * nc)
+      buf(2:, k) = bits(:, i)
     end do
     write(tbuf, '(es24.15e3)') time
     call line(rf%unit, '$' // block)
