@@ -165,6 +165,9 @@ def test_runs_that_stop_stop_alike():
 
 
 def test_default_is_condensed_with_cholmod_and_full_otherwise():
+    """AUTO condenses with CHOLMOD where the dense matrix is small against
+    the sparse factorisation, and factors the whole system otherwise (m
+    comparable to n, UMFPACK, the skyline); CONDENSED needs CHOLMOD."""
     deck = tc.blocks_deck([tc.push_step(3 * tc.G0)])
     run = run_deck("condensed_default", deck).ok()
     assert contact_solve(run) == ["condensed"], contact_solve(run)
@@ -175,6 +178,16 @@ def test_default_is_condensed_with_cholmod_and_full_otherwise():
     for solver in ("UMFPACK", "SKYLINE"):
         run = run_deck("condensed_" + solver.lower(), tc.force_driven_deck(solver=solver)[0]).ok()
         assert contact_solve(run) == ["full"], (solver, contact_solve(run))
+    # two strips one element thick: a third of the equations are contact
+    # equations, the dense matrix would cost most of a sparse factorisation
+    saved = tc.NX1, tc.NY1, tc.NX2, tc.NY2
+    tc.NX1, tc.NY1, tc.NX2, tc.NY2 = 20, 1, 40, 1
+    try:
+        strips = tc.blocks_deck([tc.push_step(3 * tc.G0)])
+    finally:
+        tc.NX1, tc.NY1, tc.NX2, tc.NY2 = saved
+    run = run_deck("condensed_auto_strips", strips).ok()
+    assert contact_solve(run) == ["full"], contact_solve(run)
     bad = deck.replace("*CONTACT PAIR", "*SOLVER, TYPE=UMFPACK, CONTACT SOLVE=CONDENSED\n*CONTACT PAIR")
     run = run_deck("condensed_bad_solver", bad)
     assert run.rc != 0 and "CONTACT SOLVE=CONDENSED needs TYPE=CHOLMOD" in run.stderr, run.stderr
