@@ -39,7 +39,7 @@ module condensed_contact
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
   !> sparse factorisation of the whole system, and m is at most
-  !> auto_max_m (three m x m matrices are kept).
+  !> auto_max_m (two m x m matrices are kept).
   real(dp), parameter :: auto_flop_share = 0.5_dp
   integer, parameter :: auto_max_m = 6000
 
