@@ -36,7 +36,8 @@ help:
 	@echo "make sanitize   build build-asan/cfe2d with -fsanitize=address,undefined"
 	@echo "make run        install what is missing, then run the main example"
 	@echo "make check      install what is missing, build, run every test"
-	@echo "make bench      solver benchmark (about 1e4, 1e5, 1e6 dofs)"
+	@echo "make bench      contact history against one factorisation (flagship meshes, 1e6-dof square);"
+	@echo "                BENCH_ARGS=--solvers adds the solver table (about 1e4, 1e5, 1e6 dofs)"
 	@echo "make deps       install compilers, libraries, gmsh and Python packages"
 	@echo "make fuzz       mutate the example and test decks and run both builds on them"
 
@@ -86,8 +87,10 @@ deps:
 $(BUILD)/bench: tests/bench/bench.f90 $(OBJS) | $(BUILD)/tests
 	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(OBJS) $(LIBS)
 
-bench: $(BUILD)/bench
-	$(PYTHON) scripts/bench.py --exe $(BUILD)/bench
+# BENCH_ARGS: e.g. --solvers (also the solver table), --meshes default --repeats 1
+BENCH_ARGS ?=
+bench: $(BUILD)/bench bin/cfe2d
+	$(PYTHON) scripts/bench.py --exe $(BUILD)/bench $(BENCH_ARGS)
 
 run: deps bin/cfe2d
 	$(PYTHON) scripts/run_hertz.py

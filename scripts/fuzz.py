@@ -773,6 +773,20 @@ def output_problem(out_dir, job):
     return _short_step(text)
 
 
+def _binary_msh_problem(path):
+    """A binary gmsh result file: its values read back must be finite."""
+    import numpy as np
+    from gmsh_results import read_msh
+    try:
+        r = read_msh(path)
+    except Exception as e:  # a file cfe2d wrote that its own reader cannot read
+        return f"unreadable binary result file ({type(e).__name__})"
+    arrays = [r.xy] + [vals for series in r.views.values() for _, _, vals in series]
+    if any(not np.all(np.isfinite(a)) for a in arrays if a is not None):
+        return "NaN or Infinity"
+    return ""
+
+
 def _short_step(text):
     """'a step stopped before the end of its time period' if the last increment
     of a step is not at the step's time_period."""
@@ -793,6 +807,8 @@ def _short_step(text):
 def _number_problem(path):
     with open(path, "rb") as f:
         text = f.read()
+    if path.endswith(".msh") and text.startswith(b"$MeshFormat\n2.2 1 8"):
+        return _binary_msh_problem(path)
     if path.endswith(".out"):
         # the deck's name and heading are echoed as given
         text = re.sub(rb"^(?:heading|deck) .*$", b"", text, flags=re.M)

@@ -1,4 +1,5 @@
-"""Read the MSH 2.2 ASCII result files that cfe2d writes (<job>.msh)."""
+"""Read the MSH 2.2 result files that cfe2d writes (<job>.msh): binary, as
+cfe2d writes them, or ASCII (older files, or a file gmsh saved again)."""
 import numpy as np
 
 __all__ = ["read_msh"]
@@ -9,17 +10,15 @@ class MshResults:
         self.node_ids = None       # (n,)
         self.xy = None             # (n, 2)
         self.elements = []         # lists of node ids
-        self.views = {}            # name -> list of (time, {id: values})
+        self.views = {}            # name -> list of (time, ids (k,), values (k, ncomp))
 
     def node_view(self, name, step):
         """Values of view `name` at time-step index `step` (0-based) as an
         array aligned with node_ids (NaN where absent)."""
-        time, data = self.views[name][step]
-        ncomp = len(next(iter(data.values())))
-        out = np.full((len(self.node_ids), ncomp), np.nan)
-        index = {n: i for i, n in enumerate(self.node_ids)}
-        for n, v in data.items():
-            out[index[n]] = v
+        time, ids, vals = self.views[name][step]
+        out = np.full((len(self.node_ids), vals.shape[1]), np.nan)
+        order = np.argsort(self.node_ids)
+        out[order[np.searchsorted(self.node_ids, ids, sorter=order)]] = vals
         return time, out
 
     def triangles(self):
@@ -34,40 +33,98 @@ class MshResults:
         return np.array(tris)
 
 
+# nodes of the gmsh element types cfe2d writes (line, triangle, quadrangle,
+# second-order triangle and quadrangle)
+_NODES = {1: 2, 2: 3, 3: 4, 8: 3, 9: 6, 10: 9, 16: 8}
+
+
+class _Reader:
+    """Lines and binary blocks of one file, read as bytes."""
+
+    def __init__(self, data):
+        self.data, self.pos = data, 0
+
+    def line(self):
+        end = self.data.index(b"\n", self.pos)
+        text = self.data[self.pos:end].decode()
+        self.pos = end + 1
+        return text.strip()
+
+    def array(self, dtype, count):
+        a = np.frombuffer(self.data, dtype=dtype, count=count, offset=self.pos)
+        self.pos += a.nbytes
+        return a
+
+    def records(self, nreal, count):
+        """count records of one int32 and nreal float64 each."""
+        rec = np.dtype([("id", "<i4"), ("v", "<f8", (nreal,))])
+        a = np.frombuffer(self.data, dtype=rec, count=count, offset=self.pos)
+        self.pos += a.nbytes
+        return a["id"].astype(int), a["v"]
+
+    def done(self):
+        return self.pos >= len(self.data)
+
+
+def _view_header(rd):
+    nstr = int(rd.line())
+    name = rd.line().strip('"')
+    for _ in range(nstr - 1):
+        rd.line()
+    nreal = int(rd.line())
+    time = float(rd.line())
+    for _ in range(nreal - 1):
+        rd.line()
+    nint_ = int(rd.line())
+    ints = [int(rd.line()) for _ in range(nint_)]
+    return name, time, ints[1], ints[2]
+
+
+def _binary_elements(rd, n, r):
+    read = 0
+    while read < n:
+        etype, count, ntags = rd.array("<i4", 3)
+        nn = _NODES[int(etype)]
+        conn = rd.array("<i4", int(count) * (1 + int(ntags) + nn)).reshape(int(count), -1)
+        r.elements.extend(conn[:, 1 + int(ntags):].tolist())
+        read += int(count)
+
+
 def read_msh(path):
+    with open(path, "rb") as f:
+        rd = _Reader(f.read())
     r = MshResults()
-    with open(path) as f:
-        lines = iter(f.read().splitlines())
-    for line in lines:
-        if line == "$Nodes":
-            n = int(next(lines))
-            ids, xy = np.empty(n, dtype=int), np.empty((n, 2))
-            for i in range(n):
-                w = next(lines).split()
-                ids[i], xy[i] = int(w[0]), (float(w[1]), float(w[2]))
-            r.node_ids, r.xy = ids, xy
+    binary = False
+    while not rd.done():
+        line = rd.line()
+        if line == "$MeshFormat":
+            binary = rd.line().split()[1] == "1"
+            if binary:
+                one = rd.array("<i4", 1)[0]
+                assert one == 1, "big-endian MSH files are not read here"
+                rd.line()
+        elif line == "$Nodes":
+            n = int(rd.line())
+            if binary:
+                ids, xyz = rd.records(3, n)
+            else:
+                w = np.array([rd.line().split() for _ in range(n)], dtype=float)
+                ids, xyz = w[:, 0].astype(int), w[:, 1:4]
+            r.node_ids, r.xy = ids, np.array(xyz[:, :2])
         elif line == "$Elements":
-            n = int(next(lines))
-            for _ in range(n):
-                w = [int(v) for v in next(lines).split()]
-                ntags = w[2]
-                r.elements.append(w[3 + ntags:])
+            n = int(rd.line())
+            if binary:
+                _binary_elements(rd, n, r)
+            else:
+                for _ in range(n):
+                    w = [int(v) for v in rd.line().split()]
+                    r.elements.append(w[3 + w[2]:])
         elif line in ("$NodeData", "$ElementData"):
-            nstr = int(next(lines))
-            name = next(lines).strip('"')
-            for _ in range(nstr - 1):
-                next(lines)
-            nreal = int(next(lines))
-            time = float(next(lines))
-            for _ in range(nreal - 1):
-                next(lines)
-            nint_ = int(next(lines))
-            ints = [int(next(lines)) for _ in range(nint_)]
-            count = ints[2]
-            data = {}
-            for _ in range(count):
-                w = next(lines).split()
-                data[int(w[0])] = [float(v) for v in w[1:]]
-            key = name if line == "$NodeData" else name
-            r.views.setdefault(key, []).append((time, data))
+            name, time, ncomp, count = _view_header(rd)
+            if binary:
+                ids, vals = rd.records(ncomp, count)
+            else:
+                w = np.array([rd.line().split() for _ in range(count)], dtype=float).reshape(count, ncomp + 1)
+                ids, vals = w[:, 0].astype(int), w[:, 1:]
+            r.views.setdefault(name, []).append((time, ids, vals))
     return r

@@ -5,7 +5,7 @@ program cfe2d
   use deck_parser, only: read_model
   use listing, only: listing_t, open_listing, write_header
   use analysis, only: run_analysis
-  use analysis_events, only: observer_ref_t
+  use analysis_events, only: observer_ref_t, run_timing_t, wall_time
   use results_gmsh, only: result_file_t, open_result_file
   use results_vtu, only: vtu_series_t, open_vtu_series
   use progress, only: progress_t
@@ -19,9 +19,11 @@ program cfe2d
   type(progress_t), target :: prog
   type(vtu_series_t), target :: vtu
   type(observer_ref_t), allocatable :: observers(:)
+  type(run_timing_t) :: timing
   logical :: quiet, want_vtu
   integer :: i, k, ios, digits, nobs
 
+  timing%started = wall_time()
   deck = ''
   outdir = ''
   quiet = .false.
@@ -77,6 +79,7 @@ program cfe2d
   end if
 
   call read_model(deck, m)
+  timing%read = wall_time() - timing%started
   if (size(m%pairs) > 0) then
     call open_listing(job // '.out', job // '_contact.csv', digits, lst)
   else
@@ -101,7 +104,8 @@ program cfe2d
     nobs = nobs + 1
     observers(nobs)%o => prog
   end if
-  call run_analysis(m, observers(1:nobs))
+  timing%output = wall_time() - timing%started - timing%read
+  call run_analysis(m, observers(1:nobs), timing)
   call terminate(0)
 
 contains

@@ -9,11 +9,12 @@ module analysis
   use model
   use contact, only: contact_set_t, contact_search, contact_research
   use assembly, only: body_t, element_counts_t, body_setup
-  use dof_numbering, only: dofmap_t, number_dofs
+  use dof_numbering, only: dofmap_t
+  use condensed_contact, only: number_equations
   use load_state, only: load_state_t, begin_step, values_at
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment
   use increment_results, only: increment_results_t, compute_increment_results
-  use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, tell_note
+  use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use linear_solver, only: linear_system_t
   use messages, only: fatal
   implicit none
@@ -32,6 +33,7 @@ module analysis
     real(dp) :: total_time = 0.0_dp     ! at the start of the current step
     integer :: inc = 0                  ! increments done in the current step
     logical :: update_search = .false.
+    type(run_timing_t) :: timing        ! the driver's own parts (the iteration's are in eq)
   end type run_state_t
 
   !> An interval of step time still to be solved, and its bisection depth.
@@ -44,12 +46,20 @@ contains
 
   !> Purpose: runs every step of model m, telling the observers obs what
   !> happens.
-  subroutine run_analysis(m, obs)
+  !> Arguments: timing, if present, holds what the program spent before
+  !> the analysis (reading, opening the writers; its start time) and is
+  !> completed and handed to the observers' run_finished at the end.
+  subroutine run_analysis(m, obs, timing)
     type(model_t), intent(in) :: m
     type(observer_ref_t), intent(in) :: obs(:)
+    type(run_timing_t), intent(inout), optional :: timing
     type(run_state_t) :: rs
     type(element_counts_t) :: counts
     integer :: is
+    real(dp) :: t0
+    if (present(timing)) rs%timing = timing
+    if (rs%timing%started == 0.0_dp) rs%timing%started = wall_time()
+    t0 = wall_time()
     allocate(rs%u(2, m%nn), rs%fext(2, m%nn), rs%rf(2, m%nn))
     rs%u = 0.0_dp
     rs%fext = 0.0_dp
@@ -58,12 +68,37 @@ contains
     ! Small deformation: one search on the initial configuration.
     call contact_search(m, m%x, rs%cs)
     if (size(m%pairs) > 0) rs%update_search = any(m%pairs%update_search)
+    rs%timing%setup = rs%timing%setup + (wall_time() - t0)
     do is = 1, size(m%steps)
       call run_step(m, is, rs, obs, counts)
       counts = element_counts_t()
       rs%total_time = rs%total_time + m%steps(is)%period
     end do
+    call finish(rs, obs)
+    if (present(timing)) timing = rs%timing
   end subroutine run_analysis
+
+  !> The run's timing: the driver's parts and the iteration's, to every
+  !> observer (the output of this last event is not in it).
+  subroutine finish(rs, obs)
+    type(run_state_t), intent(inout) :: rs
+    type(observer_ref_t), intent(in) :: obs(:)
+    integer :: k
+    associate(t => rs%timing, e => rs%eq%timing)
+      t%assembly = e%assembly
+      t%analyse = t%analyse + e%analyse
+      t%factor = e%factor
+      t%condensed = e%condensed
+      t%solve = e%solve
+      t%recovery = e%recovery
+      t%numeric_factorisations = e%numeric_factorisations
+      t%condensed_factorisations = e%condensed_factorisations
+      t%total = wall_time() - t%started
+    end associate
+    do k = 1, size(obs)
+      call obs(k)%o%run_finished(rs%timing)
+    end do
+  end subroutine finish
 
   !> Purpose: one step: its load state and equations, its increments.
   !> Arguments: counts holds element routine calls made before the step
@@ -78,10 +113,14 @@ contains
     type(step_summary_t) :: summary
     integer :: i, ninc, k
     integer(kind=8) :: c0, c1, rate
+    real(dp) :: t0, ta
     call system_clock(c0, rate)
+    t0 = wall_time()
     call begin_step(m, is, rs%u, rs%fext, rs%total_time, rs%ls)
-    call number_dofs(m, rs%cs, rs%ls%presc, m%solver, m%ordering, rs%dm, rs%sys)
+    call number_equations(m, rs%cs, rs%ls%presc, rs%dm, rs%sys, rs%eq%cd, ta)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .true.)
+    rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
+    rs%timing%analyse = rs%timing%analyse + ta
     rs%eq%counts = counts
     ninc = nint(m%steps(is)%period / m%steps(is)%dt)
     info%step = is
@@ -92,9 +131,11 @@ contains
     info%coupling_elements = rs%cs%n
     info%uncoupled = rs%cs%uncoupled
     info%uncoupled_pair = rs%cs%uncoupled_pair
+    t0 = wall_time()
     do k = 1, size(obs)
       call obs(k)%o%step_started(m, info)
     end do
+    rs%timing%output = rs%timing%output + (wall_time() - t0)
     rs%inc = 0
     do i = 1, ninc
       call advance(m, is, rs, obs, m%steps(is)%period * (i - 1) / ninc, m%steps(is)%period * i / ninc)
@@ -103,14 +144,17 @@ contains
     summary%step = is
     summary%increments = rs%inc
     summary%factorisations = rs%eq%factorisations
+    summary%condensed_factorisations = rs%eq%condensed_factorisations
     summary%iterations = rs%eq%iterations
     summary%continuum_tangent = rs%eq%counts%continuum_tangent
     summary%continuum_stresses = rs%eq%counts%continuum_stresses
     summary%coupling = rs%eq%counts%coupling
     summary%wall_seconds = real(c1 - c0, dp) / real(rate, dp)
+    t0 = wall_time()
     do k = 1, size(obs)
       call obs(k)%o%step_finished(summary)
     end do
+    rs%timing%output = rs%timing%output + (wall_time() - t0)
   end subroutine run_step
 
   !> Purpose: takes the solution from step time t0 to t1, halving the
@@ -164,9 +208,13 @@ contains
   subroutine research(m, rs)
     type(model_t), intent(in) :: m
     type(run_state_t), intent(inout) :: rs
+    real(dp) :: t0, ta
+    t0 = wall_time()
     call contact_research(m, m%x + rs%u, rs%cs)
-    call number_dofs(m, rs%cs, rs%ls%presc, m%solver, m%ordering, rs%dm, rs%sys)
+    call number_equations(m, rs%cs, rs%ls%presc, rs%dm, rs%sys, rs%eq%cd, ta)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .false.)
+    rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
+    rs%timing%analyse = rs%timing%analyse + ta
   end subroutine research
 
   !> The results of a converged increment, computed once, to every observer.
@@ -178,10 +226,15 @@ contains
     real(dp), intent(in) :: t
     type(increment_results_t) :: res
     integer :: k
+    real(dp) :: t0, t1
+    t0 = wall_time()
     call compute_increment_results(m, is, rs%inc, t, rs%total_time + t, iters, rs%u, rs%rf, rs%cs, &
                                    rs%ls%set_ids, res, rs%eq%counts)
+    t1 = wall_time()
     do k = 1, size(obs)
       call obs(k)%o%increment_done(m, res)
     end do
+    rs%timing%results = rs%timing%results + (t1 - t0)
+    rs%timing%output = rs%timing%output + (wall_time() - t1)
   end subroutine report
 end module analysis

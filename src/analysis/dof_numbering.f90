@@ -91,7 +91,7 @@ contains
     type(linear_system_t), intent(inout) :: sys
     logical, intent(in), optional :: last(:, :)
     integer, allocatable :: xadj(:), adj(:), perm(:)
-    integer :: i, d, n, pass
+    integer :: i, d, n, pass, nlast
     logical :: take
     allocate(perm(m%nn), dm%eq(2, m%nn))
     if (kind == solver_skyline .and. order == order_rcm) then
@@ -125,16 +125,19 @@ contains
         end if
       end do
     end do
-    call setup_structure(m, cs, dm, kind, order, sys)
+    nlast = 0
+    if (present(last)) nlast = count(last .and. .not. prescribed)
+    call setup_structure(m, cs, dm, kind, order, nlast, sys)
   end subroutine number_dofs
 
   !> Equation lists (local dof order, 0 for prescribed dofs) of every
-  !> assembly group, handed to the solver.
-  subroutine setup_structure(m, cs, dm, kind, order, sys)
+  !> assembly group, handed to the solver with the size of the trailing
+  !> block (nlast).
+  subroutine setup_structure(m, cs, dm, kind, order, nlast, sys)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     type(dofmap_t), intent(in) :: dm
-    integer, intent(in) :: kind, order
+    integer, intent(in) :: kind, order, nlast
     type(linear_system_t), intent(inout) :: sys
     integer, allocatable :: xeq(:), eqs(:)
     integer :: ng, e, i, k, nen, nodes(max_en)
@@ -150,6 +153,6 @@ contains
       end do
       xeq(e + 1) = k
     end do
-    call sys_setup(sys, kind, order, dm%neq, xeq, eqs(1:xeq(ng + 1) - 1))
+    call sys_setup(sys, kind, order, dm%neq, xeq, eqs(1:xeq(ng + 1) - 1), nlast)
   end subroutine setup_structure
 end module dof_numbering

@@ -10,7 +10,7 @@ submodule (deck_parser) deck_contact_cards
   use model, only: contact_pair_t, surface_t, surf_element, surf_node, find_name, edge_nodes
   use model_growth, only: grow
   use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
-                          order_amd, order_metis
+                          order_amd, order_metis, contact_solve_auto, contact_solve_condensed, contact_solve_full
   implicit none
 
 contains
@@ -306,14 +306,15 @@ contains
     call no_data(p, kw)
   end subroutine read_contact_controls
 
-  !> Purpose: *SOLVER: TYPE= (CHOLMOD, UMFPACK, SKYLINE) and ORDERING=
-  !> (AMD or METIS for the sparse solvers, RCM or NONE for the skyline).
+  !> Purpose: *SOLVER: TYPE= (CHOLMOD, UMFPACK, SKYLINE), ORDERING= (AMD
+  !> or METIS for the sparse solvers, RCM or NONE for the skyline) and
+  !> CONTACT SOLVE= (AUTO, CONDENSED: CHOLMOD only, FULL).
   module subroutine read_solver(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     character(len=:), allocatable :: v
-    call allow_params(p, kw, 'TYPE,ORDERING')
+    call allow_params(p, kw, 'TYPE,ORDERING,CONTACT SOLVE')
     if (has_param(kw, 'TYPE')) then
       v = to_upper(param_value(kw, 'TYPE'))
       select case (v)
@@ -345,6 +346,17 @@ contains
         end select
       end if
     end if
+    if (has_param(kw, 'CONTACT SOLVE')) then
+      v = to_upper(param_value(kw, 'CONTACT SOLVE'))
+      select case (v)
+      case ('AUTO'); m%contact_solve = contact_solve_auto
+      case ('CONDENSED'); m%contact_solve = contact_solve_condensed
+      case ('FULL'); m%contact_solve = contact_solve_full
+      case default; call err(p, 'CONTACT SOLVE=' // v // ' is not available (AUTO, CONDENSED, FULL)')
+      end select
+    end if
+    if (m%contact_solve == contact_solve_condensed .and. m%solver /= solver_cholmod) &
+      call err(p, 'CONTACT SOLVE=CONDENSED needs TYPE=CHOLMOD (the other solvers factor the full system)')
     call no_data(p, kw)
   end subroutine read_solver
 end submodule deck_contact_cards

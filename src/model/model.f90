@@ -178,6 +178,9 @@ module model
     ! Decks written for CalculiX/Abaqus, ParaView output:
     logical :: vtu = .false.                          ! FORMAT=VTU on *NODE FILE / *EL FILE
     type(equation_t), allocatable :: equations(:)     ! *EQUATION
+    !> *SOLVER, CONTACT SOLVE=: solver_codes contact_solve_* (auto: the
+    !> condensed contact solve where it pays, else the full one).
+    integer :: contact_solve = 0
   end type model_t
 
 contains

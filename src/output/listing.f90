@@ -12,7 +12,8 @@ module listing
   use messages, only: register_unit_to_close, fatal
   use solver_codes, only: solver_name, ordering_name
   use blas_info, only: blas_description
-  use analysis_events, only: analysis_observer_t, step_info_t, iteration_info_t, step_summary_t
+  use analysis_events, only: analysis_observer_t, step_info_t, iteration_info_t, step_summary_t, solver_info_t, &
+                             run_timing_t
   use increment_results, only: increment_results_t
   use contact_results, only: pair_results_t
   implicit none
@@ -24,6 +25,10 @@ module listing
     integer :: csv = 0
     logical :: has_csv = .false.
     integer :: digits = 7      ! significant digits of listed reals
+    !> Row formats, made once for the digits asked for (not per row):
+    !> set + 2 reals, node + 2, 4 or 5 reals, element + point + 3 or 5
+    !> reals, and a slave contact row.
+    character(len=:), allocatable :: f_set2, f_node2, f_node4, f_node5, f_ip3, f_ip5, f_slave
   contains
     procedure :: step_started => write_step_header
     procedure :: solver_ready => write_solver
@@ -31,6 +36,7 @@ module listing
     procedure :: note => write_note
     procedure :: increment_done => write_increment
     procedure :: step_finished => write_step_summary
+    procedure :: run_finished => write_timing
   end type listing_t
 
 contains
@@ -41,6 +47,13 @@ contains
     type(listing_t), intent(out) :: lst
     integer :: ios
     lst%digits = digits
+    lst%f_set2 = rowfmt(lst, 'a', 2)
+    lst%f_node2 = rowfmt(lst, 'i10', 2)
+    lst%f_node4 = rowfmt(lst, 'i10', 4)
+    lst%f_node5 = rowfmt(lst, 'i10', 5)
+    lst%f_ip3 = rowfmt(lst, 'i10,i4', 3)
+    lst%f_ip5 = rowfmt(lst, 'i10,i4', 5)
+    lst%f_slave = '(i10,3' // efmt(lst) // ',1x,a6,3' // efmt(lst) // ')'
     open(newunit=lst%unit, file=path, status='replace', action='write', iostat=ios)
     if (ios /= 0) call fatal('cannot write the listing "' // path // '"')
     call register_unit_to_close(lst%unit)
@@ -128,13 +141,14 @@ contains
     flush(u)
   end subroutine write_step_header
 
-  subroutine write_solver(self, step, description)
+  subroutine write_solver(self, info)
     class(listing_t), intent(inout) :: self
-    integer, intent(in) :: step
-    character(len=*), intent(in) :: description
-    write(self%unit, '(a,i0)') '--- SOLVER step=', step
+    type(solver_info_t), intent(in) :: info
+    write(self%unit, '(a,i0)') '--- SOLVER step=', info%step
     write(self%unit, '(a)') 'item value'
-    write(self%unit, '(a)') 'factor ' // description
+    write(self%unit, '(a)') 'factor ' // info%description
+    if (len(info%contact_solve) > 0) write(self%unit, '(a)') 'contact_solve ' // info%contact_solve
+    if (info%contact_equations > 0) write(self%unit, '(a,i0)') 'contact_equations ', info%contact_equations
     flush(self%unit)
   end subroutine write_solver
 
@@ -164,6 +178,7 @@ contains
     write(u, '(a)') 'item value'
     write(u, '(a,i0)') 'increments ', summary%increments
     write(u, '(a,i0)') 'numeric_factorisations ', summary%factorisations
+    write(u, '(a,i0)') 'condensed_factorisations ', summary%condensed_factorisations
     write(u, '(a,i0)') 'contact_iterations ', summary%iterations
     write(u, '(a,i0)') 'element_calls_continuum_stiffness ', summary%continuum_tangent
     write(u, '(a,i0)') 'element_calls_continuum_stresses ', summary%continuum_stresses
@@ -171,6 +186,41 @@ contains
     write(u, '(a,f0.3)') 'wall_seconds ', summary%wall_seconds
     flush(u)
   end subroutine write_step_summary
+
+  !> Purpose: the last block: where the wall time of the run went and how
+  !> many matrices were factored.
+  subroutine write_timing(self, timing)
+    class(listing_t), intent(inout) :: self
+    type(run_timing_t), intent(in) :: timing
+    integer :: u
+    u = self%unit
+    write(u, '(a)') ''
+    write(u, '(a)') '--- TIMING (wall seconds)'
+    write(u, '(a)') 'item value'
+    write(u, '(a,a)') 'read ', seconds(timing%read)
+    write(u, '(a,a)') 'setup ', seconds(timing%setup)
+    write(u, '(a,a)') 'assembly ', seconds(timing%assembly)
+    write(u, '(a,a)') 'analyse ', seconds(timing%analyse)
+    write(u, '(a,a)') 'factor ', seconds(timing%factor)
+    write(u, '(a,a)') 'condensed_iterations ', seconds(timing%condensed)
+    write(u, '(a,a)') 'full_iterations ', seconds(timing%solve)
+    write(u, '(a,a)') 'recovery ', seconds(timing%recovery)
+    write(u, '(a,a)') 'results ', seconds(timing%results)
+    write(u, '(a,a)') 'output ', seconds(timing%output)
+    write(u, '(a,a)') 'total ', seconds(timing%total)
+    write(u, '(a,i0)') 'numeric_factorisations ', timing%numeric_factorisations
+    write(u, '(a,i0)') 'condensed_factorisations ', timing%condensed_factorisations
+    flush(u)
+  end subroutine write_timing
+
+  !> Seconds with three decimals and a leading zero.
+  pure function seconds(t) result(s)
+    real(dp), intent(in) :: t
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write(buf, '(f24.3)') t
+    s = trim(adjustl(buf))
+  end function seconds
 
   !> Purpose: one increment: the requested blocks, reaction sums, contact
   !> results (and the contact table rows).
@@ -198,7 +248,7 @@ contains
       write(un, '(a)') '--- REACTIONS (sum over each prescribed node set)'
       write(un, '(a)') 'set RF1 RF2'
       do k = 1, size(res%set_ids)
-        write(un, rowfmt(self, 'a', 2)) trim(m%nsets(res%set_ids(k))%name), res%set_sums(:, k)
+        write(un, self%f_set2) trim(m%nsets(res%set_ids(k))%name), res%set_sums(:, k)
       end do
     end if
     do k = 1, size(res%contact%pairs)
@@ -246,19 +296,19 @@ contains
     if (req%u) then
       call block_head(self, m, 'NODE U', req%set, .true., 'node U1 U2')
       do k = 1, size(sel)
-        write(un, rowfmt(self, 'i10', 2)) m%node_id(sel(k)), res%u(:, sel(k))
+        write(un, self%f_node2) m%node_id(sel(k)), res%u(:, sel(k))
       end do
     end if
     if (req%rf) then
       call block_head(self, m, 'NODE RF', req%set, .true., 'node RF1 RF2')
       do k = 1, size(sel)
-        write(un, rowfmt(self, 'i10', 2)) m%node_id(sel(k)), res%rf(:, sel(k))
+        write(un, self%f_node2) m%node_id(sel(k)), res%rf(:, sel(k))
       end do
     end if
     if (req%s) then
       call block_head(self, m, 'NODE S', req%set, .true., 'node S11 S22 S33 S12 MISES')
       do k = 1, size(sel)
-        write(un, rowfmt(self, 'i10', 5)) m%node_id(sel(k)), res%sig_node(:, sel(k)), &
+        write(un, self%f_node5) m%node_id(sel(k)), res%sig_node(:, sel(k)), &
           von_mises(res%sig_node(:, sel(k)))
       end do
     end if
@@ -283,7 +333,7 @@ contains
       do k = 1, size(sel)
         e = sel(k)
         do ip = 1, res%nip(e)
-          write(un, rowfmt(self, 'i10,i4', 5)) m%elem_id(e), ip, res%sig_ip(:, ip, e), &
+          write(un, self%f_ip5) m%elem_id(e), ip, res%sig_ip(:, ip, e), &
             von_mises(res%sig_ip(:, ip, e))
         end do
       end do
@@ -293,7 +343,7 @@ contains
       do k = 1, size(sel)
         e = sel(k)
         do ip = 1, res%nip(e)
-          write(un, rowfmt(self, 'i10,i4', 3)) m%elem_id(e), ip, res%eps_ip(:, ip, e)
+          write(un, self%f_ip3) m%elem_id(e), ip, res%eps_ip(:, ip, e)
         end do
       end do
     end if
@@ -318,7 +368,7 @@ contains
       if (r%slave_node(j) > 0) nid = m%node_id(r%slave_node(j))
       st = 'OPEN'
       if (r%slave_closed(j)) st = 'CLOSED'
-      write(un, '(i10,3' // efmt(self) // ',1x,a6,3' // efmt(self) // ')') nid, r%slave_x(:, j), &
+      write(un, self%f_slave) nid, r%slave_x(:, j), &
         r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_force(j) / r%slave_area(j)
       if (self%has_csv) write(self%csv, '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,",",es16.8e3,",",&
         &es16.8e3,",",a,",",es16.8e3,",",es16.8e3)') res%step, res%increment, res%total_time, r%pair, nid, &
@@ -332,13 +382,13 @@ contains
       xs = m%x(:, nd) + res%u(:, nd)
       p = 0.0_dp
       if (r%master_area(j) > 0.0_dp) p = r%master_force(j) / r%master_area(j)
-      write(un, rowfmt(self, 'i10', 5)) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
+      write(un, self%f_node5) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
       if (self%has_csv) write(self%csv, '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",es16.8e3,&
         &",0,-,",es16.8e3,",",es16.8e3)') res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
         r%master_force(j), p
     end do
     write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', r%pair
     write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
-    write(un, rowfmt(self, 'i10', 4)) r%nclosed, r%total, r%resultant, r%max_pen
+    write(un, self%f_node4) r%nclosed, r%total, r%resultant, r%max_pen
   end subroutine write_contact
 end module listing

@@ -4,7 +4,7 @@ module progress
   use, intrinsic :: iso_fortran_env, only: output_unit
   use kinds, only: dp
   use model, only: model_t
-  use analysis_events, only: analysis_observer_t, step_summary_t
+  use analysis_events, only: analysis_observer_t, step_summary_t, run_timing_t
   use increment_results, only: increment_results_t
   implicit none
   private
@@ -14,6 +14,7 @@ module progress
   contains
     procedure :: increment_done => progress_increment
     procedure :: step_finished => progress_step
+    procedure :: run_finished => progress_timing
   end type progress_t
 
 contains
@@ -31,9 +32,33 @@ contains
   subroutine progress_step(self, summary)
     class(progress_t), intent(inout) :: self
     type(step_summary_t), intent(in) :: summary
-    write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a,f0.2,a)') 'step ', summary%step, ' done: ', summary%increments, &
-      ' increments, ', summary%iterations, ' contact iterations, ', summary%factorisations, &
-      ' factorisations, ', summary%wall_seconds, ' s'
+    write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,f0.2,a)') 'step ', summary%step, ' done: ', &
+      summary%increments, ' increments, ', summary%iterations, ' contact iterations, ', summary%factorisations, &
+      ' factorisations, ', summary%condensed_factorisations, ' condensed factorisations, ', &
+      summary%wall_seconds, ' s'
     flush(output_unit)
   end subroutine progress_step
+
+  !> The listing's timing block, on two lines.
+  subroutine progress_timing(self, timing)
+    class(progress_t), intent(inout) :: self
+    type(run_timing_t), intent(in) :: timing
+    write(output_unit, '(a)') 'time (s): read ' // sec(timing%read) // ', setup ' // sec(timing%setup) // &
+      ', assembly ' // sec(timing%assembly) // ', analyse ' // sec(timing%analyse) // ', factor ' // &
+      sec(timing%factor) // ', condensed iterations ' // sec(timing%condensed) // ', full iterations ' // &
+      sec(timing%solve) // ', recovery ' // sec(timing%recovery) // ', results ' // sec(timing%results) // &
+      ', output ' // sec(timing%output) // ', total ' // sec(timing%total)
+    write(output_unit, '(a,i0,a,i0)') 'factorisations: numeric ', timing%numeric_factorisations, &
+      ', condensed ', timing%condensed_factorisations
+    flush(output_unit)
+  end subroutine progress_timing
+
+  !> Seconds with three decimals and a leading zero.
+  pure function sec(t) result(s)
+    real(dp), intent(in) :: t
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write(buf, '(f24.3)') t
+    s = trim(adjustl(buf))
+  end function sec
 end module progress

@@ -1,8 +1,13 @@
-!> Result file <job>.msh that gmsh opens (MSH 2.2 ASCII): the mesh once,
-!> then per increment the views asked for by *NODE FILE and *EL FILE, each
-!> view tagged with the increment's time so that gmsh steps through them.
+!> Result file <job>.msh that gmsh opens, in gmsh's binary MSH 2.2 format:
+!> the mesh once, then per increment the views asked for by *NODE FILE and
+!> *EL FILE, each view tagged with the increment's time so that gmsh steps
+!> through them. Headers are text lines; node coordinates, connectivity
+!> and view values are native 32-bit integers and 64-bit reals, one write
+!> per block (about half the size of the text format, and no number
+!> formatting: on the flagship the text file took most of the run).
 !> It observes the analysis and writes at every converged increment.
 module results_gmsh
+  use, intrinsic :: iso_fortran_env, only: int32
   use kinds, only: dp
   use model
   use element_catalogue, only: catalogue
@@ -13,6 +18,8 @@ module results_gmsh
   implicit none
   private
   public :: result_file_t, open_result_file, write_result_views
+
+  character(len=1), parameter :: nl = new_line('a')
 
   type, extends(analysis_observer_t) :: result_file_t
     integer :: unit = 0
@@ -51,36 +58,93 @@ contains
                             res%contact%pressure, res%contact%has_pressure)
   end subroutine write_increment_views
 
+  !> One text line of the file.
+  subroutine line(u, text)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: text
+    write(u) text // nl
+  end subroutine line
+
+  function int_text(k) result(s)
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write(buf, '(i0)') k
+    s = trim(buf)
+  end function int_text
+
+  !> Purpose: opens <job>.msh and writes the format header, the nodes and
+  !> the continuum elements (tags: physical and elementary entity = the
+  !> section number).
   subroutine open_result_file(path, m, rf)
     character(len=*), intent(in) :: path
     type(model_t), intent(in) :: m
     type(result_file_t), intent(out) :: rf
-    integer :: ios, e, u, gtype, nsolid
-    open(newunit=rf%unit, file=path, status='replace', action='write', iostat=ios)
+    integer :: ios, u, k
+    integer(int32), allocatable :: buf(:, :)
+    open(newunit=rf%unit, file=path, status='replace', action='write', access='stream', form='unformatted', &
+         iostat=ios)
     if (ios /= 0) call fatal('cannot write the result file "' // path // '"')
     call register_unit_to_close(rf%unit)
     rf%open = .true.
     u = rf%unit
-    write(u, '(a)') '$MeshFormat', '2.2 0 8', '$EndMeshFormat'
-    write(u, '(a)') '$Nodes'
-    write(u, '(i0)') m%nn
-    do e = 1, m%nn
-      write(u, '(i0,3(1x,es24.15e3))') m%node_id(e), m%x(:, e), 0.0_dp
+    call line(u, '$MeshFormat')
+    call line(u, '2.2 1 8')
+    write(u) 1_int32                  ! gmsh reads the byte order from it
+    call line(u, '')
+    call line(u, '$EndMeshFormat')
+    call line(u, '$Nodes')
+    call line(u, int_text(m%nn))
+    allocate(buf(7, m%nn))
+    do k = 1, m%nn
+      buf(1, k) = int(m%node_id(k), int32)
+      buf(2:7, k) = transfer([m%x(:, k), 0.0_dp], buf(1, k), 6)
     end do
-    write(u, '(a)') '$EndNodes'
-    nsolid = count([(is_continuum(m, e), e = 1, m%ne)])
-    write(u, '(a)') '$Elements'
-    write(u, '(i0)') nsolid
-    do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
-      gtype = catalogue(m%etype(e))%gmsh_type
-      ! two tags: physical and elementary entity = section number
-      write(u, '(i0,1x,i0,1x,i0,1x,i0,1x,i0,*(1x,i0))') m%elem_id(e), gtype, 2, m%elem_section(e), &
-        m%elem_section(e), m%node_id(m%conn(1:elem_nodes(m, e), e))
-    end do
-    write(u, '(a)') '$EndElements'
+    write(u) buf
+    call line(u, '')
+    call line(u, '$EndNodes')
+    call write_elements(u, m)
     flush(u)
   end subroutine open_result_file
+
+  !> $Elements in binary: runs of elements of one type, each run a header
+  !> (type, count, tags) and then id, two tags and the nodes per element.
+  subroutine write_elements(u, m)
+    integer, intent(in) :: u
+    type(model_t), intent(in) :: m
+    integer(int32), allocatable :: buf(:)
+    integer :: e, first, nsolid, k, nen, gtype
+    nsolid = count([(is_continuum(m, e), e = 1, m%ne)])
+    call line(u, '$Elements')
+    call line(u, int_text(nsolid))
+    e = 1
+    do while (e <= m%ne)
+      if (.not. is_continuum(m, e)) then
+        e = e + 1
+        cycle
+      end if
+      first = e
+      gtype = catalogue(m%etype(e))%gmsh_type
+      nen = elem_nodes(m, e)
+      do while (e <= m%ne)
+        if (.not. is_continuum(m, e)) exit
+        if (catalogue(m%etype(e))%gmsh_type /= gtype) exit
+        e = e + 1
+      end do
+      allocate(buf(3 + (e - first) * (3 + nen)))
+      buf(1:3) = int([gtype, e - first, 2], int32)
+      k = 3
+      do first = first, e - 1
+        buf(k + 1:k + 3 + nen) = int([m%elem_id(first), m%elem_section(first), m%elem_section(first), &
+                                      m%node_id(m%conn(1:nen, first))], int32)
+        k = k + 3 + nen
+      end do
+      write(u) buf
+      deallocate(buf)
+    end do
+    call line(u, '')
+    call line(u, '$EndElements')
+  end subroutine write_elements
 
   !> The views of one increment. sig_node/sig_elem may be absent when no
   !> stress was requested; pressure(nn) holds contact pressures (slave and
@@ -94,71 +158,76 @@ contains
     real(dp), intent(in) :: u(:, :), reac(:, :), sig_node(:, :), sig_elem(:, :), pressure(:)
     logical, intent(in) :: has_pressure(:)
     integer :: k
+    logical :: all_nodes(m%nn), solid(m%ne)
     character(len=5), parameter :: names(4) = ['S11  ', 'S22  ', 'S33  ', 'S12  ']
     rf%count = rf%count + 1
-    if (req_nodal%u) call node_view('Displacement', 3, u)
-    if (req_nodal%rf) call node_view('Reaction force', 3, reac)
+    all_nodes = .true.
+    solid = [(is_continuum(m, k), k = 1, m%ne)]
+    if (req_nodal%u) call write_view(rf, 'NodeData', 'Displacement', time, m%node_id, all_nodes, &
+                                     with_z(u))
+    if (req_nodal%rf) call write_view(rf, 'NodeData', 'Reaction force', time, m%node_id, all_nodes, &
+                                      with_z(reac))
     if (req_nodal%s) then
       do k = 1, 4
-        call node_view(trim(names(k)), 1, sig_node(k:k, :))
+        call write_view(rf, 'NodeData', trim(names(k)), time, m%node_id, all_nodes, sig_node(k:k, :))
       end do
-      call node_view('Mises', 1, reshape([(von_mises(sig_node(:, k)), k = 1, m%nn)], [1, m%nn]))
+      call write_view(rf, 'NodeData', 'Mises', time, m%node_id, all_nodes, &
+                      reshape([(von_mises(sig_node(:, k)), k = 1, m%nn)], [1, m%nn]))
     end if
-    if (req_nodal%cstress) call pressure_view()
+    if (req_nodal%cstress) call write_view(rf, 'NodeData', 'Contact pressure', time, m%node_id, has_pressure, &
+                                           reshape(pressure, [1, m%nn]))
     if (req_elem%s) then
       do k = 1, 4
-        call elem_view(trim(names(k)) // ' (element)', sig_elem(k:k, :))
+        call write_view(rf, 'ElementData', trim(names(k)) // ' (element)', time, m%elem_id, solid, sig_elem(k:k, :))
       end do
-      call elem_view('Mises (element)', reshape([(von_mises(sig_elem(:, k)), k = 1, m%ne)], [1, m%ne]))
+      call write_view(rf, 'ElementData', 'Mises (element)', time, m%elem_id, solid, &
+                      reshape([(von_mises(sig_elem(:, k)), k = 1, m%ne)], [1, m%ne]))
     end if
     flush(rf%unit)
-
-  contains
-
-    subroutine header(tag, block, ncomp, n)
-      character(len=*), intent(in) :: tag, block
-      integer, intent(in) :: ncomp, n
-      write(rf%unit, '(a)') '$' // block
-      write(rf%unit, '(a)') '1', '"' // tag // '"', '1'
-      write(rf%unit, '(es24.15e3)') time
-      write(rf%unit, '(a)') '3'
-      write(rf%unit, '(i0)') rf%count - 1, ncomp, n
-    end subroutine header
-
-    subroutine node_view(tag, ncomp, v)
-      character(len=*), intent(in) :: tag
-      integer, intent(in) :: ncomp
-      real(dp), intent(in) :: v(:, :)
-      integer :: i
-      call header(tag, 'NodeData', ncomp, m%nn)
-      do i = 1, m%nn
-        if (ncomp == 3) then
-          write(rf%unit, '(i0,3(1x,es17.8e3))') m%node_id(i), v(1:2, i), 0.0_dp
-        else
-          write(rf%unit, '(i0,1x,es17.8e3)') m%node_id(i), v(1, i)
-        end if
-      end do
-      write(rf%unit, '(a)') '$EndNodeData'
-    end subroutine node_view
-
-    subroutine pressure_view()
-      integer :: i
-      call header('Contact pressure', 'NodeData', 1, count(has_pressure))
-      do i = 1, m%nn
-        if (has_pressure(i)) write(rf%unit, '(i0,1x,es17.8e3)') m%node_id(i), pressure(i)
-      end do
-      write(rf%unit, '(a)') '$EndNodeData'
-    end subroutine pressure_view
-
-    subroutine elem_view(tag, v)
-      character(len=*), intent(in) :: tag
-      real(dp), intent(in) :: v(:, :)
-      integer :: e
-      call header(tag, 'ElementData', 1, count([(is_continuum(m, e), e = 1, m%ne)]))
-      do e = 1, m%ne
-        if (is_continuum(m, e)) write(rf%unit, '(i0,1x,es17.8e3)') m%elem_id(e), v(1, e)
-      end do
-      write(rf%unit, '(a)') '$EndElementData'
-    end subroutine elem_view
   end subroutine write_result_views
+
+  !> A 2D vector field as gmsh's 3-component vectors (z = 0).
+  pure function with_z(v) result(w)
+    real(dp), intent(in) :: v(:, :)
+    real(dp) :: w(3, size(v, 2))
+    w(1:2, :) = v(1:2, :)
+    w(3, :) = 0.0_dp
+  end function with_z
+
+  !> One $NodeData or $ElementData view: the text header, then for every
+  !> selected entity its id and its ncomp = size(v, 1) values, in one write.
+  subroutine write_view(rf, block, tag, time, ids, selected, v)
+    type(result_file_t), intent(in) :: rf
+    character(len=*), intent(in) :: block, tag
+    real(dp), intent(in) :: time, v(:, :)
+    integer, intent(in) :: ids(:)
+    logical, intent(in) :: selected(:)
+    integer(int32), allocatable :: buf(:, :), bits(:, :)
+    character(len=32) :: tbuf
+    integer :: i, k, nc
+    nc = size(v, 1)
+    allocate(buf(1 + 2 * nc, count(selected)))
+    ! the values' bits in one transfer, then interleaved with the ids
+    bits = reshape(transfer(v, 0_int32, 2 * nc * size(v, 2)), [2 * nc, size(v, 2)])
+    k = 0
+    do i = 1, size(ids)
+      if (.not. selected(i)) cycle
+      k = k + 1
+      buf(1, k) = int(ids(i), int32)
+      buf(2:, k) = bits(:, i)
+    end do
+    write(tbuf, '(es24.15e3)') time
+    call line(rf%unit, '$' // block)
+    call line(rf%unit, '1')
+    call line(rf%unit, '"' // tag // '"')
+    call line(rf%unit, '1')
+    call line(rf%unit, trim(adjustl(tbuf)))
+    call line(rf%unit, '3')
+    call line(rf%unit, int_text(rf%count - 1))
+    call line(rf%unit, int_text(nc))
+    call line(rf%unit, int_text(k))
+    write(rf%unit) buf
+    call line(rf%unit, '')
+    call line(rf%unit, '$End' // block)
+  end subroutine write_view
 end module results_gmsh

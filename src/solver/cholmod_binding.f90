@@ -9,7 +9,8 @@ module cholmod_binding
   private
   public :: cfe_cholmod_start, cfe_cholmod_finish, cfe_cholmod_analyse, cfe_cholmod_factor, &
             cfe_cholmod_solve, cfe_cholmod_rcond, cfe_cholmod_version, cfe_cholmod_header_version, &
-            cholmod_shim_ok, cholmod_shim_not_posdef
+            cfe_cholmod_analyse_last, cfe_cholmod_trailing_order, cfe_cholmod_trailing_block, &
+            cfe_cholmod_forward, cfe_cholmod_backward, cholmod_shim_ok, cholmod_shim_not_posdef
 
   !> Return codes of cfe_cholmod_factor (cholmod_shim.c); negative values
   !> are CHOLMOD's own error statuses.
@@ -39,11 +40,12 @@ module cholmod_binding
     end function cfe_cholmod_analyse
 
     !> Numeric factorisation; ratio = smallest pivot over its diagonal
-    !> entry, col = its column (or the column not positive definite).
-    integer(c_int) function cfe_cholmod_factor(h, n, ap, ai, ax, ratio, col) bind(C, name='cfe_cholmod_factor')
+    !> entry (the last nskip pivots not judged), col = its column (or the
+    !> column not positive definite).
+    integer(c_int) function cfe_cholmod_factor(h, n, ap, ai, ax, nskip, ratio, col) bind(C, name='cfe_cholmod_factor')
       import :: c_int, c_double, c_ptr
       type(c_ptr), value :: h
-      integer(c_int), value :: n
+      integer(c_int), value :: n, nskip
       integer(c_int), intent(in) :: ap(*), ai(*)
       real(c_double), intent(in) :: ax(*)
       real(c_double), intent(out) :: ratio
@@ -57,6 +59,50 @@ module cholmod_binding
       integer(c_int), value :: n, nrhs
       real(c_double), intent(inout) :: b(*)
     end function cfe_cholmod_solve
+
+    !> Ordering with the last nlast equations kept last (CAMD, or perm when
+    !> it is not null) and symbolic analysis; flops of the factorisation.
+    integer(c_int) function cfe_cholmod_analyse_last(h, n, ap, ai, ax, nlast, perm, lnz, flops) &
+        bind(C, name='cfe_cholmod_analyse_last')
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: h
+      integer(c_int), value :: n, nlast
+      integer(c_int), intent(in) :: ap(*), ai(*)
+      real(c_double), intent(in) :: ax(*)
+      type(c_ptr), value :: perm
+      real(c_double), intent(out) :: lnz, flops
+    end function cfe_cholmod_analyse_last
+
+    !> tperm(k) (0-based): the trailing equation at trailing position k.
+    subroutine cfe_cholmod_trailing_order(h, tperm) bind(C, name='cfe_cholmod_trailing_order')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: h
+      integer(c_int), intent(out) :: tperm(*)
+    end subroutine cfe_cholmod_trailing_order
+
+    !> The trailing m x m block of L, dense, lower triangle.
+    integer(c_int) function cfe_cholmod_trailing_block(h, m, l22) bind(C, name='cfe_cholmod_trailing_block')
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: h
+      integer(c_int), value :: m
+      real(c_double), intent(out) :: l22(*)
+    end function cfe_cholmod_trailing_block
+
+    !> b := L \ (P b), in the factor's order.
+    integer(c_int) function cfe_cholmod_forward(h, n, b) bind(C, name='cfe_cholmod_forward')
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: h
+      integer(c_int), value :: n
+      real(c_double), intent(inout) :: b(*)
+    end function cfe_cholmod_forward
+
+    !> b := P' (L' \ b).
+    integer(c_int) function cfe_cholmod_backward(h, n, b) bind(C, name='cfe_cholmod_backward')
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: h
+      integer(c_int), value :: n
+      real(c_double), intent(inout) :: b(*)
+    end function cfe_cholmod_backward
 
     real(c_double) function cfe_cholmod_rcond(h) bind(C, name='cfe_cholmod_rcond')
       import :: c_double, c_ptr

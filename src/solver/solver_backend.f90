@@ -32,6 +32,10 @@ module solver_backend
     integer :: n = 0
     integer :: ordering = 0               ! solver_codes order_*
     real(dp) :: factor_entries = 0.0_dp   ! nnz(L) (+ nnz(U)), or the profile
+    real(dp) :: factor_flops = 0.0_dp     ! of one numeric factorisation, where the backend says
+    !> The last nlast equations are a block to be kept last by the ordering
+    !> (a condensed solve); backends that cannot keep it last ignore it.
+    integer :: nlast = 0
     integer, allocatable :: xeq(:), eqs(:)   ! element equation lists
   contains
     procedure, non_overridable :: keep_structure

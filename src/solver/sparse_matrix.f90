@@ -16,7 +16,8 @@ module sparse_matrix
     integer, allocatable :: rowind(:)     ! 1-based, sorted in each column
     real(dp), allocatable :: val(:)
     ! position in val of entry (a, b) of element e: emap(eptr(e) + k), k
-    ! running over the pairs in the order csc_add_element visits them
+    ! running over the pairs in the order csc_add_element visits them;
+    ! without the map (a matrix assembled once) positions are searched
     integer(8), allocatable :: eptr(:)
     integer, allocatable :: emap(:)
   end type csc_t
@@ -25,10 +26,14 @@ contains
 
   !> Pattern of the matrix of elements whose equation lists are
   !> eqs(xeq(e):xeq(e+1)-1) (0 entries = prescribed, skipped).
-  subroutine csc_build(a, n, xeq, eqs, upper)
+  !> with_map (default true): also the value position of every element
+  !> entry, which makes repeated assembly a plain scatter; a matrix
+  !> assembled once does without it (one integer per entry less).
+  subroutine csc_build(a, n, xeq, eqs, upper, with_map)
     type(csc_t), intent(out) :: a
     integer, intent(in) :: n, xeq(:), eqs(:)
     logical, intent(in) :: upper
+    logical, intent(in), optional :: with_map
     integer :: ne, e, i, j, k, gi, gj, col, cnt, pass
     integer, allocatable :: xel(:), el(:), mark(:), fill(:)
     integer(8) :: npairs
@@ -84,6 +89,9 @@ contains
       end do
     allocate(a%val(a%colptr(n + 1) - 1))
     a%val = 0.0_dp
+    if (present(with_map)) then
+      if (.not. with_map) return
+    end if
     ! value positions of every element entry
     allocate(a%eptr(ne + 1))
     a%eptr(1) = 1
@@ -166,6 +174,10 @@ contains
     real(dp), intent(in) :: ke(:, :)
     integer :: i, j
     integer(8) :: k
+    if (.not. allocated(a%emap)) then
+      call add_searching(a, eqs, ke)
+      return
+    end if
     k = a%eptr(e)
     do i = 1, size(eqs)
       if (eqs(i) <= 0) cycle
@@ -177,6 +189,26 @@ contains
       end do
     end do
   end subroutine csc_add_element
+
+  !> csc_add_element without the value map: each position searched.
+  pure subroutine add_searching(a, eqs, ke)
+    type(csc_t), intent(inout) :: a
+    integer, intent(in) :: eqs(:)
+    real(dp), intent(in) :: ke(:, :)
+    integer :: i, j, k
+    do j = 1, size(eqs)
+      if (eqs(j) <= 0) cycle
+      do i = 1, size(eqs)
+        if (eqs(i) <= 0) cycle
+        if (a%upper) then
+          if (eqs(i) > eqs(j)) cycle
+          if (eqs(i) == eqs(j) .and. i > j) cycle
+        end if
+        k = csc_position(a, eqs(i), eqs(j))
+        a%val(k) = a%val(k) + ke(i, j)
+      end do
+    end do
+  end subroutine add_searching
 
   !> y = A x (the full symmetric matrix when only the upper part is kept).
   pure subroutine csc_matvec(a, x, y)

@@ -1,0 +1,178 @@
+!> What the two ways of solving the equilibrium iteration share (module
+!> equilibrium: the whole stiffness factored for every contact status;
+!> condensed_equilibrium: the contact equations condensed out of one
+!> factorisation of the bodies): the state of the iteration carried from
+!> increment to increment, internal forces, the out-of-balance test, the
+!> events told to the observers, and the stop on a singular stiffness.
+module equilibrium_common
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use kinds, only: dp
+  use strings, only: itoa
+  use model, only: model_t
+  use contact, only: contact_set_t, contact_forces
+  use assembly, only: element_counts_t, body_t, body_forces
+  use dof_numbering, only: dofmap_t
+  use linear_solver, only: linear_system_t, sys_describe
+  use condensed_contact, only: condensed_t
+  use analysis_events, only: observer_ref_t, iteration_info_t, solver_info_t, run_timing_t, tell_iteration, &
+                             tell_solver_ready
+  use messages, only: fatal
+  implicit none
+  private
+  public :: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, report_iteration, &
+            describe, singular
+
+  type :: equilibrium_t
+    ! factor reuse policy: the factor is valid for the statuses it was made for
+    logical :: factor_valid = .false.
+    logical, allocatable :: factor_states(:)
+    logical :: factor_stabilised = .false.
+    !> The stabilisation of open contact was used in this increment (once
+    !> at most: singular again with the nominal open penalty means a body
+    !> that contact cannot hold).
+    logical :: stabilisation_used = .false.
+    logical :: described = .false.
+    !> The condensed contact solve (active when the equations were
+    !> numbered for it) and whether its factor of the bodies is current.
+    type(condensed_t) :: cd
+    logical :: k0_valid = .false.
+    ! counters of the step
+    integer :: factorisations = 0, iterations = 0, condensed_factorisations = 0
+    type(element_counts_t) :: counts
+    !> Wall time by part and factorisation counts of the whole run.
+    type(run_timing_t) :: timing
+    ! the last iteration
+    real(dp) :: kmax = 0.0_dp           ! stiffness scale of the residual test
+    real(dp) :: residual = 0.0_dp       ! relative out-of-balance force
+    !> The largest force scale of the converged increments so far: an
+    !> increment that unloads everything (all forces round-off) is judged
+    !> against the forces the model has carried, as CalculiX judges against
+    !> the average force of the history.
+    real(dp) :: force_history = 0.0_dp
+    character(len=:), allocatable :: changed   ! slave nodes that switched last
+    real(dp), allocatable :: rhs(:)
+    !> The last converged displacements and the bodies' internal forces
+    !> there: the condensed solve starts an increment from them (the free
+    !> equations), so that its solves are of the increment's change and
+    !> their round-off relative to it, and updates the forces only where
+    !> prescribed values moved.
+    real(dp), allocatable :: u_last(:, :), fbody_last(:, :), fbody(:, :)
+  end type equilibrium_t
+
+contains
+
+  !> Purpose: a new equation numbering or contact pairing: no factor is
+  !> valid; with new_step the step's counters restart.
+  subroutine begin_equilibrium(eq, neq, ncfe, new_step)
+    type(equilibrium_t), intent(inout) :: eq
+    integer, intent(in) :: neq, ncfe
+    logical, intent(in) :: new_step
+    eq%factor_valid = .false.
+    eq%k0_valid = .false.
+    if (allocated(eq%factor_states)) deallocate(eq%factor_states)
+    allocate(eq%factor_states(ncfe))
+    if (allocated(eq%rhs)) deallocate(eq%rhs)
+    allocate(eq%rhs(neq))
+    if (new_step) then
+      eq%described = .false.
+      eq%factorisations = 0
+      eq%condensed_factorisations = 0
+      eq%iterations = 0
+    end if
+  end subroutine begin_equilibrium
+
+  !> f_int of the bodies (stored stiffness) and of the CFEs (which also
+  !> updates their gaps and forces).
+  subroutine internal_forces(m, body, cs, u, fint, counts)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    type(contact_set_t), intent(inout) :: cs
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(out) :: fint(:, :)
+    type(element_counts_t), intent(inout) :: counts
+    call body_forces(m, body, u, fint)
+    call contact_forces(m, cs, u, fint, counts%coupling)
+  end subroutine internal_forces
+
+  !> Out-of-balance force on the free equations relative to the force
+  !> scale: loads, reactions, contact forces, and (for a body that only
+  !> moves rigidly) the stiffness times the displacement scaled to a strain
+  !> of 1e-6, so that round-off is not mistaken for an out-of-balance force;
+  !> never below the force scale of the converged history. ref returns the
+  !> force scale of this state.
+  real(dp) function relative_residual(dm, cs, fext, u, rf, kmax, history, ref) result(r)
+    type(dofmap_t), intent(in) :: dm
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: fext(:, :), u(:, :), rf(:, :), kmax, history
+    real(dp), intent(out) :: ref
+    ! norm2 scales internally: no overflow for large but finite forces
+    ref = max(norm2(pack(rf, dm%eq == 0)), norm2(fext), sum(abs(cs%c(1:cs%n)%force)), &
+              1.0e-6_dp * kmax * maxval(abs(u)), tiny(1.0_dp))
+    r = norm2(pack(rf, dm%eq > 0)) / max(ref, history)
+  end function relative_residual
+
+  !> Stops if a displacement is not a finite number.
+  subroutine check_finite(m, is, inc, u)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is, inc
+    real(dp), intent(in) :: u(:, :)
+    integer :: a
+    do a = 1, m%nn
+      if (.not. all(ieee_is_finite(u(:, a)))) call fatal('step ' // itoa(is) // ', increment ' // &
+        itoa(inc) // ': the displacement at node ' // itoa(m%node_id(a)) // ' is not a finite number ' // &
+        '(overflow: loads, stiffness or displacements out of range?); results of this increment are not written')
+    end do
+  end subroutine check_finite
+
+  !> The iteration event (with contact only).
+  subroutine report_iteration(eq, cs, obs, it, nchanged)
+    type(equilibrium_t), intent(in) :: eq
+    type(contact_set_t), intent(in) :: cs
+    type(observer_ref_t), intent(in) :: obs(:)
+    integer, intent(in) :: it, nchanged
+    type(iteration_info_t) :: info
+    if (cs%n == 0) return
+    info%iteration = it
+    info%changes = nchanged
+    info%closed = count(cs%c(1:cs%n)%closed)
+    info%residual = eq%residual
+    info%changed = eq%changed
+    call tell_iteration(obs, info)
+  end subroutine report_iteration
+
+  !> The solver event, once per step.
+  subroutine describe(eq, is, cs, sys, obs)
+    type(equilibrium_t), intent(inout) :: eq
+    integer, intent(in) :: is
+    type(contact_set_t), intent(in) :: cs
+    type(linear_system_t), intent(in) :: sys
+    type(observer_ref_t), intent(in) :: obs(:)
+    type(solver_info_t) :: info
+    if (eq%described) return
+    info%step = is
+    info%description = sys_describe(sys)
+    info%contact_solve = ''
+    if (cs%n > 0) info%contact_solve = merge('condensed', 'full     ', eq%cd%active)
+    info%contact_solve = trim(info%contact_solve)
+    if (eq%cd%active) info%contact_equations = eq%cd%m
+    call tell_solver_ready(obs, info)
+    eq%described = .true.
+  end subroutine describe
+
+  !> Stops on a singular stiffness, naming the node and dof where the
+  !> factorisation found it.
+  subroutine singular(m, cs, dm, bad)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    integer, intent(in) :: bad
+    character(len=:), allocatable :: hint
+    hint = ''
+    if (cs%n > 0) hint = '; a body held only by open contact has no stiffness: give it a support, ' // &
+      'or a load or displacement that brings it into contact'
+    if (bad > 0 .and. bad <= dm%neq) call fatal('singular stiffness at node ' // &
+      itoa(m%node_id(dm%node_of_eq(bad))) // ', dof ' // itoa(dm%dof_of_eq(bad)) // &
+      ' (missing boundary condition?)' // hint)
+    call fatal('singular stiffness (missing boundary condition?)' // hint)
+  end subroutine singular
+end module equilibrium_common
