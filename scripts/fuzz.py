@@ -989,6 +989,8 @@ def one_mutant(deck, k, opts, work, report, log):
     report.counts[cls] += 1
     if len({r.cls for r in results}) > 1:
         report.disagree += 1
+        log(f"fuzz: mutant {k}: the builds disagree: " +
+            ", ".join(f"{r.build} {r.cls} {r.sig}" for r in results))
     if cls not in FAILURES:
         return
     key = (cls, sig)
