@@ -4,7 +4,10 @@ forms: free expansion (u = alpha dT x, no stress; plane strain: the
 out-of-plane constraint gives u = (1 + nu) alpha dT x and S33 =
 -E alpha dT), a block held at both ends (S11 = -E alpha dT in plane
 stress, -E alpha dT / (1 - nu) in plane strain), the ramp over a step,
-the hold into the next step, OP=NEW and an amplitude; bad cards."""
+the hold into the next step, OP=NEW and an amplitude; a plane-strain
+shrink fit in contact against the Lame solution; bad cards."""
+import math
+
 import numpy as np
 
 from helpers import run_deck
@@ -104,12 +107,12 @@ def test_held_block():
 
 def test_ramp_hold_and_new():
     """Step 1 ramps T0 -> T1 over two increments (half the strain at the
-    first), step 2 holds it, step 3 (OP=NEW) goes back to the initial
-    temperature, step 4 follows an amplitude to 0.5 T1 (absolute)."""
+    first), step 2 holds it, step 3 (OP=NEW without data lines) goes back
+    to the initial temperature, step 4 follows an amplitude to 0.5 T1 (absolute)."""
     m, x0, bcs = free_case("Q4", "S")
     steps = ("*AMPLITUDE, NAME=HALF\n0., 0., 1., 0.5\n" + step(f"ALL, {T1}\n", inc="0.5, 1.")
              + step("", card="*CLOAD\nPIN, 1, 0.")
-             + step(f"PIN, {T0}\n", card="*TEMPERATURE, OP=NEW")
+             + step("", card="*TEMPERATURE, OP=NEW")
              + step(f"ALL, {T1}\n", card="*TEMPERATURE, AMPLITUDE=HALF"))
     run = run_deck("thermal_steps", deck(m, "CPS4", bcs, steps)).ok()
     a = ALPHA * (T1 - T0)
@@ -139,6 +142,7 @@ BAD = [
     ("initial type", "*INITIAL CONDITIONS, TYPE=STRESS\nALL, 1.\n", "TYPE=STRESS is not implemented"),
     ("initial set", "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNOSUCH, 1.\n", "NOSUCH"),
     ("initial fields", "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nALL\n", "node or set, temperature"),
+    ("initial empty", "*INITIAL CONDITIONS, TYPE=TEMPERATURE\n", "missing data line"),
 ]
 
 
@@ -157,3 +161,85 @@ def test_bad_thermal_cards():
             text = deck(m, "CPS4", bcs, step(f"ALL, {T1}\n")).replace("*BOUNDARY", card + "*BOUNDARY")
         run = run_deck("bad_thermal_" + name, text)
         assert run.rc != 0 and msg in run.stderr and ".inp:" in run.stderr, (name, run.stderr)
+
+
+def lame_u(r, ri, ro, pi, po, e, nu):
+    """Plane-strain radial displacement of a ring ri..ro under inner and
+    outer pressures pi, po (Lame)."""
+    a = (pi * ri ** 2 - po * ro ** 2) / (ro ** 2 - ri ** 2)
+    b = (pi - po) * ri ** 2 * ro ** 2 / (ro ** 2 - ri ** 2)
+    return r * (1 + nu) / e * ((1 - 2 * nu) * a + b / r ** 2)
+
+
+def test_shrink_fit_plane_strain():
+    """A heated inner ring (a..b, dT) expands into an outer ring (b..c)
+    in frictionless contact, plane strain, a quarter model with symmetry.
+    Closed form: the interface pressure p makes the inner ring's free
+    thermal growth (1 + nu) alpha dT b plus its Lame displacement under
+    outer pressure p equal the outer ring's under inner pressure p. The
+    radial displacements at r = a and r = c agree within 1 %."""
+    ea, nu, alpha, dt = 200000.0, 0.3, 1.2e-5, 100.0
+    ra, rb, rc = 10.0, 20.0, 30.0
+
+    def ring(r0, r1, nr, nth):
+        return lambda s, t: ((r0 + (r1 - r0) * s / nr) * math.cos(0.5 * math.pi * t / nth),
+                             (r0 + (r1 - r0) * s / nr) * math.sin(0.5 * math.pi * t / nth))
+    inner = Mesh("Q8", 4, 16, ring(ra, rb, 4, 16))
+    outer = Mesh("Q8", 4, 16, ring(rb, rc, 4, 16), first_node=10001, first_elem=1001)
+
+    def ids(ns):
+        return ",\n".join(", ".join(map(str, ns[i:i + 12])) for i in range(0, len(ns), 12))
+    text = f"""*NODE, NSET=ALL
+{inner.node_lines()}{outer.node_lines()}{inner.element_card('CPE8', 'INNER')}{outer.element_card('CPE8', 'OUTER')}*NSET, NSET=HOT
+{ids(sorted(inner.nodes))}
+*NSET, NSET=XSYM
+{ids(inner.side('top') + outer.side('top'))}
+*NSET, NSET=YSYM
+{ids(inner.side('bottom') + outer.side('bottom'))}
+*NSET, NSET=RIM
+{ids(inner.side('right'))}
+*NSET, NSET=BORE
+{ids(inner.side('left'))}
+*NSET, NSET=OUTSIDE
+{ids(outer.side('right'))}
+*SURFACE, NAME=SEAT
+{"".join(f"{e}, S{k}" + chr(10) for e, k in outer.faces('left'))}*MATERIAL, NAME=STEEL
+*ELASTIC
+{ea}, {nu}
+*EXPANSION
+{alpha}
+*SOLID SECTION, ELSET=INNER, MATERIAL=STEEL
+*SOLID SECTION, ELSET=OUTER, MATERIAL=STEEL
+*CONTACT PAIR
+RIM, SEAT
+*INITIAL CONDITIONS, TYPE=TEMPERATURE
+ALL, 20.
+*BOUNDARY
+XSYM, 1, 1
+YSYM, 2, 2
+*STEP
+*STATIC
+*TEMPERATURE
+HOT, {20.0 + dt}
+*NODE PRINT
+U
+*END STEP
+"""
+    run = run_deck("thermal_shrink_fit", text).ok()
+    # interface pressure: free growth + inner(p outside) = outer(p inside) at r = b
+    free = (1 + nu) * alpha * dt * rb
+    k_in = lame_u(rb, ra, rb, 0.0, 1.0, ea, nu)
+    k_out = lame_u(rb, rb, rc, 1.0, 0.0, ea, nu)
+    p = free / (k_out - k_in)
+    exact_a = (1 + nu) * alpha * dt * ra + lame_u(ra, ra, rb, 0.0, p, ea, nu)
+    exact_c = lame_u(rc, rb, rc, p, 0.0, ea, nu)
+    ub = run.listing.increments[-1].block("NODE U")
+    u = {int(n): (u1, u2) for n, u1, u2 in zip(ub["node"], ub["U1"], ub["U2"])}
+    worst = 0.0
+    for mesh, side, exact in ((inner, "left", exact_a), (outer, "right", exact_c)):
+        for n in mesh.side(side):
+            x, y = mesh.nodes[n]
+            ur = (u[n][0] * x + u[n][1] * y) / math.hypot(x, y)
+            worst = max(worst, abs(ur - exact) / abs(exact))
+            assert abs(ur - exact) < 0.01 * abs(exact), (side, n, ur, exact, p)
+    print(f"  shrink fit CPE8: p = {p:.4f}, worst radial displacement error {worst:.2e}")

@@ -232,7 +232,7 @@ contains
     if (kind /= 'TEMPERATURE') call err(p, '*INITIAL CONDITIONS, TYPE=' // kind // &
       ' is not implemented (only TYPE=TEMPERATURE)')
     if (.not. allocated(m%initial_temps)) allocate(m%initial_temps(0))
-    call read_temperature_lines(p, m, 0, m%initial_temps)
+    call read_temperature_lines(p, m, 0, .false., m%initial_temps)
   end subroutine read_initial_conditions
 
   !> Purpose: *TEMPERATURE (in a step): the nodal temperatures at the end
@@ -244,18 +244,21 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
+    logical :: new
     call allow_params(p, kw, 'OP,AMPLITUDE')
-    if (op_param(p, kw) == 'NEW') m%steps(p%step)%new_temps = .true.
+    new = op_param(p, kw) == 'NEW'
+    if (new) m%steps(p%step)%new_temps = .true.
     if (.not. allocated(m%steps(p%step)%temps)) allocate(m%steps(p%step)%temps(0))
-    call read_temperature_lines(p, m, amplitude_param(p, m, kw), m%steps(p%step)%temps)
+    call read_temperature_lines(p, m, amplitude_param(p, m, kw), new, m%steps(p%step)%temps)
   end subroutine read_temperature
 
   !> The `node or nset, temperature` lines of a temperature card, appended
-  !> to temps.
-  subroutine read_temperature_lines(p, m, amp, temps)
+  !> to temps; none is allowed if may_be_empty (OP=NEW alone).
+  subroutine read_temperature_lines(p, m, amp, may_be_empty, temps)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(in) :: m
     integer, intent(in) :: amp
+    logical, intent(in) :: may_be_empty
     type(temp_t), allocatable, intent(inout) :: temps(:)
     type(field_t), allocatable :: f(:)
     integer, allocatable :: nodes(:)
@@ -270,7 +273,7 @@ contains
       temps = [temps, (temp_t(node=nodes(k), amp=amp, value=v), k = 1, size(nodes))]
       nnew = nnew + size(nodes)
     end do
-    if (nnew == 0) call err(p, 'missing data line (node or set, temperature)')
+    if (nnew == 0 .and. .not. may_be_empty) call err(p, 'missing data line (node or set, temperature)')
   end subroutine read_temperature_lines
 
   !> Purpose: *STEP: opens a step (NAME=, INC= the largest number of
