@@ -87,7 +87,9 @@ def test_free_expansion():
 def test_held_block():
     """Both ends held in x, the bottom in y, heated by dT: S11 = -E alpha
     dT (plane stress) or -E alpha dT / (1 - nu) (plane strain, where S33
-    is the same), S22 = 0; u_y = alpha dT y (1 + nu) in plane strain."""
+    is the same), S22 = 0, u_y = (1 + nu) alpha dT y (plane stress) or
+    (1 + nu) / (1 - nu) alpha dT y (plane strain); the reaction of the
+    right wall is S11 times its area."""
     a = ALPHA * (T1 - T0)
     for shape in SHAPES:
         for state in ("S", "E"):
@@ -103,6 +105,9 @@ def test_held_block():
                 s = (-E * a / (1 - NU), 0.0, -E * a / (1 - NU), 0.0)
                 uy = a * (1 + NU) / (1 - NU)
             check(inc, m, lambda p: (0.0, uy * p[1]), s, a * 3.0, f"held {shape} {state}")
+            # the wall's reaction carries the stress: S11 * height * thickness
+            rf = inc.block("REACTIONS").as_dict()["RIGHT"]
+            assert abs(rf[0] - s[0] * 1.0 * 0.5) < 1e-9 * E * a, (shape, state, rf)
 
 
 def test_ramp_hold_and_new():
