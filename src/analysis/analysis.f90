@@ -11,7 +11,7 @@ module analysis
   use assembly, only: body_t, element_counts_t, body_setup
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
-  use load_state, only: load_state_t, begin_step, values_at
+  use load_state, only: load_state_t, begin_step, values_at, temperature_change_at
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
@@ -227,9 +227,17 @@ contains
     type(increment_results_t) :: res
     integer :: k
     real(dp) :: t0, t1
+    real(dp), allocatable :: dtemp(:)
     t0 = wall_time()
-    call compute_increment_results(m, is, rs%inc, t, rs%total_time + t, iters, rs%u, rs%rf, rs%cs, &
-                                   rs%ls%set_ids, res, rs%eq%counts)
+    if (rs%ls%thermal) then
+      allocate(dtemp(m%nn))
+      call temperature_change_at(m, rs%ls, t, dtemp)
+      call compute_increment_results(m, is, rs%inc, t, rs%total_time + t, iters, rs%u, rs%rf, rs%cs, &
+                                     rs%ls%set_ids, res, rs%eq%counts, dtemp)
+    else
+      call compute_increment_results(m, is, rs%inc, t, rs%total_time + t, iters, rs%u, rs%rf, rs%cs, &
+                                     rs%ls%set_ids, res, rs%eq%counts)
+    end if
     t1 = wall_time()
     do k = 1, size(obs)
       call obs(k)%o%increment_done(m, res)

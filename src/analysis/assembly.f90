@@ -3,7 +3,8 @@
 !> matrices are computed once and kept (`body_t`); internal forces are
 !> then ke * ue, and only the coupling elements are evaluated again as the
 !> contact status changes. Stresses are computed by the element routines
-!> once per converged increment.
+!> once per converged increment. A thermal strain enters as a load
+!> (`thermal_forces`) and in the stresses; the stiffness does not change.
 module assembly
   use kinds, only: dp
   use strings, only: itoa
@@ -11,14 +12,14 @@ module assembly
   use model
   use element_catalogue, only: catalogue
   use contact, only: contact_set_t, cfe_input
-  use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses
+  use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses, act_thermal
   use element_library, only: element_routine
   use linear_solver, only: linear_system_t, sys_zero, sys_add
   use dof_numbering, only: dofmap_t
   implicit none
   private
   public :: body_t, element_counts_t, body_setup, assemble_stiffness, body_forces, free_residual, &
-            stress_recovery, solid_input
+            stress_recovery, solid_input, thermal_forces
 
   !> Stored element stiffness of every continuum element: the upper
   !> triangle of the symmetric nd x nd matrix of element e, column by
@@ -36,11 +37,13 @@ module assembly
 
 contains
 
-  !> Purpose: element data of continuum element e at displacements u.
-  subroutine solid_input(m, e, u, ein, nodes)
+  !> Purpose: element data of continuum element e at displacements u and,
+  !> if given, nodal temperature changes dtemp(nn) from the initial state.
+  subroutine solid_input(m, e, u, ein, nodes, dtemp)
     type(model_t), intent(in) :: m
     integer, intent(in) :: e
     real(dp), intent(in) :: u(:, :)
+    real(dp), intent(in), optional :: dtemp(:)
     type(elem_in_t), intent(out) :: ein
     integer, intent(out) :: nodes(:)
     integer :: k, nen
@@ -58,8 +61,38 @@ contains
       ein%e = m%materials(sec%material)%e
       ein%nu = m%materials(sec%material)%nu
       ein%thickness = sec%thickness
+      if (present(dtemp)) then
+        ein%alpha = m%materials(sec%material)%alpha
+        ein%dtemp(1:nen) = dtemp(nodes(1:nen))
+      end if
     end associate
   end subroutine solid_input
+
+  !> Purpose: f = f + the equivalent nodal loads of the thermal strain of
+  !> every continuum element at nodal temperature changes dtemp(nn).
+  subroutine thermal_forces(m, dtemp, f)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: dtemp(:)
+    real(dp), intent(inout) :: f(:, :)
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: e, k, nodes(max_en)
+    real(dp), allocatable :: u0(:, :)
+    allocate(u0(2, m%nn))
+    u0 = 0.0_dp
+    do e = 1, m%ne
+      if (.not. is_continuum(m, e)) cycle
+      associate(mat => m%materials(m%sections(m%elem_section(e))%material))
+        if (mat%alpha == 0.0_dp) cycle
+      end associate
+      call solid_input(m, e, u0, ein, nodes, dtemp)
+      if (all(ein%dtemp(1:ein%nen) == 0.0_dp)) cycle
+      call element_routine(act_thermal, ein, eout)
+      do k = 1, ein%nen
+        f(:, nodes(k)) = f(:, nodes(k)) + eout%fe(2 * k - 1:2 * k)
+      end do
+    end do
+  end subroutine thermal_forces
 
   !> Purpose: computes and keeps the stiffness of every continuum element.
   subroutine body_setup(m, body, counts)
@@ -202,10 +235,11 @@ contains
   !> the elements that share the node (nodes are never shared across
   !> bodies, so this is an average per body).
   !> Arguments: nip(ne), sig_ip(4, max_ip, ne), eps_ip(3, max_ip, ne),
-  !> sig_node(4, nn).
-  subroutine stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node, counts)
+  !> sig_node(4, nn); dtemp(nn) the nodal temperature changes if any.
+  subroutine stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node, counts, dtemp)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: u(:, :)
+    real(dp), intent(in), optional :: dtemp(:)
     integer, intent(out) :: nip(:)
     real(dp), intent(out) :: sig_ip(:, :, :), eps_ip(:, :, :), sig_node(:, :)
     type(element_counts_t), intent(inout) :: counts
@@ -221,7 +255,7 @@ contains
     sig_node = 0.0_dp
     do e = 1, m%ne
       if (.not. is_continuum(m, e)) cycle
-      call solid_input(m, e, u, ein, nodes)
+      call solid_input(m, e, u, ein, nodes, dtemp)
       call element_routine(act_stresses, ein, eout)
       counts%continuum_stresses = counts%continuum_stresses + 1
       nip(e) = eout%nip

@@ -38,8 +38,9 @@ contains
   !> is, from the converged u, the residual rf = f_int - f_ext (reactions
   !> where prescribed) and the contact set.
   !> Arguments: set_ids node sets whose reactions are summed; counts
-  !> counts the element routine calls of the stress recovery.
-  subroutine compute_increment_results(m, is, inc, t, total_time, iters, u, rf, cs, set_ids, res, counts)
+  !> counts the element routine calls of the stress recovery; dtemp(nn)
+  !> the nodal temperature changes at t, given when there is thermal strain.
+  subroutine compute_increment_results(m, is, inc, t, total_time, iters, u, rf, cs, set_ids, res, counts, dtemp)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc, iters
     real(dp), intent(in) :: t, total_time
@@ -48,6 +49,7 @@ contains
     integer, intent(in) :: set_ids(:)
     type(increment_results_t), intent(out) :: res
     type(element_counts_t), intent(inout) :: counts
+    real(dp), intent(in), optional :: dtemp(:)
     integer :: s, q, e
     res%step = is
     res%increment = inc
@@ -68,7 +70,7 @@ contains
              res%sig_elem(4, m%ne))
     res%has_stresses = any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e)
     if (res%has_stresses) then
-      call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts)
+      call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp)
     else
       res%nip = 0
       res%sig_ip = 0.0_dp

@@ -12,6 +12,10 @@
 !> magnitude it ended with; a new definition of the same element, label
 !> and face replaces it (ramping from the old nodal forces to the new ones
 !> without an amplitude), OP=NEW removes them all.
+!>
+!> Temperatures (*TEMPERATURE) go from where the previous step left them
+!> to the step's values like prescribed displacements (or follow their
+!> amplitude); the thermal strain's nodal loads at time t join f_ext.
 module load_state
   use kinds, only: dp
   use strings, only: itoa
@@ -19,9 +23,10 @@ module load_state
   use model
   use element_catalogue, only: catalogue, max_nodes, state_axisymmetric
   use distributed_loads, only: face_pressure_load, body_force_load
+  use assembly, only: thermal_forces
   implicit none
   private
-  public :: load_state_t, load_pattern_t, begin_step, values_at, amplitude_value
+  public :: load_state_t, load_pattern_t, begin_step, values_at, amplitude_value, temperature_change_at
 
   type :: load_pattern_t
     integer :: elem = 0, label = 0, face = 0     ! what it is (dload_t)
@@ -43,6 +48,12 @@ module load_state
     integer, allocatable :: set_ids(:)                   ! node sets with prescribed dofs
     real(dp) :: period = 1.0_dp
     real(dp) :: total_time = 0.0_dp                      ! total time at the step's start
+    !> Nodal temperatures (nn): initial, at the step's start and end,
+    !> amplitude; thermal: some material expands and some temperature
+    !> differs from the initial one in some step.
+    real(dp), allocatable :: temp_init(:), temp_start(:), temp_target(:)
+    integer, allocatable :: temp_amp(:)
+    logical :: thermal = .false.
   end type load_state_t
 
 contains
@@ -84,11 +95,13 @@ contains
       ls%bc_target = 0.0_dp
       ls%bc_set = 0
       ls%ld_target = 0.0_dp
+      call init_temperatures(m, ls)
     else
       ! distributed loads held where the previous step ended them, and
       ! taken out of fext to leave its concentrated part
       call hold_patterns(m, ls)
       call add_patterns(m, ls, 0.0_dp, -1.0_dp, conc)
+      call hold_temperatures(m, ls, conc)
     end if
     associate(st => m%steps(is))
       ls%period = st%period
@@ -122,9 +135,74 @@ contains
       do j = 1, step_dloads(st)
         call define_pattern(m, st%dloads(j), ls)
       end do
+      if (st%new_temps) ls%temp_target = ls%temp_init
+      if (allocated(st%temps)) then
+        do j = 1, size(st%temps)
+          ls%temp_target(st%temps(j)%node) = st%temps(j)%value
+          ls%temp_amp(st%temps(j)%node) = st%temps(j)%amp
+        end do
+      end if
     end associate
     call prescribed_sets(m, ls)
   end subroutine begin_step
+
+  !> The initial temperatures, held until a step changes them; whether
+  !> the model has any thermal strain at all.
+  subroutine init_temperatures(m, ls)
+    type(model_t), intent(in) :: m
+    type(load_state_t), intent(inout) :: ls
+    integer :: j
+    allocate(ls%temp_init(m%nn), ls%temp_amp(m%nn))
+    ls%temp_init = 0.0_dp
+    ls%temp_amp = 0
+    if (allocated(m%initial_temps)) then
+      do j = 1, size(m%initial_temps)
+        ls%temp_init(m%initial_temps(j)%node) = m%initial_temps(j)%value
+      end do
+    end if
+    ls%temp_start = ls%temp_init
+    ls%temp_target = ls%temp_init
+    ls%thermal = .false.
+    if (.not. any(m%materials%alpha /= 0.0_dp)) return
+    do j = 1, size(m%steps)
+      if (allocated(m%steps(j)%temps)) ls%thermal = ls%thermal .or. size(m%steps(j)%temps) > 0
+    end do
+  end subroutine init_temperatures
+
+  !> The temperatures at the end of the step just finished become the
+  !> start and the held target of the next; their thermal loads are taken
+  !> out of conc (fext at the end of that step).
+  subroutine hold_temperatures(m, ls, conc)
+    type(model_t), intent(in) :: m
+    type(load_state_t), intent(inout) :: ls
+    real(dp), intent(inout) :: conc(:, :)
+    real(dp), allocatable :: dtemp(:), fth(:, :)
+    allocate(dtemp(m%nn), fth(2, m%nn))
+    call temperature_change_at(m, ls, ls%period, dtemp)
+    ls%temp_start = ls%temp_init + dtemp
+    ls%temp_target = ls%temp_start
+    ls%temp_amp = 0
+    if (.not. ls%thermal) return
+    fth = 0.0_dp
+    call thermal_forces(m, dtemp, fth)
+    conc = conc - fth
+  end subroutine hold_temperatures
+
+  !> Purpose: nodal temperatures at step time t less the initial ones.
+  subroutine temperature_change_at(m, ls, t, dtemp)
+    type(model_t), intent(in) :: m
+    type(load_state_t), intent(in) :: ls
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: dtemp(:)
+    integer :: a
+    do a = 1, m%nn
+      if (ls%temp_amp(a) > 0) then
+        dtemp(a) = ls%temp_target(a) * amp_at(m, ls, ls%temp_amp(a), t) - ls%temp_init(a)
+      else
+        dtemp(a) = ls%temp_start(a) + (ls%temp_target(a) - ls%temp_start(a)) * (t / ls%period) - ls%temp_init(a)
+      end if
+    end do
+  end subroutine temperature_change_at
 
   !> The patterns at the end of the step just finished (ls still holds its
   !> period and start time) become constant at that magnitude; those that
@@ -277,7 +355,8 @@ contains
 
   !> Purpose: prescribed displacements into u (free dofs set to zero, the
   !> start of the equilibrium iteration) and loads into fext at step time t:
-  !> the concentrated loads and the distributed loads' patterns.
+  !> the concentrated loads, the distributed loads' patterns and the
+  !> thermal strain's loads.
   subroutine values_at(m, ls, t, u, fext)
     type(model_t), intent(in) :: m
     type(load_state_t), intent(in) :: ls
@@ -304,6 +383,14 @@ contains
       end do
     end do
     call add_patterns(m, ls, t, 1.0_dp, fext)
+    if (ls%thermal) then
+      block
+        real(dp), allocatable :: dtemp(:)
+        allocate(dtemp(m%nn))
+        call temperature_change_at(m, ls, t, dtemp)
+        call thermal_forces(m, dtemp, fext)
+      end block
+    end if
   end subroutine values_at
 
   real(dp) function amp_at(m, ls, ia, t)

@@ -10,4 +10,4 @@ $(OBJDIR)/condensed_equilibrium.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembl
 $(OBJDIR)/equilibrium.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/condensed_equilibrium.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/equilibrium_common.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o
 $(OBJDIR)/equilibrium_common.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/condensed_contact.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/increment_results.o: $(OBJDIR)/assembly.o $(OBJDIR)/contact.o $(OBJDIR)/contact_results.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
-$(OBJDIR)/load_state.o: $(OBJDIR)/distributed_loads.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
+$(OBJDIR)/load_state.o: $(OBJDIR)/assembly.o $(OBJDIR)/distributed_loads.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o

@@ -10,10 +10,18 @@
 !> dV = 2 pi r dA, as CalculiX and Abaqus count axisymmetric forces: a
 !> concentrated load, a reaction and a contact force are totals over the
 !> ring (the section thickness is not used).
+!>
+!> Thermal strain eps0 = alpha dT (1, 1, 0, 1), dT interpolated from the
+!> nodal temperature changes, is an initial strain: stresses D (eps -
+!> eps0), load integral B^T D eps0. The fourth component is the
+!> out-of-plane strain: in plane stress D has no such row (S33 = 0); in
+!> plane strain it gives S33 = nu (S11 + S22) - E alpha dT; in axisymmetry
+!> it is the hoop strain.
 module continuum_element
   use kinds, only: dp
   use element_catalogue, only: max_nodes, max_ip, state_axisymmetric
-  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants
+  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, &
+                               act_thermal, wants
   use shape_functions, only: shape_at, gauss_rule, extrapolation
   use materials, only: elastic_matrix
   implicit none
@@ -70,13 +78,14 @@ contains
   !> act_residual; for act_stresses the strains and stresses at the
   !> integration points and the stresses extrapolated to the nodes
   !> (shape_functions' extrapolation: exact for a stress field of the
-  !> rule's own degree).
+  !> rule's own degree), less the thermal strain's share; for act_thermal
+  !> fe = the equivalent nodal load of the thermal strain.
   pure subroutine continuum(action, ein, eout)
     integer, intent(in) :: action
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     real(dp) :: d(4, 4), n(max_nodes), dn(2, max_nodes), b(4, 2 * max_nodes), db(4, 2 * max_nodes)
-    real(dp) :: xg(2, max_ip), wg(max_ip), ex(max_nodes, max_ip), detj, r, eps(4), sig(4)
+    real(dp) :: xg(2, max_ip), wg(max_ip), ex(max_nodes, max_ip), detj, r, eps(4), sig(4), eps0(4)
     integer :: ip, i, j, nen, nd
     logical :: need_k
     nen = ein%nen
@@ -95,6 +104,9 @@ contains
       else
         eout%detj_min = min(eout%detj_min, detj)
       end if
+      eps0 = ein%alpha * dot_product(n(1:nen), ein%dtemp(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
+      if (wants(action, act_thermal)) eout%fe(1:nd) = eout%fe(1:nd) + &
+        matmul(matmul(eps0, d), b(:, 1:nd)) * (volume_factor(ein%state, detj, r, ein%thickness) * wg(ip))
       if (need_k) then
         ! upper triangle of B^T D B, mirrored below after the loop
         db(:, 1:nd) = matmul(d, b(:, 1:nd)) * (volume_factor(ein%state, detj, r, ein%thickness) * wg(ip))
@@ -107,7 +119,7 @@ contains
       end if
       if (wants(action, act_stresses)) then
         eps = matmul(b(:, 1:nd), ein%ue(1:nd))
-        sig = matmul(d, eps)
+        sig = matmul(d, eps - eps0)
         eout%eps_ip(:, ip) = eps(1:3)
         eout%sig_ip(:, ip) = [sig(1), sig(2), sig(4), sig(3)]
       end if

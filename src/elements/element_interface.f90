@@ -8,7 +8,8 @@ module element_interface
   implicit none
   private
   public :: elem_in_t, elem_out_t, max_en, max_edof, max_ip, max_slave, &
-            kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, act_tangent, act_residual, act_stresses, wants
+            kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, act_tangent, act_residual, act_stresses, &
+            act_thermal, wants
 
   !> Routine selectors: a continuum element is its catalogue shape (one
   !> routine serves them all); the coupling element is the contact layer's.
@@ -20,8 +21,10 @@ module element_interface
   integer, parameter :: max_en = max_nodes + max_slave, max_edof = 2 * max_en
   !> Actions, combined with ior: tangent stiffness ke, internal force fe
   !> (and, for a coupling element, its gap and normal force), stresses and
-  !> strains at the integration points and extrapolated to the nodes.
-  integer, parameter :: act_tangent = 1, act_residual = 2, act_stresses = 4
+  !> strains at the integration points and extrapolated to the nodes; the
+  !> equivalent nodal load of the thermal strain (continuum elements: fe =
+  !> integral of B^T D eps0, eps0 = alpha * (T - T_initial)).
+  integer, parameter :: act_tangent = 1, act_residual = 2, act_stresses = 4, act_thermal = 8
 
   type :: elem_in_t
     integer :: kind = 0
@@ -32,6 +35,10 @@ module element_interface
     real(dp) :: e = 0.0_dp, nu = 0.0_dp, thickness = 1.0_dp
     integer :: state = state_none           ! element_catalogue stress state
     integer :: nip = 0                      ! integration points (catalogue rule)
+    !> Thermal strain: expansion coefficient and the nodal temperature
+    !> change from the initial state; the stresses are D (eps - eps0).
+    real(dp) :: alpha = 0.0_dp
+    real(dp) :: dtemp(max_nodes) = 0.0_dp
     ! coupling element: slave side (ns nodes, weights ws summing to 1),
     ! master kind, natural coordinates of X_C in the master, unit outward
     ! normal of the master edge, normal penalty and the initial gap [[U]]_0

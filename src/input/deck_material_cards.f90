@@ -1,4 +1,4 @@
-!> Material cards: *MATERIAL, *ELASTIC, *SOLID SECTION.
+!> Material cards: *MATERIAL, *ELASTIC, *EXPANSION, *SOLID SECTION.
 submodule (deck_parser) deck_material_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t
@@ -57,6 +57,32 @@ contains
     end associate
     if (next_data(p)) call err(p, 'temperature-dependent *ELASTIC data is not implemented')
   end subroutine read_elastic
+
+  !> Purpose: *EXPANSION (isotropic): `alpha` of the current material,
+  !> one data line; ZERO= (the temperature at which alpha was measured,
+  !> default 0) is kept but cannot change a constant alpha's thermal strain
+  !> alpha (T - T_initial). Temperature dependence is not implemented.
+  module subroutine read_expansion(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call allow_params(p, kw, 'TYPE,ZERO')
+    if (has_param(kw, 'TYPE')) then
+      if (to_upper(param_value(kw, 'TYPE')) /= 'ISO') call err(p, 'only TYPE=ISO is implemented on *EXPANSION')
+    end if
+    if (p%material == 0) call err(p, '*EXPANSION outside a *MATERIAL')
+    call require_data(p, 'alpha')
+    call split_fields(line_text(p), f, n)
+    if (n > 2) call err(p, 'temperature-dependent *EXPANSION data is not implemented')
+    associate(mat => m%materials(p%material))
+      mat%alpha = get_real(p, f(1), 'expansion coefficient')
+      mat%alpha_zero = param_real(p, kw, 'ZERO', 0.0_dp)
+      mat%has_expansion = .true.
+    end associate
+    if (next_data(p)) call err(p, 'temperature-dependent *EXPANSION data is not implemented')
+  end subroutine read_expansion
 
   !> Purpose: *SOLID SECTION, ELSET=, MATERIAL=: the material and the
   !> thickness (data line, default 1) of the solid elements of a set.

@@ -3,9 +3,10 @@
 !> checks what needs the whole deck. The readers live in submodules, one
 !> file per family of cards:
 !>   deck_mesh_cards      *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE
-!>   deck_material_cards  *MATERIAL, *ELASTIC, *SOLID SECTION
+!>   deck_material_cards  *MATERIAL, *ELASTIC, *EXPANSION, *SOLID SECTION
 !>   deck_step_cards      *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CLOAD,
-!>                        output requests, *END STEP
+!>                        output requests, *END STEP, *INITIAL CONDITIONS,
+!>                        *TEMPERATURE
 !>   deck_contact_cards   *CONTACT PAIR, *CONTACT CONTROLS, *SOLVER
 !>   deck_interaction_cards  *SURFACE INTERACTION, *SURFACE BEHAVIOR, *FRICTION
 !>   deck_compat_cards    *NODAL THICKNESS, *EQUATION, and the cards of other
@@ -62,6 +63,21 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_elastic
+    module subroutine read_expansion(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_expansion
+    module subroutine read_initial_conditions(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_initial_conditions
+    module subroutine read_temperature(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_temperature
     module subroutine read_section(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -190,7 +206,7 @@ contains
              m%elem_src(0), m%node_index(0), m%elem_index(0))
     allocate(m%nsets(0), m%elsets(0), m%surfaces(0), m%materials(0), m%sections(0), &
              m%amplitudes(0), m%steps(0), m%pairs(0), m%model_bcs(0))
-    allocate(m%equations(0))
+    allocate(m%equations(0), m%initial_temps(0))
 
     p%i = 1
     do while (p%i <= p%deck%n)
@@ -248,6 +264,9 @@ contains
     case ('SURFACE');       call in_step(p, kw, .false.); call read_surface(p, m, kw)
     case ('MATERIAL');      call in_step(p, kw, .false.); call read_material(p, m, kw)
     case ('ELASTIC');       call in_step(p, kw, .false.); call read_elastic(p, m, kw)
+    case ('EXPANSION');     call in_step(p, kw, .false.); call read_expansion(p, m, kw)
+    case ('INITIAL CONDITIONS'); call in_step(p, kw, .false.); call read_initial_conditions(p, m, kw)
+    case ('TEMPERATURE');   call in_step(p, kw, .true.); call read_temperature(p, m, kw)
     case ('SOLID SECTION'); call in_step(p, kw, .false.); call read_section(p, m, kw)
     case ('AMPLITUDE');     call read_amplitude(p, m, kw)
     case ('BOUNDARY');      call read_boundary(p, m, kw)

@@ -1,14 +1,15 @@
 !> Step and load cards: *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CLOAD,
 !> the output requests (*NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE) and
-!> *END STEP.
+!> *END STEP; the temperatures: *INITIAL CONDITIONS, TYPE=TEMPERATURE and
+!> *TEMPERATURE.
 submodule (deck_parser) deck_step_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, node_of, is_int, &
-                         need_nset, need_elset
-  use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, amp_step_time, amp_total_time, find_name
+                         need_nset, need_elset, required_param
+  use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, amp_step_time, amp_total_time, find_name
   use growable, only: append
   use model_growth, only: grow
   implicit none
@@ -217,6 +218,63 @@ contains
     end do
     if (nnew == 0) call err(p, 'missing data line (node or set, dof, value)')
   end subroutine read_cload
+
+  !> Purpose: *INITIAL CONDITIONS, TYPE=TEMPERATURE: the temperatures of
+  !> the reference (strain-free) state, `node or nset, temperature`;
+  !> nodes not named start at 0. Other types are not implemented.
+  module subroutine read_initial_conditions(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: kind
+    call allow_params(p, kw, 'TYPE')
+    kind = to_upper(required_param(p, kw, 'TYPE'))
+    if (kind /= 'TEMPERATURE') call err(p, '*INITIAL CONDITIONS, TYPE=' // kind // &
+      ' is not implemented (only TYPE=TEMPERATURE)')
+    if (.not. allocated(m%initial_temps)) allocate(m%initial_temps(0))
+    call read_temperature_lines(p, m, 0, .false., m%initial_temps)
+  end subroutine read_initial_conditions
+
+  !> Purpose: *TEMPERATURE (in a step): the nodal temperatures at the end
+  !> of the step, `node or nset, temperature`, ramped over the step from
+  !> where the previous step left them (or following AMPLITUDE=) and held
+  !> afterwards; OP=NEW sends the nodes not named back to their initial
+  !> temperature.
+  module subroutine read_temperature(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    logical :: new
+    call allow_params(p, kw, 'OP,AMPLITUDE')
+    new = op_param(p, kw) == 'NEW'
+    if (new) m%steps(p%step)%new_temps = .true.
+    if (.not. allocated(m%steps(p%step)%temps)) allocate(m%steps(p%step)%temps(0))
+    call read_temperature_lines(p, m, amplitude_param(p, m, kw), new, m%steps(p%step)%temps)
+  end subroutine read_temperature
+
+  !> The `node or nset, temperature` lines of a temperature card, appended
+  !> to temps; none is allowed if may_be_empty (OP=NEW alone).
+  subroutine read_temperature_lines(p, m, amp, may_be_empty, temps)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: amp
+    logical, intent(in) :: may_be_empty
+    type(temp_t), allocatable, intent(inout) :: temps(:)
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: nodes(:)
+    integer :: n, k, iset, nnew
+    real(dp) :: v
+    nnew = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= 2) call err(p, 'temperature data line needs: node or set, temperature')
+      call target_nodes(p, m, f(1)%s, nodes, iset)
+      v = get_real(p, f(2), 'temperature')
+      temps = [temps, (temp_t(node=nodes(k), amp=amp, value=v), k = 1, size(nodes))]
+      nnew = nnew + size(nodes)
+    end do
+    if (nnew == 0 .and. .not. may_be_empty) call err(p, 'missing data line (node or set, temperature)')
+  end subroutine read_temperature_lines
 
   !> Purpose: *STEP: opens a step (NAME=, INC= the largest number of
   !> increments, 1..max_increments); its cards follow up to *END STEP.

@@ -10,7 +10,7 @@ module model
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
-            equation_t, &
+            equation_t, temp_t, &
             is_continuum, elem_nodes, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, append_int, step_dloads, &
@@ -52,6 +52,11 @@ module model
     type(src_t) :: src
     logical :: has_density = .false.
     real(dp) :: density = 0.0_dp          ! mass per unit volume (*DENSITY)
+    !> *EXPANSION: isotropic expansion coefficient; ZERO= is kept for the
+    !> listing only: with a constant alpha the thermal strain alpha (T -
+    !> T_initial) does not depend on it.
+    logical :: has_expansion = .false.
+    real(dp) :: alpha = 0.0_dp, alpha_zero = 0.0_dp
   end type material_t
 
   type :: section_t
@@ -76,6 +81,13 @@ module model
     integer :: node = 0, dof = 0, set = 0, amp = 0
     real(dp) :: value = 0.0_dp
   end type bc_t
+
+  !> A nodal temperature: the initial one (*INITIAL CONDITIONS,
+  !> TYPE=TEMPERATURE) or the one at the end of a step (*TEMPERATURE).
+  type :: temp_t
+    integer :: node = 0, amp = 0
+    real(dp) :: value = 0.0_dp
+  end type temp_t
 
   type :: cload_t
     integer :: node = 0, dof = 0, amp = 0
@@ -126,6 +138,10 @@ module model
     !> Distributed loads (*DLOAD, *DSLOAD) of the step, and OP=NEW on them.
     type(dload_t), allocatable :: dloads(:)
     logical :: new_dloads = .false.
+    !> *TEMPERATURE of the step (ramped over it, held afterwards), and
+    !> OP=NEW on it (temperatures not given go back to the initial ones).
+    type(temp_t), allocatable :: temps(:)
+    logical :: new_temps = .false.
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.
@@ -181,6 +197,8 @@ module model
     !> *SOLVER, CONTACT SOLVE=: solver_codes contact_solve_* (auto: the
     !> condensed contact solve where it pays, else the full one).
     integer :: contact_solve = 0
+    !> *INITIAL CONDITIONS, TYPE=TEMPERATURE (nodes not named start at 0).
+    type(temp_t), allocatable :: initial_temps(:)
   end type model_t
 
 contains
