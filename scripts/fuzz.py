@@ -991,6 +991,8 @@ def one_mutant(deck, k, opts, work, report, log):
         report.disagree += 1
         log(f"fuzz: mutant {k}: the builds disagree: " +
             ", ".join(f"{r.build} {r.cls} {r.sig}" for r in results))
+        if report.disagree <= opts.keep:
+            save_failure(opts.out, k, deck, results, "disagree", "")
     if cls not in FAILURES:
         return
     key = (cls, sig)
