@@ -206,6 +206,7 @@ def main(argv=None):
     ap.add_argument("--quiet", action="store_true", help="print nothing (the table goes to --markdown)")
     args = ap.parse_args(argv)
     known = cfe2d_keywords()
+    packed = {k.replace(" ", "") for k in known}
     rows = []
     for name in sorted(os.listdir(args.testdir)):
         if not name.endswith(".inp"):
@@ -226,7 +227,9 @@ def main(argv=None):
             else:
                 detail = "no .dat.ref"
         first = re.search(r"keyword \*(.+) is not implemented", detail)
-        unread = [k for k in deck_keywords(deck) if k not in known and not (first and k == first.group(1))]
+        # (blanks do not count: cfe2d reads *SOLIDSECTION as *SOLID SECTION, as CalculiX does)
+        unread = [k for k in deck_keywords(deck) if k.replace(" ", "") not in packed
+                  and not (first and k == first.group(1))]
         rows.append({"deck": job, "types": ", ".join(sorted(set(types))), "state": state, "status": status,
                      "detail": detail, "unread": ", ".join("*" + k for k in unread)})
         if not args.quiet:

@@ -176,3 +176,19 @@ def test_equation_is_read_then_refused_at_its_line():
         line = deck.splitlines().index(bad) + 1
         assert run.rc == 1 and f"decks_equation_{tag}.inp:{line}: error:" in run.stderr, (tag, run.stderr)
         assert fragment in run.stderr, (tag, run.stderr)
+
+
+def test_keywords_written_without_blanks_read_as_calculix_reads_them():
+    """CalculiX drops every blank of a keyword line (its scheibe.inp writes
+    *SOLIDSECTION): the cantilever with *SOLIDSECTION, *NODEPRINT, *ELPRINT
+    and *ENDSTEP gives the listing of the deck as written."""
+    import os
+    from helpers import ROOT, run_deck
+    deck = open(os.path.join(ROOT, "input", "examples", "cantilever.inp")).read()
+    packed = (deck.replace("*SOLID SECTION", "*SOLIDSECTION").replace("*NODE PRINT", "*NODEPRINT")
+              .replace("*EL PRINT", "*ELPRINT").replace("*END STEP", "*ENDSTEP"))
+    assert packed.count("*SOLIDSECTION") == 1 and "*ENDSTEP" in packed
+    a = run_deck("decks_blanks_as_written", deck).ok().listing.increments[-1]
+    b = run_deck("decks_blanks_dropped", packed).ok().listing.increments[-1]
+    assert a.block("NODE U", set="TIP")["U2"].tolist() == b.block("NODE U", set="TIP")["U2"].tolist()
+    assert b.has("ELEMENT S", set="ALL")

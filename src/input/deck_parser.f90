@@ -249,10 +249,13 @@ contains
 
   !> Purpose: hand the card starting at keyword kw to its reader, after
   !> checking that it stands in the right part of the deck.
-  subroutine dispatch(p, m, kw)
+  subroutine dispatch(p, m, card)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
-    type(keyword_t), intent(in) :: kw
+    type(keyword_t), intent(in) :: card
+    type(keyword_t) :: kw
+    kw = card
+    kw%name = spaced_name(card%name)
     ! A *SURFACE INTERACTION block ends at the first card that does not describe it.
     if (kw%name /= 'SURFACE BEHAVIOR' .and. kw%name /= 'FRICTION') p%interaction = 0
     select case (kw%name)
@@ -302,6 +305,38 @@ contains
       call reject_card(p, kw)
     end select
   end subroutine dispatch
+
+  !> Purpose: the name of a keyword of several words written without its
+  !> blanks (`SOLIDSECTION`), as CalculiX reads it (it drops every blank of
+  !> a keyword line), or the name unchanged.
+  pure function spaced_name(name) result(s)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: s
+    character(len=20), parameter :: spaced(*) = [character(len=20) :: &
+      'INITIAL CONDITIONS', 'SOLID SECTION', 'END STEP', 'NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', &
+      'CONTACT PAIR', 'CONTACT CONTROLS', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'NODAL THICKNESS', &
+      'SPECIFIC HEAT', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', 'NODE OUTPUT', 'ELEMENT OUTPUT', &
+      'CONTACT OUTPUT', 'CONTACT PRINT', 'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT']
+    integer :: i
+    s = name
+    if (index(name, ' ') > 0) return
+    do i = 1, size(spaced)
+      if (without_blanks(spaced(i)) == name) then
+        s = trim(spaced(i))
+        return
+      end if
+    end do
+  end function spaced_name
+
+  pure function without_blanks(t) result(r)
+    character(len=*), intent(in) :: t
+    character(len=:), allocatable :: r
+    integer :: i
+    r = ''
+    do i = 1, len_trim(t)
+      if (t(i:i) /= ' ') r = r // t(i:i)
+    end do
+  end function without_blanks
 
   !> Purpose: *HEADING: the first data line is the title; others are kept
   !> out of the model. The deck's own title wins over one from a file it
