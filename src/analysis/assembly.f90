@@ -19,7 +19,7 @@ module assembly
   implicit none
   private
   public :: body_t, element_counts_t, body_setup, assemble_stiffness, body_forces, free_residual, &
-            stress_recovery, solid_input, thermal_forces
+            stress_recovery, thermal_forces
 
   !> Stored element stiffness of every continuum element: the upper
   !> triangle of the symmetric nd x nd matrix of element e, column by

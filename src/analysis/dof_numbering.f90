@@ -13,7 +13,7 @@ module dof_numbering
   use ordering, only: rcm_order
   implicit none
   private
-  public :: dofmap_t, number_dofs, group_nodes
+  public :: dofmap_t, number_dofs
 
   type :: dofmap_t
     integer :: neq = 0

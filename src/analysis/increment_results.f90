@@ -24,7 +24,8 @@ module increment_results
     real(dp), allocatable :: set_sums(:, :)           ! (2, size(set_ids))
     logical :: has_stresses = .false.
     integer, allocatable :: nip(:)                    ! (ne)
-    real(dp), allocatable :: sig_ip(:, :, :)          ! (4, max_ip, ne)
+    real(dp), allocatable :: sig_ip(:, :, :)          ! (4, max_ip, ne); stress arrays are empty
+                                                      ! when no request asks for S or E
     real(dp), allocatable :: eps_ip(:, :, :)          ! (3, max_ip, ne)
     real(dp), allocatable :: sig_node(:, :)           ! (4, nn)
     real(dp), allocatable :: sig_elem(:, :)           ! (4, ne) element averages
@@ -66,21 +67,22 @@ contains
         res%set_sums(:, s) = res%set_sums(:, s) + rf(:, m%nsets(set_ids(s))%items(q))
       end do
     end do
-    allocate(res%nip(m%ne), res%sig_ip(4, max_ip, m%ne), res%eps_ip(3, max_ip, m%ne), res%sig_node(4, m%nn), &
-             res%sig_elem(4, m%ne))
     res%has_stresses = any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e)
     if (res%has_stresses) then
+      allocate(res%nip(m%ne), res%sig_ip(4, max_ip, m%ne), res%eps_ip(3, max_ip, m%ne), res%sig_node(4, m%nn), &
+               res%sig_elem(4, m%ne))
       call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp)
+      do e = 1, m%ne
+        res%sig_elem(:, e) = 0.0_dp
+        if (res%nip(e) > 0) res%sig_elem(:, e) = sum(res%sig_ip(:, 1:res%nip(e), e), dim=2) / res%nip(e)
+      end do
     else
+      ! nothing asks for stresses: no arrays of the model's size to fill
+      ! (on a million elements they would be half a gigabyte of zeros)
+      allocate(res%nip(m%ne), res%sig_ip(4, max_ip, 0), res%eps_ip(3, max_ip, 0), res%sig_node(4, 0), &
+               res%sig_elem(4, 0))
       res%nip = 0
-      res%sig_ip = 0.0_dp
-      res%eps_ip = 0.0_dp
-      res%sig_node = 0.0_dp
     end if
-    do e = 1, m%ne
-      res%sig_elem(:, e) = 0.0_dp
-      if (res%nip(e) > 0) res%sig_elem(:, e) = sum(res%sig_ip(:, 1:res%nip(e), e), dim=2) / res%nip(e)
-    end do
     call compute_contact_results(m, cs, u, res%contact)
     res%nclosed = count(cs%c(1:cs%n)%closed)
     call check_finite(m, res)
@@ -98,9 +100,11 @@ contains
     do a = 1, m%nn
       if (.not. all(ieee_is_finite(res%u(:, a)))) call stop_at('displacement', 'node', m%node_id(a))
       if (.not. all(ieee_is_finite(res%rf(:, a)))) call stop_at('reaction/internal force', 'node', m%node_id(a))
+    end do
+    do a = 1, size(res%sig_node, 2)
       if (.not. all(ieee_is_finite(res%sig_node(:, a)))) call stop_at('nodal stress', 'node', m%node_id(a))
     end do
-    do e = 1, m%ne
+    do e = 1, size(res%sig_ip, 3)
       if (.not. all(ieee_is_finite(res%sig_ip(:, :, e))) .or. .not. all(ieee_is_finite(res%eps_ip(:, :, e)))) &
         call stop_at('stress or strain', 'element', m%elem_id(e))
     end do

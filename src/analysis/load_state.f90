@@ -26,7 +26,7 @@ module load_state
   use assembly, only: thermal_forces
   implicit none
   private
-  public :: load_state_t, load_pattern_t, begin_step, values_at, amplitude_value, temperature_change_at
+  public :: load_state_t, load_pattern_t, begin_step, values_at, temperature_change_at
 
   type :: load_pattern_t
     integer :: elem = 0, label = 0, face = 0     ! what it is (dload_t)

@@ -20,6 +20,7 @@ module contact
   use strings, only: itoa
   use messages, only: fatal
   use model
+  use growable, only: append
   use element_catalogue, only: catalogue
   use mesh_topology, only: is_boundary_edge
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, &
@@ -30,7 +31,7 @@ module contact
   implicit none
   private
   public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
-            contact_switch, coupling_node, cfe_nodes, cfe_label
+            contact_switch, coupling_node, cfe_nodes
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -261,8 +262,8 @@ contains
         s = sl%nodes(k)
         call nearest_edge(m, x, ms, x(:, s), s, 0, dmax, best, tbest)
         if (best == 0) then
-          call append_int(unc, nunc, s)
-          call append_int(uncp, nunc_p, ip)
+          call append(unc, nunc, s)
+          call append(uncp, nunc_p, ip)
           cycle
         end if
         c = cfe_t()
@@ -317,8 +318,8 @@ contains
           end do
         end do
         if (ncoupled == 0) then
-          call append_int(unc, nunc, ed%node(3))
-          call append_int(uncp, nunc_p, ip)
+          call append(unc, nunc, ed%node(3))
+          call append(uncp, nunc_p, ip)
         end if
       end do
     end associate

@@ -26,7 +26,7 @@ module continuum_element
   use materials, only: elastic_matrix
   implicit none
   private
-  public :: continuum, strain_matrix, volume_factor
+  public :: continuum, volume_factor
 
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
 

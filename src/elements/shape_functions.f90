@@ -12,7 +12,7 @@ module shape_functions
   implicit none
   private
   public :: shape_at, quad4_shape, tri3_shape, line_shape, gauss_rule, gauss_line, load_rule, &
-            extrapolation, natural_of_node
+            extrapolation
 
   real(dp), parameter :: xi_node(8) = [-1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, -1.0_dp]
   real(dp), parameter :: eta_node(8) = [-1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 0.0_dp, 1.0_dp, 0.0_dp]

@@ -14,10 +14,10 @@
 module element_catalogue
   implicit none
   private
-  public :: element_type_t, catalogue, max_nodes, max_edges, max_ip, max_edge_nodes, &
-            shape_line2, shape_line3, shape_tri3, shape_quad4, shape_tri6, shape_quad8, &
-            state_none, state_plane_stress, state_plane_strain, state_axisymmetric, &
-            find_element_type, state_name, is_triangle, edge_node_count, unsupported_reason
+  public :: element_type_t, catalogue, max_nodes, max_edges, max_ip, shape_line2, shape_line3, &
+            shape_tri3, shape_quad4, shape_tri6, shape_quad8, state_none, state_plane_stress, &
+            state_plane_strain, state_axisymmetric, find_element_type, state_name, is_triangle, &
+            edge_node_count, unsupported_reason
 
   !> Geometric families (shape functions and natural coordinates).
   integer, parameter :: shape_line2 = 1, shape_tri3 = 2, shape_quad4 = 3, shape_line3 = 4, &

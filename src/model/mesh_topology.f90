@@ -7,7 +7,7 @@ module mesh_topology
   use element_catalogue, only: catalogue, max_edges, state_none
   implicit none
   private
-  public :: topology_t, build_topology, edge_owner, is_boundary_edge, edge_corners
+  public :: topology_t, build_topology, edge_owner, is_boundary_edge
 
   type :: topology_t
     integer :: ne = 0                       ! elements the topology was built for

@@ -13,7 +13,7 @@ module model
             equation_t, temp_t, &
             is_continuum, elem_nodes, &
             surf_element, surf_node, &
-            amp_step_time, amp_total_time, find_name, edge_nodes, append_int, step_dloads, &
+            amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif
 
   integer, parameter :: surf_element = 1, surf_node = 2
@@ -255,20 +255,4 @@ contains
       end if
     end do
   end function find_name
-
-  !> Append to a growable integer buffer holding n items.
-  pure subroutine append_int(buf, n, v)
-    integer, allocatable, intent(inout) :: buf(:)
-    integer, intent(inout) :: n
-    integer, intent(in) :: v
-    integer, allocatable :: tmp(:)
-    if (.not. allocated(buf)) allocate(buf(64))
-    if (n == size(buf)) then
-      allocate(tmp(2 * max(n, 32)))
-      tmp(1:n) = buf(1:n)
-      call move_alloc(tmp, buf)
-    end if
-    n = n + 1
-    buf(n) = v
-  end subroutine append_int
 end module model

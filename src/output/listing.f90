@@ -18,7 +18,7 @@ module listing
   use contact_results, only: pair_results_t
   implicit none
   private
-  public :: listing_t, open_listing, write_header, write_text
+  public :: listing_t, open_listing, write_header
 
   type, extends(analysis_observer_t) :: listing_t
     integer :: unit = 0

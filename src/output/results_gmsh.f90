@@ -17,7 +17,7 @@ module results_gmsh
   use increment_results, only: increment_results_t
   implicit none
   private
-  public :: result_file_t, open_result_file, write_result_views
+  public :: result_file_t, open_result_file
 
   character(len=1), parameter :: nl = new_line('a')
 

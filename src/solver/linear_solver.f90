@@ -23,12 +23,11 @@ module linear_solver
   use umfpack_backend, only: umfpack_backend_t
   implicit none
   private
-  public :: linear_system_t, solver_skyline, solver_cholmod, solver_umfpack, &
-            order_natural, order_rcm, order_amd, order_metis, &
-            sys_setup, sys_zero, sys_add, sys_analyse, sys_factor, sys_solve, sys_matvec, sys_free, &
-            sys_describe, sys_neq, sys_stored_entries, solver_name, ordering_name, &
-            factor_ok, factor_singular, factor_fallback, factor_not_posdef, &
-            sys_can_condense, sys_condensed_factor, sys_forward, sys_backward, sys_trailing_order, &
+  public :: linear_system_t, solver_skyline, solver_cholmod, solver_umfpack, order_natural, &
+            order_rcm, order_amd, order_metis, sys_setup, sys_zero, sys_add, sys_analyse, &
+            sys_factor, sys_solve, sys_matvec, sys_free, sys_describe, sys_neq, sys_stored_entries, &
+            solver_name, ordering_name, factor_ok, factor_singular, factor_fallback, &
+            factor_not_posdef, sys_condensed_factor, sys_forward, sys_backward, sys_trailing_order, &
             sys_factor_flops, sys_nlast, pivot_ratio_min
 
   type :: linear_system_t

@@ -7,7 +7,7 @@ module sparse_matrix
   use kinds, only: dp
   implicit none
   private
-  public :: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec, csc_position, csc_add_upper
+  public :: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec, csc_add_upper
 
   type :: csc_t
     integer :: n = 0
