@@ -19,7 +19,7 @@ def run(deck, outdir):
 def test_debug_build_examples():
     if not os.path.exists(DEBUG):
         raise Skip("build-debug/cfe2d not built (make debug)")
-    for name in ("cantilever", "blocks"):
+    for name in ("cantilever", "blocks", "shrink_fit"):
         r = run(os.path.join(ROOT, "input", "examples", name + ".inp"), os.path.join(WORK, "debug_" + name))
         assert r.returncode == 0, r.stderr
         assert "Fortran runtime" not in r.stderr, r.stderr

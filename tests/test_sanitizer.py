@@ -32,7 +32,7 @@ def need_build():
 
 def test_sanitizer_examples():
     need_build()
-    for name in ("cantilever", "blocks"):
+    for name in ("cantilever", "blocks", "shrink_fit"):
         r = run(os.path.join(ROOT, "input", "examples", name + ".inp"), os.path.join(WORK, "asan_" + name))
         clean(r, name)
         assert r.returncode == 0, r.stderr
