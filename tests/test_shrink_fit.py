@@ -126,7 +126,8 @@ def shrink_deck(shape, state, dt1, dt2, n_shaft=6, n_ring=8, n_around=4, nest=2,
     shaft, ring = meshes(shape, state, n_shaft, n_ring, n_around, nest)
     if state == "AX":
         held = "ENDS, 2, 2\n"
-        sets = f"*NSET, NSET=ENDS\n{ids(shaft.side('bottom') + shaft.side('top') + ring.side('bottom') + ring.side('top'))}"
+        ends = shaft.side('bottom') + shaft.side('top') + ring.side('bottom') + ring.side('top')
+        sets = f"*NSET, NSET=ENDS\n{ids(ends)}"
     else:
         held = "YSYM, 2, 2\nXSYM, 1, 1\n"
         sets = (f"*NSET, NSET=YSYM\n{ids(shaft.side('bottom') + ring.side('bottom'))}"
@@ -306,7 +307,8 @@ def example_deck():
              "** which checks it against the closed form of two Lame cylinders in plane strain:\n"
              f"** contact pressure {ref['p']:.4f} MPa, hoop stress {ref['hoop_shaft']:.4f} MPa at the shaft's\n"
              f"** bore (node set BORE), {ref['hoop_ring']:.4f} MPa at the ring's seat (SEAT, S33 is the hoop\n"
-             f"** stress), axial stress {ref['axial_shaft']:.4f} MPa in the shaft (S22), u_r {ref['u_a']:.6f} at the bore.\n")
+             f"** stress), axial stress {ref['axial_shaft']:.4f} MPa in the shaft (S22), u_r {ref['u_a']:.6f}\n"
+             "** at the bore.\n")
     head, rest = text.split("*NODE,", 1)
     return head + notes + "*NODE," + rest, shaft, ring
 
