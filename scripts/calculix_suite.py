@@ -7,15 +7,20 @@ fetch or unpack it anywhere), picks every deck with 2D continuum elements
 sorts the outcome:
 
   ran       exit status 0; the displacements are compared with CalculiX's
-            <deck>.dat.ref at the times both print (largest difference over
-            the largest reference displacement, common nodes only)
+            <deck>.dat.ref (its *NODE PRINT output) and <deck>.frd.ref (its
+            *NODE FILE output, ASCII) at the times both hold (largest
+            difference over the largest reference displacement, common nodes
+            only); each comparison names the file it used
   rejected  exit status 1 with "file:line: error: ..." (the first cause)
   crashed   anything else: a signal, a Fortran runtime error, a timeout
 
 The comparison is meaningful for plane strain and axisymmetric decks;
 CalculiX expands plane-stress elements into a layer of 3D bricks, whose
 answer differs from 2D plane stress by a few per cent, so those are
-reported but not judged.
+reported but not judged. With *NODE FILE, OUTPUT=3D CalculiX writes the
+nodes of its expanded 3D elements (new node numbers) instead of the deck's
+own: such a .frd.ref is reported as holding only expanded nodes, not
+compared.
 
   python3 scripts/calculix_suite.py CALCULIX/test [--cfe2d bin/cfe2d]
           [--out results/calculix] [--markdown docs/calculix-suite.md]
@@ -33,9 +38,11 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 
 from cfe2d_listing import read_listing  # noqa: E402
+from gmsh_results import read_msh  # noqa: E402
 
 __all__ = ["deck_element_types", "deck_keywords", "cfe2d_keywords", "run_deck", "read_dat_displacements",
-           "compare_displacements", "main"]
+           "read_frd_displacements", "frd_by_time", "cfe2d_displacements", "compare_displacements",
+           "compare_references", "main"]
 
 PLANE = re.compile(r"^(CPS|CPE|CAX)", re.I)
 TOLERANCE = 1e-3
@@ -152,43 +159,164 @@ def read_dat_displacements(path):
     return out
 
 
-def compare_displacements(listing_path, ref):
-    """Largest |u_cfe2d - u_ref| / largest |u_ref| over the nodes and times
-    both print (None when they share none), and the number of values."""
-    worst, scale, count = 0.0, 0.0, 0
+def _frd_number(text):
+    """A field of a .frd record; a blank field is 0, as Fortran reads it."""
+    text = text.strip()
+    return float(text) if text else 0.0
+
+
+def read_frd_displacements(path):
+    """The displacement blocks of an ASCII CalculiX result file (.frd), in
+    file order: a list of dicts with step, increment (from the 1PSTEP
+    record before the block), time (the total time of its 100C record) and
+    u {node: (d1, d2, d3)} (its -1 records, fixed columns: the values may
+    touch). Other result blocks are skipped. A binary file, or a record
+    that cannot be read, is a ValueError naming the line."""
+    out = []
+    step = inc = 0
+    head = None                 # (time, node field width) of the last 100C record
+    block = None
+    with open(path, "rb") as f:
+        data = f.read()
+    if b"\0" in data:
+        raise ValueError(f"{path}: a binary .frd is not read")
+    for no, raw in enumerate(data.decode("latin-1").splitlines(), 1):
+        # data records start with " -n" (the node number may follow without
+        # a blank), header records with a counter and a name: "    1PSTEP"
+        key = raw[:3].strip() if raw[:2] == " -" else (raw.split() or [""])[0]
+        try:
+            if key == "1PSTEP":
+                # counter, increment, step in columns 25-36, 37-48, 49-60 (blank: 0)
+                inc, step = (int(raw[a:a + 12].strip() or 0) for a in (36, 48))
+            elif key.startswith("100C"):
+                # column 75 is the format: 0 short (5-digit node numbers), 1 long (10)
+                width = 5 if raw[74:75] == "0" else 10
+                head = (_frd_number(raw[12:24]), width)
+                block = None
+            elif key == "-4":
+                block = None
+                if raw[3:].split()[0] == "DISP":
+                    if head is None:
+                        raise ValueError("a -4 DISP block without its 100C record")
+                    block = {"step": step, "increment": inc, "time": head[0], "u": {}}
+                    out.append(block)
+            elif key == "-1" and block is not None:
+                w = head[1]
+                vals = raw[3 + w:]
+                block["u"][int(raw[3:3 + w])] = tuple(_frd_number(vals[12 * k:12 * k + 12]) for k in range(3))
+            elif key == "-3":
+                block = None
+        except (ValueError, IndexError) as e:
+            raise ValueError(f"{path}:{no}: cannot read the record ({e})") from None
+    return out
+
+
+def frd_by_time(datasets):
+    """{time: {node: (d1, d2)}} of read_frd_displacements' blocks (the
+    last block of a time wins), the in-plane components."""
+    out = {}
+    for d in datasets:
+        out[d["time"]] = {n: v[:2] for n, v in d["u"].items()}
+    return out
+
+
+def cfe2d_displacements(listing_path):
+    """cfe2d's displacements {time: {node: (u1, u2)}} from the listing's
+    NODE U blocks (*NODE PRINT) and the Displacement views of <job>.msh
+    (*NODE FILE), and the model's node ids (all of them when the result
+    file exists, else those printed)."""
+    out, nodes = {}, set()
     for inc in read_listing(listing_path).increments:
-        t = min(ref, key=lambda r: abs(r - inc.time), default=None)
-        if t is None or abs(t - inc.time) > 1e-9 * max(1.0, abs(t)):
-            continue
         for b in inc.blocks:
-            if b.name != "NODE U":
+            if b.name == "NODE U":
+                vals = out.setdefault(inc.time, {})
+                for node, u1, u2 in zip(b["node"], b["U1"], b["U2"]):
+                    vals[int(node)] = (u1, u2)
+                    nodes.add(int(node))
+    msh = listing_path[:-4] + ".msh"
+    if os.path.exists(msh):
+        res = read_msh(msh)
+        nodes = {int(n) for n in res.node_ids}
+        for time, ids, vals in res.views.get("Displacement", []):
+            block = out.setdefault(time, {})
+            for n, v in zip(ids, vals):
+                block[int(n)] = (float(v[0]), float(v[1]))
+    return out, nodes
+
+
+def _same_time(a, b):
+    # small times are printed with 6 significant digits in a .frd
+    return abs(a - b) <= 1e-5 * max(abs(a), abs(b)) or abs(a - b) <= 1e-12
+
+
+def compare_displacements(ours, ref):
+    """Largest |u_cfe2d - u_ref| / largest |u_ref| over the nodes and times
+    both hold (None when they share none), and the number of values
+    compared. ours, ref: {time: {node: (u1, u2)}}."""
+    worst, scale, count = 0.0, 0.0, 0
+    for time, values in ours.items():
+        t = min(ref, key=lambda r: abs(r - time), default=None)
+        if t is None or not _same_time(t, time):
+            continue
+        for node, (u1, u2) in values.items():
+            r = ref[t].get(node)
+            if r is None:
                 continue
-            for node, u1, u2 in zip(b["node"], b["U1"], b["U2"]):
-                r = ref[t].get(int(node))
-                if r is None:
-                    continue
-                worst = max(worst, abs(u1 - r[0]), abs(u2 - r[1]))
-                scale = max(scale, abs(r[0]), abs(r[1]))
-                count += 1
+            worst = max(worst, abs(u1 - r[0]), abs(u2 - r[1]))
+            scale = max(scale, abs(r[0]), abs(r[1]))
+            count += 1
     if count == 0:
         return None, 0
     return (worst / scale if scale > 0 else worst), count
 
 
-def judge(state, rel):
+def judge(state, rel, count=0):
+    """The comparison's text: the difference, how many node values (nodes
+    times output times) it took, and the verdict."""
     if rel is None:
         return "no common output"
-    text = f"largest difference {rel:.2e} of the largest displacement"
+    text = f"largest difference {rel:.2e} of the largest displacement over {count} node values"
     if state in ("plane strain", "axisymmetric"):
         return text + (" (agrees)" if rel <= TOLERANCE else " (DIFFERS)")
     return text + " (plane stress: CalculiX solves a 3D layer, not judged)"
+
+
+def compare_frd(ours, nodes, path, state):
+    """The comparison text of a .frd.ref: only the deck's own nodes count
+    (with OUTPUT=3D CalculiX writes its expanded nodes, numbered after
+    them, instead)."""
+    try:
+        datasets = read_frd_displacements(path)
+    except ValueError as e:
+        return f"not read ({e})"
+    held = set().union(*(d["u"] for d in datasets))
+    if not held:
+        return "no displacements"
+    if not held & nodes:
+        return "only the expanded 3D nodes (OUTPUT=3D), none of the deck's: not compared"
+    return judge(state, *compare_displacements(ours, frd_by_time(datasets)))
+
+
+def compare_references(listing, testdir, job, state):
+    """The comparisons of a deck that ran, one per reference file present,
+    each naming its file: ".dat.ref: ...; .frd.ref: ..."."""
+    ours, nodes = cfe2d_displacements(listing)
+    parts = []
+    dat = os.path.join(testdir, job + ".dat.ref")
+    if os.path.exists(dat):
+        parts.append(".dat.ref: " + judge(state, *compare_displacements(ours, read_dat_displacements(dat))))
+    frd = os.path.join(testdir, job + ".frd.ref")
+    if os.path.exists(frd):
+        parts.append(".frd.ref: " + compare_frd(ours, nodes, frd, state))
+    return "; ".join(parts) if parts else "no .dat.ref or .frd.ref"
 
 
 def markdown(rows, testdir):
     counts = {k: sum(1 for r in rows if r["status"] == k) for k in ("ran", "rejected", "crashed")}
     lines = [f"{len(rows)} decks with 2D elements in `{testdir}`: {counts['ran']} ran, "
              f"{counts['rejected']} rejected, {counts['crashed']} crashed.", "",
-             "| deck | elements | state | outcome | first cause / comparison with .dat.ref | other cards cfe2d does not read |",
+             "| deck | elements | state | outcome | first cause / comparison with .dat.ref and .frd.ref | "
+             "other cards cfe2d does not read |",
              "|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['deck']} | {r['types']} | {r['state']} | {r['status']} | "
@@ -219,13 +347,8 @@ def main(argv=None):
         job = name[:-4]
         status, detail, listing = run_deck(args.cfe2d, deck, os.path.join(args.out, job), args.timeout)
         state = stress_state(plane)
-        ref_path = os.path.join(args.testdir, job + ".dat.ref")
         if status == "ran":
-            if os.path.exists(ref_path):
-                rel, _ = compare_displacements(listing, read_dat_displacements(ref_path))
-                detail = judge(state, rel)
-            else:
-                detail = "no .dat.ref"
+            detail = compare_references(listing, args.testdir, job, state)
         first = re.search(r"keyword \*(.+) is not implemented", detail)
         # (blanks do not count: cfe2d reads *SOLIDSECTION as *SOLID SECTION, as CalculiX does)
         unread = [k for k in deck_keywords(deck) if k.replace(" ", "") not in packed
