@@ -431,7 +431,39 @@ contains
       c%gap0 = xs_ref - matmul(ref%x, w)
       c%closed = dot_product(c%normal, xs - p) <= 0.0_dp
     end if
+    ! At a corner of the master surface the normal of whichever edge the
+    ! search met first would lean by half the corner's angle: a polygonal
+    ! curve meshed node on node then drifts in pressure along the arc.
+    if (t <= edge_tol) call blend_vertex_normal(m, x, ip, e, edge, ed%node(1), c%normal)
+    if (t >= 1.0_dp - edge_tol) call blend_vertex_normal(m, x, ip, e, edge, ed%node(2), c%normal)
   end subroutine make_cfe
+
+  !> Purpose: the normal at master corner node v: the mean of the normals
+  !> of the two master edges meeting there (edge k of element e and its
+  !> neighbour in the master surface); unchanged at an end of the surface.
+  !> Arguments: x current coordinates; ip pair; normal in: edge (e, k)'s
+  !> unit normal at v, out: the blended unit normal.
+  subroutine blend_vertex_normal(m, x, ip, e, k, v, normal)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    integer, intent(in) :: ip, e, k, v
+    real(dp), intent(inout) :: normal(2)
+    type(edge_t) :: nb
+    real(dp) :: p(2), dpdt(2), nsum(2)
+    integer :: j
+    associate(ms => m%surfaces(m%pairs(ip)%master_surface))
+      do j = 1, size(ms%elem)
+        if (ms%elem(j) == e .and. ms%edge(j) == k) cycle
+        nb = get_edge(m, x, ms%elem(j), ms%edge(j))
+        if (nb%node(1) /= v .and. nb%node(2) /= v) cycle
+        call edge_at(nb, merge(0.0_dp, 1.0_dp, nb%node(1) == v), p, dpdt)
+        nsum = normal + [dpdt(2), -dpdt(1)] / norm2(dpdt)
+        ! A fold back (a surface turning by nearly 180 degrees) has no mean.
+        if (norm2(nsum) > 0.5_dp) normal = nsum / norm2(nsum)
+        return
+      end do
+    end associate
+  end subroutine blend_vertex_normal
 
   !> Purpose: UPDATE SEARCH: pair again on the deformed configuration x. A
   !> slave point keeps the status it had in the same pair (the same node,
