@@ -78,17 +78,17 @@ def test_section_offset_zero_accepted_other_warned():
 
 def test_nodal_thickness():
     """NODAL THICKNESS with 0.5 at every node: the stretch of thickness 0.5
-    (the section's own line ignored); a thickness varying inside an element
-    is an error naming the section; *NODAL THICKNESS without a section
-    asking for it is a warning and changes nothing."""
+    (the section's own line ignored); a thickness that varies inside an
+    element (thicker at one corner) runs and stretches less than the
+    thinner block, more than the thicker one (closed forms for a varying
+    thickness: tests/test_nodal_thickness.py); *NODAL THICKNESS without a
+    section asking for it is a warning and changes nothing."""
     sec = "*SOLID SECTION, ELSET=BLOCK, MATERIAL=M, NODAL THICKNESS\n"
     run = run_deck("decks_nodal_t", block(sec, extra="*NODAL THICKNESS\nALLN, 0.5\n")).ok()
     assert rel_err(u_right(run)["U1"][0], P * 2.0 / (E * 1.0 * 0.5)) < 1e-12, u_right(run)["U1"]
     deck = block(sec, extra="*NODAL THICKNESS\nALLN, 0.5\n3, 0.6\n")
-    run = run_deck("decks_nodal_t_varies", deck)
-    line = deck.splitlines().index(sec.strip()) + 1
-    assert run.rc == 1 and f"decks_nodal_t_varies.inp:{line}: error:" in run.stderr, run.stderr
-    assert "varies inside element 2" in run.stderr, run.stderr
+    u = u_right(run_deck("decks_nodal_t_varies", deck).ok())["U1"]
+    assert P * 2.0 / (E * 0.6) < min(u) and max(u) < P * 2.0 / (E * 0.5), u
     deck = block(extra="*NODAL THICKNESS\nALLN, 0.5\n")
     run = run_deck("decks_nodal_t_unused", deck).ok()
     assert "*NODAL THICKNESS is ignored" in run.stderr, run.stderr

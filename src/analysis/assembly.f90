@@ -60,7 +60,7 @@ contains
     associate(sec => m%sections(m%elem_section(e)))
       ein%e = m%materials(sec%material)%e
       ein%nu = m%materials(sec%material)%nu
-      ein%thickness = sec%thickness
+      ein%thickness = elem_thickness(m, e)
       if (present(dtemp)) then
         ein%alpha = m%materials(sec%material)%alpha
         ein%dtemp(1:nen) = dtemp(nodes(1:nen))

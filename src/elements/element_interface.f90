@@ -32,7 +32,10 @@ module element_interface
     real(dp) :: xy(2, max_en) = 0.0_dp      ! nodal coordinates
     real(dp) :: ue(max_edof) = 0.0_dp       ! nodal displacements
     ! continuum elements
-    real(dp) :: e = 0.0_dp, nu = 0.0_dp, thickness = 1.0_dp
+    real(dp) :: e = 0.0_dp, nu = 0.0_dp
+    !> Thickness at each node (continuum elements), interpolated with the
+    !> shape functions; not used in axisymmetry.
+    real(dp) :: thickness(max_nodes) = 1.0_dp
     integer :: state = state_none           ! element_catalogue stress state
     integer :: nip = 0                      ! integration points (catalogue rule)
     !> Thermal strain: expansion coefficient and the nodal temperature

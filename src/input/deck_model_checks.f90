@@ -4,10 +4,10 @@
 !> element topology (edges and neighbours) is built last.
 submodule (deck_parser) deck_model_checks
   use kinds, only: dp
-  use strings, only: itoa, rtoa, to_upper
+  use strings, only: itoa, to_upper
   use deck_input, only: deck_warning
   use deck_cursor, only: err
-  use model, only: is_continuum, find_name, section_t
+  use model, only: is_continuum, find_name
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
                                state_axisymmetric
   use growable, only: grow
@@ -114,62 +114,38 @@ contains
     end select
   end function state_prefix
 
-  !> Purpose: sections with NODAL THICKNESS take their elements' thickness
-  !> from *NODAL THICKNESS. An element whose nodes have one thickness gets
-  !> it (through a copy of its section where elements differ); a thickness
-  !> that varies inside an element is not implemented (an error).
+  !> Purpose: sections with NODAL THICKNESS take the thickness at each
+  !> node of their plane elements from *NODAL THICKNESS (m%node_thickness;
+  !> the elements interpolate it). Every such node needs one; the
+  !> axisymmetric elements of such a section use none (their thickness is
+  !> the whole circumference, as in CalculiX).
   subroutine apply_nodal_thickness(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
-    integer :: e, s, k, nsec0
-    real(dp) :: t
+    integer :: e, s, k, nen
     if (p%nodal_thickness_line > 0 .and. .not. any(m%sections%nodal_thickness)) then
       call deck_warning(p%deck, p%nodal_thickness_line, 'no *SOLID SECTION has NODAL THICKNESS: the ' // &
                         'section thickness applies and *NODAL THICKNESS is ignored (as in CalculiX)')
     end if
     if (.not. any(m%sections%nodal_thickness)) return
     call grow(p%node_thickness, m%nn, fill=-1.0_dp)
-    nsec0 = size(m%sections)
     do e = 1, m%ne
       s = m%elem_section(e)
       if (s == 0) cycle
       if (.not. m%sections(s)%nodal_thickness) cycle
-      p%i = m%sections(s)%src%line
-      associate(t_nodes => p%node_thickness(m%conn(1:catalogue(m%etype(e))%nodes, e)))
-        if (any(t_nodes < 0.0_dp)) call err(p, 'NODAL THICKNESS: a node of element ' // itoa(m%elem_id(e)) // &
-            ' has no *NODAL THICKNESS')
-        if (maxval(t_nodes) - minval(t_nodes) > 1.0e-12_dp * maxval(t_nodes)) call err(p, &
-            'NODAL THICKNESS: the thickness varies inside element ' // itoa(m%elem_id(e)) // ' (' // &
-            rtoa(minval(t_nodes), 4) // ' to ' // rtoa(maxval(t_nodes), 4) // &
-            '); a thickness varying inside an element is not implemented')
-        t = t_nodes(1)
-      end associate
-      ! the section itself, or its copy with this thickness
-      if (.not. m%sections(s)%thickness_given) then
-        m%sections(s)%thickness = t
-        m%sections(s)%thickness_given = .true.
-      else if (m%sections(s)%thickness /= t) then
-        k = copy_with_thickness(m, s, t, nsec0)
-        m%elem_section(e) = k
-      end if
+      ! the section's thickness line (if any) is irrelevant, as in CalculiX
+      m%sections(s)%thickness_given = .true.
+      if (catalogue(m%etype(e))%state == state_axisymmetric) cycle
+      nen = catalogue(m%etype(e))%nodes
+      do k = 1, nen
+        if (p%node_thickness(m%conn(k, e)) >= 0.0_dp) cycle
+        p%i = m%sections(s)%src%line
+        call err(p, 'NODAL THICKNESS: node ' // itoa(m%node_id(m%conn(k, e))) // ' of element ' // &
+                 itoa(m%elem_id(e)) // ' has no *NODAL THICKNESS')
+      end do
     end do
+    m%node_thickness = p%node_thickness(1:m%nn)
   end subroutine apply_nodal_thickness
-
-  !> Index of the copy of section s with thickness t (made if needed;
-  !> copies are appended after the first nsec0 sections).
-  integer function copy_with_thickness(m, s, t, nsec0) result(k)
-    type(model_t), intent(inout) :: m
-    integer, intent(in) :: s, nsec0
-    real(dp), intent(in) :: t
-    type(section_t) :: c
-    do k = nsec0 + 1, size(m%sections)
-      if (m%sections(k)%src%line == m%sections(s)%src%line .and. m%sections(k)%thickness == t) return
-    end do
-    c = m%sections(s)
-    c%thickness = t
-    m%sections = [m%sections, c]
-    k = size(m%sections)
-  end function copy_with_thickness
 
   !> Purpose: warnings for a model that is probably meant to be plane
   !> strain but is plane stress: a plane-stress section without a

@@ -4,14 +4,14 @@
 module model
   use kinds, only: dp, name_len
   use solver_codes, only: solver_cholmod, order_amd
-  use element_catalogue, only: catalogue, state_none
+  use element_catalogue, only: catalogue, max_nodes, state_none
   use mesh_topology, only: topology_t
   implicit none
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
             equation_t, temp_t, &
-            is_continuum, elem_nodes, &
+            is_continuum, elem_nodes, elem_thickness, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif
@@ -71,7 +71,8 @@ module model
     !> each element type's own.
     integer :: state = 0
     logical :: thickness_given = .false.   ! a data line gave the thickness
-    !> NODAL THICKNESS: the thickness comes from *NODAL THICKNESS.
+    !> NODAL THICKNESS: the thickness at each node comes from *NODAL
+    !> THICKNESS (model_t%node_thickness), interpolated inside the element.
     logical :: nodal_thickness = .false.
   end type section_t
 
@@ -199,6 +200,9 @@ module model
     integer :: contact_solve = 0
     !> *INITIAL CONDITIONS, TYPE=TEMPERATURE (nodes not named start at 0).
     type(temp_t), allocatable :: initial_temps(:)
+    !> *NODAL THICKNESS by node (nn), for the sections with NODAL
+    !> THICKNESS; allocated only when a section asks for it.
+    real(dp), allocatable :: node_thickness(:)
   end type model_t
 
 contains
@@ -210,6 +214,25 @@ contains
     integer, intent(in) :: e
     is_continuum = catalogue(m%etype(e))%state /= state_none
   end function is_continuum
+
+  !> Purpose: the thickness of continuum element e at each of its nodes
+  !> (entries beyond its nodes are 1): its section's, or with NODAL
+  !> THICKNESS the nodes' own (the element interpolates them).
+  pure function elem_thickness(m, e) result(t)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    real(dp) :: t(max_nodes)
+    integer :: n
+    t = 1.0_dp
+    n = elem_nodes(m, e)
+    associate(sec => m%sections(m%elem_section(e)))
+      if (sec%nodal_thickness .and. allocated(m%node_thickness)) then
+        t(1:n) = m%node_thickness(m%conn(1:n, e))
+      else
+        t(1:n) = sec%thickness
+      end if
+    end associate
+  end function elem_thickness
 
   !> Number of nodes of element e.
   pure integer function elem_nodes(m, e)
