@@ -6,12 +6,15 @@
 !> displacement field (distorted and curved elements) and, for the
 !> quadratic elements, for a quadratic field (straight-sided elements);
 !> consistent nodal loads of pressure and body forces, also with a
-!> thickness that varies inside the element.
+!> thickness that varies inside the element. The truss and the springs:
+!> their stiffness in closed form for an inclined member, and the truss's
+!> axial stress and thermal load.
 program test_elements
   use kinds, only: dp
   use test_report, only: report, failures
-  use element_interface, only: elem_in_t, elem_out_t, kind_tri3, kind_quad8, act_tangent, act_residual, &
-                               act_stresses
+  use element_interface, only: elem_in_t, elem_out_t, kind_tri3, kind_quad8, kind_truss2, kind_truss3, &
+                               kind_spring1, kind_spring2, kind_springa, act_tangent, act_residual, act_stresses, &
+                               act_thermal
   use element_catalogue, only: state_plane_stress, state_axisymmetric, max_nodes, find_element_type, catalogue
   use element_library, only: element_routine
   use shape_functions, only: shape_at, gauss_rule
@@ -44,6 +47,8 @@ program test_elements
   end do
   call check_loads()
   call check_varying_thickness()
+  call check_truss()
+  call check_springs()
   if (failures() > 0) stop 1
 
 contains
@@ -353,4 +358,88 @@ contains
     write(msg, '(a,es9.2)') 'relative error ', err
     call report('uniform strain, thickness 1 + x: internal forces integral of B^T sigma t', err < 1.0e-14_dp, msg)
   end subroutine check_varying_thickness
+
+  !> A bar from (1, 2) along (cos a, sin a), length L: ke = E A / L (g g^T)
+  !> with g = (-c, -s, c, s); a 3-node bar (middle node at the middle) is
+  !> as stiff for a linear field; stresses E eps; the thermal load E A
+  !> alpha dT at the ends.
+  subroutine check_truss()
+    real(dp), parameter :: ang = 0.7_dp, len = 2.5_dp, e = 200.0_dp, area = 0.3_dp
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: g(4), err, dir(2), x2(2), u(4)
+    character(len=160) :: msg
+    integer :: i
+    dir = [cos(ang), sin(ang)]
+    x2 = [1.0_dp, 2.0_dp] + len * dir
+    g = [-dir, dir]
+    ein%kind = kind_truss2
+    ein%nen = 2
+    ein%nip = 1
+    ein%e = e
+    ein%area = area
+    ein%xy(:, 1:2) = reshape([1.0_dp, 2.0_dp, x2], [2, 2])
+    u = [0.1_dp, -0.2_dp, 0.4_dp, 0.3_dp]
+    ein%ue(1:4) = u
+    ein%alpha = 1.0e-5_dp
+    ein%dtemp(1:2) = 50.0_dp
+    call element_routine(ior(ior(act_tangent, act_stresses), act_thermal), ein, eout)
+    err = 0.0_dp
+    do i = 1, 4
+      err = max(err, maxval(abs(eout%ke(1:4, i) - e * area / len * g(i) * g)))
+    end do
+    err = err / (e * area / len)
+    err = err + abs(eout%sig_ip(1, 1) - e * (dot_product(g, u) / len - 1.0e-5_dp * 50.0_dp)) / e
+    err = err + maxval(abs(eout%fe(1:4) - e * area * 1.0e-5_dp * 50.0_dp * g)) / (e * area)
+    write(msg, '(a,es9.2)') 'relative error ', err
+    call report('inclined 2-node truss: E A / L g g^T, axial stress, thermal load', err < 1.0e-14_dp, msg)
+    ! the 3-node truss lists end, middle, end
+    ein%kind = kind_truss3
+    ein%nen = 3
+    ein%nip = 2
+    ein%xy(:, 1:3) = reshape([1.0_dp, 2.0_dp, [1.0_dp, 2.0_dp] + 0.5_dp * len * dir, x2], [2, 3])
+    ein%ue(1:6) = [u(1:2), 0.5_dp * (u(1:2) + u(3:4)), u(3:4)]
+    ein%dtemp(1:3) = 50.0_dp
+    call element_routine(ior(ior(act_tangent, act_stresses), act_residual), ein, eout)
+    err = maxval(abs(eout%sig_ip(1, 1:2) - e * (dot_product(g, u) / len - 1.0e-5_dp * 50.0_dp))) / e
+    ! fe = ke ue for the linear field: end forces E A eps (-dir, dir), none at the middle
+    err = err + maxval(abs(eout%fe(1:6) - e * area * dot_product(g, u) / len * [g(1:2), 0.0_dp, 0.0_dp, g(3:4)])) &
+          / (e * area)
+    write(msg, '(a,es9.2)') 'relative error ', err
+    call report('3-node truss: axial stress and end forces of a linear field', err < 1.0e-13_dp, msg)
+  end subroutine check_truss
+
+  !> SPRING1 on dof 2: k at (2, 2) only; SPRING2 from dof 1 to dof 2:
+  !> k g g^T, g = (1, 0, 0, -1); SPRINGA along (3, 4) / 5: k g g^T.
+  subroutine check_springs()
+    real(dp), parameter :: k = 7.0_dp
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: g(4), err
+    character(len=160) :: msg
+    integer :: i
+    ein%stiffness = k
+    ein%kind = kind_spring1
+    ein%nen = 1
+    ein%dofs = [2, 0]
+    call element_routine(act_tangent, ein, eout)
+    err = abs(eout%ke(2, 2) - k) + abs(eout%ke(1, 1)) + abs(eout%ke(1, 2)) + abs(eout%ndof - 2)
+    ein%kind = kind_spring2
+    ein%nen = 2
+    ein%dofs = [1, 2]
+    call element_routine(act_tangent, ein, eout)
+    g = [1.0_dp, 0.0_dp, 0.0_dp, -1.0_dp]
+    do i = 1, 4
+      err = err + maxval(abs(eout%ke(1:4, i) - k * g(i) * g))
+    end do
+    ein%kind = kind_springa
+    ein%xy(:, 1:2) = reshape([1.0_dp, 1.0_dp, 4.0_dp, 5.0_dp], [2, 2])
+    call element_routine(act_tangent, ein, eout)
+    g = [-0.6_dp, -0.8_dp, 0.6_dp, 0.8_dp]
+    do i = 1, 4
+      err = err + maxval(abs(eout%ke(1:4, i) - k * g(i) * g))
+    end do
+    write(msg, '(a,es9.2)') 'error ', err
+    call report('springs: SPRING1, SPRING2 and SPRINGA stiffness', err < 1.0e-14_dp, msg)
+  end subroutine check_springs
 end program test_elements
