@@ -1,7 +1,8 @@
 """Decks and meshes written for CalculiX, Abaqus and gmsh, read as those
 programs read them: lenient *NODE lines, *SOLID SECTION with OFFSET=,
 NODAL THICKNESS and STATE= (plane strain from a mesh that says CPS4),
-*NODAL THICKNESS, the deck's own *HEADING over an included one, a hint
+*NODAL THICKNESS, *BOUNDARY on dof 3 held at zero, the deck's own
+*HEADING over an included one, a hint
 when a node set exists only as an element set, cards that would change
 the physics stopped at their line, cards that cannot change it warned
 about, and *EQUATION read and refused until the analysis imposes it."""
@@ -77,21 +78,37 @@ def test_section_offset_zero_accepted_other_warned():
 
 def test_nodal_thickness():
     """NODAL THICKNESS with 0.5 at every node: the stretch of thickness 0.5
-    (the section's own line ignored); a thickness varying inside an element
-    is an error naming the section; *NODAL THICKNESS without a section
-    asking for it is a warning and changes nothing."""
+    (the section's own line ignored); a thickness that varies inside an
+    element (thicker at one corner) runs and stretches less than the
+    thinner block, more than the thicker one (closed forms for a varying
+    thickness: tests/test_nodal_thickness.py); *NODAL THICKNESS without a
+    section asking for it is a warning and changes nothing."""
     sec = "*SOLID SECTION, ELSET=BLOCK, MATERIAL=M, NODAL THICKNESS\n"
     run = run_deck("decks_nodal_t", block(sec, extra="*NODAL THICKNESS\nALLN, 0.5\n")).ok()
     assert rel_err(u_right(run)["U1"][0], P * 2.0 / (E * 1.0 * 0.5)) < 1e-12, u_right(run)["U1"]
     deck = block(sec, extra="*NODAL THICKNESS\nALLN, 0.5\n3, 0.6\n")
-    run = run_deck("decks_nodal_t_varies", deck)
-    line = deck.splitlines().index(sec.strip()) + 1
-    assert run.rc == 1 and f"decks_nodal_t_varies.inp:{line}: error:" in run.stderr, run.stderr
-    assert "varies inside element 2" in run.stderr, run.stderr
+    u = u_right(run_deck("decks_nodal_t_varies", deck).ok())["U1"]
+    assert P * 2.0 / (E * 0.6) < min(u) and max(u) < P * 2.0 / (E * 0.5), u
     deck = block(extra="*NODAL THICKNESS\nALLN, 0.5\n")
     run = run_deck("decks_nodal_t_unused", deck).ok()
     assert "*NODAL THICKNESS is ignored" in run.stderr, run.stderr
     assert rel_err(u_right(run)["U1"][0], P * 2.0 / (E * 2.0)) < 1e-12
+
+
+def test_out_of_plane_dof_held_at_zero():
+    """*BOUNDARY over dofs 1 to 3, or 3 alone, with a zero value (CalculiX
+    decks hold their springs' and trusses' nodes so): a 2D model has no
+    dof 3, so the answer is that of the deck without it; a non-zero value
+    on dof 3 is an error at its line."""
+    plain = u_right(run_deck("decks_dof12", block()).ok())["U1"]
+    deck = block().replace("1, 2, 2\n", "1, 1, 3\n4, 3, 3\nALLN, 3\n", 1)
+    assert "4, 3, 3" in deck
+    held = u_right(run_deck("decks_dof3", deck).ok())["U1"]
+    assert (held == plain).all(), (held, plain)
+    bad = block().replace("1, 2, 2\n", "1, 2, 2\n4, 3, 3, 0.1\n", 1)
+    run = run_deck("decks_dof3_moved", bad)
+    line = bad.splitlines().index("4, 3, 3, 0.1") + 1
+    assert run.rc == 1 and f"decks_dof3_moved.inp:{line}: error: dofs must satisfy" in run.stderr, run.stderr
 
 
 def test_state_plane_strain_from_a_cps_mesh():

@@ -14,6 +14,7 @@ module assembly
   use contact, only: contact_set_t, cfe_input
   use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses, act_thermal
   use element_library, only: element_routine
+  use body_elements, only: body_input, body_alpha
   use linear_solver, only: linear_system_t, sys_zero, sys_add
   use dof_numbering, only: dofmap_t
   implicit none
@@ -21,7 +22,7 @@ module assembly
   public :: body_t, element_counts_t, body_setup, assemble_stiffness, body_forces, free_residual, &
             stress_recovery, thermal_forces
 
-  !> Stored element stiffness of every continuum element: the upper
+  !> Stored element stiffness of every body element: the upper
   !> triangle of the symmetric nd x nd matrix of element e, column by
   !> column, in ke(kptr(e) : kptr(e+1)-1).
   type :: body_t
@@ -37,39 +38,8 @@ module assembly
 
 contains
 
-  !> Purpose: element data of continuum element e at displacements u and,
-  !> if given, nodal temperature changes dtemp(nn) from the initial state.
-  subroutine solid_input(m, e, u, ein, nodes, dtemp)
-    type(model_t), intent(in) :: m
-    integer, intent(in) :: e
-    real(dp), intent(in) :: u(:, :)
-    real(dp), intent(in), optional :: dtemp(:)
-    type(elem_in_t), intent(out) :: ein
-    integer, intent(out) :: nodes(:)
-    integer :: k, nen
-    nen = elem_nodes(m, e)
-    ein%nen = nen
-    ein%kind = catalogue(m%etype(e))%shape
-    ein%state = catalogue(m%etype(e))%state
-    ein%nip = catalogue(m%etype(e))%nip
-    nodes(1:nen) = m%conn(1:nen, e)
-    do k = 1, nen
-      ein%xy(:, k) = m%x(:, nodes(k))
-      ein%ue(2 * k - 1:2 * k) = u(:, nodes(k))
-    end do
-    associate(sec => m%sections(m%elem_section(e)))
-      ein%e = m%materials(sec%material)%e
-      ein%nu = m%materials(sec%material)%nu
-      ein%thickness = sec%thickness
-      if (present(dtemp)) then
-        ein%alpha = m%materials(sec%material)%alpha
-        ein%dtemp(1:nen) = dtemp(nodes(1:nen))
-      end if
-    end associate
-  end subroutine solid_input
-
   !> Purpose: f = f + the equivalent nodal loads of the thermal strain of
-  !> every continuum element at nodal temperature changes dtemp(nn).
+  !> every body element at nodal temperature changes dtemp(nn).
   subroutine thermal_forces(m, dtemp, f)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: dtemp(:)
@@ -81,11 +51,9 @@ contains
     allocate(u0(2, m%nn))
     u0 = 0.0_dp
     do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
-      associate(mat => m%materials(m%sections(m%elem_section(e))%material))
-        if (mat%alpha == 0.0_dp) cycle
-      end associate
-      call solid_input(m, e, u0, ein, nodes, dtemp)
+      if (.not. carries_stiffness(m, e)) cycle
+      if (body_alpha(m, e) == 0.0_dp) cycle
+      call body_input(m, e, u0, ein, nodes, dtemp)
       if (all(ein%dtemp(1:ein%nen) == 0.0_dp)) cycle
       call element_routine(act_thermal, ein, eout)
       do k = 1, ein%nen
@@ -94,7 +62,8 @@ contains
     end do
   end subroutine thermal_forces
 
-  !> Purpose: computes and keeps the stiffness of every continuum element.
+  !> Purpose: computes and keeps the stiffness of every body element
+  !> (continuum elements, trusses, springs).
   subroutine body_setup(m, body, counts)
     type(model_t), intent(in) :: m
     type(body_t), intent(out) :: body
@@ -108,13 +77,13 @@ contains
     body%kptr(1) = 1
     do e = 1, m%ne
       nd = 0
-      if (is_continuum(m, e)) nd = 2 * elem_nodes(m, e)
+      if (carries_stiffness(m, e)) nd = 2 * elem_nodes(m, e)
       body%kptr(e + 1) = body%kptr(e) + int(nd, 8) * (nd + 1) / 2
     end do
     allocate(body%ke(body%kptr(m%ne + 1) - 1))
     do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
-      call solid_input(m, e, u0, ein, nodes)
+      if (.not. carries_stiffness(m, e)) cycle
+      call body_input(m, e, u0, ein, nodes)
       call element_routine(act_tangent, ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
       if (.not. eout%detj_min > 0.0_dp) call fatal('element ' // itoa(m%elem_id(e)) // ' (' // &
@@ -174,7 +143,7 @@ contains
     real(dp) :: ke(2 * max_en, 2 * max_en)
     call sys_zero(sys)
     do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
+      if (.not. carries_stiffness(m, e)) cycle
       nd = 2 * elem_nodes(m, e)
       call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
       call sys_add(sys, e, ke(1:nd, 1:nd))
@@ -202,7 +171,7 @@ contains
     integer :: e, k, nen, nd
     fint = 0.0_dp
     do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
+      if (.not. carries_stiffness(m, e)) cycle
       nen = elem_nodes(m, e)
       nd = 2 * nen
       do k = 1, nen
@@ -230,10 +199,11 @@ contains
     end do
   end subroutine free_residual
 
-  !> Purpose: integration-point stresses and strains of every continuum
-  !> element, and nodal stresses extrapolated from them and averaged over
-  !> the elements that share the node (nodes are never shared across
-  !> bodies, so this is an average per body).
+  !> Purpose: integration-point stresses and strains of every body element
+  !> (a truss: its axial stress and strain), and nodal stresses of the
+  !> continuum elements extrapolated from them and averaged over the
+  !> elements that share the node (nodes are never shared across bodies,
+  !> so this is an average per body).
   !> Arguments: nip(ne), sig_ip(4, max_ip, ne), eps_ip(3, max_ip, ne),
   !> sig_node(4, nn); dtemp(nn) the nodal temperature changes if any.
   subroutine stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node, counts, dtemp)
@@ -254,13 +224,14 @@ contains
     eps_ip = 0.0_dp
     sig_node = 0.0_dp
     do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
-      call solid_input(m, e, u, ein, nodes, dtemp)
+      if (.not. carries_stiffness(m, e)) cycle
+      call body_input(m, e, u, ein, nodes, dtemp)
       call element_routine(act_stresses, ein, eout)
       counts%continuum_stresses = counts%continuum_stresses + 1
       nip(e) = eout%nip
       sig_ip(:, 1:eout%nip, e) = eout%sig_ip(:, 1:eout%nip)
       eps_ip(:, 1:eout%nip, e) = eout%eps_ip(:, 1:eout%nip)
+      if (.not. is_continuum(m, e)) cycle
       do i = 1, ein%nen
         sig_node(:, nodes(i)) = sig_node(:, nodes(i)) + eout%sig_node(:, i)
         cnt(nodes(i)) = cnt(nodes(i)) + 1

@@ -21,7 +21,7 @@
 module condensed_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
-  use model, only: model_t, is_continuum, elem_nodes
+  use model, only: model_t, carries_stiffness, elem_nodes
   use solver_codes, only: solver_cholmod, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces
   use element_interface, only: elem_in_t, elem_out_t, max_en, max_edof, act_tangent
@@ -356,7 +356,7 @@ contains
     moved = du(1, :) /= 0.0_dp .or. du(2, :) /= 0.0_dp
     if (.not. any(moved)) return
     do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
+      if (.not. carries_stiffness(m, e)) cycle
       nen = elem_nodes(m, e)
       any_moved = .false.
       do k = 1, nen

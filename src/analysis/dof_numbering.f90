@@ -23,8 +23,9 @@ module dof_numbering
 
 contains
 
-  !> Purpose: nodes of assembly group g: continuum element g, or CFE
-  !> g - ne (slave nodes first); no nodes for line elements.
+  !> Purpose: nodes of assembly group g: body element g, or CFE g - ne
+  !> (slave nodes first); no nodes for elements without stiffness (line
+  !> elements that only describe boundaries).
   pure subroutine group_nodes(m, cs, g, nodes, nen)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
@@ -32,7 +33,7 @@ contains
     integer, intent(out) :: nodes(:), nen
     if (g <= m%ne) then
       nen = 0
-      if (.not. is_continuum(m, g)) return
+      if (.not. carries_stiffness(m, g)) return
       nen = elem_nodes(m, g)
       nodes(1:nen) = m%conn(1:nen, g)
     else
@@ -40,7 +41,7 @@ contains
     end if
   end subroutine group_nodes
 
-  !> Node graph of continuum elements and CFEs in compressed form.
+  !> Node graph of body elements and CFEs in compressed form.
   subroutine node_graph(m, cs, xadj, adj)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs

@@ -273,7 +273,7 @@ contains
         .not. m%materials(m%sections(sec)%material)%has_density) &
       call fatal('gravity or centrifugal load on element ' // itoa(m%elem_id(e)) // ' needs the density of ' // &
                  'material ' // trim(m%materials(m%sections(sec)%material)%name) // ' (*DENSITY)')
-    associate(t => m%sections(sec)%thickness)
+    associate(t => elem_thickness(m, e))
       select case (d%label)
       case (dload_p)
         call face_pressure_load(et, xy, t, d%face, pt%f)

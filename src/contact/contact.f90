@@ -311,7 +311,7 @@ contains
             ncoupled = ncoupled + 1
             w = edge_weights(ed, t)
             call edge_at(ref, t, pref, dpdt)
-            area = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, pref(1))
+            area = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
             c = cfe_t(ns=3, snode=ed%node, sw=w, selem=sl%elem(f), sedge=sl%edge(f), sip=npts)
             call make_cfe(m, x, ip, pref, p, ms%elem(best), ms%edge(best), tbest, area, h, em, c)
             call add_cfe(cs, c)

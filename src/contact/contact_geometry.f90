@@ -1,14 +1,14 @@
 !> Geometry of element edges for contact: a 2-node (straight) or 3-node
 !> (curved, quadratic) edge in a given configuration, points and tangents
 !> along it, the orthogonal projection of a point onto it, the consistent
-!> areas of its nodes (integral of N_i over the edge, times the thickness,
-!> or 2 pi r in axisymmetry), and the natural coordinates in the element
+!> areas of its nodes (integral of N_i over the edge, times the thickness
+!> interpolated along it, or 2 pi r in axisymmetry), and the natural coordinates in the element
 !> of a point of the edge. Positions along an edge are t in [0, 1] from
 !> its first corner to its second (counter-clockwise around the element).
 module contact_geometry
   use kinds, only: dp
-  use model, only: model_t, edge_nodes
-  use element_catalogue, only: catalogue, is_triangle, state_axisymmetric, edge_node_count
+  use model, only: model_t, edge_nodes, elem_thickness
+  use element_catalogue, only: catalogue, max_nodes, is_triangle, state_axisymmetric, edge_node_count
   use shape_functions, only: line_shape, gauss_line
   implicit none
   private
@@ -23,7 +23,7 @@ module contact_geometry
     integer :: node(3) = 0            ! first corner, second corner, mid-side node
     real(dp) :: x(2, 3) = 0.0_dp      ! their coordinates in the configuration asked for
     logical :: axi = .false.
-    real(dp) :: thickness = 1.0_dp
+    real(dp) :: thickness(3) = 1.0_dp ! at its nodes (plane elements)
   end type edge_t
 
 contains
@@ -35,16 +35,18 @@ contains
     real(dp), intent(in) :: x(:, :)
     integer, intent(in) :: e, k
     type(edge_t) :: ed
+    real(dp) :: te(max_nodes)
     integer :: j
     ed%elem = e
     ed%k = k
     ed%nn = edge_node_count(m%etype(e), k)
     call edge_nodes(m, e, k, ed%node(1), ed%node(2), ed%node(3))
+    te = elem_thickness(m, e)
     do j = 1, ed%nn
       ed%x(:, j) = x(:, ed%node(j))
+      ed%thickness(j) = te(catalogue(m%etype(e))%edge(j, k))
     end do
     ed%axi = catalogue(m%etype(e))%state == state_axisymmetric
-    ed%thickness = m%sections(m%elem_section(e))%thickness
   end function get_edge
 
   !> Purpose: shape-function weights w(1:nn) of the edge's nodes at t.
@@ -112,35 +114,40 @@ contains
     d = dot_product(xs - p, nvec)
   end subroutine project_to_edge
 
-  !> Purpose: area per unit length at a point of the edge at radius r:
-  !> the thickness, or 2 pi r in axisymmetry (whole ring).
-  pure real(dp) function area_factor(ed, r)
+  !> Purpose: area per unit length at position t of the edge, at radius
+  !> r: the thickness there, or 2 pi r in axisymmetry (whole ring).
+  pure real(dp) function area_factor(ed, t, r)
     type(edge_t), intent(in) :: ed
-    real(dp), intent(in) :: r
+    real(dp), intent(in) :: t, r
+    real(dp) :: w(3)
     if (ed%axi) then
       area_factor = two_pi * r
     else
-      area_factor = ed%thickness
+      w = edge_weights(ed, t)
+      area_factor = dot_product(w(1:ed%nn), ed%thickness(1:ed%nn))
     end if
   end function area_factor
 
   !> Purpose: consistent areas a(1:nn) of the edge's nodes, the integral of
   !> N_i over the edge's area (length times thickness, or the ring surface
-  !> 2 pi r ds). A straight plane edge gives half its area to each corner.
+  !> 2 pi r ds). A straight plane edge of one thickness gives half its
+  !> area to each corner; three Gauss points are exact for a thickness
+  !> quadratic along the edge.
   pure function edge_areas(ed) result(a)
     type(edge_t), intent(in) :: ed
-    real(dp) :: a(3), s(3), w(3), n(3), ds(3), p(2), dpdt(2)
+    real(dp) :: a(3), s(3), w(3), n(3), ds(3), p(2), dpdt(2), t
     integer :: ig
     a = 0.0_dp
-    if (ed%nn == 2 .and. .not. ed%axi) then
-      a(1:2) = 0.5_dp * edge_length(ed) * ed%thickness
+    if (ed%nn == 2 .and. .not. ed%axi .and. ed%thickness(1) == ed%thickness(2)) then
+      a(1:2) = 0.5_dp * edge_length(ed) * ed%thickness(1)
       return
     end if
     call gauss_line(3, s, w)
     do ig = 1, 3
-      call edge_at(ed, 0.5_dp * (s(ig) + 1.0_dp), p, dpdt)
+      t = 0.5_dp * (s(ig) + 1.0_dp)
+      call edge_at(ed, t, p, dpdt)
       call line_shape(ed%nn, s(ig), n, ds)
-      a = a + n * (0.5_dp * w(ig) * norm2(dpdt) * area_factor(ed, p(1)))
+      a = a + n * (0.5_dp * w(ig) * norm2(dpdt) * area_factor(ed, t, p(1)))
     end do
   end function edge_areas
 

@@ -11,6 +11,10 @@
 !> concentrated load, a reaction and a contact force are totals over the
 !> ring (the section thickness is not used).
 !>
+!> Plane elements: the thickness is interpolated from its nodal values
+!> with the shape functions (*NODAL THICKNESS may vary inside an
+!> element); a constant thickness is the same at every node.
+!>
 !> Thermal strain eps0 = alpha dT (1, 1, 0, 1), dT interpolated from the
 !> nodal temperature changes, is an initial strain: stresses D (eps -
 !> eps0), load integral B^T D eps0. The fourth component is the
@@ -85,7 +89,7 @@ contains
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     real(dp) :: d(4, 4), n(max_nodes), dn(2, max_nodes), b(4, 2 * max_nodes), db(4, 2 * max_nodes)
-    real(dp) :: xg(2, max_ip), wg(max_ip), ex(max_nodes, max_ip), detj, r, eps(4), sig(4), eps0(4)
+    real(dp) :: xg(2, max_ip), wg(max_ip), ex(max_nodes, max_ip), detj, r, eps(4), sig(4), eps0(4), dv
     integer :: ip, i, j, nen, nd
     logical :: need_k
     nen = ein%nen
@@ -105,11 +109,11 @@ contains
         eout%detj_min = min(eout%detj_min, detj)
       end if
       eps0 = ein%alpha * dot_product(n(1:nen), ein%dtemp(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
-      if (wants(action, act_thermal)) eout%fe(1:nd) = eout%fe(1:nd) + &
-        matmul(matmul(eps0, d), b(:, 1:nd)) * (volume_factor(ein%state, detj, r, ein%thickness) * wg(ip))
+      dv = volume_factor(ein%state, detj, r, dot_product(n(1:nen), ein%thickness(1:nen))) * wg(ip)
+      if (wants(action, act_thermal)) eout%fe(1:nd) = eout%fe(1:nd) + matmul(matmul(eps0, d), b(:, 1:nd)) * dv
       if (need_k) then
         ! upper triangle of B^T D B, mirrored below after the loop
-        db(:, 1:nd) = matmul(d, b(:, 1:nd)) * (volume_factor(ein%state, detj, r, ein%thickness) * wg(ip))
+        db(:, 1:nd) = matmul(d, b(:, 1:nd)) * dv
         do j = 1, nd
           do i = 1, j
             eout%ke(i, j) = eout%ke(i, j) + b(1, i) * db(1, j) + b(2, i) * db(2, j) + b(3, i) * db(3, j) &

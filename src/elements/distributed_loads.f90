@@ -1,9 +1,10 @@
 !> Consistent nodal loads of distributed loads on one continuum element:
 !> a pressure on a face (straight or curved, two or three nodes) and a
 !> body force per unit volume that may vary linearly in space (gravity, a
-!> constant body force, a centrifugal load). Forces are per unit
-!> thickness times the section thickness, or over the whole circumference
-!> (2 pi r) for axisymmetric elements, as the element matrices.
+!> constant body force, a centrifugal load). Forces are integrated over
+!> the thickness (interpolated from the element's nodal thicknesses, along
+!> the face for a pressure), or over the whole circumference (2 pi r) for
+!> axisymmetric elements, as the element matrices.
 module distributed_loads
   use kinds, only: dp
   use element_catalogue, only: catalogue, max_nodes, max_ip, edge_node_count
@@ -18,27 +19,30 @@ contains
   !> Purpose: nodal forces f(2, nodes) of a unit pressure on face k of an
   !> element of catalogue type et with nodes at xy; a positive pressure
   !> pushes into the element (against the outward normal), as Abaqus Pk.
-  !> Three Gauss points along the face: exact for a curved 3-node face in
-  !> plane and axisymmetric elements.
+  !> thickness(nodes) holds the element's nodal thicknesses. Three Gauss
+  !> points along the face: exact for a curved 3-node face in plane and
+  !> axisymmetric elements, and for a thickness quadratic along it.
   pure subroutine face_pressure_load(et, xy, thickness, k, f)
     integer, intent(in) :: et, k
-    real(dp), intent(in) :: xy(:, :), thickness
+    real(dp), intent(in) :: xy(:, :), thickness(:)
     real(dp), intent(out) :: f(2, max_nodes)
-    real(dp) :: s(3), w(3), n(3), ds(3), xe(2, 3), x(2), t(2), dw
+    real(dp) :: s(3), w(3), n(3), ds(3), xe(2, 3), te(3), x(2), t(2), dw
     integer :: nn, ip, j, loc(3)
     f = 0.0_dp
     nn = edge_node_count(et, k)
     loc = catalogue(et)%edge(:, k)
     xe = 0.0_dp
+    te = 0.0_dp
     do j = 1, nn
       xe(:, j) = xy(:, loc(j))
+      te(j) = thickness(loc(j))
     end do
     call gauss_line(3, s, w)
     do ip = 1, 3
       call line_shape(nn, s(ip), n, ds)
       x = matmul(xe, n)
       t = matmul(xe, ds)          ! dx/ds; (t2, -t1) is the outward normal times |dx/ds|
-      dw = w(ip) * volume_factor(catalogue(et)%state, 1.0_dp, x(1), thickness)
+      dw = w(ip) * volume_factor(catalogue(et)%state, 1.0_dp, x(1), dot_product(n(1:nn), te(1:nn)))
       do j = 1, nn
         f(:, loc(j)) = f(:, loc(j)) - n(j) * dw * [t(2), -t(1)]
       end do
@@ -47,11 +51,12 @@ contains
 
   !> Purpose: nodal forces f(2, nodes) of the body force per unit volume
   !> b(x) = b0 + g (x - xc) over an element of catalogue type et with nodes
-  !> at xy (load_rule's points: exact for a linear b on undistorted
-  !> elements, the radius of axisymmetric elements included).
+  !> at xy with nodal thicknesses thickness(nodes) (load_rule's points:
+  !> exact for a linear b on undistorted elements, the radius of
+  !> axisymmetric elements included).
   pure subroutine body_force_load(et, xy, thickness, b0, g, xc, f)
     integer, intent(in) :: et
-    real(dp), intent(in) :: xy(:, :), thickness, b0(2), g(2, 2), xc(2)
+    real(dp), intent(in) :: xy(:, :), thickness(:), b0(2), g(2, 2), xc(2)
     real(dp), intent(out) :: f(2, max_nodes)
     real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dn(2, max_nodes), jac(2, 2), x(2), b(2), dv
     integer :: ip, k, nen, nip, shape
@@ -66,7 +71,7 @@ contains
       x = matmul(xy(:, 1:nen), n(1:nen))
       b = b0 + matmul(g, x - xc)
       dv = wg(ip) * volume_factor(catalogue(et)%state, jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1), &
-                                  x(1), thickness)
+                                  x(1), dot_product(n(1:nen), thickness(1:nen)))
       do k = 1, nen
         f(:, k) = f(:, k) + n(k) * dv * b
       end do

@@ -4,17 +4,22 @@
 !> catalogue.
 module element_interface
   use kinds, only: dp
-  use element_catalogue, only: max_nodes, max_ip, shape_tri3, shape_quad4, shape_tri6, shape_quad8, state_none
+  use element_catalogue, only: max_nodes, max_ip, shape_tri3, shape_quad4, shape_tri6, shape_quad8, state_none, &
+                               shape_line2, shape_line3, shape_spring1, shape_spring2, shape_springa
   implicit none
   private
   public :: elem_in_t, elem_out_t, max_en, max_edof, max_ip, max_slave, &
-            kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, act_tangent, act_residual, act_stresses, &
+            kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, kind_truss2, kind_truss3, kind_spring1, &
+            kind_spring2, kind_springa, act_tangent, act_residual, act_stresses, &
             act_thermal, wants
 
   !> Routine selectors: a continuum element is its catalogue shape (one
-  !> routine serves them all); the coupling element is the contact layer's.
+  !> routine serves them all), so are a truss (a line) and a spring; the
+  !> coupling element is the contact layer's.
   integer, parameter :: kind_tri3 = shape_tri3, kind_quad4 = shape_quad4, kind_tri6 = shape_tri6, &
-                        kind_quad8 = shape_quad8, kind_cfe = 100
+                        kind_quad8 = shape_quad8, kind_truss2 = shape_line2, kind_truss3 = shape_line3, &
+                        kind_spring1 = shape_spring1, kind_spring2 = shape_spring2, &
+                        kind_springa = shape_springa, kind_cfe = 100
   !> Slave-side nodes of a coupling element (its coupling point is a
   !> weighted combination of them, section 5 of the paper).
   integer, parameter :: max_slave = 3
@@ -31,10 +36,18 @@ module element_interface
     integer :: nen = 0                      ! nodes (CFE: slave nodes + master nodes)
     real(dp) :: xy(2, max_en) = 0.0_dp      ! nodal coordinates
     real(dp) :: ue(max_edof) = 0.0_dp       ! nodal displacements
-    ! continuum elements
-    real(dp) :: e = 0.0_dp, nu = 0.0_dp, thickness = 1.0_dp
+    ! continuum elements and trusses
+    real(dp) :: e = 0.0_dp, nu = 0.0_dp
+    !> Thickness at each node (continuum elements), interpolated with the
+    !> shape functions; not used in axisymmetry.
+    real(dp) :: thickness(max_nodes) = 1.0_dp
     integer :: state = state_none           ! element_catalogue stress state
     integer :: nip = 0                      ! integration points (catalogue rule)
+    real(dp) :: area = 0.0_dp               ! truss: cross-sectional area
+    ! springs: the constant, and the dof (1 or 2) at the first node and
+    ! (SPRING2) at the second
+    real(dp) :: stiffness = 0.0_dp
+    integer :: dofs(2) = 0
     !> Thermal strain: expansion coefficient and the nodal temperature
     !> change from the initial state; the stresses are D (eps - eps0).
     real(dp) :: alpha = 0.0_dp

@@ -2,9 +2,12 @@
 !> analysis and contact layers call. A new element routine is one module
 !> and one line here.
 module element_library
-  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe
+  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, &
+                               kind_truss2, kind_truss3, kind_spring1, kind_spring2, kind_springa
   use continuum_element, only: continuum
   use cfe_element, only: cfe
+  use truss_element, only: truss
+  use spring_element, only: spring
   implicit none
   private
   public :: element_routine
@@ -20,6 +23,8 @@ contains
     type(elem_out_t), intent(out) :: eout
     select case (ein%kind)
     case (kind_tri3, kind_quad4, kind_tri6, kind_quad8); call continuum(action, ein, eout)
+    case (kind_truss2, kind_truss3); call truss(action, ein, eout)
+    case (kind_spring1, kind_spring2, kind_springa); call spring(action, ein, eout)
     case (kind_cfe); call cfe(action, ein, eout)
     end select
   end subroutine element_routine

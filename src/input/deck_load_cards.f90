@@ -148,8 +148,9 @@ contains
     type(field_t), intent(in) :: f(:)
     character(len=:), allocatable :: label
     logical :: axi
-    if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a line element (' // &
-        trim(catalogue(m%etype(e))%name) // '): distributed loads act on solid elements')
+    if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+        trim(catalogue(m%etype(e))%name) // ') is not a solid element: distributed loads act on solid ' // &
+        'elements only (load a truss or spring with *CLOAD)')
     axi = catalogue(m%etype(e))%state == state_axisymmetric
     label = to_upper(f(2)%s)
     d = dload_t(elem=e, amp=amp, value=get_real(p, f(3), 'load magnitude'))

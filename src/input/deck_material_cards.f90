@@ -1,11 +1,13 @@
-!> Material cards: *MATERIAL, *ELASTIC, *EXPANSION, *SOLID SECTION.
+!> Material and property cards: *MATERIAL, *ELASTIC, *EXPANSION, *SOLID
+!> SECTION, *SPRING.
 submodule (deck_parser) deck_material_cards
   use kinds, only: dp
-  use strings, only: split_fields, to_upper, field_t
+  use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
-                         name_param, get_real, need_elset, param_real
-  use element_catalogue, only: state_plane_stress, state_plane_strain, state_axisymmetric
+                         name_param, get_real, get_int, is_int, need_elset, param_real
+  use element_catalogue, only: catalogue, state_plane_stress, state_plane_strain, state_axisymmetric, &
+                               shape_spring1, shape_spring2, is_spring_shape
   use model, only: material_t, section_t, find_name
   use model_growth, only: grow
   implicit none
@@ -120,6 +122,91 @@ contains
       end if
     end associate
   end subroutine read_section
+
+  !> Purpose: *SPRING, ELSET=: the constant of the linear springs of a set
+  !> (all of one type). SPRING1 and SPRING2 first take their dofs, one or
+  !> two integers (CalculiX tells that line from the constant's by its
+  !> integers); SPRINGA takes none (Abaqus writes a blank line there, which
+  !> the deck reader drops). Then `constant[, , temperature]`, once.
+  !> NONLINEAR, ORIENTATION and a constant per temperature are not
+  !> implemented (errors at their line).
+  module subroutine read_spring(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n, es, shape, ndofs, k, line
+    call allow_params(p, kw, 'ELSET,NONLINEAR,ORIENTATION')
+    if (has_param(kw, 'NONLINEAR')) call err(p, 'NONLINEAR springs (a force-elongation curve) are not ' // &
+        'implemented: cfe2d''s springs are linear (a constant on the line under *SPRING)')
+    if (has_param(kw, 'ORIENTATION')) call err(p, 'ORIENTATION on *SPRING (dofs in a local system) is not ' // &
+        'implemented: the dofs are the global x (1) and y (2)')
+    es = need_elset(p, m, required_param(p, kw, 'ELSET'))
+    shape = spring_set_shape(p, m, es)
+    call grow(m%sections, p%nsec + 1)
+    p%nsec = p%nsec + 1
+    m%sections(p%nsec) = section_t(elset=es, spring=.true.)
+    m%sections(p%nsec)%src%line = p%i
+    ndofs = 0
+    if (shape == shape_spring1) ndofs = 1
+    if (shape == shape_spring2) ndofs = 2
+    call require_data(p, 'spring constant')
+    call split_fields(line_text(p), f, n)
+    if (ndofs > 0) then
+      if (n /= ndofs .or. .not. all([(is_int(f(k)%s), k = 1, n)])) then
+        if (ndofs == 1) call err(p, 'SPRING1 needs its dof (an integer) on the line under *SPRING, then the ' // &
+                                 'spring constant')
+        call err(p, 'SPRING2 needs its two dofs (integers) on the line under *SPRING, then the spring constant')
+      end if
+      do k = 1, ndofs
+        m%sections(p%nsec)%dof(k) = spring_dof(p, f(k))
+      end do
+      call require_data(p, 'spring constant')
+      call split_fields(line_text(p), f, n)
+    else if (all([(is_int(f(k)%s), k = 1, n)])) then
+      ! integers only: a dof line, if a constant line follows it
+      line = p%i
+      if (next_data(p)) then
+        p%i = line
+        call err(p, 'a SPRINGA acts along the line between its nodes and takes no dof line')
+      end if
+    end if
+    if (n > 3) call err(p, '*SPRING data line needs: spring constant[, , temperature]')
+    m%sections(p%nsec)%stiffness = get_real(p, f(1), 'spring constant')
+    if (m%sections(p%nsec)%stiffness <= 0.0_dp) call err(p, 'the spring constant must be positive')
+    if (next_data(p)) call err(p, 'temperature-dependent spring constants (several data lines) are not implemented')
+  end subroutine read_spring
+
+  !> The spring type (catalogue shape) of the elements of set es, which
+  !> must all be springs of one type.
+  integer function spring_set_shape(p, m, es) result(shape)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: es
+    integer :: k, sk
+    shape = 0
+    do k = 1, size(m%elsets(es)%items)
+      associate(e => m%elsets(es)%items(k))
+        sk = catalogue(m%etype(e))%shape
+        if (.not. is_spring_shape(sk)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' of set ' // &
+            trim(m%elsets(es)%name) // ' is a ' // trim(catalogue(m%etype(e))%name) // &
+            ', not a spring: *SPRING applies to SPRING1, SPRING2 and SPRINGA elements')
+        if (shape /= 0 .and. sk /= shape) call err(p, 'set ' // trim(m%elsets(es)%name) // &
+            ' mixes spring types; give each type its own *SPRING')
+        shape = sk
+      end associate
+    end do
+    if (shape == 0) call err(p, 'element set ' // trim(m%elsets(es)%name) // ' is empty')
+  end function spring_set_shape
+
+  !> A spring dof: 1 (x) or 2 (y).
+  integer function spring_dof(p, f) result(d)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f
+    d = get_int(p, f, 'spring dof')
+    if (d == 3) call err(p, 'spring dof 3 (out of the plane) does not exist in a 2D model')
+    if (d < 1 .or. d > 2) call err(p, 'spring dofs are 1 (x) or 2 (y) in 2D; rotations do not exist here')
+  end function spring_dof
 
   !> STATE= of *SOLID SECTION: PLANE STRESS, PLANE STRAIN or
   !> AXISYMMETRIC (element_catalogue state_*), 0 when absent.

@@ -9,7 +9,7 @@ submodule (deck_parser) deck_mesh_cards
   use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name
   use growable, only: append, grow
   use model_growth, only: grow
-  use element_catalogue, only: catalogue, find_element_type, shape_line2, shape_line3, unsupported_reason
+  use element_catalogue, only: catalogue, find_element_type, is_line, is_spring_shape, unsupported_reason
   use mesh_topology, only: build_topology, edge_owner
   implicit none
 
@@ -398,7 +398,10 @@ contains
     nedge = ne
     do k = 1, size(list)
       e = list(k)
-      if (catalogue(m%etype(e))%shape == shape_line2 .or. catalogue(m%etype(e))%shape == shape_line3) then
+      if (is_spring_shape(catalogue(m%etype(e))%shape)) then
+        call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a spring (' // trim(catalogue(m%etype(e))%name) // &
+                 '): a surface is made of solid element faces or of line elements on them')
+      else if (is_line(catalogue(m%etype(e))%shape)) then
         if (len(face) > 0) call err(p, 'a face id is not allowed for line elements')
         call owner_edge(p, m, m%conn(catalogue(m%etype(e))%edge(1, 1), e), m%conn(catalogue(m%etype(e))%edge(2, 1), e), &
                         owner, edge)

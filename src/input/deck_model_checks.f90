@@ -1,15 +1,15 @@
 !> Checks that need the whole deck: sections and their materials (a
 !> material may be defined after the section naming it), one section per
-!> solid element, element geometry, a procedure in every step. The
-!> element topology (edges and neighbours) is built last.
+!> solid element, truss and spring, element geometry, a procedure in
+!> every step. The element topology (edges and neighbours) is built last.
 submodule (deck_parser) deck_model_checks
   use kinds, only: dp
-  use strings, only: itoa, rtoa, to_upper
+  use strings, only: itoa, to_upper
   use deck_input, only: deck_warning
   use deck_cursor, only: err
-  use model, only: is_continuum, find_name, section_t
+  use model, only: is_continuum, carries_stiffness, is_truss, is_spring, find_name
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
-                               state_axisymmetric
+                               state_axisymmetric, shape_springa
   use growable, only: grow
   use mesh_topology, only: build_topology
   implicit none
@@ -38,15 +38,17 @@ contains
         call err(p, 'step has no procedure (*STATIC)')
       end if
     end do
-    if (count([(is_continuum(m, s), s = 1, m%ne)]) == 0) then
+    if (count([(carries_stiffness(m, s), s = 1, m%ne)]) == 0) then
       p%i = m%steps(1)%src%line
-      call err(p, 'the model has no continuum element (only line elements, or none): nothing to analyse')
+      call err(p, 'the model has no element with stiffness (no continuum element, truss or spring; line ' // &
+               'elements without a section only describe boundaries): nothing to analyse')
     end if
     call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
   end subroutine check_model
 
-  !> Every section's material exists and is elastic; each solid element
-  !> is in at most one section (m%elem_section filled here).
+  !> Every solid section's material exists and is elastic; each element
+  !> is in at most one section or *SPRING (m%elem_section filled here); a
+  !> solid section's line elements are trusses, which need an area.
   subroutine check_sections(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -55,22 +57,29 @@ contains
     m%elem_section = 0
     do s = 1, size(m%sections)
       p%i = m%sections(s)%src%line
-      imat = find_name(m%materials%name, m%sections(s)%material_name)
-      if (imat == 0) call err(p, 'undefined material ' // trim(m%sections(s)%material_name))
-      if (.not. m%materials(imat)%has_elastic) then
-        p%i = m%materials(imat)%src%line
-        call err(p, 'material ' // trim(m%materials(imat)%name) // ' has no *ELASTIC')
+      if (.not. m%sections(s)%spring) then
+        imat = find_name(m%materials%name, m%sections(s)%material_name)
+        if (imat == 0) call err(p, 'undefined material ' // trim(m%sections(s)%material_name))
+        if (.not. m%materials(imat)%has_elastic) then
+          p%i = m%materials(imat)%src%line
+          call err(p, 'material ' // trim(m%materials(imat)%name) // ' has no *ELASTIC')
+        end if
+        m%sections(s)%material = imat
       end if
-      m%sections(s)%material = imat
       do k = 1, size(m%elsets(m%sections(s)%elset)%items)
         e = m%elsets(m%sections(s)%elset)%items(k)
-        ! CalculiX makes trusses of line elements given a section; here
-        ! they only describe boundaries and would carry nothing.
-        if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a line element (' // &
-          trim(catalogue(m%etype(e))%name) // '): with a section CalculiX makes it a truss; cfe2d has no truss ' // &
-          'elements (line elements only define sets and surfaces)')
+        if (is_spring(m, e) .and. .not. m%sections(s)%spring) call err(p, 'element ' // itoa(m%elem_id(e)) // &
+            ' is a spring (' // trim(catalogue(m%etype(e))%name) // '): its constant comes from *SPRING, not ' // &
+            'from a *SOLID SECTION')
         if (m%elem_section(e) /= 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is in two sections')
         m%elem_section(e) = s
+        if (.not. is_truss(m, e)) cycle
+        if (m%sections(s)%nodal_thickness) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a truss (' // &
+            trim(catalogue(m%etype(e))%name) // ' with a section): its area comes from the data line of the ' // &
+            'section, and NODAL THICKNESS is for plane elements')
+        if (.not. m%sections(s)%thickness_given) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a ' // &
+            'truss (' // trim(catalogue(m%etype(e))%name) // ' with a section): its cross-sectional area ' // &
+            'is needed on the data line of the section')
       end do
     end do
   end subroutine check_sections
@@ -85,7 +94,7 @@ contains
     character(len=:), allocatable :: old, new
     integer :: e, s, it
     do e = 1, m%ne
-      if (m%elem_section(e) == 0) cycle
+      if (.not. is_continuum(m, e) .or. m%elem_section(e) == 0) cycle
       s = m%elem_section(e)
       if (m%sections(s)%state == 0) cycle
       if (catalogue(m%etype(e))%state == m%sections(s)%state) cycle
@@ -114,62 +123,38 @@ contains
     end select
   end function state_prefix
 
-  !> Purpose: sections with NODAL THICKNESS take their elements' thickness
-  !> from *NODAL THICKNESS. An element whose nodes have one thickness gets
-  !> it (through a copy of its section where elements differ); a thickness
-  !> that varies inside an element is not implemented (an error).
+  !> Purpose: sections with NODAL THICKNESS take the thickness at each
+  !> node of their plane elements from *NODAL THICKNESS (m%node_thickness;
+  !> the elements interpolate it). Every such node needs one; the
+  !> axisymmetric elements of such a section use none (their thickness is
+  !> the whole circumference, as in CalculiX).
   subroutine apply_nodal_thickness(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
-    integer :: e, s, k, nsec0
-    real(dp) :: t
+    integer :: e, s, k, nen
     if (p%nodal_thickness_line > 0 .and. .not. any(m%sections%nodal_thickness)) then
       call deck_warning(p%deck, p%nodal_thickness_line, 'no *SOLID SECTION has NODAL THICKNESS: the ' // &
                         'section thickness applies and *NODAL THICKNESS is ignored (as in CalculiX)')
     end if
     if (.not. any(m%sections%nodal_thickness)) return
     call grow(p%node_thickness, m%nn, fill=-1.0_dp)
-    nsec0 = size(m%sections)
     do e = 1, m%ne
       s = m%elem_section(e)
       if (s == 0) cycle
       if (.not. m%sections(s)%nodal_thickness) cycle
-      p%i = m%sections(s)%src%line
-      associate(t_nodes => p%node_thickness(m%conn(1:catalogue(m%etype(e))%nodes, e)))
-        if (any(t_nodes < 0.0_dp)) call err(p, 'NODAL THICKNESS: a node of element ' // itoa(m%elem_id(e)) // &
-            ' has no *NODAL THICKNESS')
-        if (maxval(t_nodes) - minval(t_nodes) > 1.0e-12_dp * maxval(t_nodes)) call err(p, &
-            'NODAL THICKNESS: the thickness varies inside element ' // itoa(m%elem_id(e)) // ' (' // &
-            rtoa(minval(t_nodes), 4) // ' to ' // rtoa(maxval(t_nodes), 4) // &
-            '); a thickness varying inside an element is not implemented')
-        t = t_nodes(1)
-      end associate
-      ! the section itself, or its copy with this thickness
-      if (.not. m%sections(s)%thickness_given) then
-        m%sections(s)%thickness = t
-        m%sections(s)%thickness_given = .true.
-      else if (m%sections(s)%thickness /= t) then
-        k = copy_with_thickness(m, s, t, nsec0)
-        m%elem_section(e) = k
-      end if
+      ! the section's thickness line (if any) is irrelevant, as in CalculiX
+      m%sections(s)%thickness_given = .true.
+      if (catalogue(m%etype(e))%state == state_axisymmetric) cycle
+      nen = catalogue(m%etype(e))%nodes
+      do k = 1, nen
+        if (p%node_thickness(m%conn(k, e)) >= 0.0_dp) cycle
+        p%i = m%sections(s)%src%line
+        call err(p, 'NODAL THICKNESS: node ' // itoa(m%node_id(m%conn(k, e))) // ' of element ' // &
+                 itoa(m%elem_id(e)) // ' has no *NODAL THICKNESS')
+      end do
     end do
+    m%node_thickness = p%node_thickness(1:m%nn)
   end subroutine apply_nodal_thickness
-
-  !> Index of the copy of section s with thickness t (made if needed;
-  !> copies are appended after the first nsec0 sections).
-  integer function copy_with_thickness(m, s, t, nsec0) result(k)
-    type(model_t), intent(inout) :: m
-    integer, intent(in) :: s, nsec0
-    real(dp), intent(in) :: t
-    type(section_t) :: c
-    do k = nsec0 + 1, size(m%sections)
-      if (m%sections(k)%src%line == m%sections(s)%src%line .and. m%sections(k)%thickness == t) return
-    end do
-    c = m%sections(s)
-    c%thickness = t
-    m%sections = [m%sections, c]
-    k = size(m%sections)
-  end function copy_with_thickness
 
   !> Purpose: warnings for a model that is probably meant to be plane
   !> strain but is plane stress: a plane-stress section without a
@@ -198,19 +183,49 @@ contains
   end subroutine warn_plane_stress
 
   !> Every solid element has a section and a positive Jacobian at each
-  !> corner.
+  !> corner; every spring has its *SPRING; a truss or a SPRINGA has two
+  !> distinct ends (its direction); trusses and springs are not
+  !> mixed with axisymmetric elements.
   subroutine check_elements(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(in) :: m
     integer :: e
+    logical :: axi
+    axi = .false.
     do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
       p%i = m%elem_src(e)%line
+      if (is_spring(m, e) .and. m%elem_section(e) == 0) call err(p, 'spring element ' // itoa(m%elem_id(e)) // &
+          ' has no *SPRING (its constant)')
+      if (is_truss(m, e) .or. catalogue(m%etype(e))%shape == shape_springa) then
+        if (end_distance(m, e) <= 0.0_dp) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+            trim(catalogue(m%etype(e))%name) // ') has both ends at the same point')
+      end if
+      if (.not. is_continuum(m, e)) cycle
+      axi = axi .or. catalogue(m%etype(e))%state == state_axisymmetric
       if (m%elem_section(e) == 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' has no *SOLID SECTION')
       if (min_corner_jacobian(m, e) <= 0.0_dp) call err(p, 'element ' // itoa(m%elem_id(e)) // &
           ' has a zero or negative Jacobian (nodes clockwise or element inverted)')
     end do
+    if (.not. axi) return
+    do e = 1, m%ne
+      if (.not. (is_truss(m, e) .or. is_spring(m, e))) cycle
+      p%i = m%elem_src(e)%line
+      call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // trim(catalogue(m%etype(e))%name) // ') in an ' // &
+          'axisymmetric model: whether it stands for a ring or for bars around the axis is not defined ' // &
+          'here; trusses and springs are implemented for plane models only')
+    end do
   end subroutine check_elements
+
+  !> Distance between the end nodes of a truss (a 3-node one lists end,
+  !> middle, end) or a SPRINGA.
+  real(dp) function end_distance(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    integer :: last
+    last = catalogue(m%etype(e))%edge(2, 1)
+    if (last == 0) last = 2
+    end_distance = norm2(m%x(:, m%conn(last, e)) - m%x(:, m%conn(1, e)))
+  end function end_distance
 
   !> Smallest corner value of the Jacobian determinant: positive at every
   !> corner means a valid, convex, counter-clockwise element.

@@ -3,7 +3,8 @@
 !> checks what needs the whole deck. The readers live in submodules, one
 !> file per family of cards:
 !>   deck_mesh_cards      *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE
-!>   deck_material_cards  *MATERIAL, *ELASTIC, *EXPANSION, *SOLID SECTION
+!>   deck_material_cards  *MATERIAL, *ELASTIC, *EXPANSION, *SOLID SECTION,
+!>                        *SPRING
 !>   deck_step_cards      *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CLOAD,
 !>                        output requests, *END STEP, *INITIAL CONDITIONS,
 !>                        *TEMPERATURE
@@ -83,6 +84,11 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_section
+    module subroutine read_spring(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_spring
     module subroutine read_amplitude(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -271,6 +277,7 @@ contains
     case ('INITIAL CONDITIONS'); call in_step(p, kw, .false.); call read_initial_conditions(p, m, kw)
     case ('TEMPERATURE');   call in_step(p, kw, .true.); call read_temperature(p, m, kw)
     case ('SOLID SECTION'); call in_step(p, kw, .false.); call read_section(p, m, kw)
+    case ('SPRING');        call in_step(p, kw, .false.); call read_spring(p, m, kw)
     case ('AMPLITUDE');     call read_amplitude(p, m, kw)
     case ('BOUNDARY');      call read_boundary(p, m, kw)
     case ('CLOAD');         call in_step(p, kw, .true.); call read_cload(p, m, kw)

@@ -126,9 +126,9 @@ contains
       do k = 1, size(nodes)
         do d = d1, d2
           call add_bc(p, m, bc_t(node=nodes(k), dof=d, set=iset, amp=amp, value=v))
-          nnew = nnew + 1
         end do
       end do
+      nnew = nnew + 1
     end do
     if (nnew == 0) call err(p, 'missing data line (node or set, first dof[, last dof[, value]])')
   end subroutine read_boundary
@@ -159,7 +159,15 @@ contains
       end if
       if (n == 4) v = get_real(p, f(4), 'prescribed value')
     end if
-    if (d1 < 1 .or. d2 > 2 .or. d2 < d1) call err(p, 'dofs must satisfy 1 <= first <= last <= 2 in 2D')
+    ! A 2D model has no out-of-plane displacement: holding it at zero (as
+    ! CalculiX decks do for their 3D springs and expanded elements) changes
+    ! nothing; the range then ends at 2 (and is empty for dof 3 alone).
+    if (d1 >= 1 .and. d1 <= 3 .and. d2 == 3 .and. v == 0.0_dp) then
+      d2 = 2
+      return
+    end if
+    if (d1 < 1 .or. d2 > 2 .or. d2 < d1) call err(p, 'dofs must satisfy 1 <= first <= last <= 2 in 2D ' // &
+        '(dof 3, out of the plane, may only be held at zero)')
   end subroutine boundary_dofs
 
   !> One prescribed dof: to the model outside a step, to the step inside.

@@ -4,14 +4,14 @@
 module model
   use kinds, only: dp, name_len
   use solver_codes, only: solver_cholmod, order_amd
-  use element_catalogue, only: catalogue, state_none
+  use element_catalogue, only: catalogue, max_nodes, state_none, is_line, is_spring_shape
   use mesh_topology, only: topology_t
   implicit none
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
             equation_t, temp_t, &
-            is_continuum, elem_nodes, &
+            is_continuum, carries_stiffness, is_truss, is_spring, elem_nodes, elem_thickness, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif
@@ -59,6 +59,8 @@ module model
     real(dp) :: alpha = 0.0_dp, alpha_zero = 0.0_dp
   end type material_t
 
+  !> A *SOLID SECTION (continuum elements and trusses) or a *SPRING
+  !> (spring elements): what gives the elements of a set their stiffness.
   type :: section_t
     integer :: elset = 0
     character(len=name_len) :: material_name = ''
@@ -71,8 +73,16 @@ module model
     !> each element type's own.
     integer :: state = 0
     logical :: thickness_given = .false.   ! a data line gave the thickness
-    !> NODAL THICKNESS: the thickness comes from *NODAL THICKNESS.
+    !> NODAL THICKNESS: the thickness at each node comes from *NODAL
+    !> THICKNESS (model_t%node_thickness), interpolated inside the element.
     logical :: nodal_thickness = .false.
+    !> *SPRING (no material): a linear spring of constant `stiffness`
+    !> acting on dof(1) of its first node and (SPRING2) dof(2) of its
+    !> second; a SPRINGA acts along the line between its nodes. A truss
+    !> takes `thickness` as its cross-sectional area.
+    logical :: spring = .false.
+    real(dp) :: stiffness = 0.0_dp
+    integer :: dof(2) = 0
   end type section_t
 
   !> One prescribed dof. set is the node set it came from (0 for a single
@@ -199,6 +209,9 @@ module model
     integer :: contact_solve = 0
     !> *INITIAL CONDITIONS, TYPE=TEMPERATURE (nodes not named start at 0).
     type(temp_t), allocatable :: initial_temps(:)
+    !> *NODAL THICKNESS by node (nn), for the sections with NODAL
+    !> THICKNESS; allocated only when a section asks for it.
+    real(dp), allocatable :: node_thickness(:)
   end type model_t
 
 contains
@@ -210,6 +223,50 @@ contains
     integer, intent(in) :: e
     is_continuum = catalogue(m%etype(e))%state /= state_none
   end function is_continuum
+
+  !> Does element e carry stiffness: a continuum element, a line element
+  !> with a *SOLID SECTION (a truss), a spring with its *SPRING? The
+  !> others (line elements without a section) only describe boundaries.
+  pure logical function carries_stiffness(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    carries_stiffness = is_continuum(m, e)
+    if (.not. carries_stiffness .and. allocated(m%elem_section)) carries_stiffness = m%elem_section(e) /= 0
+  end function carries_stiffness
+
+  !> Is element e a truss (a line element with a *SOLID SECTION)?
+  pure logical function is_truss(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    is_truss = is_line(catalogue(m%etype(e))%shape)
+    if (is_truss) is_truss = carries_stiffness(m, e)
+  end function is_truss
+
+  !> Is element e a spring (SPRING1, SPRING2, SPRINGA)?
+  pure logical function is_spring(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    is_spring = is_spring_shape(catalogue(m%etype(e))%shape)
+  end function is_spring
+
+  !> Purpose: the thickness of continuum element e at each of its nodes
+  !> (entries beyond its nodes are 1): its section's, or with NODAL
+  !> THICKNESS the nodes' own (the element interpolates them).
+  pure function elem_thickness(m, e) result(t)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    real(dp) :: t(max_nodes)
+    integer :: n
+    t = 1.0_dp
+    n = elem_nodes(m, e)
+    associate(sec => m%sections(m%elem_section(e)))
+      if (sec%nodal_thickness .and. allocated(m%node_thickness)) then
+        t(1:n) = m%node_thickness(m%conn(1:n, e))
+      else
+        t(1:n) = sec%thickness
+      end if
+    end associate
+  end function elem_thickness
 
   !> Number of nodes of element e.
   pure integer function elem_nodes(m, e)

@@ -5,12 +5,16 @@
 !> otherwise; zero force for rigid motions; exact stresses for a linear
 !> displacement field (distorted and curved elements) and, for the
 !> quadratic elements, for a quadratic field (straight-sided elements);
-!> consistent nodal loads of pressure and body forces.
+!> consistent nodal loads of pressure and body forces, also with a
+!> thickness that varies inside the element. The truss and the springs:
+!> their stiffness in closed form for an inclined member, and the truss's
+!> axial stress and thermal load.
 program test_elements
   use kinds, only: dp
   use test_report, only: report, failures
-  use element_interface, only: elem_in_t, elem_out_t, kind_tri3, kind_quad8, act_tangent, act_residual, &
-                               act_stresses
+  use element_interface, only: elem_in_t, elem_out_t, kind_tri3, kind_quad8, kind_truss2, kind_truss3, &
+                               kind_spring1, kind_spring2, kind_springa, act_tangent, act_residual, act_stresses, &
+                               act_thermal
   use element_catalogue, only: state_plane_stress, state_axisymmetric, max_nodes, find_element_type, catalogue
   use element_library, only: element_routine
   use shape_functions, only: shape_at, gauss_rule
@@ -42,6 +46,9 @@ program test_elements
     call check_element('T6 ', prefix(is) // '6', shifted(xy, 6, is), .true.)
   end do
   call check_loads()
+  call check_varying_thickness()
+  call check_truss()
+  call check_springs()
   if (failures() > 0) stop 1
 
 contains
@@ -239,7 +246,7 @@ contains
     integer :: et
     x = quad8_nodes(par, 0.0_dp)
     et = find_element_type('CPS8')
-    call face_pressure_load(et, x, 2.0_dp, 1, f)
+    call face_pressure_load(et, x, uniform(2.0_dp), 1, f)
     ! face 1 runs from (0, 0) to (2, 0.4): the force is -p n_out times the length
     expect = -2.0_dp * [0.4_dp, -2.0_dp]
     err = maxval(abs(f(:, [1, 2, 5]) - reshape([expect / 6, expect / 6, 4 * expect / 6], [2, 3])))
@@ -248,7 +255,7 @@ contains
     call report('pressure on a straight 3-node face: 1/6, 4/6, 1/6', err < 1.0e-14_dp, msg)
 
     x = quad8_nodes(q4, 0.1_dp)
-    call face_pressure_load(et, x, 2.0_dp, 2, f)
+    call face_pressure_load(et, x, uniform(2.0_dp), 2, f)
     tot = sum(f, dim=2)
     expect = -2.0_dp * [q4(2, 3) - q4(2, 2), -(q4(1, 3) - q4(1, 2))]
     err = maxval(abs(tot - expect)) / maxval(abs(expect))
@@ -257,7 +264,7 @@ contains
 
     et = find_element_type('CAX8')
     x = quad8_nodes(reshape([1.0_dp, 0.0_dp, 3.0_dp, 0.0_dp, 3.0_dp, 1.0_dp, 1.0_dp, 1.0_dp], [2, 4]), 0.0_dp)
-    call face_pressure_load(et, x, 1.0_dp, 3, f)
+    call face_pressure_load(et, x, uniform(1.0_dp), 3, f)
     tot = sum(f, dim=2)
     expect = [0.0_dp, -pi * (3.0_dp**2 - 1.0_dp**2)]
     err = maxval(abs(tot - expect)) / maxval(abs(expect))
@@ -265,7 +272,7 @@ contains
     call report('axisymmetric pressure on an annulus: pi (r2^2 - r1^2) p', err < 1.0e-14_dp, msg)
 
     ! body force on the CAX8 ring of cross-section [1,3] x [0,1]: volume 2 pi * 2 * 2
-    call body_force_load(et, x, 1.0_dp, [0.0_dp, -3.0_dp], reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), &
+    call body_force_load(et, x, uniform(1.0_dp), [0.0_dp, -3.0_dp], reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), &
                          [0.0_dp, 0.0_dp], f)
     tot = sum(f, dim=2)
     expect = [0.0_dp, -3.0_dp * 2 * pi * 2.0_dp * 2.0_dp]
@@ -274,7 +281,7 @@ contains
     call report('axisymmetric body force: b x 2 pi r_c A', err < 1.0e-14_dp, msg)
 
     ! centrifugal b = w2 r on the ring: total radial force w2 * 2 pi int r^2 dA = w2 2 pi (27 - 1)/3
-    call body_force_load(et, x, 1.0_dp, [0.0_dp, 0.0_dp], reshape([5.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), &
+    call body_force_load(et, x, uniform(1.0_dp), [0.0_dp, 0.0_dp], reshape([5.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), &
                          [0.0_dp, 0.0_dp], f)
     tot = sum(f, dim=2)
     expect = [5.0_dp * 2 * pi * 26.0_dp / 3.0_dp, 0.0_dp]
@@ -286,7 +293,7 @@ contains
     et = find_element_type('CPS6')
     x = tri6_nodes(t3, 0.0_dp)
     area = 0.5_dp * ((t3(1, 2) - t3(1, 1)) * (t3(2, 3) - t3(2, 1)) - (t3(1, 3) - t3(1, 1)) * (t3(2, 2) - t3(2, 1)))
-    call body_force_load(et, x, 0.5_dp, [1.0_dp, 2.0_dp], reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), &
+    call body_force_load(et, x, uniform(0.5_dp), [1.0_dp, 2.0_dp], reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), &
                          [0.0_dp, 0.0_dp], f)
     tot = sum(f, dim=2)
     expect = [1.0_dp, 2.0_dp] * area * 0.5_dp
@@ -296,4 +303,143 @@ contains
     write(msg, '(a,es9.2)') 'error ', err
     call report('body force on T6: b x area x thickness, all on the mid-side nodes', err < 1.0e-14_dp, msg)
   end subroutine check_loads
+
+  !> The same thickness at every node.
+  pure function uniform(t) result(a)
+    real(dp), intent(in) :: t
+    real(dp) :: a(max_nodes)
+    a = t
+  end function uniform
+
+  !> A thickness linear in x over a CPS4 rectangle [0, 2] x [0, 1], t =
+  !> 1 + x: a pressure on the right face (t = 3) gives p h t; on the
+  !> bottom face the consistent loads of a linear thickness, L (2 t1 + t2)
+  !> / 6 and L (t1 + 2 t2) / 6; a unit body force the integral of N_i t;
+  !> a uniform strain (u = 1e-3 x) the internal forces integral of
+  !> B^T sigma t: at node 1 (-sxx, -syy int (1 - x/2)(1 + x) dx = -5/3
+  !> syy), at node 2 (sxx, -syy int x/2 (1 + x) dx = -7/3 syy).
+  subroutine check_varying_thickness()
+    real(dp) :: f(2, max_nodes), x(2, max_nodes), t(max_nodes), err, expect(2, 2), fvol(4), sxx, syy
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    character(len=160) :: msg
+    integer :: et, k
+    et = find_element_type('CPS4')
+    x = 0.0_dp
+    x(:, 1:4) = reshape([0.0_dp, 0.0_dp, 2.0_dp, 0.0_dp, 2.0_dp, 1.0_dp, 0.0_dp, 1.0_dp], [2, 4])
+    t = 1.0_dp
+    t(1:4) = 1.0_dp + x(1, 1:4)
+    call face_pressure_load(et, x, t, 2, f)
+    err = maxval(abs(f(:, 2:3) - reshape([-1.5_dp, 0.0_dp, -1.5_dp, 0.0_dp], [2, 2])))
+    call face_pressure_load(et, x, t, 1, f)
+    expect = reshape([0.0_dp, 2.0_dp * (2 * 1 + 3) / 6, 0.0_dp, 2.0_dp * (1 + 2 * 3) / 6], [2, 2])
+    err = err + maxval(abs(f(:, 1:2) - expect))
+    call body_force_load(et, x, t, [1.0_dp, 0.0_dp], reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), &
+                         [0.0_dp, 0.0_dp], f)
+    fvol = [5.0_dp, 7.0_dp, 7.0_dp, 5.0_dp] / 6.0_dp
+    err = err + maxval(abs(f(1, 1:4) - fvol))
+    write(msg, '(a,es9.2)') 'error ', err
+    call report('loads with a thickness 1 + x: pressure, consistent edge loads, body force', err < 1.0e-14_dp, msg)
+    ein%e = 100.0_dp
+    ein%nu = 0.25_dp
+    ein%kind = catalogue(et)%shape
+    ein%nen = 4
+    ein%nip = 4
+    ein%state = catalogue(et)%state
+    ein%xy(:, 1:4) = x(:, 1:4)
+    do k = 1, 4
+      ein%ue(2 * k - 1:2 * k) = [1.0e-3_dp * x(1, k), 0.0_dp]
+    end do
+    ein%thickness = t
+    call element_routine(ior(act_tangent, act_residual), ein, eout)
+    sxx = ein%e / (1.0_dp - ein%nu**2) * 1.0e-3_dp
+    syy = ein%nu * sxx
+    err = maxval(abs(eout%fe(1:4) - [-sxx, -5.0_dp / 3.0_dp * syy, sxx, -7.0_dp / 3.0_dp * syy])) / sxx
+    write(msg, '(a,es9.2)') 'relative error ', err
+    call report('uniform strain, thickness 1 + x: internal forces integral of B^T sigma t', err < 1.0e-14_dp, msg)
+  end subroutine check_varying_thickness
+
+  !> A bar from (1, 2) along (cos a, sin a), length L: ke = E A / L (g g^T)
+  !> with g = (-c, -s, c, s); a 3-node bar (middle node at the middle) is
+  !> as stiff for a linear field; stresses E eps; the thermal load E A
+  !> alpha dT at the ends.
+  subroutine check_truss()
+    real(dp), parameter :: ang = 0.7_dp, len = 2.5_dp, e = 200.0_dp, area = 0.3_dp
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: g(4), err, dir(2), x2(2), u(4)
+    character(len=160) :: msg
+    integer :: i
+    dir = [cos(ang), sin(ang)]
+    x2 = [1.0_dp, 2.0_dp] + len * dir
+    g = [-dir, dir]
+    ein%kind = kind_truss2
+    ein%nen = 2
+    ein%nip = 1
+    ein%e = e
+    ein%area = area
+    ein%xy(:, 1:2) = reshape([1.0_dp, 2.0_dp, x2], [2, 2])
+    u = [0.1_dp, -0.2_dp, 0.4_dp, 0.3_dp]
+    ein%ue(1:4) = u
+    ein%alpha = 1.0e-5_dp
+    ein%dtemp(1:2) = 50.0_dp
+    call element_routine(ior(ior(act_tangent, act_stresses), act_thermal), ein, eout)
+    err = 0.0_dp
+    do i = 1, 4
+      err = max(err, maxval(abs(eout%ke(1:4, i) - e * area / len * g(i) * g)))
+    end do
+    err = err / (e * area / len)
+    err = err + abs(eout%sig_ip(1, 1) - e * (dot_product(g, u) / len - 1.0e-5_dp * 50.0_dp)) / e
+    err = err + maxval(abs(eout%fe(1:4) - e * area * 1.0e-5_dp * 50.0_dp * g)) / (e * area)
+    write(msg, '(a,es9.2)') 'relative error ', err
+    call report('inclined 2-node truss: E A / L g g^T, axial stress, thermal load', err < 1.0e-14_dp, msg)
+    ! the 3-node truss lists end, middle, end
+    ein%kind = kind_truss3
+    ein%nen = 3
+    ein%nip = 2
+    ein%xy(:, 1:3) = reshape([1.0_dp, 2.0_dp, [1.0_dp, 2.0_dp] + 0.5_dp * len * dir, x2], [2, 3])
+    ein%ue(1:6) = [u(1:2), 0.5_dp * (u(1:2) + u(3:4)), u(3:4)]
+    ein%dtemp(1:3) = 50.0_dp
+    call element_routine(ior(ior(act_tangent, act_stresses), act_residual), ein, eout)
+    err = maxval(abs(eout%sig_ip(1, 1:2) - e * (dot_product(g, u) / len - 1.0e-5_dp * 50.0_dp))) / e
+    ! fe = ke ue for the linear field: end forces E A eps (-dir, dir), none at the middle
+    err = err + maxval(abs(eout%fe(1:6) - e * area * dot_product(g, u) / len * [g(1:2), 0.0_dp, 0.0_dp, g(3:4)])) &
+          / (e * area)
+    write(msg, '(a,es9.2)') 'relative error ', err
+    call report('3-node truss: axial stress and end forces of a linear field', err < 1.0e-13_dp, msg)
+  end subroutine check_truss
+
+  !> SPRING1 on dof 2: k at (2, 2) only; SPRING2 from dof 1 to dof 2:
+  !> k g g^T, g = (1, 0, 0, -1); SPRINGA along (3, 4) / 5: k g g^T.
+  subroutine check_springs()
+    real(dp), parameter :: k = 7.0_dp
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: g(4), err
+    character(len=160) :: msg
+    integer :: i
+    ein%stiffness = k
+    ein%kind = kind_spring1
+    ein%nen = 1
+    ein%dofs = [2, 0]
+    call element_routine(act_tangent, ein, eout)
+    err = abs(eout%ke(2, 2) - k) + abs(eout%ke(1, 1)) + abs(eout%ke(1, 2)) + abs(eout%ndof - 2)
+    ein%kind = kind_spring2
+    ein%nen = 2
+    ein%dofs = [1, 2]
+    call element_routine(act_tangent, ein, eout)
+    g = [1.0_dp, 0.0_dp, 0.0_dp, -1.0_dp]
+    do i = 1, 4
+      err = err + maxval(abs(eout%ke(1:4, i) - k * g(i) * g))
+    end do
+    ein%kind = kind_springa
+    ein%xy(:, 1:2) = reshape([1.0_dp, 1.0_dp, 4.0_dp, 5.0_dp], [2, 2])
+    call element_routine(act_tangent, ein, eout)
+    g = [-0.6_dp, -0.8_dp, 0.6_dp, 0.8_dp]
+    do i = 1, 4
+      err = err + maxval(abs(eout%ke(1:4, i) - k * g(i) * g))
+    end do
+    write(msg, '(a,es9.2)') 'error ', err
+    call report('springs: SPRING1, SPRING2 and SPRINGA stiffness', err < 1.0e-14_dp, msg)
+  end subroutine check_springs
 end program test_elements

@@ -1,0 +1,69 @@
+!> The element data of a body element, one that carries stiffness (a
+!> continuum element, a truss, a spring), taken from the model: its
+!> nodes, coordinates and displacements, and what its routine needs of
+!> its section (material, nodal thicknesses, truss area, spring constant
+!> and dofs). The assembly, the stress recovery and the thermal load all
+!> build their element input here.
+module body_elements
+  use kinds, only: dp
+  use model, only: model_t, elem_nodes, elem_thickness, is_truss
+  use element_catalogue, only: catalogue
+  use element_interface, only: elem_in_t
+  implicit none
+  private
+  public :: body_input, body_alpha
+
+contains
+
+  !> Purpose: element data of body element e at displacements u and, if
+  !> given, nodal temperature changes dtemp(nn) from the initial state.
+  !> Arguments: nodes returns the element's nodes (ein%nen of them).
+  pure subroutine body_input(m, e, u, ein, nodes, dtemp)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(in), optional :: dtemp(:)
+    type(elem_in_t), intent(out) :: ein
+    integer, intent(out) :: nodes(:)
+    integer :: k, nen
+    nen = elem_nodes(m, e)
+    ein%nen = nen
+    ein%kind = catalogue(m%etype(e))%shape
+    ein%state = catalogue(m%etype(e))%state
+    ein%nip = catalogue(m%etype(e))%nip
+    nodes(1:nen) = m%conn(1:nen, e)
+    do k = 1, nen
+      ein%xy(:, k) = m%x(:, nodes(k))
+      ein%ue(2 * k - 1:2 * k) = u(:, nodes(k))
+    end do
+    associate(sec => m%sections(m%elem_section(e)))
+      if (sec%spring) then
+        ein%stiffness = sec%stiffness
+        ein%dofs = sec%dof
+        return
+      end if
+      ein%e = m%materials(sec%material)%e
+      ein%nu = m%materials(sec%material)%nu
+      if (is_truss(m, e)) then
+        ein%area = sec%thickness
+      else
+        ein%thickness = elem_thickness(m, e)
+      end if
+      if (present(dtemp)) then
+        ein%alpha = m%materials(sec%material)%alpha
+        ein%dtemp(1:nen) = dtemp(nodes(1:nen))
+      end if
+    end associate
+  end subroutine body_input
+
+  !> Purpose: the expansion coefficient of body element e's material (0
+  !> for a spring, which has none).
+  pure real(dp) function body_alpha(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    body_alpha = 0.0_dp
+    associate(sec => m%sections(m%elem_section(e)))
+      if (.not. sec%spring) body_alpha = m%materials(sec%material)%alpha
+    end associate
+  end function body_alpha
+end module body_elements
