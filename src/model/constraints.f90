@@ -22,9 +22,10 @@ module constraints
   !> tcoef(j) * u(tdof(j), tnode(j)), no dependent dof among the terms.
   type :: mpc_t
     integer :: ndep = 0
-    integer, allocatable :: dep(:, :)           ! (2, nn) index of a dependent dof, 0 if independent
+    !> (2, nn) index of a dependent dof, 0 if independent; the index of a
+    !> dependent dof is that of the equation that makes it dependent.
+    integer, allocatable :: dep(:, :)
     integer, allocatable :: node(:), dof(:)     ! (ndep) the dependent dofs
-    integer, allocatable :: equation(:)         ! (ndep) the equation that made it dependent
     integer, allocatable :: xt(:)               ! (ndep + 1)
     integer, allocatable :: tnode(:), tdof(:)
     real(dp), allocatable :: tcoef(:)
@@ -56,7 +57,7 @@ contains
     allocate(mpc%dep(2, m%nn), mpc%xt(1))
     mpc%dep = 0
     mpc%xt(1) = 1
-    allocate(mpc%node(0), mpc%dof(0), mpc%equation(0), mpc%tnode(0), mpc%tdof(0), mpc%tcoef(0))
+    allocate(mpc%node(0), mpc%dof(0), mpc%tnode(0), mpc%tdof(0), mpc%tcoef(0))
     msg = ''
     bad = 0
     if (neqs == 0) return
@@ -78,8 +79,8 @@ contains
     n = size(m%equations)
     allocate(raw%xr(n + 1), raw%rnode(0), raw%rdof(0), raw%rcoef(0))
     mpc%ndep = n
-    deallocate(mpc%node, mpc%dof, mpc%equation)
-    allocate(mpc%node(n), mpc%dof(n), mpc%equation(n))
+    deallocate(mpc%node, mpc%dof)
+    allocate(mpc%node(n), mpc%dof(n))
     raw%xr(1) = 1
     bad = 0
     do i = 1, n
@@ -108,7 +109,6 @@ contains
         mpc%dep(d, a) = i
         mpc%node(i) = a
         mpc%dof(i) = d
-        mpc%equation(i) = i
         c1 = sum(eq%coef, mask=eq%node == a .and. eq%dof == d)
         if (c1 == 0.0_dp) then
           bad = i
