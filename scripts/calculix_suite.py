@@ -94,8 +94,7 @@ def deck_keywords(path, seen=None):
 
 
 def cfe2d_keywords(parser=os.path.join(ROOT, "src", "input", "deck_parser.f90")):
-    """The keywords cfe2d reads (or skips with a warning; *EQUATION, read
-    and refused, is left out): the case labels
+    """The keywords cfe2d reads (or skips with a warning): the case labels
     of the parser's dispatch, read from its source so that the list follows
     the program."""
     with open(parser) as f:
@@ -106,7 +105,6 @@ def cfe2d_keywords(parser=os.path.join(ROOT, "src", "input", "deck_parser.f90"))
     for labels in re.findall(r"case \(([^)]*)\)", re.sub(r"&\s*\n\s*", " ", body)):
         names.update(re.findall(r"'([^']+)'", labels))
     names.discard("")
-    names.discard("EQUATION")      # read, then refused until the analysis imposes it
     return names | {"INCLUDE"}
 
 
