@@ -82,9 +82,6 @@ program cfe2d
   call read_model(deck, m)
   ! *TIE needs the projection onto faces, which the contact layer owns.
   call tie_surfaces(m)
-  ! Until the analysis imposes m%equations (*EQUATION stops at its card):
-  if (size(m%equations) > 0) call fatal('*PRE-TENSION SECTION and *TIE generate linear constraints, which ' // &
-                                        'the analysis cannot impose yet')
   timing%read = wall_time() - timing%started
   if (size(m%pairs) > 0) then
     call open_listing(job // '.out', job // '_contact.csv', digits, lst)

@@ -4,7 +4,8 @@ NODAL THICKNESS and STATE= (plane strain from a mesh that says CPS4),
 *NODAL THICKNESS, the deck's own *HEADING over an included one, a hint
 when a node set exists only as an element set, cards that would change
 the physics stopped at their line, cards that cannot change it warned
-about, and *EQUATION read and refused until the analysis imposes it."""
+about, and *EQUATION read in full and imposed (tests/test_equation.py
+has the rest)."""
 from helpers import rel_err, run_deck
 
 E, NU, P = 1000.0, 0.25, 6.0
@@ -158,17 +159,22 @@ def test_cards_that_change_the_physics_stop_others_warn():
     assert rel_err(u_right(run)["U1"][0], P * 2.0 / (E * 2.0)) < 1e-12
 
 
-def test_equation_is_read_then_refused_at_its_line():
-    """*EQUATION is read in full (terms over several lines, node sets) and
-    then stops the run at its keyword line: the analysis does not impose
-    it yet. Malformed constraints are errors at the offending line."""
+def test_equation_read_in_full_and_imposed():
+    """*EQUATION is read in full (terms over several lines, a node set
+    giving one constraint per node) and imposed: u_y(3) = u_y(6), and each
+    RIGHT node's u_x is the mean of those of nodes 5 and 2 (the loaded
+    RIGHT nodes are eliminated, their loads carried by nodes 2 and 5).
+    Malformed constraints are errors at the offending line."""
     eq = "*EQUATION\n2\n3, 2, 1., 6, 2, -1.\n3\nRIGHT, 1, 1.,\n5, 1, -0.5, 2, 1, -0.5\n"
-    deck = block(extra=eq)
-    run = run_deck("decks_equation", deck)
-    line = deck.splitlines().index("*EQUATION") + 1
-    assert run.rc == 1 and f"decks_equation.inp:{line}: error: *EQUATION" in run.stderr, run.stderr
-    assert "not implemented yet" in run.stderr
-    for tag, text, bad, fragment in (("dof", "2\n3, 3, 1., 6, 2, -1.\n", "3, 3, 1., 6, 2, -1.", "dof must be 1 or 2"),
+    deck = block(extra=eq).replace("*NODE PRINT, NSET=RIGHT", "*NODE PRINT, NSET=ALLN")
+    run = run_deck("decks_equation", deck).ok()
+    u = run.listing.increments[-1].block("NODE U", set="ALLN")
+    ux, uy = dict(zip(u["node"], u["U1"])), dict(zip(u["node"], u["U2"]))
+    assert uy[3] == uy[6] and ux[2] > 0.0 and ux[5] > 0.0
+    for n in (3, 6):
+        assert abs(ux[n] - 0.5 * (ux[2] + ux[5])) <= 1e-15 * ux[2], (n, ux)
+    for tag, text, bad, fragment in (("dof", "2\n3, 3, 1., 6, 2, -1.\n", "3, 3, 1., 6, 2, -1.",
+                                      "dof 3 with a non-zero coefficient"),
                                      ("short", "3\n3, 2, 1., 6, 2, -1.\n", "3, 2, 1., 6, 2, -1.", "fewer terms"),
                                      ("zero", "2\n3, 2, 0., 6, 2, -1.\n", "3, 2, 0., 6, 2, -1.", "must not be zero")):
         deck = block(extra="*EQUATION\n" + text)

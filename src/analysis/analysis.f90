@@ -11,7 +11,8 @@ module analysis
   use assembly, only: body_t, element_counts_t, body_setup
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
-  use load_state, only: load_state_t, begin_step, values_at, temperature_change_at
+  use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached
+  use constraints, only: mpc_t, resolve_equations
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
@@ -30,6 +31,7 @@ module analysis
     type(load_state_t) :: ls
     type(equilibrium_t) :: eq
     type(body_t) :: body
+    type(mpc_t) :: mpc                  ! the linear constraints, resolved once
     real(dp) :: total_time = 0.0_dp     ! at the start of the current step
     integer :: inc = 0                  ! increments done in the current step
     logical :: update_search = .false.
@@ -65,6 +67,7 @@ contains
     rs%fext = 0.0_dp
     rs%rf = 0.0_dp
     call body_setup(m, rs%body, counts)
+    call constraints_of(m, rs%mpc)
     ! Small deformation: one search on the initial configuration.
     call contact_search(m, m%x, rs%cs)
     if (size(m%pairs) > 0) rs%update_search = any(m%pairs%update_search)
@@ -77,6 +80,17 @@ contains
     call finish(rs, obs)
     if (present(timing)) timing = rs%timing
   end subroutine run_analysis
+
+  !> The linear constraints resolved for elimination (the deck's checks
+  !> have reported what cannot be, naming its line).
+  subroutine constraints_of(m, mpc)
+    type(model_t), intent(in) :: m
+    type(mpc_t), intent(out) :: mpc
+    integer :: bad
+    character(len=:), allocatable :: msg
+    call resolve_equations(m, mpc, bad, msg)
+    if (bad > 0) call fatal('*EQUATION ' // itoa(bad) // ': ' // msg)
+  end subroutine constraints_of
 
   !> The run's timing: the driver's parts and the iteration's, to every
   !> observer (the output of this last event is not in it).
@@ -116,7 +130,8 @@ contains
     started = wall_time()
     t0 = started
     call begin_step(m, is, rs%u, rs%fext, rs%total_time, rs%ls)
-    call number_equations(m, rs%cs, rs%ls%presc, rs%dm, rs%sys, rs%eq%cd, ta)
+    call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta)
+    call check_loads_reached(m, rs%ls, rs%dm%inactive)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .true.)
     rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
     rs%timing%analyse = rs%timing%analyse + ta
@@ -209,7 +224,7 @@ contains
     real(dp) :: t0, ta
     t0 = wall_time()
     call contact_research(m, m%x + rs%u, rs%cs)
-    call number_equations(m, rs%cs, rs%ls%presc, rs%dm, rs%sys, rs%eq%cd, ta)
+    call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .false.)
     rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
     rs%timing%analyse = rs%timing%analyse + ta

@@ -15,7 +15,7 @@ module assembly
   use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses, act_thermal
   use element_library, only: element_routine
   use linear_solver, only: linear_system_t, sys_zero, sys_add
-  use dof_numbering, only: dofmap_t
+  use dof_numbering, only: dofmap_t, has_dependent, group_transform, reduce_dependent
   implicit none
   private
   public :: body_t, element_counts_t, body_setup, assemble_stiffness, body_forces, free_residual, &
@@ -159,8 +159,10 @@ contains
   !> Purpose: the stiffness of the current contact status into sys: the
   !> stored body matrices plus the tangent of every CFE.
   !> Arguments: kmax returns the largest diagonal entry of any element
-  !> matrix (a stiffness scale for the residual test).
-  subroutine assemble_stiffness(m, cs, body, u, sys, kmax, counts)
+  !> matrix (a stiffness scale for the residual test); dm the numbering
+  !> the system was set up for (its constraints transform the groups that
+  !> touch a dependent dof).
+  subroutine assemble_stiffness(m, cs, body, u, sys, kmax, counts, dm)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     type(body_t), intent(in) :: body
@@ -168,6 +170,7 @@ contains
     type(linear_system_t), intent(inout) :: sys
     real(dp), intent(out) :: kmax
     type(element_counts_t), intent(inout) :: counts
+    type(dofmap_t), intent(in) :: dm
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, j, nd, nodes(max_en)
@@ -177,19 +180,36 @@ contains
       if (.not. is_continuum(m, e)) cycle
       nd = 2 * elem_nodes(m, e)
       call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
-      call sys_add(sys, e, ke(1:nd, 1:nd))
+      call add_group(sys, dm, e, m%conn(1:nd / 2, e), ke(1:nd, 1:nd))
     end do
     kmax = body%kmax
     do e = 1, cs%n
       call cfe_input(m, cs%c(e), u, cs%stabilised, ein, nodes)
       call element_routine(act_tangent, ein, eout)
       counts%coupling = counts%coupling + 1
-      call sys_add(sys, m%ne + e, eout%ke(1:eout%ndof, 1:eout%ndof))
+      call add_group(sys, dm, m%ne + e, nodes(1:ein%nen), eout%ke(1:eout%ndof, 1:eout%ndof))
       do j = 1, eout%ndof
         kmax = max(kmax, abs(eout%ke(j, j)))
       end do
     end do
   end subroutine assemble_stiffness
+
+  !> The matrix k of assembly group g on nodes into sys: as it is, or
+  !> transformed by the constraints (t^T k t) where a dof is dependent.
+  subroutine add_group(sys, dm, g, nodes, k)
+    type(linear_system_t), intent(inout) :: sys
+    type(dofmap_t), intent(in) :: dm
+    integer, intent(in) :: g, nodes(:)
+    real(dp), intent(in) :: k(:, :)
+    integer, allocatable :: geq(:)
+    real(dp), allocatable :: t(:, :)
+    if (.not. has_dependent(dm, nodes)) then
+      call sys_add(sys, g, k)
+      return
+    end if
+    call group_transform(dm, nodes, geq, t)
+    call sys_add(sys, g, matmul(transpose(t), matmul(k, t)))
+  end subroutine add_group
 
   !> Purpose: internal forces of the bodies, sum of ke * ue, into fint
   !> (2, nn), which is overwritten.
@@ -217,12 +237,25 @@ contains
   end subroutine body_forces
 
   !> Purpose: the out-of-balance force f_ext - f_int on the free
-  !> equations, the right-hand side of K du = rhs.
+  !> equations, the right-hand side of K du = rhs (T^T (f_ext - f_int)
+  !> with constraints: forces on dependent dofs act on their independent
+  !> dofs).
   subroutine free_residual(dm, fext, fint, rhs)
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: fext(:, :), fint(:, :)
     real(dp), intent(out) :: rhs(:)
+    real(dp), allocatable :: r(:, :)
     integer :: a, d
+    if (dm%mpc%ndep > 0) then
+      r = fext - fint
+      call reduce_dependent(dm, r)
+      do a = 1, size(dm%eq, 2)
+        do d = 1, 2
+          if (dm%eq(d, a) > 0) rhs(dm%eq(d, a)) = r(d, a)
+        end do
+      end do
+      return
+    end if
     do a = 1, size(dm%eq, 2)
       do d = 1, 2
         if (dm%eq(d, a) > 0) rhs(dm%eq(d, a)) = fext(d, a) - fint(d, a)

@@ -27,7 +27,8 @@ module condensed_contact
   use element_interface, only: elem_in_t, elem_out_t, max_en, max_edof, act_tangent
   use element_library, only: element_routine
   use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
-  use dof_numbering, only: dofmap_t, number_dofs
+  use dof_numbering, only: dofmap_t, number_dofs, has_dependent, group_transform, expand_dependent, reduce_dependent
+  use constraints, only: mpc_t
   use linear_solver, only: linear_system_t, sys_condensed_factor, sys_trailing_order, sys_forward, sys_backward, &
                            sys_factor_flops, sys_nlast, factor_ok, factor_singular, pivot_ratio_min
   use dense_cholesky, only: dense_factor, dense_solve, upper_times, lower_gram
@@ -64,6 +65,10 @@ module condensed_contact
     real(dp) :: umax_rest = 0.0_dp      ! largest |u0| off the contact equations
     real(dp), allocatable :: fw(:, :)   ! (2, nn) work: CFE forces, zero between uses
     real(dp) :: kmax = 0.0_dp           ! largest element diagonal of the current status
+    !> Dependent dofs (indices into the constraints) at CFE nodes: their
+    !> independent dofs are contact equations (or prescribed), so they
+    !> follow the status iterations.
+    integer, allocatable :: cdep(:)
   end type condensed_t
 
 contains
@@ -75,12 +80,14 @@ contains
   !> with a solver other than CHOLMOD, and (AUTO) where a dense
   !> factorisation of the condensed matrix would not be cheaper than a
   !> sparse one of the whole (m comparable to n).
-  !> Arguments: t_analyse returns the wall time of the symbolic analysis
+  !> Arguments: mpc the linear constraints (their dependent dofs
+  !> eliminated); t_analyse returns the wall time of the symbolic analysis
   !> done here to decide (0 when none was needed).
-  subroutine number_equations(m, cs, prescribed, dm, sys, cd, t_analyse)
+  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
+    type(mpc_t), intent(in) :: mpc
     type(dofmap_t), intent(out) :: dm
     type(linear_system_t), intent(inout) :: sys
     type(condensed_t), intent(inout) :: cd
@@ -93,10 +100,10 @@ contains
     cd%active = .false.
     cd%m = 0
     if (m%contact_solve /= contact_solve_full .and. m%solver == solver_cholmod .and. cs%n > 0) then
-      call contact_dof_mask(m, cs, prescribed, mask)
+      call contact_dof_mask(m, cs, prescribed, mpc, mask)
       mc = count(mask)
       if (mc > 0) then
-        call number_dofs(m, cs, prescribed, m%solver, m%ordering, dm, sys, mask)
+        call number_dofs(m, cs, prescribed, m%solver, m%ordering, dm, sys, mask, mpc)
         cd%active = m%contact_solve == contact_solve_condensed
         if (.not. cd%active .and. mc <= auto_max_m) then
           call system_clock(c0, rate)
@@ -112,22 +119,24 @@ contains
         end if
       end if
     end if
-    call number_dofs(m, cs, prescribed, m%solver, m%ordering, dm, sys)
+    call number_dofs(m, cs, prescribed, m%solver, m%ordering, dm, sys, constraints=mpc)
   end subroutine number_equations
 
   !> The contact equations: free dofs on the diagonal of some CFE's closed
   !> tangent (those its B_e^T n reaches; where the normal has no x
-  !> component, the x dofs are not among them).
-  subroutine contact_dof_mask(m, cs, prescribed, mask)
+  !> component, the x dofs are not among them); for a dependent dof there,
+  !> the free independent dofs it stands for.
+  subroutine contact_dof_mask(m, cs, prescribed, mpc, mask)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
+    type(mpc_t), intent(in) :: mpc
     logical, allocatable, intent(out) :: mask(:, :)
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     type(cfe_t) :: c
     real(dp), allocatable :: u(:, :)
-    integer :: j, k, d, nodes(max_en)
+    integer :: j, k, d, i, q, nodes(max_en)
     allocate(mask(2, m%nn), u(2, m%nn))
     mask = .false.
     u = 0.0_dp
@@ -138,8 +147,15 @@ contains
       call element_routine(act_tangent, ein, eout)
       do k = 1, ein%nen
         do d = 1, 2
-          if (eout%ke(2 * k - 2 + d, 2 * k - 2 + d) /= 0.0_dp .and. .not. prescribed(d, nodes(k))) &
-            mask(d, nodes(k)) = .true.
+          if (eout%ke(2 * k - 2 + d, 2 * k - 2 + d) == 0.0_dp) cycle
+          i = mpc%dep(d, nodes(k))
+          if (i == 0) then
+            if (.not. prescribed(d, nodes(k))) mask(d, nodes(k)) = .true.
+            cycle
+          end if
+          do q = mpc%xt(i), mpc%xt(i + 1) - 1
+            if (.not. prescribed(mpc%tdof(q), mpc%tnode(q))) mask(mpc%tdof(q), mpc%tnode(q)) = .true.
+          end do
         end do
       end do
     end do
@@ -172,7 +188,7 @@ contains
     open_set = cs
     open_set%c(1:cs%n)%closed = .false.
     open_set%stabilised = .false.
-    call assemble_stiffness(m, open_set, body, cd%u0, sys, kmax, counts)
+    call assemble_stiffness(m, open_set, body, cd%u0, sys, kmax, counts, dm)
     if (allocated(cd%l22)) deallocate(cd%l22, cd%s0_diag, cd%s, cd%diag22, cd%kdiag, cd%q0, cd%x2, cd%eq_at)
     allocate(cd%l22(mc, mc), cd%s0_diag(mc), cd%s(mc, mc), cd%diag22(mc), cd%kdiag(mc), cd%q0(mc), cd%x2(mc), &
              cd%eq_at(mc), tperm(mc))
@@ -192,33 +208,99 @@ contains
     call map_cfes(cd, m, cs, dm, open_set, counts)
   end subroutine condensed_factor_k0
 
-  !> Trailing positions of every CFE's dofs, and its tangent as in K0.
+  !> Trailing positions of every CFE's rows (its dofs, or with
+  !> constraints the equations its transformed tangent reaches), its
+  !> tangent as in K0, and the dependent dofs at CFE nodes.
   subroutine map_cfes(cd, m, cs, dm, open_set, counts)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs, open_set
     type(dofmap_t), intent(in) :: dm
     type(element_counts_t), intent(inout) :: counts
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: j, k, d, e, nodes(max_en)
+    real(dp), allocatable :: kt(:, :)
+    integer, allocatable :: geq(:)
+    integer :: j, p, ng, maxng
+    real(dp) :: kraw
+    call dependents_at_cfes(cd, m, cs, dm, maxng)
     if (allocated(cd%ke0)) deallocate(cd%ke0, cd%cfe_pos)
-    allocate(cd%ke0(max_edof, max_edof, cs%n), cd%cfe_pos(max_edof, cs%n))
+    allocate(cd%ke0(maxng, maxng, cs%n), cd%cfe_pos(maxng, cs%n))
     cd%cfe_pos = 0
     cd%ke0 = 0.0_dp
     do j = 1, cs%n
-      call cfe_input(m, open_set%c(j), cd%u0, .false., ein, nodes)
-      call element_routine(act_tangent, ein, eout)
-      counts%coupling = counts%coupling + 1
-      cd%ke0(1:eout%ndof, 1:eout%ndof, j) = eout%ke(1:eout%ndof, 1:eout%ndof)
-      do k = 1, ein%nen
-        do d = 1, 2
-          e = dm%eq(d, nodes(k))
-          if (e > 0) cd%cfe_pos(2 * k - 2 + d, j) = cd%pos(e)
-        end do
+      call cfe_tangent(m, open_set%c(j), .false., dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
+      cd%ke0(1:ng, 1:ng, j) = kt
+      do p = 1, ng
+        if (geq(p) > 0) cd%cfe_pos(p, j) = cd%pos(geq(p))
       end do
     end do
   end subroutine map_cfes
+
+  !> cd%cdep: the dependent dofs at CFE nodes (each once); maxng the
+  !> largest number of rows of a CFE's tangent (transformed or not).
+  subroutine dependents_at_cfes(cd, m, cs, dm, maxng)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    integer, intent(out) :: maxng
+    logical, allocatable :: seen(:)
+    integer, allocatable :: geq(:)
+    real(dp), allocatable :: t(:, :)
+    integer :: j, k, d, i, nen, nodes(max_en)
+    allocate(seen(dm%mpc%ndep))
+    seen = .false.
+    maxng = max_edof
+    do j = 1, cs%n
+      call cfe_nodes(m, cs%c(j), nodes, nen)
+      if (.not. has_dependent(dm, nodes(1:nen))) cycle
+      call group_transform(dm, nodes(1:nen), geq, t)
+      maxng = max(maxng, size(geq))
+      do k = 1, nen
+        do d = 1, 2
+          i = dm%mpc%dep(d, nodes(k))
+          if (i > 0) seen(i) = .true.
+        end do
+      end do
+    end do
+    cd%cdep = pack([(i, i = 1, dm%mpc%ndep)], seen)
+  end subroutine dependents_at_cfes
+
+  !> The tangent of CFE c at displacements u (stabilised: the open
+  !> penalty's stabilisation), transformed by the constraints where a dof
+  !> of it is dependent: kt(ng, ng) on the equations geq (0: none); kraw
+  !> the largest diagonal entry of the element's own tangent.
+  subroutine cfe_tangent(m, c, stabilised, dm, u, kt, geq, ng, kraw, ncalls)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(in) :: c
+    logical, intent(in) :: stabilised
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: u(:, :)
+    real(dp), allocatable, intent(out) :: kt(:, :)
+    integer, allocatable, intent(out) :: geq(:)
+    integer, intent(out) :: ng
+    real(dp), intent(out) :: kraw
+    integer(kind=8), intent(inout) :: ncalls
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp), allocatable :: t(:, :)
+    integer :: nd, b, nodes(max_en)
+    call cfe_input(m, c, u, stabilised, ein, nodes)
+    call element_routine(act_tangent, ein, eout)
+    ncalls = ncalls + 1
+    nd = eout%ndof
+    kraw = 0.0_dp
+    do b = 1, nd
+      kraw = max(kraw, abs(eout%ke(b, b)))
+    end do
+    if (has_dependent(dm, nodes(1:ein%nen))) then
+      call group_transform(dm, nodes(1:ein%nen), geq, t)
+      kt = matmul(transpose(t), matmul(eout%ke(1:nd, 1:nd), t))
+    else
+      geq = reshape(dm%eq(:, nodes(1:ein%nen)), [nd])
+      kt = eout%ke(1:nd, 1:nd)
+    end if
+    ng = size(geq)
+  end subroutine cfe_tangent
 
   !> Purpose: factors S of the current contact status (cs: statuses and
   !> stabilisation): S0 plus every CFE's tangent minus its tangent in K0
@@ -227,17 +309,18 @@ contains
   !> factor_ok or factor_singular (bad: the equation whose pivot vanished,
   !> judged as the sparse backends judge theirs: relative to the diagonal
   !> entry of the status's full matrix); counts counts CFE routine calls.
-  subroutine condensed_status(cd, m, cs, kbody, counts, status, bad)
+  subroutine condensed_status(cd, m, cs, dm, kbody, counts, status, bad)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: kbody
     type(element_counts_t), intent(inout) :: counts
     integer, intent(out) :: status, bad
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: j, a, b, pa, pb, nd, info, nodes(max_en)
-    real(dp) :: dk, ratio
+    real(dp), allocatable :: kt(:, :)
+    integer, allocatable :: geq(:)
+    integer :: j, a, b, pa, pb, ng, info
+    real(dp) :: dk, ratio, kraw
     do b = 1, cd%m
       cd%s(b, b) = cd%s0_diag(b)
       cd%s(b + 1:cd%m, b) = cd%l22(b + 1:cd%m, b)
@@ -245,18 +328,15 @@ contains
     cd%kdiag = cd%diag22
     cd%kmax = kbody
     do j = 1, cs%n
-      call cfe_input(m, cs%c(j), cd%u0, cs%stabilised, ein, nodes)
-      call element_routine(act_tangent, ein, eout)
-      counts%coupling = counts%coupling + 1
-      nd = eout%ndof
-      do b = 1, nd
-        cd%kmax = max(cd%kmax, abs(eout%ke(b, b)))
+      call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
+      cd%kmax = max(cd%kmax, kraw)
+      do b = 1, ng
         pb = cd%cfe_pos(b, j)
         if (pb == 0) cycle
-        do a = 1, nd
+        do a = 1, ng
           pa = cd%cfe_pos(a, j)
           if (pa < pb) cycle               ! the lower triangle only
-          dk = eout%ke(a, b) - cd%ke0(a, b, j)
+          dk = kt(a, b) - cd%ke0(a, b, j)
           cd%s(pa, pb) = cd%s(pa, pb) + dk
           if (pa == pb) cd%kdiag(pa) = cd%kdiag(pa) + dk
         end do
@@ -330,8 +410,10 @@ contains
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(out) :: f(:)
     integer(kind=8), intent(inout) :: ncalls
-    integer :: p, e, j, nen, nodes(max_en)
+    integer :: p, e, j, k, q, nen, nodes(max_en)
     call contact_forces(m, cs, u, cd%fw, ncalls)
+    ! forces on dependent dofs act on their independent dofs
+    if (size(cd%cdep) > 0) call reduce_dependent(dm, cd%fw, cd%cdep)
     do p = 1, cd%m
       e = cd%eq_at(p)
       f(p) = cd%fw(dm%dof_of_eq(e), dm%node_of_eq(e))
@@ -339,6 +421,12 @@ contains
     do j = 1, cs%n
       call cfe_nodes(m, cs%c(j), nodes, nen)
       cd%fw(:, nodes(1:nen)) = 0.0_dp
+    end do
+    do j = 1, size(cd%cdep)
+      k = cd%cdep(j)
+      do q = dm%mpc%xt(k), dm%mpc%xt(k + 1) - 1
+        cd%fw(dm%mpc%tdof(q), dm%mpc%tnode(q)) = 0.0_dp
+      end do
     end do
   end subroutine contact_part_forces
 
@@ -387,8 +475,9 @@ contains
   !> Purpose: the contact equations for the current status (factored by
   !> condensed_status): S x2 = q0 - (CFE forces at the increment's start).
   !> u(contact equations) returns the start of the increment plus x2,
-  !> enough for every gap; the caller keeps the other equations at the
-  !> start until condensed_recover. finite says whether x2 is.
+  !> enough for every gap (with the dependent dofs at CFE nodes); the
+  !> caller keeps the other equations at the start until
+  !> condensed_recover. finite says whether x2 is.
   subroutine condensed_solve(cd, m, cs, dm, u, finite, ncalls)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
@@ -404,6 +493,7 @@ contains
     call dense_solve(cd%s, cd%x2)
     finite = all(ieee_is_finite(cd%x2))
     call add_contact_part(cd, dm, u)
+    if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
   end subroutine condensed_solve
 
   !> u(contact equations) = u0 + x2.
@@ -421,7 +511,7 @@ contains
   !> Purpose: the other equations of the last condensed_solve: the
   !> backward half of a solve of [z1; L22^T x2]; u returns the whole
   !> solution (the contact equations exactly as the status iteration had
-  !> them).
+  !> them), dependent dofs included.
   subroutine condensed_recover(cd, dm, sys, u)
     type(condensed_t), intent(in) :: cd
     type(dofmap_t), intent(in) :: dm
@@ -438,6 +528,7 @@ contains
       u(dm%dof_of_eq(e), dm%node_of_eq(e)) = cd%u0(dm%dof_of_eq(e), dm%node_of_eq(e)) + w(e)
     end do
     call add_contact_part(cd, dm, u)
+    call expand_dependent(dm, u)
   end subroutine condensed_recover
 
   !> Purpose: r(n) := K^-1 r with K the matrix of the current status

@@ -13,7 +13,7 @@ module condensed_equilibrium
   use model, only: model_t
   use contact, only: contact_set_t, contact_forces, contact_switch
   use assembly, only: body_t, body_forces, free_residual
-  use dof_numbering, only: dofmap_t
+  use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_analyse, factor_singular
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces
@@ -114,8 +114,9 @@ contains
     real(dp), intent(in) :: fext(:, :)
     real(dp), intent(inout) :: u(:, :)
     real(dp), allocatable :: fbody(:, :)
+    if (allocated(eq%u_last)) where (dm%eq > 0) u = eq%u_last
+    call expand_dependent(dm, u)
     if (allocated(eq%u_last)) then
-      where (dm%eq > 0) u = eq%u_last
       fbody = eq%fbody_last
       call add_body_forces(m, body, u - eq%u_last, fbody)
     else
@@ -153,6 +154,7 @@ contains
     rf = eq%fbody
     call contact_forces(m, cs, u, rf, eq%counts%coupling)
     rf = rf - fext
+    call reduce_dependent(dm, rf)
     eq%residual = relative_residual(dm, cs, fext, u, rf, eq%kmax, eq%force_history, scale)
     eq%timing%recovery = eq%timing%recovery + (wall_time() - t0)
   end subroutine settled_residual
@@ -176,6 +178,7 @@ contains
         if (dm%eq(d, a) > 0) u(d, a) = u(d, a) + eq%rhs(dm%eq(d, a))
       end do
     end do
+    call expand_dependent(dm, u)
     eq%timing%recovery = eq%timing%recovery + (wall_time() - t0)
   end subroutine correct
 
@@ -246,13 +249,13 @@ contains
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states .eqv. cs%c(1:cs%n)%closed)) return
     end if
-    call dense_status(eq, m, cs, body, status, bad)
+    call dense_status(eq, m, cs, dm, body, status, bad)
     if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
       cs%stabilised = .true.
       eq%stabilisation_used = .true.
       call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                           'until the status settles')
-      call dense_status(eq, m, cs, body, status, bad)
+      call dense_status(eq, m, cs, dm, body, status, bad)
     end if
     if (status == factor_singular) call singular(m, cs, dm, bad)
     eq%kmax = eq%cd%kmax
@@ -262,13 +265,14 @@ contains
   end subroutine condensed_factor_if_needed
 
   !> One dense factorisation of the condensed matrix (counted).
-  subroutine dense_status(eq, m, cs, body, status, bad)
+  subroutine dense_status(eq, m, cs, dm, body, status, bad)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
     type(body_t), intent(in) :: body
     integer, intent(out) :: status, bad
-    call condensed_status(eq%cd, m, cs, body%kmax, eq%counts, status, bad)
+    call condensed_status(eq%cd, m, cs, dm, body%kmax, eq%counts, status, bad)
     eq%condensed_factorisations = eq%condensed_factorisations + 1
     eq%timing%condensed_factorisations = eq%timing%condensed_factorisations + 1
   end subroutine dense_status

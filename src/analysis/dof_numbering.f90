@@ -1,24 +1,43 @@
-!> Global equations: the free dofs numbered (prescribed ones eliminated),
-!> node by node in a profile-reducing order for the skyline or in input
-!> order for the sparse solvers (which order for themselves), optionally
-!> with a chosen set of dofs numbered last; and the equation lists of the
-!> assembly groups (continuum elements, then coupling elements) from which
-!> the solver sets up its structure.
+!> Global equations: the free dofs numbered (prescribed ones and the
+!> dependent dofs of linear constraints eliminated), node by node in a
+!> profile-reducing order for the skyline or in input order for the
+!> sparse solvers (which order for themselves), optionally with a chosen
+!> set of dofs numbered last; and the equation lists of the assembly
+!> groups (continuum elements, then coupling elements) from which the
+!> solver sets up its structure.
+!>
+!> Linear constraints (*EQUATION, resolved by module constraints) are
+!> imposed by elimination: u = T u_r, with u_r the independent dofs. A
+!> group that touches a dependent dof reaches the equations of its
+!> independent dofs instead (group_transform): its matrix enters as
+!> T_g^T k T_g, forces on dependent dofs go to their independent dofs
+!> (reduce_dependent: f_r = T^T f), and displacements of dependent dofs
+!> follow from the independent ones (expand_dependent). The system stays
+!> symmetric positive definite.
 module dof_numbering
   use kinds, only: dp
+  use strings, only: itoa
+  use messages, only: fatal
   use model
+  use constraints, only: mpc_t
   use contact, only: contact_set_t, cfe_nodes
   use element_interface, only: max_en
   use linear_solver, only: linear_system_t, sys_setup, solver_skyline, order_rcm
   use ordering, only: rcm_order
+  use growable, only: grow
   implicit none
   private
-  public :: dofmap_t, number_dofs
+  public :: dofmap_t, number_dofs, group_transform, has_dependent, expand_dependent, reduce_dependent
 
   type :: dofmap_t
     integer :: neq = 0
-    integer, allocatable :: eq(:, :)     ! (2, nn): equation, 0 if prescribed
+    integer, allocatable :: eq(:, :)     ! (2, nn): equation, 0 if prescribed, dependent or inactive
     integer, allocatable :: node_of_eq(:), dof_of_eq(:)
+    !> The linear constraints: dependent dofs in terms of independent ones.
+    type(mpc_t) :: mpc
+    !> (2, nn) dofs without an equation because nothing reaches them: the
+    !> unused dof of a node that only a constraint names (a reference node).
+    logical, allocatable :: inactive(:, :)
   end type dofmap_t
 
 contains
@@ -40,22 +59,25 @@ contains
     end if
   end subroutine group_nodes
 
-  !> Node graph of continuum elements and CFEs in compressed form.
-  subroutine node_graph(m, cs, xadj, adj)
+  !> Node graph of continuum elements and CFEs in compressed form; a
+  !> group's nodes include those of the independent dofs its dependent
+  !> dofs stand for (the couplings its transformed matrix makes).
+  subroutine node_graph(m, cs, mpc, xadj, adj)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
+    type(mpc_t), intent(in) :: mpc
     integer, allocatable, intent(out) :: xadj(:), adj(:)
-    integer, allocatable :: cnt(:), pos(:)
-    integer :: pass, e, i, j, nen, nodes(max_en), k
-    allocate(cnt(m%nn), xadj(m%nn + 1), pos(m%nn))
+    integer, allocatable :: cnt(:), pos(:), nodes(:)
+    integer :: pass, e, i, j, nen, k
+    allocate(cnt(m%nn), xadj(m%nn + 1), pos(m%nn), nodes(max_en))
     ! Pass 1 counts, pass 2 fills; duplicates are harmless to RCM.
     do pass = 1, 2
       cnt = 0
       do e = 1, m%ne + cs%n
-        call group_nodes(m, cs, e, nodes, nen)
+        call graph_nodes(m, cs, mpc, e, nodes, nen)
         do i = 1, nen
           do j = 1, nen
-            if (i == j) cycle
+            if (nodes(i) == nodes(j)) cycle
             cnt(nodes(i)) = cnt(nodes(i)) + 1
             if (pass == 2) then
               adj(pos(nodes(i))) = nodes(j)
@@ -75,14 +97,42 @@ contains
     end do
   end subroutine node_graph
 
+  !> The nodes of group g and, where a dof of them is dependent, the nodes
+  !> of its independent dofs (each once).
+  subroutine graph_nodes(m, cs, mpc, g, nodes, nen)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(mpc_t), intent(in) :: mpc
+    integer, intent(in) :: g
+    integer, allocatable, intent(inout) :: nodes(:)
+    integer, intent(out) :: nen
+    integer :: i, d, k, j, n0
+    call group_nodes(m, cs, g, nodes, nen)
+    if (mpc%ndep == 0) return
+    n0 = nen
+    do i = 1, n0
+      do d = 1, 2
+        k = mpc%dep(d, nodes(i))
+        if (k == 0) cycle
+        do j = mpc%xt(k), mpc%xt(k + 1) - 1
+          if (any(nodes(1:nen) == mpc%tnode(j))) cycle
+          nen = nen + 1
+          call grow(nodes, nen)
+          nodes(nen) = mpc%tnode(j)
+        end do
+      end do
+    end do
+  end subroutine graph_nodes
+
   !> Purpose: numbers the free dofs and sets up the system's structure from
   !> the equation lists of the continuum elements and the CFEs, in
   !> assembly order.
   !> Arguments: prescribed(2, nn) dofs eliminated; kind, order the solver
   !> and its ordering; last(2, nn), if present, marks dofs numbered after
   !> all others (in node order), e.g. the contact equations of a condensed
-  !> solve.
-  subroutine number_dofs(m, cs, prescribed, kind, order, dm, sys, last)
+  !> solve; constraints, if present, the linear constraints (their
+  !> dependent dofs eliminated; none without it).
+  subroutine number_dofs(m, cs, prescribed, kind, order, dm, sys, last, constraints)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
@@ -90,26 +140,38 @@ contains
     type(dofmap_t), intent(out) :: dm
     type(linear_system_t), intent(inout) :: sys
     logical, intent(in), optional :: last(:, :)
+    type(mpc_t), intent(in), optional :: constraints
     integer, allocatable :: xadj(:), adj(:), perm(:)
+    logical, allocatable :: numbered(:, :)
     integer :: i, d, n, pass, nlast
     logical :: take
+    if (present(constraints)) then
+      dm%mpc = constraints
+    else
+      allocate(dm%mpc%dep(2, m%nn), dm%mpc%xt(1))
+      dm%mpc%dep = 0
+      dm%mpc%xt = 1
+    end if
+    call active_dofs(m, cs, prescribed, dm, numbered)
     allocate(perm(m%nn), dm%eq(2, m%nn))
     if (kind == solver_skyline .and. order == order_rcm) then
-      call node_graph(m, cs, xadj, adj)
+      call node_graph(m, cs, dm%mpc, xadj, adj)
       call rcm_order(m%nn, xadj, adj, perm)
     else
       perm = [(i, i = 1, m%nn)]
     end if
     dm%eq = 0
     n = 0
+    nlast = 0
     do pass = 1, 2
       do i = 1, m%nn
         do d = 1, 2
-          if (prescribed(d, perm(i))) cycle
+          if (.not. numbered(d, perm(i))) cycle
           take = pass == 1
           if (present(last)) take = last(d, perm(i)) .eqv. (pass == 2)
           if (.not. take) cycle
           n = n + 1
+          if (pass == 2) nlast = nlast + 1
           dm%eq(d, perm(i)) = n
         end do
       end do
@@ -125,21 +187,58 @@ contains
         end if
       end do
     end do
-    nlast = 0
-    if (present(last)) nlast = count(last .and. .not. prescribed)
     call setup_structure(m, cs, dm, kind, order, nlast, sys)
   end subroutine number_dofs
 
-  !> Equation lists (local dof order, 0 for prescribed dofs) of every
-  !> assembly group, handed to the solver with the size of the trailing
-  !> block (nlast).
+  !> The dofs that get an equation: those neither prescribed nor
+  !> dependent, except the unused dof of a node that only constraints
+  !> name (no element, no CFE: a reference node), which nothing could move
+  !> (dm%inactive). A node that nothing reaches at all, with a dof left
+  !> free, has no stiffness: the run stops, naming it.
+  subroutine active_dofs(m, cs, prescribed, dm, numbered)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    logical, intent(in) :: prescribed(:, :)
+    type(dofmap_t), intent(inout) :: dm
+    logical, allocatable, intent(out) :: numbered(:, :)
+    logical, allocatable :: reached(:), named(:, :)
+    integer :: g, a, d, k, nen, nodes(max_en)
+    allocate(reached(m%nn), named(2, m%nn), numbered(2, m%nn), dm%inactive(2, m%nn))
+    reached = .false.
+    do g = 1, m%ne + cs%n
+      call group_nodes(m, cs, g, nodes, nen)
+      reached(nodes(1:nen)) = .true.
+    end do
+    named = dm%mpc%dep > 0
+    do k = 1, dm%mpc%ndep
+      named(dm%mpc%tdof(dm%mpc%xt(k):dm%mpc%xt(k + 1) - 1), dm%mpc%tnode(dm%mpc%xt(k):dm%mpc%xt(k + 1) - 1)) = .true.
+    end do
+    do a = 1, m%nn
+      do d = 1, 2
+        if (prescribed(d, a) .and. dm%mpc%dep(d, a) > 0) call fatal('dof ' // itoa(d) // ' of node ' // &
+          itoa(m%node_id(a)) // ' is both prescribed and the dependent dof of a linear constraint')
+        numbered(d, a) = .not. prescribed(d, a) .and. dm%mpc%dep(d, a) == 0
+        dm%inactive(d, a) = numbered(d, a) .and. .not. reached(a) .and. .not. named(d, a) .and. any(named(:, a))
+        if (dm%inactive(d, a)) numbered(d, a) = .false.
+        if (numbered(d, a) .and. .not. reached(a) .and. .not. named(d, a)) call fatal('singular stiffness at ' // &
+          'node ' // itoa(m%node_id(a)) // ', dof ' // itoa(d) // ': the node belongs to no element, contact ' // &
+          'pair or *EQUATION and this dof has no *BOUNDARY (missing boundary condition?)')
+      end do
+    end do
+  end subroutine active_dofs
+
+  !> Equation lists (local dof order, 0 for prescribed dofs; a group
+  !> touching a dependent dof reaches the equations of group_transform)
+  !> of every assembly group, handed to the solver with the size of the
+  !> trailing block (nlast).
   subroutine setup_structure(m, cs, dm, kind, order, nlast, sys)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     type(dofmap_t), intent(in) :: dm
     integer, intent(in) :: kind, order, nlast
     type(linear_system_t), intent(inout) :: sys
-    integer, allocatable :: xeq(:), eqs(:)
+    integer, allocatable :: xeq(:), eqs(:), geq(:)
+    real(dp), allocatable :: t(:, :)
     integer :: ng, e, i, k, nen, nodes(max_en)
     ng = m%ne + cs%n
     allocate(xeq(ng + 1), eqs(2 * max_en * ng))
@@ -147,12 +246,123 @@ contains
     do e = 1, ng
       call group_nodes(m, cs, e, nodes, nen)
       k = xeq(e)
-      do i = 1, nen
-        eqs(k:k + 1) = dm%eq(:, nodes(i))
-        k = k + 2
-      end do
+      if (has_dependent(dm, nodes(1:nen))) then
+        call group_transform(dm, nodes(1:nen), geq, t)
+        call grow(eqs, k + size(geq))
+        eqs(k:k + size(geq) - 1) = geq
+        k = k + size(geq)
+      else
+        call grow(eqs, k + 2 * nen)
+        do i = 1, nen
+          eqs(k:k + 1) = dm%eq(:, nodes(i))
+          k = k + 2
+        end do
+      end if
       xeq(e + 1) = k
     end do
     call sys_setup(sys, kind, order, dm%neq, xeq, eqs(1:xeq(ng + 1) - 1), nlast)
   end subroutine setup_structure
+
+  !> Purpose: does a dof of these nodes depend on others?
+  pure logical function has_dependent(dm, nodes)
+    type(dofmap_t), intent(in) :: dm
+    integer, intent(in) :: nodes(:)
+    has_dependent = .false.
+    if (dm%mpc%ndep == 0) return
+    has_dependent = any(dm%mpc%dep(:, nodes) > 0)
+  end function has_dependent
+
+  !> Purpose: the equations an assembly group on `nodes` reaches and its
+  !> constraint transformation. geq(1:nd) (nd = 2 size(nodes)) are the
+  !> equations of its own dofs in local order (0 where prescribed,
+  !> dependent or inactive), the rest those of the free independent dofs
+  !> its dependent dofs stand for, each once; local dof i = sum_j t(i, j)
+  !> u(geq(j)) plus prescribed values. The group's matrix enters the
+  !> system as t^T k t, its forces as t^T f.
+  pure subroutine group_transform(dm, nodes, geq, t)
+    type(dofmap_t), intent(in) :: dm
+    integer, intent(in) :: nodes(:)
+    integer, allocatable, intent(out) :: geq(:)
+    real(dp), allocatable, intent(out) :: t(:, :)
+    integer, allocatable :: buf(:)
+    integer :: nd, ng, i, k, j, e, pass
+    nd = 2 * size(nodes)
+    ng = nd
+    do i = 1, nd
+      k = dm%mpc%dep(2 - mod(i, 2), nodes((i + 1) / 2))
+      if (k > 0) ng = ng + dm%mpc%xt(k + 1) - dm%mpc%xt(k)
+    end do
+    allocate(buf(ng))
+    buf(1:nd) = reshape(dm%eq(:, nodes), [nd])
+    ng = nd
+    do pass = 1, 2
+      do i = 1, nd
+        k = dm%mpc%dep(2 - mod(i, 2), nodes((i + 1) / 2))
+        if (k == 0) cycle
+        do j = dm%mpc%xt(k), dm%mpc%xt(k + 1) - 1
+          e = dm%eq(dm%mpc%tdof(j), dm%mpc%tnode(j))
+          if (e <= 0) cycle                ! a prescribed value: in the residual
+          if (pass == 1) then
+            if (any(buf(1:ng) == e)) cycle
+            ng = ng + 1
+            buf(ng) = e
+          else
+            e = findloc(geq, e, dim=1)
+            t(i, e) = t(i, e) + dm%mpc%tcoef(j)
+          end if
+        end do
+      end do
+      if (pass == 2) exit
+      geq = buf(1:ng)
+      allocate(t(nd, ng))
+      t = 0.0_dp
+      do i = 1, nd
+        if (geq(i) > 0) t(i, i) = 1.0_dp
+      end do
+    end do
+  end subroutine group_transform
+
+  !> Purpose: u at the dependent dofs from the independent ones: all of
+  !> them, or the dependent dofs listed in only (indices into dm%mpc).
+  pure subroutine expand_dependent(dm, u, only)
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(inout) :: u(:, :)
+    integer, intent(in), optional :: only(:)
+    integer :: q, k, j, n
+    real(dp) :: v
+    n = dm%mpc%ndep
+    if (present(only)) n = size(only)
+    do q = 1, n
+      k = q
+      if (present(only)) k = only(q)
+      v = 0.0_dp
+      do j = dm%mpc%xt(k), dm%mpc%xt(k + 1) - 1
+        v = v + dm%mpc%tcoef(j) * u(dm%mpc%tdof(j), dm%mpc%tnode(j))
+      end do
+      u(dm%mpc%dof(k), dm%mpc%node(k)) = v
+    end do
+  end subroutine expand_dependent
+
+  !> Purpose: f := T^T f in place: each force on a dependent dof moves to
+  !> its independent dofs (times their coefficients) and is zeroed there;
+  !> all dependent dofs, or those listed in only.
+  pure subroutine reduce_dependent(dm, f, only)
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(inout) :: f(:, :)
+    integer, intent(in), optional :: only(:)
+    integer :: q, k, j, n
+    real(dp) :: v
+    n = dm%mpc%ndep
+    if (present(only)) n = size(only)
+    do q = 1, n
+      k = q
+      if (present(only)) k = only(q)
+      v = f(dm%mpc%dof(k), dm%mpc%node(k))
+      f(dm%mpc%dof(k), dm%mpc%node(k)) = 0.0_dp
+      if (v == 0.0_dp) cycle
+      do j = dm%mpc%xt(k), dm%mpc%xt(k + 1) - 1
+        f(dm%mpc%tdof(j), dm%mpc%tnode(j)) = f(dm%mpc%tdof(j), dm%mpc%tnode(j)) + dm%mpc%tcoef(j) * v
+      end do
+    end do
+  end subroutine reduce_dependent
 end module dof_numbering

@@ -14,7 +14,7 @@ module equilibrium
   use model, only: model_t
   use contact, only: contact_set_t, contact_switch
   use assembly, only: body_t, assemble_stiffness, free_residual
-  use dof_numbering, only: dofmap_t
+  use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
                                 report_iteration, describe, singular
@@ -28,8 +28,9 @@ module equilibrium
 contains
 
   !> Purpose: equilibrium at the prescribed values and loads already in u
-  !> and fext. On return u holds the solution, rf = f_int - f_ext (the
-  !> reactions at prescribed dofs), ok whether it converged and iters the
+  !> and fext (the dependent dofs of constraints are set from them here).
+  !> On return u holds the solution, rf = T^T (f_int - f_ext) (the
+  !> reactions at prescribed dofs; zero at dependent dofs), ok whether it converged and iters the
   !> iterations used.
   subroutine solve_increment(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
     type(equilibrium_t), intent(inout) :: eq
@@ -86,6 +87,7 @@ contains
     ok = .false.
     cs%stabilised = .false.
     eq%stabilisation_used = .false.
+    call expand_dependent(dm, u)
     call internal_forces(m, body, cs, u, fint, eq%counts)
     do it = 1, m%contact_max_iter
       call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised)
@@ -97,12 +99,14 @@ contains
           if (dm%eq(d, a) > 0) u(d, a) = u(d, a) + eq%rhs(dm%eq(d, a))
         end do
       end do
+      call expand_dependent(dm, u)
       call check_finite(m, is, inc, u)
       call internal_forces(m, body, cs, u, fint, eq%counts)
       call contact_switch(m, cs, nchanged, eq%changed)
       ! the residual of the new status
       if (nchanged > 0) call internal_forces(m, body, cs, u, fint, eq%counts)
       rf = fint - fext
+      call reduce_dependent(dm, rf)
       eq%residual = relative_residual(dm, cs, fext, u, rf, eq%kmax, eq%force_history, scale)
       eq%iterations = eq%iterations + 1
       call report_iteration(eq, cs, obs, it, nchanged)
@@ -145,14 +149,14 @@ contains
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states .eqv. cs%c(1:cs%n)%closed)) return
     end if
-    call assemble_and_factor(eq, m, body, cs, u, sys, status, bad)
+    call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
     if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
       cs%stabilised = .true.
       eq%stabilisation_used = .true.
       restabilised = .true.
       call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                           'until the status settles')
-      call assemble_and_factor(eq, m, body, cs, u, sys, status, bad)
+      call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
     end if
     if (status == factor_singular) call singular(m, cs, dm, bad)
     if (status == factor_fallback) then
@@ -167,17 +171,18 @@ contains
 
   !> The stiffness of the current status, assembled and factored (timed,
   !> counted).
-  subroutine assemble_and_factor(eq, m, body, cs, u, sys, status, bad)
+  subroutine assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: u(:, :)
     type(linear_system_t), intent(inout) :: sys
     integer, intent(out) :: status, bad
     real(dp) :: t0, t1
     t0 = wall_time()
-    call assemble_stiffness(m, cs, body, u, sys, eq%kmax, eq%counts)
+    call assemble_stiffness(m, cs, body, u, sys, eq%kmax, eq%counts, dm)
     t1 = wall_time()
     call sys_analyse(sys)
     eq%timing%assembly = eq%timing%assembly + (t1 - t0)

@@ -26,7 +26,7 @@ module load_state
   use assembly, only: thermal_forces
   implicit none
   private
-  public :: load_state_t, load_pattern_t, begin_step, values_at, temperature_change_at
+  public :: load_state_t, load_pattern_t, begin_step, values_at, temperature_change_at, check_loads_reached
 
   type :: load_pattern_t
     integer :: elem = 0, label = 0, face = 0     ! what it is (dload_t)
@@ -392,6 +392,24 @@ contains
       end block
     end if
   end subroutine values_at
+
+  !> Purpose: stops if a concentrated load of the step acts on a dof
+  !> that nothing carries: inactive(2, nn) marks the unused dofs of nodes
+  !> that belong to no element and that only constraints name.
+  subroutine check_loads_reached(m, ls, inactive)
+    type(model_t), intent(in) :: m
+    type(load_state_t), intent(in) :: ls
+    logical, intent(in) :: inactive(:, :)
+    integer :: a, d
+    do a = 1, m%nn
+      do d = 1, 2
+        if (.not. inactive(d, a)) cycle
+        if (ls%ld_target(d, a) /= 0.0_dp .or. ls%ld_start(d, a) /= 0.0_dp) call fatal('a *CLOAD acts on dof ' // &
+          itoa(d) // ' of node ' // itoa(m%node_id(a)) // ', which belongs to no element and which no ' // &
+          '*EQUATION names: nothing carries it')
+      end do
+    end do
+  end subroutine check_loads_reached
 
   real(dp) function amp_at(m, ls, ia, t)
     type(model_t), intent(in) :: m

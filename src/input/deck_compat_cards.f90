@@ -1,6 +1,6 @@
 !> Cards of decks written for CalculiX or Abaqus that cfe2d reads for
 !> what they mean to a static, small-strain, linear elastic 2D analysis:
-!> *NODAL THICKNESS, *EQUATION (read, not yet imposed), and the cards
+!> *NODAL THICKNESS, *EQUATION (linear constraints), and the cards
 !> that would change the physics (other procedures, other material laws),
 !> which stop the run with the reason.
 submodule (deck_parser) deck_compat_cards
@@ -61,8 +61,8 @@ contains
   !> then `node, dof, coefficient` triples (four per line at most, as many
   !> lines as needed); a node set gives one constraint per node (sets of
   !> one node, and node ids, take part in each). The constraints are put
-  !> into m%equations; imposing them is the analysis' part, not written
-  !> yet, so the card then stops the run naming its line.
+  !> into m%equations (checked once the deck is read: deck_model_checks;
+  !> the analysis eliminates the first term's dof).
   module subroutine read_equation(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -76,30 +76,30 @@ contains
       if (n /= 1) call err(p, '*EQUATION: expected the number of terms of the next constraint')
       nterms = get_int(p, f(1), 'number of terms')
       if (nterms < 1 .or. nterms > 1000) call err(p, 'the number of terms must lie in 1..1000')
-      call read_equation_terms(p, m, nterms, card)
+      call read_equation_terms(p, m, nterms)
     end do
     if (p%i == card) call err(p, 'missing data line (number of terms)')
-    ! The analysis does not impose m%equations yet: remove this stop when
-    ! it does (see docs/keywords.md, *EQUATION).
-    p%i = card
-    call err(p, '*EQUATION (linear multi-point constraints) is not implemented yet: the constraints ' // &
-             'are read but the analysis cannot impose them')
   end subroutine read_equation
 
   !> The `node, dof, coefficient` triples of one *EQUATION constraint,
-  !> appended to m%equations (one constraint per node of its node sets).
-  subroutine read_equation_terms(p, m, nterms, card)
+  !> appended to m%equations (one constraint per node of its node sets)
+  !> with the line of its first term as its source. A term on another dof
+  !> than 1 or 2 is dropped if its coefficient is zero (CalculiX decks of
+  !> plane models may name dof 3) and an error otherwise.
+  subroutine read_equation_terms(p, m, nterms)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
-    integer, intent(in) :: nterms, card
+    integer, intent(in) :: nterms
     type(field_t), allocatable :: f(:)
     type(equation_t) :: eq
     integer, allocatable :: first(:), count(:), all_nodes(:)
-    integer :: n, k, j, nread, ncopies
+    integer :: n, k, j, nread, nkept, ncopies
+    logical :: kept(nterms)
     allocate(eq%node(nterms), eq%dof(nterms), eq%coef(nterms), first(nterms), count(nterms), all_nodes(0))
     nread = 0
     do while (nread < nterms)
       if (.not. next_data(p)) call err(p, '*EQUATION: fewer terms than announced (' // itoa(nterms) // ')')
+      if (nread == 0) eq%src%line = p%i
       call split_fields(line_text(p), f, n)
       if (mod(n, 3) /= 0 .or. nread + n / 3 > nterms) &
         call err(p, '*EQUATION data line needs node, dof, coefficient triples (' // itoa(nterms) // ' in all)')
@@ -109,17 +109,33 @@ contains
         all_nodes = [all_nodes, target_of(p, m, f(k))]
         count(nread) = size(all_nodes) - first(nread) + 1
         eq%dof(nread) = get_int(p, f(k + 1), 'dof')
-        if (eq%dof(nread) < 1 .or. eq%dof(nread) > 2) call err(p, 'dof must be 1 or 2 in 2D')
         eq%coef(nread) = get_real(p, f(k + 2), 'coefficient')
+        if (nread == 1 .and. eq%coef(1) == 0.0_dp) &
+          call err(p, 'the first coefficient (of the dependent dof) must not be zero')
+        kept(nread) = eq%dof(nread) == 1 .or. eq%dof(nread) == 2
+        if (.not. kept(nread) .and. eq%coef(nread) /= 0.0_dp) call err(p, 'dof ' // itoa(eq%dof(nread)) // &
+          ' with a non-zero coefficient: a 2D model has dofs 1 and 2 only (CalculiX expands plane elements ' // &
+          'to 3D; here a dof 3 term has no meaning)')
       end do
     end do
-    if (eq%coef(1) == 0.0_dp) call err(p, 'the first coefficient (of the dependent dof) must not be zero')
     ncopies = maxval(count)
     if (any(count /= 1 .and. count /= ncopies)) &
       call err(p, '*EQUATION: the node sets of one constraint must have the same number of nodes')
-    eq%src%line = card
+    nkept = 0
+    do k = 1, nterms
+      if (.not. kept(k)) cycle
+      nkept = nkept + 1
+      eq%dof(nkept) = eq%dof(k)
+      eq%coef(nkept) = eq%coef(k)
+      first(nkept) = first(k)
+      count(nkept) = count(k)
+    end do
+    eq%dof = eq%dof(1:nkept)
+    eq%coef = eq%coef(1:nkept)
+    deallocate(eq%node)
+    allocate(eq%node(nkept))
     do j = 1, ncopies
-      do k = 1, nterms
+      do k = 1, nkept
         eq%node(k) = all_nodes(first(k) + min(j, count(k)) - 1)
       end do
       call grow(m%equations, p%nequations + 1)

@@ -1,13 +1,15 @@
 !> Checks that need the whole deck: sections and their materials (a
 !> material may be defined after the section naming it), one section per
-!> solid element, element geometry, a procedure in every step. The
+!> solid element, element geometry, a procedure in every step, linear
+!> constraints that can be eliminated. The
 !> element topology (edges and neighbours) is built last.
 submodule (deck_parser) deck_model_checks
   use kinds, only: dp
   use strings, only: itoa, rtoa, to_upper
   use deck_input, only: deck_warning
   use deck_cursor, only: err
-  use model, only: is_continuum, find_name, section_t
+  use model, only: is_continuum, find_name, section_t, bc_t
+  use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
                                state_axisymmetric
   use growable, only: grow
@@ -28,6 +30,7 @@ contains
     call apply_nodal_thickness(p, m)
     call warn_plane_stress(p, m)
     call check_elements(p, m)
+    call check_equations(p, m)
     if (size(m%steps) == 0) then
       p%i = p%deck%n
       call err(p, 'the deck has no *STEP: nothing to analyse')
@@ -44,6 +47,49 @@ contains
     end if
     call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
   end subroutine check_model
+
+  !> *EQUATION: the constraints can be eliminated (module constraints
+  !> says why not), and no dependent dof (a first term) is also
+  !> prescribed by a *BOUNDARY of the model or of a step, which CalculiX
+  !> refuses too. Errors name the equation's first term line.
+  subroutine check_equations(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    type(mpc_t) :: mpc
+    character(len=:), allocatable :: msg
+    integer :: bad, s
+    if (size(m%equations) == 0) return
+    call resolve_equations(m, mpc, bad, msg)
+    if (bad == 0) then
+      call bc_on_dependent(m, mpc, m%model_bcs, bad, msg)
+      do s = 1, size(m%steps)
+        if (bad == 0) call bc_on_dependent(m, mpc, m%steps(s)%bcs, bad, msg)
+      end do
+    end if
+    if (bad == 0) return
+    p%i = m%equations(bad)%src%line
+    call err(p, msg)
+  end subroutine check_equations
+
+  !> The first equation whose dependent dof one of bcs prescribes (0 if
+  !> none), and the message.
+  subroutine bc_on_dependent(m, mpc, bcs, bad, msg)
+    type(model_t), intent(in) :: m
+    type(mpc_t), intent(in) :: mpc
+    type(bc_t), intent(in) :: bcs(:)
+    integer, intent(out) :: bad
+    character(len=:), allocatable, intent(inout) :: msg
+    integer :: j
+    bad = 0
+    do j = 1, size(bcs)
+      bad = mpc%dep(bcs(j)%dof, bcs(j)%node)
+      if (bad == 0) cycle
+      msg = 'dof ' // itoa(bcs(j)%dof) // ' of node ' // itoa(m%node_id(bcs(j)%node)) // ' is the dependent ' // &
+            'dof of this *EQUATION (its first term, eliminated) and also has a *BOUNDARY; put an independent ' // &
+            'dof first, or prescribe another one'
+      return
+    end do
+  end subroutine bc_on_dependent
 
   !> Every section's material exists and is elastic; each solid element
   !> is in at most one section (m%elem_section filled here).

@@ -14,7 +14,7 @@ $(OBJDIR)/deck_mesh_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(O
 $(OBJDIR)/deck_material_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_step_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_contact_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/solver_codes.o $(OBJDIR)/strings.o
-$(OBJDIR)/deck_model_checks.o: $(OBJDIR)/deck_input.o $(OBJDIR)/growable.o $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/mesh_topology.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
+$(OBJDIR)/deck_model_checks.o: $(OBJDIR)/constraints.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/deck_parser.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/mesh_topology.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_interaction_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/kinds.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_compat_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_load_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/strings.o

@@ -85,7 +85,7 @@ program bench
   t_number = elapsed()
   allocate(rhs(dm%neq))
   call body_setup(m, body, counts)
-  call assemble_stiffness(m, cs, body, u, sys, kmax, counts)
+  call assemble_stiffness(m, cs, body, u, sys, kmax, counts, dm)
   call body_forces(m, body, u, fint)
   call free_residual(dm, f, fint, rhs)
   t_asm = elapsed()
@@ -98,7 +98,7 @@ program bench
   call sys_solve(sys, b)
   t_solve = elapsed()
   ! residual with the assembled (for the skyline: re-assembled) matrix
-  if (kind == solver_skyline) call assemble_stiffness(m, cs, body, u, sys, kmax, counts)
+  if (kind == solver_skyline) call assemble_stiffness(m, cs, body, u, sys, kmax, counts, dm)
   allocate(r(dm%neq))
   call sys_matvec(sys, b, r)
   res = norm2(r - rhs) / norm2(rhs)

@@ -78,7 +78,7 @@ contains
       f(:, a) = [sin(0.37_dp * a), cos(0.11_dp * a)]
     end do
     call body_setup(m, body, counts)
-    call assemble_stiffness(m, cs, body, uu, sys, kmax, counts)
+    call assemble_stiffness(m, cs, body, uu, sys, kmax, counts, dm)
     call body_forces(m, body, uu, fint)
     call free_residual(dm, f, fint, rhs)
     call sys_factor(sys, st, bad)
