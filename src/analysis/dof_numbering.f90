@@ -210,8 +210,8 @@ contains
       reached(nodes(1:nen)) = .true.
     end do
     named = dm%mpc%dep > 0
-    do k = 1, dm%mpc%ndep
-      named(dm%mpc%tdof(dm%mpc%xt(k):dm%mpc%xt(k + 1) - 1), dm%mpc%tnode(dm%mpc%xt(k):dm%mpc%xt(k + 1) - 1)) = .true.
+    do k = 1, size(dm%mpc%tnode)
+      named(dm%mpc%tdof(k), dm%mpc%tnode(k)) = .true.
     end do
     do a = 1, m%nn
       do d = 1, 2
