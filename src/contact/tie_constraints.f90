@@ -111,7 +111,10 @@ contains
           missed(nmissed) = s
           cycle
         end if
-        if (t%adjust) m%x(:, s) = l%x
+        if (t%adjust) then
+          t%largest_move = max(t%largest_move, norm2(l%x - m%x(:, s)))
+          m%x(:, s) = l%x
+        end if
         t%tied = t%tied + 1
         do j = 1, 2
           if (blocked(j, s) .or. dependent(j, s)) then

@@ -193,8 +193,10 @@ module model
     logical :: adjust = .true.            ! move tied slave nodes onto the master
     type(src_t) :: src
     !> Once generated: slave nodes tied, and not tied (no master face
-    !> within the tolerance, or a node of the master surface itself).
+    !> within the tolerance, or a node of the master surface itself);
+    !> the largest distance ADJUST moved a tied node.
     integer :: tied = 0, untied = 0
+    real(dp) :: largest_move = 0.0_dp
   end type tie_t
 
   type :: model_t

@@ -138,11 +138,12 @@ contains
     end if
     if (size(m%ties) > 0) then
       write(u, '(a)') '--- TIES'
-      write(u, '(a)') 'name slave master tied_nodes untied_nodes adjust'
+      write(u, '(a)') 'name slave master tied_nodes untied_nodes adjust largest_move'
       do k = 1, size(m%ties)
         associate(t => m%ties(k))
-          write(u, '(3(a,1x),i0,1x,i0,1x,a)') trim(t%name), trim(m%surfaces(t%slave_surface)%name), &
-            trim(m%surfaces(t%master_surface)%name), t%tied, t%untied, trim(merge('yes', 'no ', t%adjust))
+          write(u, '(3(a,1x),i0,1x,i0,1x,a,1x,a)') trim(t%name), trim(m%surfaces(t%slave_surface)%name), &
+            trim(m%surfaces(t%master_surface)%name), t%tied, t%untied, trim(merge('yes', 'no ', t%adjust)), &
+            rtoa(t%largest_move, 3)
         end associate
       end do
     end if

@@ -170,7 +170,8 @@ contains
       end associate
     end do
     call report('tie: slave nodes moved onto the master (ADJUST default)', &
-                all(abs(m%x(2, m%surfaces(2)%nodes) - 1.0_dp) < 1e-15_dp), 'slave nodes not at y = 1')
+                all(abs(m%x(2, m%surfaces(2)%nodes) - 1.0_dp) < 1e-15_dp) .and. &
+                abs(m%ties(1)%largest_move - 0.001_dp) < 1e-12_dp, 'slave nodes not at y = 1')
     call report('tie: weights sum to one and reproduce the slave position', err_pos < 1e-14_dp .and. &
                 err_sum < 1e-14_dp, 'weights wrong')
     ! node 12 at x = 2/3 on the face S3 of element 1, from node 5 (1, 1) to 4 (0, 1)
