@@ -5,6 +5,7 @@ bar and in a tube gives the stress of its prescribed opening or force
 exactly, and CalculiX's pret5 and pret2 answers are reproduced."""
 import os
 
+from gmsh_results import read_msh
 from helpers import run_deck
 
 E = 1000.0
@@ -328,6 +329,8 @@ PRET5 = """*NODE
 U
 *NODE FILE, FORMAT=VTU
 U
+*NODE FILE
+U
 *END STEP
 """
 
@@ -335,8 +338,8 @@ U
 def test_pretension_calculix_pret5():
     """CalculiX's pret5 (two CPE4, a pre-tension force of -10): its
     displacements (pret5.frd.ref, six digits) at the originals 2, 5 and
-    the copies 8, 9 it numbers after the largest id; the VTU file has the
-    nine nodes."""
+    the copies 8, 9 it numbers after the largest id; the VTU and gmsh files
+    have the nine nodes, element 1 on the copies."""
     run = run_deck("pret_calculix_pret5", PRET5).ok()
     u = run.listing.increments[-1].block("NODE U")
     got = {int(n): (a, b) for n, a, b in zip(u["node"], u["U1"], u["U2"])}
@@ -347,3 +350,7 @@ def test_pretension_calculix_pret5():
     vtu = [f for f in os.listdir(os.path.dirname(run.listing_path)) if f.endswith(".vtu")]
     text = open(os.path.join(os.path.dirname(run.listing_path), vtu[0]), "rb").read()
     assert b'NumberOfPoints="9"' in text, text[:500]
+    msh = read_msh(run.listing_path[:-4] + ".msh")
+    assert sorted(msh.node_ids) == list(range(1, 10)) and [1, 8, 9, 4] in [list(c) for c in msh.elements]
+    _, um = msh.node_view("Displacement", 0)
+    assert abs(um[list(msh.node_ids).index(8), 0] + 4.05933e-4) < 2e-6 * 4.06e-4
