@@ -164,8 +164,10 @@ def through_ref(v):
 
 
 def ref_by_sets(top_nodes):
-    """One equation per top node (node sets), the top node eliminated."""
-    return "2\nTOP, 2, 1., REF, 2, -1.\n"
+    """One equation per top node (node sets), the top node eliminated; a
+    third term on the held x dof of the corner (zero) names dof 1 of
+    another node than REF, whose dof 1 stays unused."""
+    return "3\nTOP, 2, 1., REF, 2, -1., CORNER, 1, 0.5\n"
 
 
 def ref_by_chain(top_nodes):
