@@ -71,6 +71,17 @@ def test_pretension_bad_cards_stop_at_their_line():
         stops_at("pret_" + tag, f"*PRE-TENSION SECTION, SURFACE=SURF1, NODE=7\n{normal}\n", normal, fragment)
 
 
+def test_pretension_twice_on_one_node_or_surface():
+    """A reference node serves one section, a surface is cut once: the
+    second card is the error, naming the first card's line."""
+    first = "*PRE-TENSION SECTION, SURFACE=SURF1, NODE=7\n"
+    card = first + "*NODE\n8, 0., 0.\n*PRE-TENSION SECTION, SURFACE=SURF1, NODE=8\n"
+    line = PRET.format(card=card).splitlines().index(first.strip()) + 1
+    stops_at("pret_twice", card, "*PRE-TENSION SECTION, SURFACE=SURF1, NODE=8", f"of line {line}")
+    card = first + "*SURFACE, NAME=OTHER\n2, S4\n*PRE-TENSION SECTION, SURFACE=OTHER, NODE=7\n"
+    stops_at("pret_ref_twice", card, "*PRE-TENSION SECTION, SURFACE=OTHER, NODE=7", "already serves")
+
+
 def test_pretension_normals_that_cancel_need_a_data_line():
     """Faces facing opposite ways have no mean normal: the card says to
     give one."""

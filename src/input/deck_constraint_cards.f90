@@ -98,7 +98,7 @@ contains
   end subroutine cut_pretension_sections
 
   !> The reference node carries only the opening of the cut: it may not
-  !> belong to an element nor serve two sections.
+  !> belong to an element nor serve two sections; a surface is cut once.
   subroutine check_reference_node(p, m, k)
     type(parser_t), intent(in) :: p
     type(model_t), intent(in) :: m
@@ -113,6 +113,9 @@ contains
     do j = 1, k - 1
       if (m%pretensions(j)%ref_node == ref) call err(p, 'the reference node ' // itoa(m%node_id(ref)) // &
         ' already serves the pre-tension section of line ' // itoa(p%deck%lines(m%pretensions(j)%src%line)%line))
+      if (m%pretensions(j)%surface == m%pretensions(k)%surface) call err(p, 'surface ' // &
+        trim(m%surfaces(m%pretensions(k)%surface)%name) // ' is already cut by the pre-tension section of line ' // &
+        itoa(p%deck%lines(m%pretensions(j)%src%line)%line))
     end do
   end subroutine check_reference_node
 
