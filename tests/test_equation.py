@@ -124,6 +124,12 @@ def test_tied_blocks_equal_the_merged_mesh_each_solver():
         # to their independent dofs, and the dependent dofs show none
         assert max(max(abs(r1[n][0]), abs(r1[n][1])) for n in r1 if n not in left) <= 1e-9 * rmax, solver
         assert all(r1[n] == (0.0, 0.0) for n in r1 if n > 1000 and (n - 1001) % 2 == 1), solver
+        if solver == "TYPE=SKYLINE":
+            # RCM orders the node graph with the equations' couplings: the
+            # tied mesh's profile is the merged one's (1090 instead of 956
+            # when they are left out)
+            prof = [float(re.search(r"profile (\S+)", open(r.listing_path).read()).group(1)) for r in (ref, run)]
+            assert prof[1] <= prof[0], prof
 
 
 # ------------------------------------------------- reference node, chains
@@ -430,8 +436,9 @@ def test_equation_errors_name_the_equation_line():
 
 def test_dof3_with_zero_coefficient_is_dropped():
     """A dof 3 term with coefficient 0 (CalculiX decks of plane models may
-    carry one) is dropped: the constraint holds on dofs 1 and 2."""
-    run = run_deck("eq_dof3_zero", small_deck("3\n9, 2, 1., 10, 3, 0., 10, 2, -1.\n")).ok()
+    carry one) is dropped, and terms on the same dof are summed: the
+    constraint u_y(9) = 0.25 u_y(10) + 0.75 u_y(10) holds."""
+    run = run_deck("eq_dof3_zero", small_deck("4\n9, 2, 1., 10, 3, 0., 10, 2, -0.25, 10, 2, -0.75\n")).ok()
     for inc in range(4):
         u = node_u(run, inc)
         assert u[9][1] == u[10][1] and u[9][1] != 0.0

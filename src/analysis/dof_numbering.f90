@@ -148,7 +148,8 @@ contains
     if (present(constraints)) then
       dm%mpc = constraints
     else
-      allocate(dm%mpc%dep(2, m%nn), dm%mpc%xt(1))
+      allocate(dm%mpc%dep(2, m%nn), dm%mpc%xt(1), dm%mpc%node(0), dm%mpc%dof(0), dm%mpc%tnode(0), &
+               dm%mpc%tdof(0), dm%mpc%tcoef(0))
       dm%mpc%dep = 0
       dm%mpc%xt = 1
     end if
