@@ -203,7 +203,7 @@ contains
     type(dofmap_t), intent(inout) :: dm
     logical, allocatable, intent(out) :: numbered(:, :)
     logical, allocatable :: reached(:), named(:, :)
-    integer :: g, a, d, k, j, nen, nodes(max_en)
+    integer :: g, a, d, k, nen, nodes(max_en)
     allocate(reached(m%nn), named(2, m%nn), numbered(2, m%nn), dm%inactive(2, m%nn))
     reached = .false.
     do g = 1, m%ne + cs%n
@@ -211,10 +211,8 @@ contains
       reached(nodes(1:nen)) = .true.
     end do
     named = dm%mpc%dep > 0
-    do k = 1, dm%mpc%ndep
-      do j = dm%mpc%xt(k), dm%mpc%xt(k + 1) - 1
-        named(dm%mpc%tdof(j), dm%mpc%tnode(j)) = .true.
-      end do
+    do k = 1, size(dm%mpc%tnode)
+      named(dm%mpc%tdof(k), dm%mpc%tnode(k)) = .true.
     end do
     do a = 1, m%nn
       do d = 1, 2
