@@ -25,7 +25,7 @@ vpath %.f90 $(LAYERS:%=src/%) src
 vpath %.c $(LAYERS:%=src/%)
 OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
-TESTS := test_elements test_skyline test_cfe test_solvers test_numbering
+TESTS := test_elements test_skyline test_cfe test_solvers test_numbering test_constraints
 
 .PHONY: all debug sanitize run check bench deps clean help fuzz
 all: bin/cfe2d
@@ -79,7 +79,7 @@ $(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) $(BUILD)/tests/test_report.o | $(BUIL
 	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(BUILD)/tests/test_report.o $(OBJS) $(LIBS)
 
 $(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o \
-                   $(OBJDIR)/results_vtu.o
+                   $(OBJDIR)/results_vtu.o $(OBJDIR)/tie_constraints.o
 
 deps:
 	bash scripts/install-deps.sh

@@ -3,6 +3,7 @@ program cfe2d
   use kinds, only: program_version
   use model, only: model_t
   use deck_parser, only: read_model
+  use tie_constraints, only: tie_surfaces
   use listing, only: listing_t, open_listing, write_header
   use analysis, only: run_analysis
   use analysis_events, only: observer_ref_t, run_timing_t, wall_time
@@ -79,6 +80,8 @@ program cfe2d
   end if
 
   call read_model(deck, m)
+  ! *TIE needs the projection onto faces, which the contact layer owns.
+  call tie_surfaces(m)
   timing%read = wall_time() - timing%started
   if (size(m%pairs) > 0) then
     call open_listing(job // '.out', job // '_contact.csv', digits, lst)

@@ -21,7 +21,7 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 
 from helpers import Skip  # noqa: E402
 
-UNIT_PROGRAMS = ["test_elements", "test_skyline", "test_cfe", "test_solvers", "test_numbering"]
+UNIT_PROGRAMS = ["test_elements", "test_skyline", "test_cfe", "test_solvers", "test_numbering", "test_constraints"]
 
 
 def main():

@@ -13,6 +13,8 @@
 !>   deck_compat_cards    *NODAL THICKNESS, *EQUATION, and the cards of other
 !>                        programs that would change the physics (rejected)
 !>   deck_load_cards      *DLOAD, *DSLOAD, *DENSITY
+!>   deck_constraint_cards  *PRE-TENSION SECTION (cut once the deck is read),
+!>                        *TIE (its equations: the contact layer's tie_constraints)
 !>   deck_model_checks    checks that need the whole deck
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
@@ -185,6 +187,20 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_dsload
+    module subroutine read_pretension_section(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_pretension_section
+    module subroutine cut_pretension_sections(p, m)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+    end subroutine cut_pretension_sections
+    module subroutine read_tie(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_tie
     module subroutine check_model(p, m)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -212,7 +228,7 @@ contains
              m%elem_src(0), m%node_index(0), m%elem_index(0))
     allocate(m%nsets(0), m%elsets(0), m%surfaces(0), m%materials(0), m%sections(0), &
              m%amplitudes(0), m%steps(0), m%pairs(0), m%model_bcs(0))
-    allocate(m%equations(0), m%initial_temps(0))
+    allocate(m%equations(0), m%initial_temps(0), m%pretensions(0), m%ties(0))
 
     p%i = 1
     do while (p%i <= p%deck%n)
@@ -226,6 +242,7 @@ contains
       call err(p, '*STEP without *END STEP')
     end if
     call trim_model(p, m)
+    call cut_pretension_sections(p, m)
     call check_model(p, m)
   end subroutine read_model
 
@@ -298,6 +315,8 @@ contains
     case ('FRICTION');      call in_step(p, kw, .false.); call read_friction(p, kw)
     case ('NODAL THICKNESS'); call in_step(p, kw, .false.); call read_nodal_thickness(p, m, kw)
     case ('EQUATION');      call in_step(p, kw, .false.); call read_equation(p, m, kw)
+    case ('PRE-TENSION SECTION'); call in_step(p, kw, .false.); call read_pretension_section(p, m, kw)
+    case ('TIE');           call in_step(p, kw, .false.); call read_tie(p, m, kw)
     case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', &
           'CONTROLS')
       call skip_card(p, kw)
@@ -323,7 +342,8 @@ contains
       'INITIAL CONDITIONS', 'SOLID SECTION', 'END STEP', 'NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', &
       'CONTACT PAIR', 'CONTACT CONTROLS', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'NODAL THICKNESS', &
       'SPECIFIC HEAT', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', 'NODE OUTPUT', 'ELEMENT OUTPUT', &
-      'CONTACT OUTPUT', 'CONTACT PRINT', 'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT']
+      'CONTACT OUTPUT', 'CONTACT PRINT', 'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', &
+      'PRE-TENSION SECTION']
     integer :: i
     s = name
     if (index(name, ' ') > 0) return

@@ -10,7 +10,7 @@ module model
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
-            equation_t, temp_t, &
+            equation_t, temp_t, pretension_t, tie_t, &
             is_continuum, carries_stiffness, is_truss, is_spring, elem_nodes, elem_thickness, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
@@ -169,12 +169,45 @@ module model
   end type contact_pair_t
 
   !> *EQUATION: sum_k coef(k) * u(dof(k)) of node(k) = 0, one linear
-  !> multi-point constraint (read, not yet imposed by the analysis).
+  !> multi-point constraint (read, not yet imposed by the analysis). The
+  !> cards that generate constraints (*PRE-TENSION SECTION, *TIE) append
+  !> theirs in the same form; src is then their card.
   type :: equation_t
     integer, allocatable :: node(:), dof(:)
     real(dp), allocatable :: coef(:)
     type(src_t) :: src
   end type equation_t
+
+  !> *PRE-TENSION SECTION: the element faces of `surface` are cut. Their
+  !> nodes (original) are duplicated (copy, new nodes numbered after the
+  !> largest node id), the elements owning the faces take the copies, and
+  !> equations make each copy's displacement its original's plus
+  !> u1(ref_node) * normal: dof 1 of the reference node is the opening of
+  !> the cut along the normal (a load on it is the pre-tension force).
+  !> original and copy are filled once the deck is read.
+  type :: pretension_t
+    integer :: surface = 0, ref_node = 0
+    logical :: normal_given = .false.
+    real(dp) :: normal(2) = 0.0_dp        ! unit; away from the elements owning the faces
+    integer, allocatable :: original(:), copy(:)
+    type(src_t) :: src
+  end type pretension_t
+
+  !> *TIE: each node of the slave surface within `tolerance` of a face of
+  !> the master surface follows that face (one equation per dof, made by
+  !> the contact layer, which owns the projection onto faces).
+  type :: tie_t
+    character(len=name_len) :: name = ''
+    integer :: slave_surface = 0, master_surface = 0
+    real(dp) :: tolerance = -1.0_dp       ! <= 0: 2.5 % of the master's mean face length
+    logical :: adjust = .true.            ! move tied slave nodes onto the master
+    type(src_t) :: src
+    !> Once generated: slave nodes tied, and not tied (no master face
+    !> within the tolerance, or a node of the master surface itself);
+    !> the largest distance ADJUST moved a tied node.
+    integer :: tied = 0, untied = 0
+    real(dp) :: largest_move = 0.0_dp
+  end type tie_t
 
   type :: model_t
     character(len=:), allocatable :: heading, deck_name
@@ -203,7 +236,9 @@ module model
     integer :: max_cutbacks = 5
     ! Decks written for CalculiX/Abaqus, ParaView output:
     logical :: vtu = .false.                          ! FORMAT=VTU on *NODE FILE / *EL FILE
-    type(equation_t), allocatable :: equations(:)     ! *EQUATION
+    type(equation_t), allocatable :: equations(:)     ! *EQUATION, and those generated
+    type(pretension_t), allocatable :: pretensions(:) ! *PRE-TENSION SECTION
+    type(tie_t), allocatable :: ties(:)               ! *TIE
     !> *SOLVER, CONTACT SOLVE=: solver_codes contact_solve_* (auto: the
     !> condensed contact solve where it pays, else the full one).
     integer :: contact_solve = 0

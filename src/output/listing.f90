@@ -114,8 +114,40 @@ contains
     write(u, '(a)') 'solver ' // solver_name(m%solver)
     write(u, '(a)') 'ordering ' // ordering_name(m%ordering)
     write(u, '(a)') 'blas ' // blas_description()
+    call write_constraint_cards(u, m)
     flush(u)
   end subroutine write_header
+
+  !> The cards that generated linear constraints: each pre-tension
+  !> section (its normal, the nodes it duplicated and their new ids) and
+  !> each tie (slave nodes tied and not tied).
+  subroutine write_constraint_cards(u, m)
+    integer, intent(in) :: u
+    type(model_t), intent(in) :: m
+    integer :: k
+    if (size(m%pretensions) > 0) then
+      write(u, '(a)') '--- PRE-TENSION SECTIONS'
+      write(u, '(a)') 'surface ref_node nx ny cut_nodes first_new_node last_new_node'
+      do k = 1, size(m%pretensions)
+        associate(pt => m%pretensions(k))
+          write(u, '(a,1x,i0,2(1x,a),3(1x,i0))') trim(m%surfaces(pt%surface)%name), m%node_id(pt%ref_node), &
+            rtoa(pt%normal(1), 8), rtoa(pt%normal(2), 8), size(pt%copy), m%node_id(pt%copy(1)), &
+            m%node_id(pt%copy(size(pt%copy)))
+        end associate
+      end do
+    end if
+    if (size(m%ties) > 0) then
+      write(u, '(a)') '--- TIES'
+      write(u, '(a)') 'name slave master tied_nodes untied_nodes adjust largest_move'
+      do k = 1, size(m%ties)
+        associate(t => m%ties(k))
+          write(u, '(3(a,1x),i0,1x,i0,1x,a,1x,a)') trim(t%name), trim(m%surfaces(t%slave_surface)%name), &
+            trim(m%surfaces(t%master_surface)%name), t%tied, t%untied, trim(merge('yes', 'no ', t%adjust)), &
+            rtoa(t%largest_move, 3)
+        end associate
+      end do
+    end if
+  end subroutine write_constraint_cards
 
   subroutine write_step_header(self, m, info)
     class(listing_t), intent(inout) :: self
