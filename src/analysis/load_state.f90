@@ -266,6 +266,10 @@ contains
     pt%node(1:pt%n) = m%conn(1:pt%n, e)
     xy(:, 1:pt%n) = m%x(:, pt%node(1:pt%n))
     sec = m%elem_section(e)
+    if (is_mass(m, e)) then
+      call point_mass_forces(m, d, m%sections(sec)%mass, xy(:, 1), pt%f(:, 1))
+      return
+    end if
     zero = 0.0_dp
     g = 0.0_dp
     rho = m%materials(m%sections(sec)%material)%density
@@ -292,6 +296,24 @@ contains
       end select
     end associate
   end subroutine unit_forces
+
+  !> The force of unit GRAV or CENTRIF load d on a point mass at x: mass
+  !> times the acceleration (the centrifugal one from the distance to the
+  !> axis: the radius in an axisymmetric model, whose masses are whole
+  !> rings; the in-plane distance to the axis' point otherwise).
+  subroutine point_mass_forces(m, d, mass, x, f)
+    type(model_t), intent(in) :: m
+    type(dload_t), intent(in) :: d
+    real(dp), intent(in) :: mass, x(2)
+    real(dp), intent(out) :: f(2)
+    if (d%label == dload_grav) then
+      f = mass * d%dir
+    else if (any(catalogue(m%etype(1:m%ne))%state == state_axisymmetric)) then
+      f = mass * [x(1), 0.0_dp]
+    else
+      f = mass * (x - d%point)
+    end if
+  end subroutine point_mass_forces
 
   !> Magnitude of a pattern at step time t.
   real(dp) function pattern_magnitude(m, ls, pt, t)

@@ -6,7 +6,7 @@ submodule (deck_parser) deck_load_cards
   use deck_input, only: param_value, has_param
   use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, get_int, elem_of, &
                          is_int, need_elset
-  use model, only: dload_t, surf_element, find_name, is_continuum, step_dloads, &
+  use model, only: dload_t, surf_element, find_name, is_continuum, is_mass, step_dloads, &
                    dload_p, dload_bx, dload_by, dload_grav, dload_centrif
   use element_catalogue, only: catalogue, state_axisymmetric
   implicit none
@@ -148,11 +148,18 @@ contains
     type(field_t), intent(in) :: f(:)
     character(len=:), allocatable :: label
     logical :: axi
-    if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
-        trim(catalogue(m%etype(e))%name) // ') is not a solid element: distributed loads act on solid ' // &
-        'elements only (load a truss or spring with *CLOAD)')
-    axi = catalogue(m%etype(e))%state == state_axisymmetric
     label = to_upper(f(2)%s)
+    if (is_mass(m, e)) then
+      ! A point mass takes the loads of its mass only, about the model's axis.
+      if (label /= 'GRAV' .and. label /= 'CENTRIF') call err(p, 'element ' // itoa(m%elem_id(e)) // &
+          ' is a point mass (MASS): it takes GRAV and CENTRIF loads only')
+      axi = any(catalogue(m%etype(1:m%ne))%state == state_axisymmetric)
+    else
+      if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+          trim(catalogue(m%etype(e))%name) // ') is not a solid element: distributed loads act on solid ' // &
+          'elements and point masses only (load a truss or spring with *CLOAD)')
+      axi = catalogue(m%etype(e))%state == state_axisymmetric
+    end if
     d = dload_t(elem=e, amp=amp, value=get_real(p, f(3), 'load magnitude'))
     if (len(label) == 2 .and. label(1:1) == 'P' .and. index('123456789', label(2:2)) > 0) label = 'PK'
     select case (label)

@@ -1,5 +1,5 @@
 !> Material and property cards: *MATERIAL, *ELASTIC, *EXPANSION, *SOLID
-!> SECTION, *SPRING.
+!> SECTION, *SPRING, *MASS.
 submodule (deck_parser) deck_material_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
@@ -7,7 +7,7 @@ submodule (deck_parser) deck_material_cards
   use deck_cursor, only: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
                          name_param, get_real, get_int, is_int, need_elset, param_real
   use element_catalogue, only: catalogue, state_plane_stress, state_plane_strain, state_axisymmetric, &
-                               shape_spring1, shape_spring2, is_spring_shape
+                               shape_spring1, shape_spring2, is_spring_shape, shape_mass
   use model, only: material_t, section_t, find_name
   use model_growth, only: grow
   implicit none
@@ -198,6 +198,36 @@ contains
     end do
     if (shape == 0) call err(p, 'element set ' // trim(m%elsets(es)%name) // ' is empty')
   end function spring_set_shape
+
+  !> Purpose: *MASS, ELSET=: the point mass of the MASS elements of the
+  !> set, one positive value on the line under the card. In a static step
+  !> only gravity and centrifugal loads (*DLOAD GRAV, CENTRIF on the set)
+  !> see it.
+  module subroutine read_mass(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n, es, k, e, line
+    call allow_params(p, kw, 'ELSET')
+    es = need_elset(p, m, required_param(p, kw, 'ELSET'))
+    do k = 1, size(m%elsets(es)%items)
+      e = m%elsets(es)%items(k)
+      if (catalogue(m%etype(e))%shape /= shape_mass) call err(p, 'element ' // itoa(m%elem_id(e)) // &
+          ' of set ' // trim(m%elsets(es)%name) // ' is a ' // trim(catalogue(m%etype(e))%name) // &
+          ', not a point mass: *MASS applies to MASS elements')
+    end do
+    line = p%i
+    call require_data(p, 'mass')
+    call split_fields(line_text(p), f, n)
+    if (n /= 1) call err(p, '*MASS data line needs: mass (one value)')
+    call grow(m%sections, p%nsec + 1)
+    p%nsec = p%nsec + 1
+    m%sections(p%nsec) = section_t(elset=es, point_mass=.true., mass=get_real(p, f(1), 'mass'))
+    m%sections(p%nsec)%src%line = line
+    if (.not. m%sections(p%nsec)%mass > 0.0_dp) call err(p, 'the mass must be positive')
+    if (next_data(p)) call err(p, '*MASS takes one data line (the mass)')
+  end subroutine read_mass
 
   !> A spring dof: 1 (x) or 2 (y).
   integer function spring_dof(p, f) result(d)

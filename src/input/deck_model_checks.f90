@@ -8,7 +8,7 @@ submodule (deck_parser) deck_model_checks
   use strings, only: itoa, to_upper
   use deck_input, only: deck_warning
   use deck_cursor, only: err
-  use model, only: is_continuum, carries_stiffness, is_truss, is_spring, find_name, bc_t
+  use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t
   use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
                                state_axisymmetric, shape_springa
@@ -103,7 +103,7 @@ contains
     m%elem_section = 0
     do s = 1, size(m%sections)
       p%i = m%sections(s)%src%line
-      if (.not. m%sections(s)%spring) then
+      if (.not. (m%sections(s)%spring .or. m%sections(s)%point_mass)) then
         imat = find_name(m%materials%name, m%sections(s)%material_name)
         if (imat == 0) call err(p, 'undefined material ' // trim(m%sections(s)%material_name))
         if (.not. m%materials(imat)%has_elastic) then
@@ -117,6 +117,8 @@ contains
         if (is_spring(m, e) .and. .not. m%sections(s)%spring) call err(p, 'element ' // itoa(m%elem_id(e)) // &
             ' is a spring (' // trim(catalogue(m%etype(e))%name) // '): its constant comes from *SPRING, not ' // &
             'from a *SOLID SECTION')
+        if (is_mass(m, e) .and. .not. m%sections(s)%point_mass) call err(p, 'element ' // itoa(m%elem_id(e)) // &
+            ' is a point mass (MASS): its mass comes from *MASS, not from a *SOLID SECTION')
         if (m%elem_section(e) /= 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is in two sections')
         m%elem_section(e) = s
         if (.not. is_truss(m, e)) cycle
@@ -242,6 +244,8 @@ contains
       p%i = m%elem_src(e)%line
       if (is_spring(m, e) .and. m%elem_section(e) == 0) call err(p, 'spring element ' // itoa(m%elem_id(e)) // &
           ' has no *SPRING (its constant)')
+      if (is_mass(m, e) .and. m%elem_section(e) == 0) call err(p, 'point mass element ' // itoa(m%elem_id(e)) // &
+          ' has no *MASS (its mass)')
       if (is_truss(m, e) .or. catalogue(m%etype(e))%shape == shape_springa) then
         if (end_distance(m, e) <= 0.0_dp) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
             trim(catalogue(m%etype(e))%name) // ') has both ends at the same point')

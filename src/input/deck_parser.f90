@@ -91,6 +91,11 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_spring
+    module subroutine read_mass(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_mass
     module subroutine read_amplitude(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -295,6 +300,7 @@ contains
     case ('TEMPERATURE');   call in_step(p, kw, .true.); call read_temperature(p, m, kw)
     case ('SOLID SECTION'); call in_step(p, kw, .false.); call read_section(p, m, kw)
     case ('SPRING');        call in_step(p, kw, .false.); call read_spring(p, m, kw)
+    case ('MASS');          call in_step(p, kw, .false.); call read_mass(p, m, kw)
     case ('AMPLITUDE');     call read_amplitude(p, m, kw)
     case ('BOUNDARY');      call read_boundary(p, m, kw)
     case ('CLOAD');         call in_step(p, kw, .true.); call read_cload(p, m, kw)

@@ -16,17 +16,18 @@ module element_catalogue
   private
   public :: element_type_t, catalogue, max_nodes, max_edges, max_ip, shape_line2, shape_line3, &
             shape_tri3, shape_quad4, shape_tri6, shape_quad8, shape_spring1, shape_spring2, shape_springa, &
-            is_line, is_spring_shape, state_none, state_plane_stress, &
+            shape_mass, is_line, is_spring_shape, state_none, state_plane_stress, &
             state_plane_strain, state_axisymmetric, find_element_type, state_name, is_triangle, &
             edge_node_count, unsupported_reason
 
   !> Geometric families (shape functions and natural coordinates). The
   !> springs have no shape functions; their family says which dofs they
   !> join: one dof of one node to the ground (SPRING1), one dof of each of
-  !> two nodes (SPRING2), the line between two nodes (SPRINGA).
+  !> two nodes (SPRING2), the line between two nodes (SPRINGA). A point
+  !> mass (MASS) has one node and no stiffness.
   integer, parameter :: shape_line2 = 1, shape_tri3 = 2, shape_quad4 = 3, shape_line3 = 4, &
                         shape_tri6 = 5, shape_quad8 = 6, shape_spring1 = 7, shape_spring2 = 8, &
-                        shape_springa = 9
+                        shape_springa = 9, shape_mass = 10
   !> Stress states of the continuum elements (state_none: not a continuum).
   integer, parameter :: state_none = 0, state_plane_stress = 1, state_plane_strain = 2, &
                         state_axisymmetric = 3
@@ -63,14 +64,15 @@ module element_catalogue
   !> surfaces; given a *SOLID SECTION they are trusses (as in CalculiX),
   !> with one integration point (2 nodes) or two (3 nodes). The springs
   !> carry the stiffness of their *SPRING; they have no edges and no
-  !> integration points.
+  !> integration points. MASS carries the point mass of its *MASS, which
+  !> only gravity and centrifugal loads see in a static step.
   !> CPS8R/CPE8R/CAX8R are the 8-node quadrilateral with 2x2 points; the
   !> 8-node element's spurious mode under 2x2 is not communicable through a
   !> mesh of more than one element, as in Abaqus. CAX6 takes 6 points
   !> (degree 4) where CPS6/CPE6 take 3: the hoop terms N_i u_r / r times
   !> r dA of the axisymmetric triangle are of degree 3 for a quadratic
   !> field (degree 4 with curved edges), and 3 points fail its patch tests.
-  type(element_type_t), parameter :: catalogue(22) = [ &
+  type(element_type_t), parameter :: catalogue(23) = [ &
     element_type_t('T3D2', shape_line2, 2, 2, 1, line_edges, 1, state_none, 1, 3), &
     element_type_t('T2D2', shape_line2, 2, 2, 1, line_edges, 1, state_none, 1, 3), &
     element_type_t('T3D3', shape_line3, 3, 2, 1, line3_edges, 2, state_none, 8, 21), &
@@ -78,6 +80,7 @@ module element_catalogue
     element_type_t('SPRING1', shape_spring1, 1, 1, 0, no_edges, 0, state_none, 15, 1), &
     element_type_t('SPRING2', shape_spring2, 2, 2, 0, no_edges, 0, state_none, 1, 3), &
     element_type_t('SPRINGA', shape_springa, 2, 2, 0, no_edges, 0, state_none, 1, 3), &
+    element_type_t('MASS', shape_mass, 1, 1, 0, no_edges, 0, state_none, 15, 1), &
     element_type_t('CPS3', shape_tri3, 3, 3, 3, tri_edges, 1, state_plane_stress, 2, 5), &
     element_type_t('CPE3', shape_tri3, 3, 3, 3, tri_edges, 1, state_plane_strain, 2, 5), &
     element_type_t('CAX3', shape_tri3, 3, 3, 3, tri_edges, 1, state_axisymmetric, 2, 5), &

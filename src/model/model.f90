@@ -4,14 +4,14 @@
 module model
   use kinds, only: dp, name_len
   use solver_codes, only: solver_cholmod, order_amd
-  use element_catalogue, only: catalogue, max_nodes, state_none, is_line, is_spring_shape
+  use element_catalogue, only: catalogue, max_nodes, state_none, is_line, is_spring_shape, shape_mass
   use mesh_topology, only: topology_t
   implicit none
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
             equation_t, temp_t, pretension_t, tie_t, &
-            is_continuum, carries_stiffness, is_truss, is_spring, elem_nodes, elem_thickness, &
+            is_continuum, carries_stiffness, is_truss, is_spring, is_mass, elem_nodes, elem_thickness, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif
@@ -83,6 +83,10 @@ module model
     logical :: spring = .false.
     real(dp) :: stiffness = 0.0_dp
     integer :: dof(2) = 0
+    !> *MASS (no material): the point mass of each MASS element of the
+    !> set (the whole ring's in an axisymmetric model, as a point load).
+    logical :: point_mass = .false.
+    real(dp) :: mass = 0.0_dp
   end type section_t
 
   !> One prescribed dof. set is the node set it came from (0 for a single
@@ -261,13 +265,22 @@ contains
 
   !> Does element e carry stiffness: a continuum element, a line element
   !> with a *SOLID SECTION (a truss), a spring with its *SPRING? The
-  !> others (line elements without a section) only describe boundaries.
+  !> others (line elements without a section) only describe boundaries;
+  !> a point mass only takes loads.
   pure logical function carries_stiffness(m, e)
     type(model_t), intent(in) :: m
     integer, intent(in) :: e
     carries_stiffness = is_continuum(m, e)
-    if (.not. carries_stiffness .and. allocated(m%elem_section)) carries_stiffness = m%elem_section(e) /= 0
+    if (.not. carries_stiffness .and. allocated(m%elem_section) .and. .not. is_mass(m, e)) &
+      carries_stiffness = m%elem_section(e) /= 0
   end function carries_stiffness
+
+  !> Is element e a point mass (MASS)?
+  pure logical function is_mass(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    is_mass = catalogue(m%etype(e))%shape == shape_mass
+  end function is_mass
 
   !> Is element e a truss (a line element with a *SOLID SECTION)?
   pure logical function is_truss(m, e)
