@@ -296,43 +296,26 @@ S
     assert abs(s11).max() < 1e-10 * expected and abs(s12).max() < 1e-10 * expected
 
 
-PRET5 = """*NODE
-1,0.,0.,0.
-2,1.,0.,0.
-3,2.,0.,0.
-4,0.,1.,0.
-5,1.,1.,0.
-6,2.,1.,0.
-7,0.,0.,0.
-*ELEMENT,TYPE=CPE4,ELSET=Eall
-1,1,2,5,4
-2,2,3,6,5
-*BOUNDARY
-1,1,2
-3,1,2
-4,1,2
-6,1,2
-*MATERIAL,NAME=EL
-*ELASTIC
-210000.,.3
-*SOLID SECTION,ELSET=Eall,MATERIAL=EL
-.1
-*SURFACE,NAME=SURF1
-1,S2
-*PRE-TENSION SECTION,SURFACE=SURF1,NODE=7
-1.,0.,0.
-*STEP
-*STATIC
-*CLOAD
-7,1,-10.
-*NODE PRINT
-U
-*NODE FILE, FORMAT=VTU
-U
-*NODE FILE
-U
-*END STEP
-"""
+def two_square_cut_deck():
+    """The model of CalculiX's pret5 test, written out here: two unit
+    squares (CPE4, E 210000, nu 0.3, thickness 0.1) side by side, the four
+    outer corners clamped, the shared face x = 1 cut by a pre-tension
+    section along +x whose reference node 7 takes a force of -10."""
+    nodes = {1: (0, 0), 2: (1, 0), 3: (2, 0), 4: (0, 1), 5: (1, 1), 6: (2, 1), 7: (0, 0)}
+    node_text = "".join(f"{n}, {x:.1f}, {y:.1f}\n" for n, (x, y) in nodes.items())
+    clamp = "".join(f"{n}, 1, 2\n" for n in (1, 3, 4, 6))
+    return ("*NODE\n" + node_text
+            + "*ELEMENT, TYPE=CPE4, ELSET=SQUARES\n1, 1, 2, 5, 4\n2, 2, 3, 6, 5\n"
+            + "*BOUNDARY\n" + clamp
+            + "*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n"
+            + "*SOLID SECTION, ELSET=SQUARES, MATERIAL=STEEL\n0.1\n"
+            + "*SURFACE, NAME=CUT\n1, S2\n"
+            + "*PRE-TENSION SECTION, SURFACE=CUT, NODE=7\n1., 0., 0.\n"
+            + "*STEP\n*STATIC\n*CLOAD\n7, 1, -10.\n"
+            + "*NODE PRINT\nU\n*NODE FILE, FORMAT=VTU\nU\n*NODE FILE\nU\n*END STEP\n")
+
+
+PRET5 = two_square_cut_deck()
 
 
 def test_pretension_calculix_pret5():
@@ -354,3 +337,17 @@ def test_pretension_calculix_pret5():
     assert sorted(msh.node_ids) == list(range(1, 10)) and [1, 8, 9, 4] in [list(c) for c in msh.elements]
     _, um = msh.node_view("Displacement", 0)
     assert abs(um[list(msh.node_ids).index(8), 0] + 4.05933e-4) < 2e-6 * 4.06e-4
+
+
+def test_later_step_boundary_on_a_tied_dof_names_the_tie():
+    """A *BOUNDARY in a second step on a dof the *TIE made dependent (the
+    tie is made after reading, so the deck's lines are gone): the run stops
+    after step 1 with a message naming the *TIE, not an anonymous
+    constraint number, and step 1's results are on disk."""
+    deck = tie_patch_deck(False, 4, 0.0, "TOP, P, -3.\n")
+    deck += "*STEP\n*STATIC\n*BOUNDARY\n1002, 2, 2, 0.\n*END STEP\n"
+    run = run_deck("tie_later_boundary", deck)
+    assert run.rc == 1, run.stderr
+    assert "dof 2 of node 1002 is both prescribed and the dependent dof" in run.stderr, run.stderr
+    assert "(the constraint made by *TIE GLUE)" in run.stderr, run.stderr
+    assert len(run.listing.increments) >= 1

@@ -89,7 +89,10 @@ contains
     integer :: bad
     character(len=:), allocatable :: msg
     call resolve_equations(m, mpc, bad, msg)
-    if (bad > 0) call fatal('*EQUATION ' // itoa(bad) // ': ' // msg)
+    if (bad == 0) return
+    if (len_trim(m%equations(bad)%origin) > 0) call fatal('the constraint made by ' // &
+        trim(m%equations(bad)%origin) // ': ' // msg)
+    call fatal('*EQUATION ' // itoa(bad) // ': ' // msg)
   end subroutine constraints_of
 
   !> The run's timing: the driver's parts and the iteration's, to every

@@ -42,6 +42,19 @@ module dof_numbering
 
 contains
 
+  !> ' (*EQUATION n)' or ' (the constraint made by *TIE name)': which card
+  !> made constraint k, for a message.
+  function constraint_origin(m, k) result(txt)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: k
+    character(len=:), allocatable :: txt
+    if (len_trim(m%equations(k)%origin) > 0) then
+      txt = ' (the constraint made by ' // trim(m%equations(k)%origin) // ')'
+    else
+      txt = ' (*EQUATION ' // itoa(k) // ')'
+    end if
+  end function constraint_origin
+
   !> Purpose: nodes of assembly group g: body element g, or CFE g - ne
   !> (slave nodes first); no nodes for elements without stiffness (line
   !> elements that only describe boundaries).
@@ -218,7 +231,8 @@ contains
     do a = 1, m%nn
       do d = 1, 2
         if (prescribed(d, a) .and. dm%mpc%dep(d, a) > 0) call fatal('dof ' // itoa(d) // ' of node ' // &
-          itoa(m%node_id(a)) // ' is both prescribed and the dependent dof of a linear constraint')
+          itoa(m%node_id(a)) // ' is both prescribed and the dependent dof of a linear constraint' // &
+          trim(constraint_origin(m, dm%mpc%dep(d, a))))
         numbered(d, a) = .not. prescribed(d, a) .and. dm%mpc%dep(d, a) == 0
         dm%inactive(d, a) = numbered(d, a) .and. .not. reached(a) .and. .not. named(d, a) .and. any(named(:, a))
         if (dm%inactive(d, a)) numbered(d, a) = .false.

@@ -212,6 +212,7 @@ contains
       eq%coef = [eq%coef, -w(i)]
     end do
     eq%src = tie%src
+    eq%origin = '*TIE ' // trim(tie%name)
   end function tie_equation
 
   !> Warnings for the slave nodes not tied and the dofs left free.

@@ -214,6 +214,7 @@ contains
           eqs(k)%coef = [1.0_dp, -1.0_dp]
         end if
         eqs(k)%src = pt%src
+        eqs(k)%origin = '*PRE-TENSION SECTION on ' // trim(m%surfaces(pt%surface)%name)
       end do
     end do
     m%equations = [m%equations, eqs]

@@ -180,6 +180,9 @@ module model
     integer, allocatable :: node(:), dof(:)
     real(dp), allocatable :: coef(:)
     type(src_t) :: src
+    !> The card that made it when not an *EQUATION (*TIE name, *PRE-TENSION
+    !> SECTION surface), for messages once the deck's lines are gone.
+    character(len=name_len + 24) :: origin = ''
   end type equation_t
 
   !> *PRE-TENSION SECTION: the element faces of `surface` are cut. Their
