@@ -19,7 +19,7 @@ E, NU = 1000.0, 0.3
 FACE_FACTOR = 3.0
 
 
-def two_blocks(lower, upper, nx1, nx2, state="S", d=0.03, g0=0.01, slave_kind="element", x0=0.0):
+def two_blocks(lower, upper, nx1, nx2, state="S", d=0.03, g0=0.01, slave_kind="element", x0=0.0, pair=""):
     """Lower block [x0, x0+1] x [0, 1] (master, nx1 across), upper block
     g0 above it (slave, nx2 across), the upper top pushed down by d."""
     m1 = Mesh(lower, nx1, 4, lambda s, t: (x0 + s / nx1, t / 4), first_node=1, first_elem=1)
@@ -40,7 +40,7 @@ def two_blocks(lower, upper, nx1, nx2, state="S", d=0.03, g0=0.01, slave_kind="e
 {E}, {NU}
 *SOLID SECTION, ELSET=LOWER, MATERIAL=M
 *SOLID SECTION, ELSET=UPPER, MATERIAL=M
-*CONTACT PAIR
+*CONTACT PAIR{pair}
 SLAVE, MASTER
 *BOUNDARY
 GROUND, 2, 2
@@ -96,6 +96,32 @@ def test_uniform_pressure_patch_nonmatching_quadratic():
         slave_nodes = [n for n in ids if n > 10000 and abs(res.xy[ids.index(n)][1] - 1.01) < 1e-9]
         vals = np.array([pv[ids.index(n)][0] for n in slave_nodes])
         assert len(vals) == 2 * n2 + 1 and np.max(np.abs(vals - p)) < 1e-9 * p, (lower, upper, vals)
+
+
+def test_symmetric_quadratic_reports_both_passes():
+    """SYMMETRIC on CPS8 (7 slave faces over 5, and 5 over 5), both passes
+    coupled at Gauss points: every listed slave point, every master node
+    and every node of the result file's pressure carries what both passes
+    put there, the pair's total force over the unit width within 0.5 %
+    (the passes' shares are not reported as the whole: each row once
+    showed one pass, half the pressure)."""
+    for n1, n2 in ((5, 7), (5, 5)):
+        run = run_deck(f"patch_quad_sym_{n1}_{n2}", two_blocks("Q8", "Q8", n1, n2, pair=", SYMMETRIC")).ok()
+        s, mst, inc = contact_rows(run)
+        p = inc.block("CONTACT SUMMARY")["total_force"][0]
+        ps, pm = np.array(s["pressure"]), np.array(mst["pressure"])
+        es, em = np.max(np.abs(ps - p)) / p, np.max(np.abs(pm - p)) / p
+        assert abs(sum(s["force"]) - p) < 5e-3 * p, (sum(s["force"]), p)
+        from gmsh_results import read_msh
+        res = read_msh(run.listing_path[:-4] + ".msh")
+        _, pv = res.node_view("Contact pressure", 0)
+        ids = list(res.node_ids)
+        on_faces = [n for n in ids if abs(res.xy[ids.index(n)][1] - 1.0) < 1e-9 or
+                    (n > 10000 and abs(res.xy[ids.index(n)][1] - 1.01) < 1e-9)]
+        vals = np.array([pv[ids.index(n)][0] for n in on_faces])
+        en = np.max(np.abs(vals - p)) / p
+        print(f"  SYMMETRIC {n2} over {n1}: slave {es:.2e}, master {em:.2e}, nodes {en:.2e}")
+        assert es < 5e-3 and em < 5e-3 and en < 5e-3, (n1, n2, es, em, en)
 
 
 def test_node_to_segment_on_quadratic_slave_shows_the_problem():

@@ -50,6 +50,7 @@ contains
     real(dp), intent(in) :: u(:, :)
     type(contact_results_t), intent(out) :: r
     integer :: ip, np, j
+    real(dp), allocatable :: twin_force(:)
     np = 0
     do ip = 1, size(m%pairs)
       if (.not. (m%pairs(ip)%twin > 0 .and. m%pairs(ip)%twin < ip)) np = np + 1
@@ -61,7 +62,7 @@ contains
     do ip = 1, size(m%pairs)
       if (m%pairs(ip)%twin > 0 .and. m%pairs(ip)%twin < ip) cycle
       np = np + 1
-      call pair_results(m, cs, u, ip, r%pairs(np))
+      call pair_results(m, cs, u, ip, r%pairs(np), twin_force)
       associate(pr => r%pairs(np))
         r%total_force = r%total_force + pr%total
         do j = 1, size(pr%slave_node)
@@ -74,7 +75,7 @@ contains
           r%has_pressure(pr%master_node(j)) = .true.
         end do
       end associate
-      call face_point_pressures(m, cs, ip, r%pressure, r%has_pressure)
+      call face_point_pressures(m, cs, ip, twin_force, r%pressure, r%has_pressure)
     end do
   end subroutine compute_contact_results
 
@@ -82,11 +83,13 @@ contains
   !> points of 3-node faces: the force the points put on each node
   !> (weights N_j) over the node's consistent area. Unlike the point
   !> pressures this does not see the points' alternating mode (forces that
-  !> cancel at the nodes, see contact).
-  subroutine face_point_pressures(m, cs, ip, pressure, has_pressure)
+  !> cancel at the nodes, see contact). twin_force(nn): the forces the
+  !> second pass of a SYMMETRIC pair puts on these nodes as its master.
+  subroutine face_point_pressures(m, cs, ip, twin_force, pressure, has_pressure)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: ip
+    real(dp), intent(in) :: twin_force(:)
     real(dp), intent(inout) :: pressure(:)
     logical, intent(inout) :: has_pressure(:)
     real(dp), allocatable :: f(:), a(:)
@@ -94,8 +97,8 @@ contains
     type(edge_t) :: ed
     integer :: j, q
     if (.not. any(cs%c(1:cs%n)%pair == ip .and. cs%c(1:cs%n)%ns > 1)) return
-    allocate(f(m%nn), a(m%nn))
-    f = 0.0_dp
+    allocate(a(m%nn))
+    f = twin_force
     a = 0.0_dp
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
       do j = 1, size(sl%elem)
@@ -120,29 +123,54 @@ contains
     end do
   end subroutine face_point_pressures
 
-  !> Purpose: results of pair ip. For a SYMMETRIC pair each node's force
-  !> is what both passes put on it: its own CFE force and what it receives
-  !> as a master node of the other pass.
-  subroutine pair_results(m, cs, u, ip, r)
+  !> Purpose: results of pair ip. For a SYMMETRIC pair each point's force
+  !> is what both passes put there: its own CFE force and what it takes
+  !> as master of the other pass (at a slave node that pass's master
+  !> force there; at a Gauss point of a 3-node face that pass's master
+  !> pressure, interpolated with the face's weights, times the point's
+  !> area); each master node gets the other pass's CFE forces with their
+  !> slave weights. twin_force(nn) returns the other pass's master forces
+  !> at the nodes (zero without one).
+  subroutine pair_results(m, cs, u, ip, r, twin_force)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     real(dp), intent(in) :: u(:, :)
     integer, intent(in) :: ip
     type(pair_results_t), intent(out) :: r
+    real(dp), allocatable, intent(out) :: twin_force(:)
     type(pair_results_t) :: rt
-    integer :: j, k
+    real(dp), allocatable :: twin_p(:)
+    integer, allocatable :: pos(:), sel(:)
+    integer :: j, k, q, it
+    allocate(twin_force(m%nn), twin_p(m%nn), pos(m%nn))
+    twin_force = 0.0_dp
+    twin_p = 0.0_dp
     call pass_results(m, cs, u, ip, r)
-    if (m%pairs(ip)%twin == 0) return
-    call pass_results(m, cs, u, m%pairs(ip)%twin, rt)
-    do j = 1, size(r%slave_node)
-      do k = 1, size(rt%master_node)
-        if (rt%master_node(k) == r%slave_node(j)) r%slave_force(j) = r%slave_force(j) + rt%master_force(k)
-      end do
+    it = m%pairs(ip)%twin
+    if (it == 0) return
+    call pass_results(m, cs, u, it, rt)
+    twin_force(rt%master_node) = rt%master_force
+    where (rt%master_area > 0.0_dp) twin_p(rt%master_node) = rt%master_force / rt%master_area
+    sel = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == ip)
+    do j = 1, size(sel)
+      associate(c => cs%c(sel(j)))
+        if (c%ns == 1) then
+          r%slave_force(j) = r%slave_force(j) + twin_force(c%snode(1))
+        else
+          r%slave_force(j) = r%slave_force(j) + c%area * sum(c%sw(1:c%ns) * twin_p(c%snode(1:c%ns)))
+        end if
+      end associate
     end do
-    do k = 1, size(r%master_node)
-      do j = 1, size(rt%slave_node)
-        if (rt%slave_node(j) == r%master_node(k)) r%master_force(k) = r%master_force(k) + rt%slave_force(j)
-      end do
+    pos = 0
+    pos(r%master_node) = [(k, k = 1, size(r%master_node))]
+    sel = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == it)
+    do j = 1, size(sel)
+      associate(c => cs%c(sel(j)))
+        do q = 1, c%ns
+          if (pos(c%snode(q)) > 0) r%master_force(pos(c%snode(q))) = r%master_force(pos(c%snode(q))) - &
+                                                                    c%sw(q) * c%force
+        end do
+      end associate
     end do
     r%total = r%total + rt%total
     r%resultant = r%resultant - rt%resultant
