@@ -10,6 +10,7 @@ class MshResults:
         self.node_ids = None       # (n,)
         self.xy = None             # (n, 2)
         self.elements = []         # lists of node ids
+        self.element_ids = []      # the elements' numbers (the deck's), aligned with elements
         self.views = {}            # name -> list of (time, ids (k,), values (k, ncomp))
 
     def node_view(self, name, step):
@@ -87,6 +88,7 @@ def _binary_elements(rd, n, r):
         nn = _NODES[int(etype)]
         conn = rd.array("<i4", int(count) * (1 + int(ntags) + nn)).reshape(int(count), -1)
         r.elements.extend(conn[:, 1 + int(ntags):].tolist())
+        r.element_ids.extend(int(k) for k in conn[:, 0])
         read += int(count)
 
 
@@ -119,6 +121,7 @@ def read_msh(path):
                 for _ in range(n):
                     w = [int(v) for v in rd.line().split()]
                     r.elements.append(w[3 + w[2]:])
+                    r.element_ids.append(w[0])
         elif line in ("$NodeData", "$ElementData"):
             name, time, ncomp, count = _view_header(rd)
             if binary:
