@@ -158,9 +158,13 @@ contains
     if (is_triangle(shape)) then
       call triangle_rule(nip, xi, w)
     else if (nip == 4) then
+      ! xi fastest, then eta, as the 3x3 rule and as Abaqus and CalculiX
+      ! number the points (what *EL PRINT lists point by point)
       g = 1.0_dp / sqrt(3.0_dp)
-      do i = 1, 4
-        xi(:, i) = g * [xi_node(i), eta_node(i)]
+      do j = 1, 2
+        do i = 1, 2
+          xi(:, 2 * (j - 1) + i) = g * [real(2 * i - 3, dp), real(2 * j - 3, dp)]
+        end do
       end do
       w(1:4) = 1.0_dp
     else
@@ -272,8 +276,9 @@ contains
       else if (is_triangle(shape)) then
         e(k, 1:6) = quadratic_fit_weights(xi)
       else if (nip == 4) then
+        ! the bilinear through the points, numbered as gauss_rule numbers them
         call quad4_shape(sqrt(3.0_dp) * xi(1), sqrt(3.0_dp) * xi(2), n, dn)
-        e(k, 1:4) = n
+        e(k, 1:4) = [n(1), n(2), n(4), n(3)]
       else
         s = xi(1) / sqrt(0.6_dp)
         t = xi(2) / sqrt(0.6_dp)
