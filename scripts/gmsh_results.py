@@ -11,6 +11,7 @@ class MshResults:
         self.xy = None             # (n, 2)
         self.elements = []         # lists of node ids
         self.element_ids = []      # the elements' numbers (the deck's), aligned with elements
+        self.element_types = []    # their gmsh types, aligned with elements
         self.views = {}            # name -> list of (time, ids (k,), values (k, ncomp))
 
     def node_view(self, name, step):
@@ -23,10 +24,13 @@ class MshResults:
         return time, out
 
     def triangles(self):
-        """Node indices of a triangulation of the elements (quads split)."""
+        """Node indices of a triangulation of the surface elements (quads
+        split; trusses, springs and point masses left out)."""
         index = {n: i for i, n in enumerate(self.node_ids)}
         tris = []
-        for conn in self.elements:
+        for conn, etype in zip(self.elements, self.element_types):
+            if etype not in _SURFACE:
+                continue
             c = [index[n] for n in conn]
             tris.append(c[:3])
             if len(c) == 4:
@@ -35,8 +39,9 @@ class MshResults:
 
 
 # nodes of the gmsh element types cfe2d writes (line, triangle, quadrangle,
-# second-order triangle and quadrangle)
-_NODES = {1: 2, 2: 3, 3: 4, 8: 3, 9: 6, 10: 9, 16: 8}
+# second-order line, triangle and quadrangle, point)
+_NODES = {1: 2, 2: 3, 3: 4, 8: 3, 9: 6, 10: 9, 16: 8, 15: 1}
+_SURFACE = {2, 3, 9, 10, 16}
 
 
 class _Reader:
@@ -89,6 +94,7 @@ def _binary_elements(rd, n, r):
         conn = rd.array("<i4", int(count) * (1 + int(ntags) + nn)).reshape(int(count), -1)
         r.elements.extend(conn[:, 1 + int(ntags):].tolist())
         r.element_ids.extend(int(k) for k in conn[:, 0])
+        r.element_types.extend([int(etype)] * int(count))
         read += int(count)
 
 
@@ -122,6 +128,7 @@ def read_msh(path):
                     w = [int(v) for v in rd.line().split()]
                     r.elements.append(w[3 + w[2]:])
                     r.element_ids.append(w[0])
+                    r.element_types.append(w[1])
         elif line in ("$NodeData", "$ElementData"):
             name, time, ncomp, count = _view_header(rd)
             if binary:

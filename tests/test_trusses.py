@@ -193,8 +193,9 @@ def test_heated_bar_held_at_both_ends():
 
 
 def test_writers_with_trusses():
-    """The gmsh file and the VTU files are written with trusses and plain
-    line elements in the model (they show the continuum elements only)."""
+    """The gmsh file and the VTU files show the trusses (a line cell of
+    their two nodes, its element stress S11 the listing's) beside the
+    continuum elements, and leave out plain line elements (boundaries)."""
     deck = block_with_truss(0.3).replace("*NODE PRINT, NSET=ALLN\nU\n",
                                          "*NODE FILE, FORMAT=VTU\nU, RF, S\n*EL FILE\nS\n")
     deck = deck.replace("*NSET, NSET=LEFT", "*ELEMENT, TYPE=T2D2, ELSET=EDGE\n200, 6, 7\n*NSET, NSET=LEFT")
@@ -202,6 +203,21 @@ def test_writers_with_trusses():
     out = os.path.dirname(run.listing_path)
     files = os.listdir(out)
     assert any(f.endswith(".msh") for f in files) and any(f.endswith(".vtu") for f in files), files
+    from gmsh_results import read_msh
+    msh = read_msh(run.listing_path[:-4] + ".msh")
+    lines = [(i, c) for i, c, t in zip(msh.element_ids, msh.elements, msh.element_types) if t == 1]
+    assert 200 not in msh.element_ids, "a line element without a section is not drawn"
+    truss_ids = [i for i, _ in lines]
+    assert truss_ids, msh.element_types
+    s11 = run.listing.increments[-1].block("ELEMENT S")
+    listed = {int(e): s for e, s in zip(s11["element"], s11["S11"])}
+    _, ids, vals = msh.views["S11 (element)"][-1]
+    for i in truss_ids:
+        assert abs(vals[list(ids).index(i)][0] - listed[i]) <= 1e-9 * abs(listed[i]), (i, listed[i])
+    import meshio
+    vtu = sorted(f for f in files if f.endswith(".vtu"))[-1]
+    mesh = meshio.read(os.path.join(out, vtu))
+    assert sum(len(b.data) for b in mesh.cells if b.type == "line") == len(truss_ids), mesh.cells
 
 
 def test_truss_errors_name_the_line():
@@ -223,3 +239,21 @@ def test_truss_errors_name_the_line():
         line = next(k for k, t in enumerate(deck.splitlines(), 1) if t.startswith(line_text))
         assert run.rc == 1 and f"truss_err_{tag}.inp:{line}: error:" in run.stderr, (tag, run.stderr)
         assert fragment in run.stderr, (tag, run.stderr)
+
+
+def test_three_node_truss_in_the_files_ends_first():
+    """A 3-node truss (listed end, middle, end in the deck) is written to
+    gmsh (type 8) and VTK (quadratic edge) with its ends first and the
+    middle node last, the order those formats expect."""
+    deck = bar_deck("T3D3", step_extra="*NODE FILE, FORMAT=VTU\nU\n*NODE FILE\nU\n")
+    run = run_deck("truss_bar_t3d3_files", deck).ok()
+    from gmsh_results import read_msh
+    msh = read_msh(run.listing_path[:-4] + ".msh")
+    assert msh.element_types == [8] and msh.elements == [[1, 2, 3]], (msh.element_types, msh.elements)
+    import meshio
+    out = os.path.dirname(run.listing_path)
+    vtu = sorted(f for f in os.listdir(out) if f.endswith(".vtu"))[-1]
+    mesh = meshio.read(os.path.join(out, vtu))
+    (block,) = mesh.cells
+    # points count from 0 in node order 1, 2, 3
+    assert block.type == "line3" and block.data.tolist() == [[0, 1, 2]], (block.type, block.data)

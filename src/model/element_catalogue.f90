@@ -18,7 +18,7 @@ module element_catalogue
             shape_tri3, shape_quad4, shape_tri6, shape_quad8, shape_spring1, shape_spring2, shape_springa, &
             shape_mass, is_line, is_spring_shape, state_none, state_plane_stress, &
             state_plane_strain, state_axisymmetric, find_element_type, state_name, is_triangle, &
-            edge_node_count, unsupported_reason
+            edge_node_count, unsupported_reason, file_node_order
 
   !> Geometric families (shape functions and natural coordinates). The
   !> springs have no shape functions; their family says which dofs they
@@ -162,4 +162,15 @@ contains
     edge_node_count = 2
     if (catalogue(et)%edge(3, k) > 0) edge_node_count = 3
   end function edge_node_count
+  !> Purpose: the order in which gmsh and VTK list the nodes of an element
+  !> of catalogue type et: node file_node_order(k) is their k-th. The same
+  !> as the deck's but for the 3-node line, which Abaqus lists end,
+  !> middle, end and gmsh and VTK end, end, middle.
+  pure function file_node_order(et) result(order)
+    integer, intent(in) :: et
+    integer :: order(max_nodes), k
+    order = [(k, k = 1, max_nodes)]
+    if (catalogue(et)%shape == shape_line3) order(1:3) = [1, 3, 2]
+  end function file_node_order
+
 end module element_catalogue

@@ -11,7 +11,7 @@ module model
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
             equation_t, temp_t, pretension_t, tie_t, &
-            is_continuum, carries_stiffness, is_truss, is_spring, is_mass, elem_nodes, elem_thickness, &
+            is_continuum, carries_stiffness, is_truss, is_spring, is_mass, is_drawn, elem_nodes, elem_thickness, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif
@@ -277,6 +277,15 @@ contains
     if (.not. carries_stiffness .and. allocated(m%elem_section) .and. .not. is_mass(m, e)) &
       carries_stiffness = m%elem_section(e) /= 0
   end function carries_stiffness
+
+  !> Is element e one the result files show: a continuum element, a truss,
+  !> a spring, a point mass (line elements without a section only
+  !> describe boundaries)?
+  pure logical function is_drawn(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    is_drawn = carries_stiffness(m, e) .or. is_mass(m, e)
+  end function is_drawn
 
   !> Is element e a point mass (MASS)?
   pure logical function is_mass(m, e)

@@ -10,7 +10,7 @@ module results_gmsh
   use, intrinsic :: iso_fortran_env, only: int32
   use kinds, only: dp
   use model
-  use element_catalogue, only: catalogue
+  use element_catalogue, only: catalogue, file_node_order, max_nodes
   use materials, only: von_mises
   use messages, only: register_unit_to_close, fatal
   use analysis_events, only: analysis_observer_t
@@ -113,21 +113,22 @@ contains
     integer, intent(in) :: u
     type(model_t), intent(in) :: m
     integer(int32), allocatable :: buf(:)
-    integer :: e, first, nsolid, k, nen, gtype
-    nsolid = count([(is_continuum(m, e), e = 1, m%ne)])
+    integer :: e, first, nsolid, k, nen, gtype, order(max_nodes)
+    nsolid = count([(is_drawn(m, e), e = 1, m%ne)])
     call line(u, '$Elements')
     call line(u, int_text(nsolid))
     e = 1
     do while (e <= m%ne)
-      if (.not. is_continuum(m, e)) then
+      if (.not. is_drawn(m, e)) then
         e = e + 1
         cycle
       end if
       first = e
       gtype = catalogue(m%etype(e))%gmsh_type
       nen = elem_nodes(m, e)
+      order = file_node_order(m%etype(e))
       do while (e <= m%ne)
-        if (.not. is_continuum(m, e)) exit
+        if (.not. is_drawn(m, e)) exit
         if (catalogue(m%etype(e))%gmsh_type /= gtype) exit
         e = e + 1
       end do
@@ -136,7 +137,7 @@ contains
       k = 3
       do first = first, e - 1
         buf(k + 1:k + 3 + nen) = int([m%elem_id(first), m%elem_section(first), m%elem_section(first), &
-                                      m%node_id(m%conn(1:nen, first))], int32)
+                                      m%node_id(m%conn(order(1:nen), first))], int32)
         k = k + 3 + nen
       end do
       write(u) buf
@@ -162,7 +163,7 @@ contains
     character(len=5), parameter :: names(4) = ['S11  ', 'S22  ', 'S33  ', 'S12  ']
     rf%count = rf%count + 1
     all_nodes = .true.
-    solid = [(is_continuum(m, k), k = 1, m%ne)]
+    solid = [(is_drawn(m, k), k = 1, m%ne)]
     if (req_nodal%u) call write_view(rf, 'NodeData', 'Displacement', time, m%node_id, all_nodes, &
                                      with_z(u))
     if (req_nodal%rf) call write_view(rf, 'NodeData', 'Reaction force', time, m%node_id, all_nodes, &

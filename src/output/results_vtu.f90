@@ -11,7 +11,7 @@ module results_vtu
   use kinds, only: dp
   use strings, only: itoa
   use model
-  use element_catalogue, only: catalogue
+  use element_catalogue, only: catalogue, file_node_order, max_nodes
   use materials, only: von_mises
   use messages, only: fatal
   use analysis_events, only: analysis_observer_t
@@ -93,7 +93,7 @@ contains
         s_elem = s_elem .or. (.not. r%nodal .and. r%s)
       end associate
     end do
-    cells = pack([(k, k = 1, m%ne)], [(is_continuum(m, k), k = 1, m%ne)])
+    cells = pack([(k, k = 1, m%ne)], [(is_drawn(m, k), k = 1, m%ne)])
     allocate(arrays(0))
     call add_mesh(m, cells, arrays)
     arrays = [arrays, int_array('NodeId', point_data, m%node_id), &
@@ -109,14 +109,15 @@ contains
         real_array('Mises (element)', cell_data, [(von_mises(res%sig_elem(:, cells(k))), k = 1, size(cells))])]
   end subroutine collect_arrays
 
-  !> Points (z = 0) and the continuum elements as cells, with the VTK
-  !> type of their catalogue entry (line elements are not written).
+  !> Points (z = 0) and the elements the model draws (continuum elements,
+  !> trusses, springs, point masses) as cells, with the VTK type of their
+  !> catalogue entry (line elements without a section are not written).
   subroutine add_mesh(m, cells, arrays)
     type(model_t), intent(in) :: m
     integer, intent(in) :: cells(:)
     type(vtu_array_t), allocatable, intent(inout) :: arrays(:)
     type(vtu_array_t) :: pts, conn, offs, types
-    integer :: k, e, n, pos
+    integer :: k, e, n, pos, order(max_nodes)
     pts = vtu_array_t(name='Points', vtype='Float64', ncomp=3, place=in_points)
     allocate(pts%r(3 * m%nn))
     pts%r = 0.0_real64
@@ -131,7 +132,8 @@ contains
     do k = 1, size(cells)
       e = cells(k)
       n = elem_nodes(m, e)
-      conn%i(pos + 1:pos + n) = int(m%conn(1:n, e) - 1, int32)   ! VTK points count from 0
+      order = file_node_order(m%etype(e))
+      conn%i(pos + 1:pos + n) = int(m%conn(order(1:n), e) - 1, int32)   ! VTK points count from 0
       pos = pos + n
       offs%i(k) = int(pos, int32)
       types%b(k) = int(catalogue(m%etype(e))%vtk_type, int8)
