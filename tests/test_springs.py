@@ -206,3 +206,22 @@ def test_spring_errors_name_the_line():
         line = next(k for k, t in enumerate(deck.splitlines(), 1) if t == line_text)
         assert run.rc == 1 and f"spring_err_{tag}.inp:{line}: error:" in run.stderr, (tag, line, run.stderr)
         assert fragment in run.stderr, (tag, run.stderr)
+
+
+def test_spring_force_and_stretch_as_s11_and_e11():
+    """*EL PRINT S, E on springs gives, as Abaqus reports springs, S11 =
+    the spring force and E11 = its stretch: a grounded node's springs carry
+    the load (3 and -2), the V of SPRINGA the statics of the apex."""
+    deck = grounded().replace("*NODE PRINT\nU\n", "*NODE PRINT\nU\n*EL PRINT, ELSET=SX\nS, E\n*EL PRINT, ELSET=SY\nS, E\n")
+    inc = run_deck("spring_force_print", deck).ok().listing.increments[-1]
+    sx, ex = inc.block("ELEMENT S", set="SX"), inc.block("ELEMENT E", set="SX")
+    sy = inc.block("ELEMENT S", set="SY")
+    assert rel_err(sx["S11"][0], 3.0) < 1e-12 and rel_err(sy["S11"][0], -2.0) < 1e-12, (sx, sy)
+    assert rel_err(ex["E11"][0], 3.0 / K1) < 1e-12, ex
+    a, h, p = 1.5, 2.0, 5.0
+    deck = v_springs(0.7, a, h, p) + ""
+    deck = deck.replace("*END STEP", "*EL PRINT, ELSET=SPRINGS\nS\n*END STEP")
+    s = run_deck("spring_force_v", deck).ok().listing.increments[-1].block("ELEMENT S", set="SPRINGS")
+    # each leg is compressed by p / (2 cos(beta)), cos(beta) = h / leg
+    leg = math.hypot(a, h)
+    assert max(rel_err(f, -p * leg / (2 * h)) for f in s["S11"]) < 1e-10, s["S11"]

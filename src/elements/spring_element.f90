@@ -5,11 +5,12 @@
 !> SPRINGA acts along the line n from its first node to its second, with
 !> the stretch d = n . (u2 - u1) and the forces -k d n, k d n. Each is
 !> ke = k g g^T with d = g . ue. Small displacements: n is the reference
-!> direction. A spring has no integration points and no stresses.
+!> direction. Its "stress" is its force, as Abaqus reports a spring's:
+!> S11 = k d and E11 = d at one point (the other components zero).
 module spring_element
   use kinds, only: dp
   use element_interface, only: elem_in_t, elem_out_t, kind_spring1, kind_spring2, kind_springa, act_tangent, &
-                               act_residual, wants
+                               act_residual, act_stresses, wants
   implicit none
   private
   public :: spring
@@ -17,7 +18,8 @@ module spring_element
 contains
 
   !> Purpose: element arrays of a spring: ke = k g g^T, fe = ke ue for
-  !> act_tangent / act_residual; nothing for the other actions.
+  !> act_tangent / act_residual; for act_stresses its force and stretch
+  !> as S11 and E11 of one point.
   !> Arguments: ein (kind_spring*, xy, ue, stiffness, dofs), eout.
   pure subroutine spring(action, ein, eout)
     integer, intent(in) :: action
@@ -43,6 +45,11 @@ contains
       g = [-dir, dir]
     end select
     eout%ndof = nd
+    if (wants(action, act_stresses)) then
+      eout%nip = 1
+      eout%eps_ip(:, 1) = [dot_product(g(1:nd), ein%ue(1:nd)), 0.0_dp, 0.0_dp]
+      eout%sig_ip(:, 1) = [ein%stiffness * eout%eps_ip(1, 1), 0.0_dp, 0.0_dp, 0.0_dp]
+    end if
     if (.not. (wants(action, act_tangent) .or. wants(action, act_residual))) return
     do i = 1, nd
       eout%ke(1:nd, i) = ein%stiffness * g(i) * g(1:nd)
