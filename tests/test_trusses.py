@@ -257,3 +257,31 @@ def test_three_node_truss_in_the_files_ends_first():
     (block,) = mesh.cells
     # points count from 0 in node order 1, 2, 3
     assert block.type == "line3" and block.data.tolist() == [[0, 1, 2]], (block.type, block.data)
+
+
+def test_truss_under_its_own_weight_and_spinning():
+    """Body forces on trusses (over length times area): a bar along x held
+    at node 1 under GRAV along +x has the tip displacement rho g L^2 / (2 E)
+    and the reaction -rho g A L; spun about a z axis through node 1
+    (CENTRIF omega^2) its tip moves rho omega^2 L^3 / (3 E). Linear
+    elements in 1D are exact at the nodes for consistent loads, so both the
+    2- and the 3-node truss give the closed form to round-off. A pressure
+    on a truss is an error at its line."""
+    rho, g, w2 = 7.8e-9, 9810.0, 1.0e6
+    for etype in ("T2D2", "T3D3"):
+        for label, load, tip in (("GRAV", f"BAR, GRAV, {g}, 1., 0., 0.", rho * g * L * L / (2 * E)),
+                                 ("CENTRIF", f"BAR, CENTRIF, {w2}, 0., 0., 0., 0., 0., 1.", rho * w2 * L ** 3 / (3 * E))):
+            deck = bar_deck(etype, extra_model=f"*DENSITY\n{rho}\n", load="2, 1, 0.").replace(
+                "*CLOAD\n2, 1, 0.\n", f"*DLOAD\n{load}\n").replace("*NODE PRINT, NSET=TIP\nU",
+                                                                  "*NODE PRINT, NSET=TIP\nU\n*NODE PRINT, NSET=ALLN\nRF")
+            inc = run_deck(f"truss_{label.lower()}_{etype}", deck).ok().listing.increments[-1]
+            u = inc.block("NODE U", set="TIP")["U1"][0]
+            assert rel_err(u, tip) < 1e-12, (etype, label, u, tip)
+            if label == "GRAV":
+                rf = sum(inc.block("NODE RF", set="ALLN")["RF1"])
+                assert rel_err(rf, -rho * g * A * L) < 1e-12, (etype, rf)
+    deck = bar_deck().replace("*CLOAD\n2, 1, 7.0\n", "*DLOAD\nBAR, P1, 5.\n")
+    run = run_deck("truss_pressure", deck)
+    line = deck.splitlines().index("BAR, P1, 5.") + 1
+    assert run.rc == 1 and f"truss_pressure.inp:{line}: error:" in run.stderr and "not pressures" in run.stderr, \
+        run.stderr

@@ -1,13 +1,14 @@
 !> Consistent nodal loads of distributed loads on one continuum element:
 !> a pressure on a face (straight or curved, two or three nodes) and a
 !> body force per unit volume that may vary linearly in space (gravity, a
-!> constant body force, a centrifugal load). Forces are integrated over
+!> constant body force, a centrifugal load), the latter also on a truss
+!> (over its length times its area). Forces are integrated over
 !> the thickness (interpolated from the element's nodal thicknesses, along
 !> the face for a pressure), or over the whole circumference (2 pi r) for
 !> axisymmetric elements, as the element matrices.
 module distributed_loads
   use kinds, only: dp
-  use element_catalogue, only: catalogue, max_nodes, max_ip, edge_node_count
+  use element_catalogue, only: catalogue, max_nodes, max_ip, edge_node_count, is_line
   use shape_functions, only: shape_at, line_shape, gauss_line, gauss_rule, load_rule
   use continuum_element, only: volume_factor
   implicit none
@@ -63,6 +64,10 @@ contains
     f = 0.0_dp
     shape = catalogue(et)%shape
     nen = catalogue(et)%nodes
+    if (is_line(shape)) then
+      call truss_body_force_load(nen, xy, thickness(1), b0, g, xc, f)
+      return
+    end if
     nip = load_rule(shape)
     call gauss_rule(shape, nip, xg, wg)
     do ip = 1, nip
@@ -77,4 +82,33 @@ contains
       end do
     end do
   end subroutine body_force_load
+
+  !> Purpose: nodal forces f(2, nen) of the body force per unit volume
+  !> b(x) = b0 + g (x - xc) over a truss of nen = 2 or 3 nodes at xy
+  !> (Abaqus order: end, middle, end) and cross-sectional area `area`:
+  !> the integral of N_k b A along its arc, three Gauss points (exact for
+  !> a linear b on a straight truss).
+  pure subroutine truss_body_force_load(nen, xy, area, b0, g, xc, f)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xy(:, :), area, b0(2), g(2, 2), xc(2)
+    real(dp), intent(inout) :: f(2, max_nodes)
+    real(dp) :: s(3), w(3), nl(3), dl(3), n(3), dn(3), x(2), dxds(2), b(2)
+    integer :: ip, k
+    call gauss_line(3, s, w)
+    do ip = 1, 3
+      call line_shape(nen, s(ip), nl, dl)
+      n(1:nen) = nl(1:nen)
+      dn(1:nen) = dl(1:nen)
+      if (nen == 3) then
+        n = [nl(1), nl(3), nl(2)]
+        dn = [dl(1), dl(3), dl(2)]
+      end if
+      x = matmul(xy(:, 1:nen), n(1:nen))
+      dxds = matmul(xy(:, 1:nen), dn(1:nen))
+      b = b0 + matmul(g, x - xc)
+      do k = 1, nen
+        f(:, k) = f(:, k) + n(k) * b * (area * norm2(dxds) * w(ip))
+      end do
+    end do
+  end subroutine truss_body_force_load
 end module distributed_loads

@@ -8,7 +8,7 @@ submodule (deck_parser) deck_load_cards
                          is_int, need_elset
   use model, only: dload_t, surf_element, find_name, is_continuum, is_mass, step_dloads, &
                    dload_p, dload_bx, dload_by, dload_grav, dload_centrif
-  use element_catalogue, only: catalogue, state_axisymmetric
+  use element_catalogue, only: catalogue, state_axisymmetric, is_line
   implicit none
 
   !> Direction components this small (relative to the vector) count as zero.
@@ -154,10 +154,18 @@ contains
       if (label /= 'GRAV' .and. label /= 'CENTRIF') call err(p, 'element ' // itoa(m%elem_id(e)) // &
           ' is a point mass (MASS): it takes GRAV and CENTRIF loads only')
       axi = any(catalogue(m%etype(1:m%ne))%state == state_axisymmetric)
+    else if (is_line(catalogue(m%etype(e))%shape)) then
+      ! A line element with a section is a truss: body forces over its length.
+      if (section_of(p, m, e) == 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+          trim(catalogue(m%etype(e))%name) // ') has no *SOLID SECTION (yet): a line element takes a ' // &
+          'distributed load as a truss, whose section must come before the step')
+      if (index(label, 'P') == 1) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a truss: it takes body ' // &
+          'forces (BX, BY, GRAV, CENTRIF), not pressures')
+      axi = .false.
     else
       if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
           trim(catalogue(m%etype(e))%name) // ') is not a solid element: distributed loads act on solid ' // &
-          'elements and point masses only (load a truss or spring with *CLOAD)')
+          'elements, trusses and point masses only (load a spring with *CLOAD)')
       axi = catalogue(m%etype(e))%state == state_axisymmetric
     end if
     d = dload_t(elem=e, amp=amp, value=get_real(p, f(3), 'load magnitude'))
@@ -251,6 +259,17 @@ contains
     end if
     pt = x(1:2)
   end function centrifugal_axis
+
+  !> The section (read so far) whose element set holds element e, 0 if none.
+  integer function section_of(p, m, e) result(s)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    do s = 1, p%nsec
+      if (any(m%elsets(m%sections(s)%elset)%items == e)) return
+    end do
+    s = 0
+  end function section_of
 
   !> GRAV and CENTRIF need the density of the element's material; checked
   !> here when the section and material are already known (model data
