@@ -189,3 +189,19 @@ def test_nodal_thickness_checks():
                                                "*NODAL THICKNESS\n3, 2.\n")
     run = run_deck("thick_axi", axi).ok()
     assert "warning" not in run.stderr, run.stderr
+
+
+def test_thickness_interpolated_below_zero_is_an_error():
+    """Quadratic shape functions dip below zero at the corners' far side: a
+    CPS8 with thickness 1 at its corners and 0.01 at its mid-side nodes has
+    a negative thickness inside. The run stops naming the element instead
+    of integrating a negative volume."""
+    deck, _ = tapered_bar(1)
+    nodes, _, _ = quad8_mesh(1, 1, 10.0, 1.0)
+    mids = [n for n, (x, y) in nodes.items() if abs(x - 5.0) < 1e-12 or abs(y - 0.5) < 1e-12]
+    lines = "".join(f"{n}, {0.01 if n in mids else 1.0}\n" for n in nodes)
+    head, rest = deck.split("*NODAL THICKNESS\n", 1)
+    rest = rest[rest.index("*"):]
+    run = run_deck("thick_negative", head + "*NODAL THICKNESS\n" + lines + rest)
+    assert run.rc == 1 and "element 1 (CPS8)" in run.stderr and "NODAL THICKNESS that the element interpolates" \
+        in run.stderr, run.stderr

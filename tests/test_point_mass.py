@@ -132,3 +132,15 @@ def test_mass_errors_name_the_line():
         line = next(k for k, t in enumerate(deck.splitlines(), 1) if t == line_text)
         assert run.rc == 1 and f"mass_err_{tag}.inp:{line}: error:" in run.stderr, (tag, line, run.stderr)
         assert fragment in run.stderr, (tag, run.stderr)
+
+
+def test_mass_on_a_dof_nothing_carries_is_an_error():
+    """A point mass on a node that belongs to no element with stiffness and
+    whose other dof only an *EQUATION names: its weight along the free dof
+    would be lost (and a false reaction printed); the run stops saying so."""
+    deck = bar(f"MA, GRAV, {G}, 0., -1., 0.", masses="2, 5\n").replace(
+        "4, 0., {H}\n".format(H=H), f"4, 0., {H}\n5, {2 * L}, 0.\n").replace(
+        "*BOUNDARY\n", "*EQUATION\n2\n2, 1, 1., 5, 1, -1.\n*BOUNDARY\n", 1)
+    assert "5, 8.0, 0." in deck
+    run = run_deck("mass_unsupported_dof", deck)
+    assert run.rc == 1 and "acts on dof 2 of node 5" in run.stderr and "nothing carries it" in run.stderr, run.stderr

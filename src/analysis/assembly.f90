@@ -88,7 +88,8 @@ contains
       counts%continuum_tangent = counts%continuum_tangent + 1
       if (.not. eout%detj_min > 0.0_dp) call fatal('element ' // itoa(m%elem_id(e)) // ' (' // &
         trim(catalogue(m%etype(e))%name) // ') has a zero or negative Jacobian at an integration point: ' // &
-        'a mid-side node far from the middle of its edge, or an axisymmetric element reaching x < 0')
+        'a mid-side node far from the middle of its edge, an axisymmetric element reaching x < 0, or a ' // &
+        'NODAL THICKNESS that the element interpolates to zero or less')
       nd = eout%ndof
       call pack_upper(eout%ke(1:nd, 1:nd), body%ke(body%kptr(e):body%kptr(e + 1) - 1))
       do j = 1, nd

@@ -422,13 +422,24 @@ contains
     type(model_t), intent(in) :: m
     type(load_state_t), intent(in) :: ls
     logical, intent(in) :: inactive(:, :)
-    integer :: a, d
+    integer :: a, d, j, k
     do a = 1, m%nn
       do d = 1, 2
         if (.not. inactive(d, a)) cycle
         if (ls%ld_target(d, a) /= 0.0_dp .or. ls%ld_start(d, a) /= 0.0_dp) call fatal('a *CLOAD acts on dof ' // &
           itoa(d) // ' of node ' // itoa(m%node_id(a)) // ', which belongs to no element and which no ' // &
           '*EQUATION names: nothing carries it')
+      end do
+    end do
+    ! a point mass's weight or spin on such a dof would be lost just the same
+    do j = 1, ls%npat
+      do k = 1, ls%pat(j)%n
+        a = ls%pat(j)%node(k)
+        do d = 1, 2
+          if (inactive(d, a) .and. ls%pat(j)%f(d, k) /= 0.0_dp) call fatal('a *DLOAD (a point mass''s ' // &
+            'load) acts on dof ' // itoa(d) // ' of node ' // itoa(m%node_id(a)) // ', which belongs to no ' // &
+            'element with stiffness and which no *EQUATION names: nothing carries it')
+        end do
       end do
     end do
   end subroutine check_loads_reached

@@ -89,7 +89,7 @@ contains
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     real(dp) :: d(4, 4), n(max_nodes), dn(2, max_nodes), b(4, 2 * max_nodes), db(4, 2 * max_nodes)
-    real(dp) :: xg(2, max_ip), wg(max_ip), ex(max_nodes, max_ip), detj, r, eps(4), sig(4), eps0(4), dv
+    real(dp) :: xg(2, max_ip), wg(max_ip), ex(max_nodes, max_ip), detj, r, eps(4), sig(4), eps0(4), dv, t_ip
     integer :: ip, i, j, nen, nd
     logical :: need_k
     nen = ein%nen
@@ -109,7 +109,11 @@ contains
         eout%detj_min = min(eout%detj_min, detj)
       end if
       eps0 = ein%alpha * dot_product(n(1:nen), ein%dtemp(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
-      dv = volume_factor(ein%state, detj, r, dot_product(n(1:nen), ein%thickness(1:nen))) * wg(ip)
+      t_ip = dot_product(n(1:nen), ein%thickness(1:nen))
+      ! a NODAL THICKNESS that a quadratic element interpolates below zero
+      ! (its corner functions dip under zero) is flagged as a bad Jacobian
+      if (ein%state /= state_axisymmetric .and. .not. t_ip > 0.0_dp) eout%detj_min = min(eout%detj_min, t_ip)
+      dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
       if (wants(action, act_thermal)) eout%fe(1:nd) = eout%fe(1:nd) + matmul(matmul(eps0, d), b(:, 1:nd)) * dv
       if (need_k) then
         ! upper triangle of B^T D B, mirrored below after the loop

@@ -173,7 +173,8 @@ module model
   end type contact_pair_t
 
   !> *EQUATION: sum_k coef(k) * u(dof(k)) of node(k) = 0, one linear
-  !> multi-point constraint (read, not yet imposed by the analysis). The
+  !> multi-point constraint, imposed by eliminating its first term's dof
+  !> (module constraints, the analysis' numbering). The
   !> cards that generate constraints (*PRE-TENSION SECTION, *TIE) append
   !> theirs in the same form; src is then their card.
   type :: equation_t
