@@ -351,3 +351,47 @@ def test_later_step_boundary_on_a_tied_dof_names_the_tie():
     assert "dof 2 of node 1002 is both prescribed and the dependent dof" in run.stderr, run.stderr
     assert "(the constraint made by *TIE GLUE)" in run.stderr, run.stderr
     assert len(run.listing.increments) >= 1
+
+
+def test_pretension_cut_through_triangles_fanning_from_a_node():
+    """A cut along y = 1 through a strip of CPS3 (nu = 0) held at both ends,
+    opened by 0.01 through the reference node: element 1 touches the cut
+    only at node 4, below it; it takes node 4's copy like the face's owner,
+    so every element carries S22 = E * 0.01 / 2 = 5 (before, element 1 kept
+    the original node and bridged the cut: S22 from -1.07 to 6.07)."""
+    deck = """*NODE
+1, 0., 0.
+2, 1., 0.
+3, 0., 1.
+4, 1., 1.
+5, 0., 2.
+6, 1., 2.
+100, 0., 0.
+*ELEMENT, TYPE=CPS3, ELSET=STRIP
+1, 1, 2, 4
+2, 1, 4, 3
+3, 3, 4, 6
+4, 3, 6, 5
+*MATERIAL, NAME=M
+*ELASTIC
+1000., 0.
+*SOLID SECTION, ELSET=STRIP, MATERIAL=M
+1.
+*SURFACE, NAME=CUT
+2, S2
+*PRE-TENSION SECTION, SURFACE=CUT, NODE=100
+*BOUNDARY
+1, 1, 2
+2, 2
+5, 1, 2
+6, 2
+*STEP
+*STATIC
+*BOUNDARY
+100, 1, 1, 0.01
+*EL PRINT, ELSET=STRIP
+S
+*END STEP
+"""
+    s = run_deck("pret_triangle_fan", deck).ok().listing.increments[-1].block("ELEMENT S", set="STRIP")
+    assert max(abs(v - 5.0) for v in s["S22"]) < 1e-10, s["S22"]

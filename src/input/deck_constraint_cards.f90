@@ -149,10 +149,13 @@ contains
     type(pretension_t), intent(inout) :: pt
     integer, intent(inout) :: next_id
     integer, allocatable :: copy_of(:)
-    integer :: j, i, e, k, loc, o, nn0
+    real(dp), allocatable :: side(:, :)
+    real(dp) :: xo(2), t(2)
+    integer :: j, i, e, k, loc, o, nn0, a, b
     nn0 = m%nn
-    allocate(copy_of(nn0), pt%original(0), pt%copy(0))
+    allocate(copy_of(nn0), pt%original(0), pt%copy(0), side(2, nn0))
     copy_of = 0
+    side = 0.0_dp
     associate(s => m%surfaces(pt%surface))
       do j = 1, size(s%elem)
         e = s%elem(j)
@@ -164,16 +167,62 @@ contains
           if (o > nn0) cycle                 ! a copy already (another face of e)
           if (copy_of(o) == 0) then
             if (next_id > max_id) call err(p, 'the new nodes of the cut would need ids beyond ' // itoa(max_id))
-            copy_of(o) = new_node(m, m%x(:, o), next_id)
+            xo = m%x(:, o)        ! new_node grows m%x: not an argument aliasing it
+            copy_of(o) = new_node(m, xo, next_id)
             next_id = next_id + 1
             pt%original = [pt%original, o]
             pt%copy = [pt%copy, copy_of(o)]
           end if
           m%conn(loc, e) = copy_of(o)
         end do
+        ! the owners lie behind their faces' outward normals
+        call edge_nodes(m, e, k, a, b)
+        t = m%x(:, b) - m%x(:, a)
+        call add_side(m, pt, e, k, [t(2), -t(1)] / norm2(t), side)
       end do
     end associate
+    call reconnect_by_side(m, copy_of, side)
   end subroutine duplicate_face_nodes
+
+  !> side(:, o) += n for the original o of each node of face k of element
+  !> e (its nodes hold copies by now: pt maps them back).
+  subroutine add_side(m, pt, e, k, n, side)
+    type(model_t), intent(in) :: m
+    type(pretension_t), intent(in) :: pt
+    integer, intent(in) :: e, k
+    real(dp), intent(in) :: n(2)
+    real(dp), intent(inout) :: side(:, :)
+    integer :: i, loc, q
+    do i = 1, 3
+      loc = catalogue(m%etype(e))%edge(i, k)
+      if (loc == 0) cycle
+      do q = 1, size(pt%copy)
+        if (pt%copy(q) == m%conn(loc, e)) side(:, pt%original(q)) = side(:, pt%original(q)) + n
+      end do
+    end do
+  end subroutine add_side
+
+  !> An element that touches the cut only at a node (a triangle fanning
+  !> out from it) takes the node's copy when it lies on the owners' side
+  !> (behind side(:, o)): otherwise it would join the two sides there.
+  subroutine reconnect_by_side(m, copy_of, side)
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: copy_of(:)
+    real(dp), intent(in) :: side(:, :)
+    integer :: e, loc, o, n
+    real(dp) :: c(2)
+    do e = 1, m%ne
+      n = elem_nodes(m, e)
+      if (n < 3) cycle
+      c = sum(m%x(:, m%conn(1:n, e)), dim=2) / n
+      do loc = 1, n
+        o = m%conn(loc, e)
+        if (o > size(copy_of)) cycle
+        if (copy_of(o) == 0) cycle
+        if (dot_product(c - m%x(:, o), side(:, o)) < 0.0_dp) m%conn(loc, e) = copy_of(o)
+      end do
+    end do
+  end subroutine reconnect_by_side
 
   !> Appends a node with user id `id` at x; returns its internal index.
   !> (node_id and x grow by capacity: cut_pretension_sections trims them.)
