@@ -261,7 +261,8 @@ contains
     integer, allocatable, intent(inout) :: tn(:), td(:)
     real(dp), allocatable, intent(inout) :: tc(:)
     integer, intent(inout) :: nt
-    integer :: j, i, q, f0, w
+    integer :: j, i, q, f0, w, a, d
+    real(dp) :: c
     f0 = nt + 1
     do j = raw%xr(k), raw%xr(k + 1) - 1
       i = mpc%dep(raw%rdof(j), raw%rnode(j))
@@ -269,7 +270,12 @@ contains
         call add_term(tn, td, tc, f0, nt, raw%rnode(j), raw%rdof(j), raw%rcoef(j))
       else
         do q = first(i), last(i)
-          call add_term(tn, td, tc, f0, nt, tn(q), td(q), raw%rcoef(j) * tc(q))
+          ! copies: add_term may reallocate tn and td, which an actual
+          ! argument tn(q) would still point into
+          a = tn(q)
+          d = td(q)
+          c = raw%rcoef(j) * tc(q)
+          call add_term(tn, td, tc, f0, nt, a, d, c)
         end do
       end if
     end do
