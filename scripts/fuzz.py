@@ -654,17 +654,21 @@ def _keyword_word(line):
     return re.sub(rb"\s+", b" ", line.split(b",")[0].strip().upper())
 
 
-def _deck_names(deck):
+def _deck_names(deck, surfaces=False):
     """Node ids and set, surface and card names the deck defines (for
-    fields that refer to something: a real but wrong referent)."""
-    ids, names = [], []
+    fields that refer to something: a real but wrong referent); with
+    surfaces, also the names of its *SURFACE cards alone."""
+    ids, names, surfs = [], [], []
     for rel in sorted(deck.files):
         lines = _lines(deck, rel)
         for s, e in _cards(lines):
-            names += [m.group(1) for m in re.finditer(rb"(?i)(?:NSET|ELSET|NAME)\s*=\s*([\w.-]+)", lines[s])]
+            found = [m.group(1) for m in re.finditer(rb"(?i)(?:NSET|ELSET|NAME)\s*=\s*([\w.-]+)", lines[s])]
+            names += found
+            if _keyword_word(lines[s]) == b"*SURFACE":
+                surfs += found
             if _keyword_word(lines[s]) == b"*NODE":
                 ids += [line.split(b",")[0].strip() for line in lines[s + 1:e] if re.match(rb"\s*\d+\s*,", line)]
-    return ids, names
+    return (ids, names, surfs) if surfaces else (ids, names)
 
 
 def m_card_field(rng, deck, pool):
@@ -711,16 +715,19 @@ def m_constraint(rng, deck, pool):
     """A constraint card added among the deck's own nodes and names:
     equations in a chain, a cycle, on a dof twice, on a node itself, on a
     held dof; a tie of an empty, unknown or node surface, or of a surface
-    to itself; a pre-tension section on a node surface or an empty one."""
-    ids, names = _deck_names(deck)
+    to itself, or of two of the deck's surfaces (contact surfaces too); a
+    pre-tension section on a node surface, an empty one, or one of the
+    deck's surfaces with a new reference node held (a legal cut that opens
+    by 0: on a tie's master surface it makes chains of constraints)."""
+    ids, names, surfs = _deck_names(deck, surfaces=True)
     if len(ids) < 2:
         return None
     lines = _lines(deck, deck.main)
     nodes = rng.sample(ids, min(len(ids), rng.choice([2, 3, 5, 50])))
-    dof = rng.choice([b"1", b"2", b"3", b"0", b"-1"])
+    dof = rng.choice([b"1", b"2", b"1", b"2", b"3", b"0", b"-1"])
     kind = rng.choice(["chain", "cycle", "twice", "self", "long", "tie empty", "tie unknown", "tie node",
-                       "tie self", "pret node", "pret empty", "pret twice"])
-    name = rng.choice(names) if names else b"X"
+                       "tie self", "tie surfaces", "pret node", "pret empty", "pret surface", "pret surface"])
+    name = rng.choice(surfs or names or [b"X"])
     eq = lambda a, b, c=b"1.": b"2\n%s, %s, %s, %s, %s, -1.\n" % (a, dof, c, b, dof)  # noqa: E731
     if kind == "chain":
         card = b"*EQUATION\n" + b"".join(eq(a, b) for a, b in zip(nodes, nodes[1:]))
@@ -744,11 +751,13 @@ def m_constraint(rng, deck, pool):
     elif kind == "pret node":
         card = b"*SURFACE, NAME=FZN, TYPE=NODE\n%s\n*PRE-TENSION SECTION, SURFACE=FZN, NODE=%s\n" % (
             b", ".join(nodes[1:]), nodes[0])
+    elif kind == "tie surfaces":
+        card = b"*TIE, NAME=FZ\n%s, %s\n" % (name, rng.choice(surfs or names or [b"X"]))
     elif kind == "pret empty":
         card = b"*SURFACE, NAME=FZEMPTY\n*PRE-TENSION SECTION, SURFACE=FZEMPTY, NODE=%s\n" % nodes[0]
     else:
-        card = b"*PRE-TENSION SECTION, SURFACE=%s, NODE=%s\n" % (name, nodes[0])
-        card = card + card
+        card = (b"*NODE\n990001, 0., 0.\n*PRE-TENSION SECTION, SURFACE=%s, NODE=990001\n"
+                b"*BOUNDARY\n990001, 1, 2\n" % name)
     at = _model_end(lines)
     lines.insert(at, card)
     _set_lines(deck, deck.main, lines)
