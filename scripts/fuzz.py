@@ -2,13 +2,20 @@
 """Mutation fuzzer of cfe2d's deck reader and analysis.
 
 Takes the project's own decks (input/examples, input/hertz with a small
-gmsh mesh, decks written by the tests), mutates them with a fixed seed
-(cards dropped, duplicated, moved or spliced in from another deck; numbers
-replaced by 0, -1, 1e308, 1e-320, nan, inf, huge integers; lines truncated,
-joined, deleted, made very long; CR-LF endings, binary bytes; *INCLUDE of
-missing, self-including, directory and special files such as /dev/zero and
-a FIFO), runs every mutant on both builds under a time and a memory limit
-and classifies each run:
+gmsh mesh, decks written by the tests: contact, features, triangles, and
+*EQUATION, *TIE, *PRE-TENSION SECTION, trusses, springs, point masses and
+*NODAL THICKNESS as their tests write them), mutates them with a fixed
+seed (cards dropped, duplicated, moved or spliced in from another deck;
+numbers replaced by 0, -1, 1e308, 1e-320, nan, inf, huge integers; lines
+truncated, joined, deleted, made very long; CR-LF endings, binary bytes;
+*INCLUDE of missing, self-including, directory and special files such as
+/dev/zero and a FIFO; targeted at the constraint and element cards: a
+field of their data lines replaced by a nasty value, a field of the same
+line, or a node id or name of the deck; equations added in chains,
+cycles, on a dof twice or a node itself; ties of empty, unknown, node or
+the deck's surfaces; pre-tension cuts of the deck's surfaces; two nodes of
+an element moved onto each other), runs every mutant on both builds under
+a time and a memory limit and classifies each run:
 
   ok-error    non-zero exit with a "file:line: error:" or "cfe2d: error:" line
   ok-run      exit 0, a listing with increments, no NaN/Infinity or
