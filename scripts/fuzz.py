@@ -2,13 +2,20 @@
 """Mutation fuzzer of cfe2d's deck reader and analysis.
 
 Takes the project's own decks (input/examples, input/hertz with a small
-gmsh mesh, decks written by the tests), mutates them with a fixed seed
-(cards dropped, duplicated, moved or spliced in from another deck; numbers
-replaced by 0, -1, 1e308, 1e-320, nan, inf, huge integers; lines truncated,
-joined, deleted, made very long; CR-LF endings, binary bytes; *INCLUDE of
-missing, self-including, directory and special files such as /dev/zero and
-a FIFO), runs every mutant on both builds under a time and a memory limit
-and classifies each run:
+gmsh mesh, decks written by the tests: contact, features, triangles, and
+*EQUATION, *TIE, *PRE-TENSION SECTION, trusses, springs, point masses and
+*NODAL THICKNESS as their tests write them), mutates them with a fixed
+seed (cards dropped, duplicated, moved or spliced in from another deck;
+numbers replaced by 0, -1, 1e308, 1e-320, nan, inf, huge integers; lines
+truncated, joined, deleted, made very long; CR-LF endings, binary bytes;
+*INCLUDE of missing, self-including, directory and special files such as
+/dev/zero and a FIFO; targeted at the constraint and element cards: a
+field of their data lines replaced by a nasty value, a field of the same
+line, or a node id or name of the deck; equations added in chains,
+cycles, on a dof twice or a node itself; ties of empty, unknown, node or
+the deck's surfaces; pre-tension cuts of the deck's surfaces; two nodes of
+an element moved onto each other), runs every mutant on both builds under
+a time and a memory limit and classifies each run:
 
   ok-error    non-zero exit with a "file:line: error:" or "cfe2d: error:" line
   ok-run      exit 0, a listing with increments, no NaN/Infinity or
@@ -19,7 +26,7 @@ and classifies each run:
   silent-bad  exit 0 but NaN/Infinity/malformed numbers in an output, no
               increment in the listing, a step that ran no increment or
               stopped before the end of its time period, or a model with
-              no solid element
+              no element
 
 Failures are told apart by their class and a signature (the runtime error
 and its source line, the signal, where a hang was: blocked in the kernel or
@@ -189,7 +196,7 @@ def test_seeds(log):
     seeds = []
     makers = [("tests/bad_decks_good", _good_deck), ("tests/contact_push", _contact_push),
               ("tests/contact_force", _contact_force), ("tests/contact_unsettled", _contact_unsettled),
-              ("tests/features_include", _features), ("tests/patch_tri", _patch_tri)]
+              ("tests/features_include", _features), ("tests/patch_tri", _patch_tri)] + CARD_MAKERS
     for name, make in makers:
         try:
             main, files, *expect = make()
@@ -241,6 +248,101 @@ def _patch_tri():
             "*BOUNDARY\nLEFT, ENCASTRE\n*STEP, INC=10\n*STATIC\n0.25, 1.0\n*BOUNDARY\nRIGHT, 1, 1, 0.01\n"
             "*NODE FILE\nU, S\n*EL FILE\nS\n*NODE PRINT\nU, RF\n*EL PRINT\nS, E\n*END STEP\n")
     return "patch.inp", {"patch.inp": deck}
+
+
+def _equation_tied():
+    import test_equation as te
+    return "eq_tied.inp", {"eq_tied.inp": te.beam(True)}
+
+
+def _equation_chain():
+    import test_equation as te
+    return "eq_chain.inp", {"eq_chain.inp": te.pressed_block(te.through_ref, te.ref_by_chain)}
+
+
+def _equation_contact():
+    import test_equation as te
+    return "eq_contact.inp", {"eq_contact.inp": te.contact_deck()}
+
+
+def _tie_patch():
+    import test_constraint_decks as tc
+    return "tie.inp", {"tie.inp": tc.tie_patch_deck(False, 4, 1e-4, "TOP, P, -3.\nRIGHT, P, -2.\n")}
+
+
+def _tie_q8():
+    import test_constraint_decks as tc
+    return "tie8.inp", {"tie8.inp": tc.tie_patch_deck(True, 3, 1e-4, "RIGHT, P, -2.\n")}
+
+
+def _pretension_bar():
+    import test_constraint_decks as tc
+    return "pret.inp", {"pret.inp": tc.bar("*BOUNDARY\nREF, 1, 1, 0.01\n")}
+
+
+def _pretension_pret5():
+    import test_constraint_decks as tc
+    return "pret5.inp", {"pret5.inp": tc.two_square_cut_deck()}
+
+
+def _truss_bar():
+    import test_trusses as tt
+    return "truss.inp", {"truss.inp": tt.bar_deck("T2D3")}
+
+
+def _truss_v():
+    import test_trusses as tt
+    return "truss_v.inp", {"truss_v.inp": tt.v_truss(0.4)}
+
+
+def _truss_block():
+    import test_trusses as tt
+    return "truss_block.inp", {"truss_block.inp": tt.block_with_truss(0.3)}
+
+
+def _springs_grounded():
+    import test_springs as ts
+    return "springs.inp", {"springs.inp": ts.grounded()}
+
+
+def _springs_axial():
+    import test_springs as ts
+    return "springa.inp", {"springa.inp": ts.v_springs(1.1)}
+
+
+def _mass_bar():
+    import test_point_mass as tm
+    return "mass.inp", {"mass.inp": tm.bar(f"MA, GRAV, {tm.G}, 1., 0., 0.")}
+
+
+def _mass_ring():
+    import test_point_mass as tm
+    return "mass_ring.inp", {"mass_ring.inp": tm.ring(f"*DLOAD\nMA, CENTRIF, {tm.W2}, 0., 0., 0., 0., 1., 0.\n")}
+
+
+def _nodal_thickness():
+    import test_nodal_thickness as tn
+    from decks import grid, quad_lines
+    nodes, ids, quads = grid(4, 3, 0.0, 2.0, 0.0, 1.0, distort=0.35)
+    deck = tn.patch_deck("CPS4", nodes, quad_lines(quads), [4, 8, 12], 2, lambda x, y: 0.5 + 0.8 * y)
+    return "thick.inp", {"thick.inp": deck}
+
+
+def _nodal_thickness_taper():
+    import test_nodal_thickness as tn
+    return "taper.inp", {"taper.inp": tn.tapered_bar(2)[0]}
+
+
+# Today's cards (*EQUATION, *TIE, *PRE-TENSION SECTION, trusses, springs,
+# point masses, *NODAL THICKNESS) as the tests write them.
+CARD_MAKERS = [("tests/equation_tied", _equation_tied), ("tests/equation_chain", _equation_chain),
+               ("tests/equation_contact", _equation_contact), ("tests/tie_patch", _tie_patch),
+               ("tests/tie_q8", _tie_q8), ("tests/pretension_bar", _pretension_bar),
+               ("tests/pretension_pret5", _pretension_pret5), ("tests/truss_bar", _truss_bar),
+               ("tests/truss_v", _truss_v), ("tests/truss_block", _truss_block),
+               ("tests/springs_grounded", _springs_grounded), ("tests/springs_axial", _springs_axial),
+               ("tests/mass_bar", _mass_bar), ("tests/mass_ring", _mass_ring),
+               ("tests/nodal_thickness", _nodal_thickness), ("tests/nodal_thickness_taper", _nodal_thickness_taper)]
 
 
 def load_seeds(tmp, log):
@@ -543,6 +645,159 @@ def m_keyword(rng, deck, pool):
     return f"{rel}:{k + 1}: keyword line {how}: {line[:50]!r}"
 
 
+# ---------------------------------------------- targeted: today's constraint and element cards
+
+# Cards whose data lines m_card_field rewrites field by field.
+TARGET_CARDS = (b"*EQUATION", b"*TIE", b"*PRE-TENSION SECTION", b"*SPRING", b"*MASS", b"*SOLID SECTION",
+                b"*NODAL THICKNESS", b"*SURFACE", b"*ELEMENT", b"*BOUNDARY", b"*DLOAD", b"*CLOAD")
+# Values a field of those cards should not hold: zero, huge and tiny
+# coefficients, constants and areas; NaN text; dofs 0, -1, 3, 7; a node id
+# no deck defines; an empty field; a name nothing defines.
+NASTY_FIELDS = [b"0", b"0.", b"-0.", b"-1", b"-1.5", b"3", b"7", b"1e300", b"-1e300", b"1e-300", b"1e-320",
+                b"nan", b"NaN", b"-inf", b"999999", b"", b" ", b"NOSUCHNAME", b"1e20", b"2147483648"]
+
+
+def _keyword_word(line):
+    return re.sub(rb"\s+", b" ", line.split(b",")[0].strip().upper())
+
+
+def _deck_names(deck, surfaces=False):
+    """Node ids and set, surface and card names the deck defines (for
+    fields that refer to something: a real but wrong referent); with
+    surfaces, also the names of its *SURFACE cards alone."""
+    ids, names, surfs = [], [], []
+    for rel in sorted(deck.files):
+        lines = _lines(deck, rel)
+        for s, e in _cards(lines):
+            found = [m.group(1) for m in re.finditer(rb"(?i)(?:NSET|ELSET|NAME)\s*=\s*([\w.-]+)", lines[s])]
+            names += found
+            if _keyword_word(lines[s]) == b"*SURFACE":
+                surfs += found
+            if _keyword_word(lines[s]) == b"*NODE":
+                ids += [line.split(b",")[0].strip() for line in lines[s + 1:e] if re.match(rb"\s*\d+\s*,", line)]
+    return (ids, names, surfs) if surfaces else (ids, names)
+
+
+def m_card_field(rng, deck, pool):
+    """One comma field of a data line of today's cards (an equation term, a
+    tie's surfaces, a spring's dof or constant, a mass, an area, a nodal
+    thickness, a line element's node) replaced by a nasty value, another
+    field of the same line (a term on itself, a bar from a node to itself),
+    or a node id or name the deck defines (a cycle, a tie of a surface to
+    itself, a pre-tension on a node set)."""
+    rel = _pick_file(rng, deck)
+    lines = _lines(deck, rel)
+    spots = []
+    for s, e in _cards(lines):
+        if _keyword_word(lines[s]) in TARGET_CARDS:
+            spots += [k for k in range(s + 1, e) if lines[k].strip() and not lines[k].lstrip().startswith(b"**")]
+    if not spots:
+        return None
+    k = rng.choice(spots)
+    body, eol = lines[k][:len(lines[k]) - len(_eol(lines[k]))], _eol(lines[k])
+    fields = body.split(b",")
+    f = rng.randrange(len(fields))
+    ids, names = _deck_names(deck)
+    how = rng.choice(["nasty", "nasty", "same line", "node", "name"])
+    if how == "same line" and len(fields) > 1:
+        value = rng.choice([x for j, x in enumerate(fields) if j != f]).strip()
+    elif how == "node" and ids:
+        value = rng.choice(ids)
+    elif how == "name" and names:
+        value = rng.choice(names)
+    else:
+        how, value = "nasty", rng.choice(NASTY_FIELDS)
+    fields[f] = b" " + value if f else value
+    lines[k] = b",".join(fields) + eol
+    _set_lines(deck, rel, lines)
+    return f"{rel}:{k + 1}: field {f + 1} -> {value[:30]!r} ({how}) in {body.strip()[:40]!r}"
+
+
+def _model_end(lines):
+    """Where model-level cards go: before the first *STEP."""
+    return next((k for k, line in enumerate(lines) if _keyword_word(line) == b"*STEP"), len(lines))
+
+
+def m_constraint(rng, deck, pool):
+    """A constraint card added among the deck's own nodes and names:
+    equations in a chain, a cycle, on a dof twice, on a node itself, on a
+    held dof; a tie of an empty, unknown or node surface, or of a surface
+    to itself, or of two of the deck's surfaces (contact surfaces too); a
+    pre-tension section on a node surface, an empty one, or one of the
+    deck's surfaces with a new reference node held (a legal cut that opens
+    by 0: on a tie's master surface it makes chains of constraints)."""
+    ids, names, surfs = _deck_names(deck, surfaces=True)
+    if len(ids) < 2:
+        return None
+    lines = _lines(deck, deck.main)
+    nodes = rng.sample(ids, min(len(ids), rng.choice([2, 3, 5, 50])))
+    dof = rng.choice([b"1", b"2", b"1", b"2", b"3", b"0", b"-1"])
+    kind = rng.choice(["chain", "cycle", "twice", "self", "long", "tie empty", "tie unknown", "tie node",
+                       "tie self", "tie surfaces", "pret node", "pret empty", "pret surface", "pret surface"])
+    name = rng.choice(surfs or names or [b"X"])
+    eq = lambda a, b, c=b"1.": b"2\n%s, %s, %s, %s, %s, -1.\n" % (a, dof, c, b, dof)  # noqa: E731
+    if kind == "chain":
+        card = b"*EQUATION\n" + b"".join(eq(a, b) for a, b in zip(nodes, nodes[1:]))
+    elif kind == "cycle":
+        card = b"*EQUATION\n" + b"".join(eq(a, b) for a, b in zip(nodes, nodes[1:] + nodes[:1]))
+    elif kind == "twice":
+        card = b"*EQUATION\n" + eq(nodes[0], nodes[1]) + eq(nodes[0], nodes[-1], b"2.")
+    elif kind == "self":
+        card = b"*EQUATION\n" + eq(nodes[0], nodes[0], rng.choice([b"1.", b"2.", b"1e300"]))
+    elif kind == "long":
+        card = b"*EQUATION\n%d\n" % (2 * len(nodes)) + b"".join(
+            b"%s, 1, 1., %s, 2, -1e-300,\n" % (n, n) for n in nodes)
+    elif kind == "tie empty":
+        card = b"*SURFACE, NAME=FZEMPTY\n*TIE, NAME=FZ\nFZEMPTY, %s\n" % name
+    elif kind == "tie unknown":
+        card = b"*TIE, NAME=FZ\n%s, NOSUCHSURFACE\n" % name
+    elif kind == "tie node":
+        card = b"*SURFACE, NAME=FZN, TYPE=NODE\n%s\n*TIE, NAME=FZ\nFZN, %s\n" % (b", ".join(nodes), name)
+    elif kind == "tie self":
+        card = b"*TIE, NAME=FZ\n%s, %s\n" % (name, name)
+    elif kind == "pret node":
+        card = b"*SURFACE, NAME=FZN, TYPE=NODE\n%s\n*PRE-TENSION SECTION, SURFACE=FZN, NODE=%s\n" % (
+            b", ".join(nodes[1:]), nodes[0])
+    elif kind == "tie surfaces":
+        card = b"*TIE, NAME=FZ\n%s, %s\n" % (name, rng.choice(surfs or names or [b"X"]))
+    elif kind == "pret empty":
+        card = b"*SURFACE, NAME=FZEMPTY\n*PRE-TENSION SECTION, SURFACE=FZEMPTY, NODE=%s\n" % nodes[0]
+    else:
+        card = (b"*NODE\n990001, 0., 0.\n*PRE-TENSION SECTION, SURFACE=%s, NODE=990001\n"
+                b"*BOUNDARY\n990001, 1, 2\n" % name)
+    at = _model_end(lines)
+    lines.insert(at, card)
+    _set_lines(deck, deck.main, lines)
+    return f"{deck.main}:{at + 1}: added {kind} ({card[:60]!r})"
+
+
+def m_coincide(rng, deck, pool):
+    """Two nodes of one element moved onto each other (a truss or an axial
+    spring of zero length, a collapsed face): the second node's
+    coordinates set to the first's."""
+    coords, elems = {}, []
+    for rel in sorted(deck.files):
+        lines = _lines(deck, rel)
+        for s, e in _cards(lines):
+            word = _keyword_word(lines[s])
+            for k in range(s + 1, e):
+                fields = [x.strip() for x in lines[k].split(b",")]
+                if word == b"*NODE" and len(fields) >= 3:
+                    coords[fields[0]] = (rel, k)
+                elif word == b"*ELEMENT" and len(fields) >= 3:
+                    elems.append(fields[1:])
+    elems = [e for e in elems if sum(n in coords for n in e) >= 2]
+    if not elems:
+        return None
+    a, b = rng.sample([n for n in rng.choice(elems) if n in coords], 2)
+    (ra, ka), (rb, kb) = coords[a], coords[b]
+    src = _lines(deck, ra)[ka]
+    lines = _lines(deck, rb)
+    lines[kb] = b + b"," + src[:len(src) - len(_eol(src))].split(b",", 1)[1] + _eol(lines[kb])
+    _set_lines(deck, rb, lines)
+    return f"{rb}:{kb + 1}: node {b.decode(errors='replace')} moved onto node {a.decode(errors='replace')}"
+
+
 def m_gut(rng, deck, pool):
     """The whole deck replaced by nothing useful: empty, comments, blank lines."""
     kind = rng.choice(["empty", "comments", "blank crlf", "blank", "bom", "heading only"])
@@ -554,7 +809,7 @@ def m_gut(rng, deck, pool):
 MUTATORS = [(m_drop_card, 10), (m_dup_card, 8), (m_move_card, 8), (m_splice_card, 8), (m_number, 30),
             (m_truncate_line, 6), (m_truncate_file, 2), (m_join_lines, 5), (m_delete_line, 6),
             (m_dup_line, 4), (m_line_endings, 3), (m_binary, 4), (m_long_line, 3), (m_include, 4),
-            (m_keyword, 6), (m_gut, 1)]
+            (m_keyword, 6), (m_gut, 1), (m_card_field, 14), (m_constraint, 6), (m_coincide, 3)]
 
 
 def card_pool(seeds):
@@ -756,8 +1011,9 @@ def output_problem(out_dir, job):
         return "no listing"
     with open(listing, "rb") as f:
         text = f.read()
-    if re.search(rb"^solid_elements 0\s*$", text, re.M):
-        return "the model has no solid element (nothing was analysed)"
+    # trusses or springs alone are a model; no element at all is none
+    if re.search(rb"^elements 0\s*$", text, re.M):
+        return "the model has no element (nothing was analysed)"
     steps = re.findall(rb"^--- STEP step=(\d+)", text, re.M)
     incs = set(re.findall(rb"^=== INCREMENT step=(\d+)", text, re.M))
     if not incs:

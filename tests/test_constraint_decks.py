@@ -395,3 +395,17 @@ S
 """
     s = run_deck("pret_triangle_fan", deck).ok().listing.increments[-1].block("ELEMENT S", set="STRIP")
     assert max(abs(v - 5.0) for v in s["S22"]) < 1e-10, s["S22"]
+def test_tie_onto_a_pretension_cut_patch_test():
+    """The nested tie patch whose master face (the lower block's top) is
+    also cut by a pre-tension section, its reference node held (opening
+    0): each slave dof depends on master copies that depend on the
+    originals, a chain of constraints longer than the first capacity of
+    the term lists (it once read the dofs of the chain from freed memory:
+    SIGSEGV). Uniform stress S11 = 2, S22 = 3, S12 = 0 within 1e-10."""
+    deck = tie_patch_deck(False, 4, 1e-4, "TOP, P, -3.\nRIGHT, P, -2.\n")
+    deck = deck.replace("*NODE\n", "*NODE\n5000, 0., 0.\n", 1).replace(
+        "*BOUNDARY\n", "*PRE-TENSION SECTION, SURFACE=LOWER_TOP, NODE=5000\n*BOUNDARY\n5000, 1, 2\n", 1)
+    run, err = patch_error("tie_on_pretension_cut", deck, 2.0, 3.0)
+    assert err < 1e-10, err
+    pret = run.listing.header[[b.name for b in run.listing.header].index("PRE-TENSION SECTIONS")]
+    assert pret["cut_nodes"][0] == 3, pret.rows

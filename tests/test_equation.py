@@ -407,7 +407,9 @@ def test_equation_errors_name_the_equation_line():
     backtrace: a cycle, a dof dependent in two equations, coefficients of
     the dependent dof summing to zero, a dependent dof with a *BOUNDARY
     (model or step), a zero first coefficient, a dof 3 term with a
-    non-zero coefficient, an undefined node."""
+    non-zero coefficient, an undefined node, a coefficient whose ratio to
+    the first overflows (1 / 1e-320; it ran into a singular stiffness at
+    another node), ratios of 1e200 chained into 1e400."""
     # nodes: 8..14 the second row, 1..7 the bottom (held in y), 35 top right
     cases = [
         ("eq_cycle", "2\n9, 2, 1., 10, 2, -1.\n2\n11, 2, 1., 9, 2, -1.\n2\n10, 2, 1., 11, 2, -1.\n", "", "",
@@ -422,6 +424,10 @@ def test_equation_errors_name_the_equation_line():
         ("eq_zero_first", "2\n9, 2, 0., 10, 2, -1.\n", "", "", "9, 2, 0., 10, 2, -1.", "must not be zero"),
         ("eq_dof3", "2\n9, 2, 1., 10, 3, -1.\n", "", "", "9, 2, 1., 10, 3, -1.", "dof 3 with a non-zero coefficient"),
         ("eq_undefined", "2\n9, 2, 1., 777, 2, -1.\n", "", "", "9, 2, 1., 777, 2, -1.", "undefined node 777"),
+        ("eq_ratio_overflow", "2\n9, 2, 1e-320, 10, 2, -1.\n", "", "", "9, 2, 1e-320, 10, 2, -1.",
+         "divided by that of the dependent dof (the first term) overflows"),
+        ("eq_chain_overflow", "2\n9, 2, 1e-100, 10, 2, -1e100\n2\n10, 2, 1e-100, 11, 2, -1e100\n", "", "",
+         "9, 2, 1e-100, 10, 2, -1e100", "the coefficients overflow when the dependent dofs"),
     ]
     for name, eqs, bcs, body, bad, fragment in cases:
         deck = small_deck(eqs, bcs, body)

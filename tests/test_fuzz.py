@@ -49,7 +49,8 @@ item value
 deck {deck}
 heading {heading}
 nodes 6
-solid_elements 2
+elements {elements}
+solid_elements {solid}
 
 --- STEP step=1 name=
 item value
@@ -64,7 +65,7 @@ increments 1
 
 
 def classify_listing(rc=0, stderr=b"", **fields):
-    values = dict(deck="job.inp", heading="bar", value="1.500000E-02")
+    values = dict(deck="job.inp", heading="bar", value="1.500000E-02", elements="2", solid="2")
     values.update(fields)
     out = tempfile.mkdtemp(prefix="cfe2d-fuzz-classify-")
     try:
@@ -82,6 +83,9 @@ def test_classifier_outputs():
     for bad in ("NaN", "-Infinity", "Infinity", "2.000000+160", "1.5-320", "**********"):
         cls, sig = classify_listing(value=bad)
         assert cls == "silent-bad" and ".out" in sig, (bad, cls, sig)
+    # trusses or springs alone (no solid element) are a model; no element is none
+    assert classify_listing(solid="0") == ("ok-run", "")
+    assert classify_listing(elements="0", solid="0")[0] == "silent-bad"
     cls, sig = classify_listing(value="1.0E+00\n=== INCREMENT step=1 increment=2 time=5.0E-01 x")
     assert (cls, sig) == ("silent-bad", "a step stopped before the end of its time period"), sig
 
@@ -150,3 +154,27 @@ def test_fuzz_regressions_present():
 def cases():
     for folder in regression_folders():
         yield f"regression {os.path.basename(folder)}", (lambda f=folder: check_regression(f))
+
+
+def test_seeds_carry_the_constraint_and_element_cards():
+    """The tests' generators give seeds with each of today's cards (a maker
+    that fails is skipped with a message: then a card would no longer be
+    fuzzed, which this test reports), and the targeted operators change
+    them."""
+    skipped = []
+    seeds = fuzz.test_seeds(skipped.append)
+    assert not skipped, skipped
+    text = b"\n".join(b"".join(s.files.values()) for s in seeds).upper()
+    for card in (b"*EQUATION", b"*TIE", b"*PRE-TENSION SECTION", b"TYPE=T2D2", b"TYPE=T2D3", b"TYPE=SPRING1",
+                 b"TYPE=SPRINGA", b"*SPRING", b"TYPE=MASS", b"*MASS", b"*NODAL THICKNESS"):
+        assert card in text, card
+    import random
+    for op in (fuzz.m_card_field, fuzz.m_constraint, fuzz.m_coincide):
+        changed = 0
+        for k in range(20):
+            rng = random.Random(k)
+            seed = rng.choice(seeds)
+            deck = seed.copy()
+            if op(rng, deck, []) and deck.files != seed.files:
+                changed += 1
+        assert changed >= 15, (op.__name__, changed)

@@ -222,7 +222,11 @@ def test_writers_with_trusses():
 
 def test_truss_errors_name_the_line():
     """A truss section without its area line, NODAL THICKNESS on a truss, a
-    truss of zero length, a truss in an axisymmetric model."""
+    truss of zero length, a 3-node truss whose middle node is not between
+    the quarter points of its ends (on an end, beyond it, on the quarter
+    point), a truss in an axisymmetric model; a curved 3-node truss (its
+    middle node off the line of its ends) and one whose middle node is
+    just inside the quarter point run."""
     good = bar_deck()
     cases = [
         ("noarea", good.replace(f"MATERIAL=M\n{A}\n", "MATERIAL=M\n"), "*SOLID SECTION", "cross-sectional area"),
@@ -230,6 +234,13 @@ def test_truss_errors_name_the_line():
             "*BOUNDARY", "*NODAL THICKNESS\nALLN, 0.1\n*BOUNDARY", 1), "*SOLID SECTION", "NODAL THICKNESS is for"),
         ("zero", good.replace(f"2, {L}, 0.", "2, 0., 0."), "1, 1, 2", "both ends at the same point"),
     ]
+    # the middle node of a 3-node truss onto an end, or beyond the quarter
+    # point: the arc turns back (|dx/ds| stays positive, a stiffness was
+    # computed as if the bar were longer)
+    three = bar_deck("T2D3")
+    for tag, mid in (("folded_end", f"3, {L}, 0."), ("folded_out", f"3, {3 * L}, 0."),
+                     ("folded_quarter", f"3, {L / 4}, 0.")):
+        cases.append((tag, three.replace(f"3, {L / 2}, 0.", mid), "1, 1, 3, 2", "folds back on itself"))
     axi = good.replace("*MATERIAL", "*ELEMENT, TYPE=CAX4, ELSET=RING\n5, 10, 11, 12, 13\n*MATERIAL").replace(
         "*NODE, NSET=ALLN\n", "*NODE, NSET=ALLN\n10, 1., 1.\n11, 2., 1.\n12, 2., 2.\n13, 1., 2.\n").replace(
         "*BOUNDARY", "*SOLID SECTION, ELSET=RING, MATERIAL=M\n*BOUNDARY", 1)
@@ -239,6 +250,8 @@ def test_truss_errors_name_the_line():
         line = next(k for k, t in enumerate(deck.splitlines(), 1) if t.startswith(line_text))
         assert run.rc == 1 and f"truss_err_{tag}.inp:{line}: error:" in run.stderr, (tag, run.stderr)
         assert fragment in run.stderr, (tag, run.stderr)
+    for tag, mid in (("curved", f"3, {L / 2}, {L}"), ("near_quarter", f"3, {0.26 * L}, 0.")):
+        run_deck("truss_ok_" + tag, bar_deck("T2D3").replace(f"3, {L / 2}, 0.", mid)).ok()
 
 
 def test_three_node_truss_in_the_files_ends_first():

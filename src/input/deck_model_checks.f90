@@ -232,7 +232,8 @@ contains
 
   !> Every solid element has a section and a positive Jacobian at each
   !> corner; every spring has its *SPRING; a truss or a SPRINGA has two
-  !> distinct ends (its direction); trusses and springs are not
+  !> distinct ends (its direction), a 3-node truss does not fold back;
+  !> trusses and springs are not
   !> mixed with axisymmetric elements.
   subroutine check_elements(p, m)
     type(parser_t), intent(inout) :: p
@@ -249,6 +250,11 @@ contains
       if (is_truss(m, e) .or. catalogue(m%etype(e))%shape == shape_springa) then
         if (end_distance(m, e) <= 0.0_dp) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
             trim(catalogue(m%etype(e))%name) // ') has both ends at the same point')
+      end if
+      if (is_truss(m, e) .and. catalogue(m%etype(e))%nodes == 3) then
+        if (truss_folds(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+            trim(catalogue(m%etype(e))%name) // ') folds back on itself: its middle node (the second) must lie ' // &
+            'between the points a quarter of the way from each end, along the line of its ends')
       end if
       if (.not. is_continuum(m, e)) cycle
       axi = axi .or. catalogue(m%etype(e))%state == state_axisymmetric
@@ -276,6 +282,22 @@ contains
     if (last == 0) last = 2
     end_distance = norm2(m%x(:, m%conn(last, e)) - m%x(:, m%conn(1, e)))
   end function end_distance
+
+  !> A 3-node truss (end, middle, end) whose arc turns back: dx/ds =
+  !> (x3 - x1) / 2 + s (x1 + x3 - 2 x2) is linear in s, so it keeps the
+  !> direction of the chord x3 - x1 over s in [-1, 1] if and only if it
+  !> does at both ends; otherwise a stretch of the bar is counted twice
+  !> (the stiffness of a folded element, whose |dx/ds| stays positive).
+  logical function truss_folds(m, e)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    real(dp) :: c(2), q(2)
+    associate(x1 => m%x(:, m%conn(1, e)), x2 => m%x(:, m%conn(2, e)), x3 => m%x(:, m%conn(3, e)))
+      c = x3 - x1
+      q = x1 + x3 - 2.0_dp * x2
+    end associate
+    truss_folds = .not. 0.5_dp * dot_product(c, c) > abs(dot_product(q, c))
+  end function truss_folds
 
   !> Smallest corner value of the Jacobian determinant: positive at every
   !> corner means a valid, convex, counter-clockwise element.

@@ -44,7 +44,8 @@ contains
   !> Arguments: bad returns 0, or the index of the equation at fault with
   !> msg saying what is wrong (a dof out of 1..2, an undefined node, a
   !> dependent dof whose coefficients sum to zero or that is dependent in
-  !> two equations, a cycle of substitutions).
+  !> two equations, a cycle of substitutions, coefficients that overflow
+  !> when divided by the dependent dof's or multiplied along a chain).
   subroutine resolve_equations(m, mpc, bad, msg)
     type(model_t), intent(in) :: m
     type(mpc_t), intent(out) :: mpc
@@ -119,6 +120,12 @@ contains
         nt = raw%xr(i) - 1
         do k = 2, size(eq%node)
           if (eq%node(k) == a .and. eq%dof(k) == d) cycle
+          if (.not. abs(eq%coef(k) / c1) <= huge(1.0_dp)) then
+            bad = i
+            msg = 'a coefficient divided by that of the dependent dof (the first term) overflows: ' // &
+                  'give coefficients of comparable size'
+            return
+          end if
           call add_term(raw%rnode, raw%rdof, raw%rcoef, raw%xr(i), nt, eq%node(k), eq%dof(k), -eq%coef(k) / c1)
         end do
         raw%xr(i + 1) = nt + 1
@@ -178,6 +185,12 @@ contains
       first(k) = nt + 1
       call resolve_one(raw, mpc, k, first, last, tn, td, tc, nt)
       last(k) = nt
+      if (.not. all(abs(tc(first(k):nt)) <= huge(1.0_dp))) then
+        bad = k
+        msg = 'the coefficients overflow when the dependent dofs among its terms are replaced by their ' // &
+              'own equations (a chain of equations): give coefficients of comparable size'
+        return
+      end if
       do q = xu(k), xu(k + 1) - 1
         j = users(q)
         pending(j) = pending(j) - 1
@@ -261,7 +274,8 @@ contains
     integer, allocatable, intent(inout) :: tn(:), td(:)
     real(dp), allocatable, intent(inout) :: tc(:)
     integer, intent(inout) :: nt
-    integer :: j, i, q, f0, w
+    integer :: j, i, q, f0, w, a, d
+    real(dp) :: c
     f0 = nt + 1
     do j = raw%xr(k), raw%xr(k + 1) - 1
       i = mpc%dep(raw%rdof(j), raw%rnode(j))
@@ -269,7 +283,12 @@ contains
         call add_term(tn, td, tc, f0, nt, raw%rnode(j), raw%rdof(j), raw%rcoef(j))
       else
         do q = first(i), last(i)
-          call add_term(tn, td, tc, f0, nt, tn(q), td(q), raw%rcoef(j) * tc(q))
+          ! copies: add_term may reallocate tn and td, which an actual
+          ! argument tn(q) would still point into
+          a = tn(q)
+          d = td(q)
+          c = raw%rcoef(j) * tc(q)
+          call add_term(tn, td, tc, f0, nt, a, d, c)
         end do
       end if
     end do
