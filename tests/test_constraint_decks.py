@@ -395,6 +395,8 @@ S
 """
     s = run_deck("pret_triangle_fan", deck).ok().listing.increments[-1].block("ELEMENT S", set="STRIP")
     assert max(abs(v - 5.0) for v in s["S22"]) < 1e-10, s["S22"]
+
+
 def test_tie_onto_a_pretension_cut_patch_test():
     """The nested tie patch whose master face (the lower block's top) is
     also cut by a pre-tension section, its reference node held (opening

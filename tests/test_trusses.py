@@ -298,3 +298,39 @@ def test_truss_under_its_own_weight_and_spinning():
     line = deck.splitlines().index("BAR, P1, 5.") + 1
     assert run.rc == 1 and f"truss_pressure.inp:{line}: error:" in run.stderr and "not pressures" in run.stderr, \
         run.stderr
+
+
+def test_section_of_continuum_and_lines_warns():
+    """A section naming a set of plane elements and line elements alike
+    (gmsh's boundary lines in an everything set) makes the lines trusses of
+    the thickness as area, as CalculiX does; cfe2d says so at the
+    section's line and runs."""
+    deck = f"""*NODE, NSET=ALLN
+1, 0., 0.
+2, 1., 0.
+3, 1., 1.
+4, 0., 1.
+*ELEMENT, TYPE=CPS4, ELSET=ALL
+1, 1, 2, 3, 4
+*ELEMENT, TYPE=T2D2, ELSET=ALL
+2, 2, 3
+*MATERIAL, NAME=M
+*ELASTIC
+{E}, 0.
+*SOLID SECTION, ELSET=ALL, MATERIAL=M
+0.5
+*BOUNDARY
+1, 1, 2
+4, 1
+*STEP
+*STATIC
+*CLOAD
+3, 2, 10.
+*NODE PRINT, NSET=ALLN
+U
+*END STEP
+"""
+    run = run_deck("truss_mixed_section", deck).ok()
+    line = deck.splitlines().index("*SOLID SECTION, ELSET=ALL, MATERIAL=M") + 1
+    assert f"truss_mixed_section.inp:{line}: warning: this section names 1 continuum elements and 1 line" in \
+        run.stderr, run.stderr

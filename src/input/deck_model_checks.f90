@@ -129,8 +129,31 @@ contains
             'truss (' // trim(catalogue(m%etype(e))%name) // ' with a section): its cross-sectional area ' // &
             'is needed on the data line of the section')
       end do
+      call warn_mixed_section(p, m, s)
     end do
   end subroutine check_sections
+
+  !> A section naming continuum elements and line elements alike (a gmsh
+  !> set of everything, boundary lines included) makes the lines trusses
+  !> whose area is the plane elements' thickness: as CalculiX does, but
+  !> seldom what was meant, so it is said.
+  subroutine warn_mixed_section(p, m, s)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: s
+    integer :: k, e, nsolid, ntruss
+    nsolid = 0
+    ntruss = 0
+    do k = 1, size(m%elsets(m%sections(s)%elset)%items)
+      e = m%elsets(m%sections(s)%elset)%items(k)
+      if (is_continuum(m, e)) nsolid = nsolid + 1
+      if (is_truss(m, e)) ntruss = ntruss + 1
+    end do
+    if (nsolid > 0 .and. ntruss > 0) call deck_warning(p%deck, m%sections(s)%src%line, 'this section names ' // &
+      itoa(nsolid) // ' continuum elements and ' // itoa(ntruss) // ' line elements: the line elements ' // &
+      'become trusses whose cross-sectional area is the section''s thickness (to keep boundary lines out, ' // &
+      'name the continuum elements'' set only)')
+  end subroutine warn_mixed_section
 
   !> Purpose: STATE= of *SOLID SECTION: each element of the section takes
   !> the catalogue type of the asked stress state with the same shape
