@@ -411,3 +411,14 @@ def test_tie_onto_a_pretension_cut_patch_test():
     assert err < 1e-10, err
     pret = run.listing.header[[b.name for b in run.listing.header].index("PRE-TENSION SECTIONS")]
     assert pret["cut_nodes"][0] == 3, pret.rows
+
+
+def test_tie_across_a_contact_pair_warns():
+    """A *TIE between the two surfaces of a *CONTACT PAIR glues them: the
+    run goes on (the uniform stress of the tie patch is still exact) and
+    says that the pair's contact carries nothing."""
+    deck = tie_patch_deck(False, 4, 0.0, "TOP, P, -3.\nRIGHT, P, -2.\n").replace(
+        "*TIE, NAME=GLUE", "*CONTACT PAIR\nUPPER_BOTTOM, LOWER_TOP\n*TIE, NAME=GLUE")
+    run, err = patch_error("tie_across_contact", deck, 2.0, 3.0)
+    assert err < 1e-10, err
+    assert "*TIE GLUE ties the two surfaces of a *CONTACT PAIR" in run.stderr, run.stderr

@@ -51,8 +51,28 @@ contains
     call blocked_dofs(m, blocked, dependent)
     do k = 1, size(m%ties)
       call tie_one(m, m%ties(k), blocked, dependent)
+      call warn_if_in_contact(m, m%ties(k))
     end do
   end subroutine tie_surfaces
+
+  !> A tie between the two surfaces of a contact pair glues what the pair
+  !> would let open: its contact elements then carry nothing, and their
+  !> status may flip on round-off; said, since it is rarely meant.
+  subroutine warn_if_in_contact(m, t)
+    type(model_t), intent(in) :: m
+    type(tie_t), intent(in) :: t
+    integer :: ip
+    do ip = 1, size(m%pairs)
+      associate(c => m%pairs(ip))
+        if ((c%slave_surface == t%slave_surface .and. c%master_surface == t%master_surface) .or. &
+            (c%slave_surface == t%master_surface .and. c%master_surface == t%slave_surface)) then
+          call warn('*TIE ' // trim(t%name) // ' ties the two surfaces of a *CONTACT PAIR: the tie holds ' // &
+                    'them together and the pair''s contact carries nothing')
+          return
+        end if
+      end associate
+    end do
+  end subroutine warn_if_in_contact
 
   !> Dofs a tie may not make dependent: prescribed in the model data or
   !> in the first step (blocked), or dependent in an equation already.

@@ -118,7 +118,7 @@ contains
           s%thickness = get_real(p, f(1), 'thickness')
           s%thickness_given = .true.
         end if
-        if (s%thickness <= 0.0_dp) call err(p, 'section thickness must be positive')
+        if (s%thickness <= 0.0_dp) call err(p, 'the section''s thickness must be positive (a truss'' cross-sectional area)')
       end if
     end associate
   end subroutine read_section
