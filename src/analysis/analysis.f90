@@ -12,7 +12,7 @@ module analysis
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
   use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached
-  use constraints, only: mpc_t, resolve_equations
+  use constraints, only: mpc_t, resolve_equations, constraint_label
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
@@ -89,10 +89,7 @@ contains
     integer :: bad
     character(len=:), allocatable :: msg
     call resolve_equations(m, mpc, bad, msg)
-    if (bad == 0) return
-    if (len_trim(m%equations(bad)%origin) > 0) call fatal('the constraint made by ' // &
-        trim(m%equations(bad)%origin) // ': ' // msg)
-    call fatal('*EQUATION ' // itoa(bad) // ': ' // msg)
+    if (bad > 0) call fatal(constraint_label(m, bad) // ': ' // msg)
   end subroutine constraints_of
 
   !> The run's timing: the driver's parts and the iteration's, to every

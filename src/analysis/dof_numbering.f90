@@ -19,7 +19,7 @@ module dof_numbering
   use strings, only: itoa
   use messages, only: fatal
   use model
-  use constraints, only: mpc_t
+  use constraints, only: mpc_t, constraint_label
   use contact, only: contact_set_t, cfe_nodes
   use element_interface, only: max_en
   use linear_solver, only: linear_system_t, sys_setup, solver_skyline, order_rcm
@@ -42,18 +42,6 @@ module dof_numbering
 
 contains
 
-  !> ' (*EQUATION n)' or ' (the constraint made by *TIE name)': which card
-  !> made constraint k, for a message.
-  function constraint_origin(m, k) result(txt)
-    type(model_t), intent(in) :: m
-    integer, intent(in) :: k
-    character(len=:), allocatable :: txt
-    if (len_trim(m%equations(k)%origin) > 0) then
-      txt = ' (the constraint made by ' // trim(m%equations(k)%origin) // ')'
-    else
-      txt = ' (*EQUATION ' // itoa(k) // ')'
-    end if
-  end function constraint_origin
 
   !> Purpose: nodes of assembly group g: body element g, or CFE g - ne
   !> (slave nodes first); no nodes for elements without stiffness (line
@@ -232,7 +220,7 @@ contains
       do d = 1, 2
         if (prescribed(d, a) .and. dm%mpc%dep(d, a) > 0) call fatal('dof ' // itoa(d) // ' of node ' // &
           itoa(m%node_id(a)) // ' is both prescribed and the dependent dof of a linear constraint' // &
-          trim(constraint_origin(m, dm%mpc%dep(d, a))))
+          ' (' // constraint_label(m, dm%mpc%dep(d, a)) // ')')
         numbered(d, a) = .not. prescribed(d, a) .and. dm%mpc%dep(d, a) == 0
         dm%inactive(d, a) = numbered(d, a) .and. .not. reached(a) .and. .not. named(d, a) .and. any(named(:, a))
         if (dm%inactive(d, a)) numbered(d, a) = .false.

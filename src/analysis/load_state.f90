@@ -308,7 +308,7 @@ contains
     real(dp), intent(out) :: f(2)
     if (d%label == dload_grav) then
       f = mass * d%dir
-    else if (any(catalogue(m%etype(1:m%ne))%state == state_axisymmetric)) then
+    else if (axisymmetric_model(m)) then
       f = mass * [x(1), 0.0_dp]
     else
       f = mass * (x - d%point)

@@ -4,7 +4,7 @@ module strings
   use kinds, only: dp
   implicit none
   private
-  public :: to_upper, split_fields, parse_real, parse_int, field_t, itoa, rtoa
+  public :: to_upper, split_fields, parse_real, parse_int, field_t, itoa, rtoa, ftoa
 
   !> One comma-separated field of a deck line, blanks removed at both ends.
   type :: field_t
@@ -117,4 +117,16 @@ contains
     write(buf, fmt) x
     s = trim(adjustl(buf))
   end function rtoa
+
+  !> A real as fixed-point text without blanks, `decimals` after the point
+  !> (times in seconds: 0.041).
+  pure function ftoa(x, decimals) result(s)
+    real(dp), intent(in) :: x
+    integer, intent(in) :: decimals
+    character(len=:), allocatable :: s
+    character(len=40) :: buf, fmt
+    write(fmt, '(a,i0,a)') '(f40.', decimals, ')'
+    write(buf, fmt) x
+    s = trim(adjustl(buf))
+  end function ftoa
 end module strings

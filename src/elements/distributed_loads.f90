@@ -9,7 +9,7 @@
 module distributed_loads
   use kinds, only: dp
   use element_catalogue, only: catalogue, max_nodes, max_ip, edge_node_count, is_line
-  use shape_functions, only: shape_at, line_shape, gauss_line, gauss_rule, load_rule
+  use shape_functions, only: shape_at, line_shape, truss_shape, gauss_line, gauss_rule, load_rule
   use continuum_element, only: volume_factor
   implicit none
   private
@@ -92,17 +92,11 @@ contains
     integer, intent(in) :: nen
     real(dp), intent(in) :: xy(:, :), area, b0(2), g(2, 2), xc(2)
     real(dp), intent(inout) :: f(2, max_nodes)
-    real(dp) :: s(3), w(3), nl(3), dl(3), n(3), dn(3), x(2), dxds(2), b(2)
+    real(dp) :: s(3), w(3), n(3), dn(3), x(2), dxds(2), b(2)
     integer :: ip, k
     call gauss_line(3, s, w)
     do ip = 1, 3
-      call line_shape(nen, s(ip), nl, dl)
-      n(1:nen) = nl(1:nen)
-      dn(1:nen) = dl(1:nen)
-      if (nen == 3) then
-        n = [nl(1), nl(3), nl(2)]
-        dn = [dl(1), dl(3), dl(2)]
-      end if
+      call truss_shape(nen, s(ip), n, dn)
       x = matmul(xy(:, 1:nen), n(1:nen))
       dxds = matmul(xy(:, 1:nen), dn(1:nen))
       b = b0 + matmul(g, x - xc)

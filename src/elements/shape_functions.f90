@@ -11,7 +11,7 @@ module shape_functions
                                is_triangle
   implicit none
   private
-  public :: shape_at, quad4_shape, tri3_shape, line_shape, gauss_rule, gauss_line, load_rule, &
+  public :: shape_at, quad4_shape, tri3_shape, line_shape, truss_shape, gauss_rule, gauss_line, load_rule, &
             extrapolation
 
   real(dp), parameter :: xi_node(8) = [-1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, -1.0_dp]
@@ -123,6 +123,19 @@ contains
       ds = [-0.5_dp, 0.5_dp, 0.0_dp]
     end if
   end subroutine line_shape
+
+  !> Purpose: line_shape in the node order of a line element of the deck
+  !> (a 3-node one lists end, middle, end, as Abaqus does).
+  pure subroutine truss_shape(nn, s, n, ds)
+    integer, intent(in) :: nn
+    real(dp), intent(in) :: s
+    real(dp), intent(out) :: n(3), ds(3)
+    call line_shape(nn, s, n, ds)
+    if (nn == 3) then
+      n = n([1, 3, 2])
+      ds = ds([1, 3, 2])
+    end if
+  end subroutine truss_shape
 
   !> Purpose: Gauss-Legendre points s and weights w on [-1, 1], n = 1..3.
   pure subroutine gauss_line(n, s, w)

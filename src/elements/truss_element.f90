@@ -13,7 +13,7 @@ module truss_element
   use kinds, only: dp
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, &
                                act_thermal, wants
-  use shape_functions, only: line_shape, gauss_line
+  use shape_functions, only: truss_shape, gauss_line
   implicit none
   private
   public :: truss
@@ -21,22 +21,16 @@ module truss_element
 contains
 
   !> Purpose: the axial strain row b (d eps / d ue) and |dx/ds| at s, and
-  !> the shape functions n in the element's node order (a 3-node truss
-  !> lists end, middle, end; line_shape takes end, end, middle).
+  !> the shape functions n in the element's node order.
   pure subroutine axial_row(nen, xy, s, n, b, jac)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xy(2, nen), s
     real(dp), intent(out) :: n(nen), b(2 * nen), jac
     real(dp) :: nl(3), dl(3), ds(nen), tangent(2)
     integer :: k
-    call line_shape(nen, s, nl, dl)
-    if (nen == 3) then
-      n = [nl(1), nl(3), nl(2)]
-      ds = [dl(1), dl(3), dl(2)]
-    else
-      n = nl(1:2)
-      ds = dl(1:2)
-    end if
+    call truss_shape(nen, s, nl, dl)
+    n = nl(1:nen)
+    ds = dl(1:nen)
     tangent = matmul(xy, ds)
     jac = norm2(tangent)
     do k = 1, nen

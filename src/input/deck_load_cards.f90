@@ -6,7 +6,7 @@ submodule (deck_parser) deck_load_cards
   use deck_input, only: param_value, has_param
   use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, get_int, elem_of, &
                          is_int, need_elset
-  use model, only: dload_t, surf_element, find_name, is_continuum, is_mass, step_dloads, &
+  use model, only: dload_t, surf_element, find_name, is_continuum, is_mass, axisymmetric_model, step_dloads, &
                    dload_p, dload_bx, dload_by, dload_grav, dload_centrif
   use element_catalogue, only: catalogue, state_axisymmetric, is_line
   implicit none
@@ -153,7 +153,7 @@ contains
       ! A point mass takes the loads of its mass only, about the model's axis.
       if (label /= 'GRAV' .and. label /= 'CENTRIF') call err(p, 'element ' // itoa(m%elem_id(e)) // &
           ' is a point mass (MASS): it takes GRAV and CENTRIF loads only')
-      axi = any(catalogue(m%etype(1:m%ne))%state == state_axisymmetric)
+      axi = axisymmetric_model(m)
     else if (is_line(catalogue(m%etype(e))%shape)) then
       ! A line element with a section is a truss: body forces over its length.
       if (section_of(p, m, e) == 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
@@ -280,13 +280,11 @@ contains
     integer, intent(in) :: e
     character(len=*), intent(in) :: label
     integer :: s, imat
-    do s = 1, p%nsec
-      if (.not. any(m%elsets(m%sections(s)%elset)%items == e)) cycle
-      imat = find_name(m%materials(1:p%nmat)%name, m%sections(s)%material_name)
-      if (imat == 0) return
-      if (.not. m%materials(imat)%has_density) call err(p, label // ' on element ' // itoa(m%elem_id(e)) // &
-          ' needs the density of material ' // trim(m%materials(imat)%name) // ' (*DENSITY)')
-      return
-    end do
+    s = section_of(p, m, e)
+    if (s == 0) return
+    imat = find_name(m%materials(1:p%nmat)%name, m%sections(s)%material_name)
+    if (imat == 0) return
+    if (.not. m%materials(imat)%has_density) call err(p, label // ' on element ' // itoa(m%elem_id(e)) // &
+        ' needs the density of material ' // trim(m%materials(imat)%name) // ' (*DENSITY)')
   end subroutine need_density
 end submodule deck_load_cards

@@ -15,7 +15,7 @@ module constraints
   use model, only: model_t, equation_t
   implicit none
   private
-  public :: mpc_t, resolve_equations
+  public :: mpc_t, resolve_equations, constraint_label
 
   !> The dependent dofs and, for each, its independent terms:
   !> u(dof(k), node(k)) = sum over j in xt(k):xt(k+1)-1 of
@@ -325,4 +325,17 @@ contains
       mpc%tcoef(mpc%xt(k):mpc%xt(k + 1) - 1) = tc(first(k):last(k))
     end do
   end subroutine compact
+  !> Purpose: constraint k named for a message once the deck's lines are
+  !> gone: '*EQUATION k', or 'the constraint made by *TIE name' (or by a
+  !> pre-tension section) for one a card generated.
+  function constraint_label(m, k) result(txt)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: k
+    character(len=:), allocatable :: txt
+    if (len_trim(m%equations(k)%origin) > 0) then
+      txt = 'the constraint made by ' // trim(m%equations(k)%origin)
+    else
+      txt = '*EQUATION ' // itoa(k)
+    end if
+  end function constraint_label
 end module constraints

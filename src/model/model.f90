@@ -4,14 +4,15 @@
 module model
   use kinds, only: dp, name_len
   use solver_codes, only: solver_cholmod, order_amd
-  use element_catalogue, only: catalogue, max_nodes, state_none, is_line, is_spring_shape, shape_mass
+  use element_catalogue, only: catalogue, max_nodes, state_none, is_line, is_spring_shape, shape_mass, state_axisymmetric
   use mesh_topology, only: topology_t
   implicit none
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
             equation_t, temp_t, pretension_t, tie_t, &
-            is_continuum, carries_stiffness, is_truss, is_spring, is_mass, is_drawn, elem_nodes, elem_thickness, &
+            is_continuum, carries_stiffness, is_truss, is_spring, is_mass, is_drawn, axisymmetric_model, &
+            elem_nodes, elem_thickness, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif
@@ -287,6 +288,13 @@ contains
     integer, intent(in) :: e
     is_drawn = carries_stiffness(m, e) .or. is_mass(m, e)
   end function is_drawn
+
+  !> Has the model axisymmetric elements (so its point loads and masses
+  !> are whole rings about the y axis)?
+  pure logical function axisymmetric_model(m)
+    type(model_t), intent(in) :: m
+    axisymmetric_model = any(catalogue(m%etype(1:m%ne))%state == state_axisymmetric)
+  end function axisymmetric_model
 
   !> Is element e a point mass (MASS)?
   pure logical function is_mass(m, e)

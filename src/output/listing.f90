@@ -6,7 +6,7 @@
 !> computes nothing.
 module listing
   use kinds, only: dp, program_version
-  use strings, only: rtoa
+  use strings, only: rtoa, ftoa
   use model
   use materials, only: von_mises
   use messages, only: register_unit_to_close, fatal
@@ -229,30 +229,22 @@ contains
     write(u, '(a)') ''
     write(u, '(a)') '--- TIMING (wall seconds)'
     write(u, '(a)') 'item value'
-    write(u, '(a,a)') 'read ', seconds(timing%read)
-    write(u, '(a,a)') 'setup ', seconds(timing%setup)
-    write(u, '(a,a)') 'assembly ', seconds(timing%assembly)
-    write(u, '(a,a)') 'analyse ', seconds(timing%analyse)
-    write(u, '(a,a)') 'factor ', seconds(timing%factor)
-    write(u, '(a,a)') 'condensed_iterations ', seconds(timing%condensed)
-    write(u, '(a,a)') 'full_iterations ', seconds(timing%solve)
-    write(u, '(a,a)') 'recovery ', seconds(timing%recovery)
-    write(u, '(a,a)') 'results ', seconds(timing%results)
-    write(u, '(a,a)') 'output ', seconds(timing%output)
-    write(u, '(a,a)') 'total ', seconds(timing%total)
+    write(u, '(a,a)') 'read ', ftoa(timing%read, 3)
+    write(u, '(a,a)') 'setup ', ftoa(timing%setup, 3)
+    write(u, '(a,a)') 'assembly ', ftoa(timing%assembly, 3)
+    write(u, '(a,a)') 'analyse ', ftoa(timing%analyse, 3)
+    write(u, '(a,a)') 'factor ', ftoa(timing%factor, 3)
+    write(u, '(a,a)') 'condensed_iterations ', ftoa(timing%condensed, 3)
+    write(u, '(a,a)') 'full_iterations ', ftoa(timing%solve, 3)
+    write(u, '(a,a)') 'recovery ', ftoa(timing%recovery, 3)
+    write(u, '(a,a)') 'results ', ftoa(timing%results, 3)
+    write(u, '(a,a)') 'output ', ftoa(timing%output, 3)
+    write(u, '(a,a)') 'total ', ftoa(timing%total, 3)
     write(u, '(a,i0)') 'numeric_factorisations ', timing%numeric_factorisations
     write(u, '(a,i0)') 'condensed_factorisations ', timing%condensed_factorisations
     flush(u)
   end subroutine write_timing
 
-  !> Seconds with three decimals and a leading zero.
-  pure function seconds(t) result(s)
-    real(dp), intent(in) :: t
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write(buf, '(f24.3)') t
-    s = trim(adjustl(buf))
-  end function seconds
 
   !> Purpose: one increment: the requested blocks, reaction sums, contact
   !> results (and the contact table rows).

@@ -3,6 +3,7 @@
 module progress
   use, intrinsic :: iso_fortran_env, only: output_unit
   use kinds, only: dp
+  use strings, only: ftoa
   use model, only: model_t
   use analysis_events, only: analysis_observer_t, step_summary_t, run_timing_t
   use increment_results, only: increment_results_t
@@ -43,22 +44,14 @@ contains
   subroutine progress_timing(self, timing)
     class(progress_t), intent(inout) :: self
     type(run_timing_t), intent(in) :: timing
-    write(output_unit, '(a)') 'time (s): read ' // sec(timing%read) // ', setup ' // sec(timing%setup) // &
-      ', assembly ' // sec(timing%assembly) // ', analyse ' // sec(timing%analyse) // ', factor ' // &
-      sec(timing%factor) // ', condensed iterations ' // sec(timing%condensed) // ', full iterations ' // &
-      sec(timing%solve) // ', recovery ' // sec(timing%recovery) // ', results ' // sec(timing%results) // &
-      ', output ' // sec(timing%output) // ', total ' // sec(timing%total)
+    write(output_unit, '(a)') 'time (s): read ' // ftoa(timing%read, 3) // ', setup ' // ftoa(timing%setup, 3) // &
+      ', assembly ' // ftoa(timing%assembly, 3) // ', analyse ' // ftoa(timing%analyse, 3) // ', factor ' // &
+      ftoa(timing%factor, 3) // ', condensed iterations ' // ftoa(timing%condensed, 3) // ', full iterations ' // &
+      ftoa(timing%solve, 3) // ', recovery ' // ftoa(timing%recovery, 3) // ', results ' // ftoa(timing%results, 3) // &
+      ', output ' // ftoa(timing%output, 3) // ', total ' // ftoa(timing%total, 3)
     write(output_unit, '(a,i0,a,i0)') 'factorisations: numeric ', timing%numeric_factorisations, &
       ', condensed ', timing%condensed_factorisations
     flush(output_unit)
   end subroutine progress_timing
 
-  !> Seconds with three decimals and a leading zero.
-  pure function sec(t) result(s)
-    real(dp), intent(in) :: t
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write(buf, '(f24.3)') t
-    s = trim(adjustl(buf))
-  end function sec
 end module progress
