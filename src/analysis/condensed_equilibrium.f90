@@ -12,12 +12,13 @@ module condensed_equilibrium
   use kinds, only: dp
   use model, only: model_t
   use contact, only: contact_set_t, contact_forces
-  use contact_status, only: contact_switch, begin_status_search
+  use contact_status, only: contact_switch, begin_status_search, contact_energy
   use assembly, only: body_t, body_forces, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_analyse, factor_singular
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
-                               condensed_recover, condensed_correct, contact_part_forces, add_body_forces
+                               condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
+                               condensed_energy
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, report_iteration, describe, singular, &
                                 contact_force_scale
   use analysis_events, only: observer_ref_t, tell_note, wall_time
@@ -53,7 +54,7 @@ contains
     integer :: it, nchanged
     logical :: whole                    ! u holds every equation's solution
     logical :: finite
-    real(dp) :: scale, fext_norm
+    real(dp) :: scale, fext_norm, energy
     ok = .false.
     cs%stabilised = .false.
     eq%stabilisation_used = .false.
@@ -74,7 +75,9 @@ contains
         if (.not. finite) call check_finite(m, is, inc, u)
       end if
       call contact_part_forces(eq%cd, m, cs, dm, u, fold, eq%counts%coupling)
-      call contact_switch(m, cs, eq%search, contact_force_scale(eq, cs, fext_norm), nchanged, eq%changed)
+      ! the potential energy of this status's solution, eqs. (1) and (9)
+      energy = condensed_energy(eq%cd, dm, cs, u) + contact_energy(cs)
+      call contact_switch(m, cs, eq%search, contact_force_scale(eq, cs, fext_norm), energy, nchanged, eq%changed)
       if (nchanged > 0) then
         if (whole) u = eq%cd%u0          ! the next solve starts from the increment's start
         whole = .false.

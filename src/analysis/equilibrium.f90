@@ -13,7 +13,7 @@ module equilibrium
   use kinds, only: dp
   use model, only: model_t
   use contact, only: contact_set_t
-  use contact_status, only: contact_switch, begin_status_search
+  use contact_status, only: contact_switch, begin_status_search, contact_energy
   use assembly, only: body_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
@@ -83,7 +83,7 @@ contains
     real(dp), allocatable :: fint(:, :)
     integer :: it, a, d, nchanged
     logical :: restabilised
-    real(dp) :: scale
+    real(dp) :: scale, energy
     allocate(fint(2, m%nn))
     ok = .false.
     cs%stabilised = .false.
@@ -103,8 +103,10 @@ contains
       end do
       call expand_dependent(dm, u)
       call check_finite(m, is, inc, u)
-      call internal_forces(m, body, cs, u, fint, eq%counts)
-      call contact_switch(m, cs, eq%search, contact_force_scale(eq, cs, norm2(fext)), nchanged, eq%changed)
+      call internal_forces(m, body, cs, u, fint, eq%counts, energy)
+      ! the potential energy of this status's solution, eqs. (1) and (9)
+      energy = energy - sum(fext * u) + contact_energy(cs)
+      call contact_switch(m, cs, eq%search, contact_force_scale(eq, cs, norm2(fext)), energy, nchanged, eq%changed)
       ! the residual of the new status
       if (nchanged > 0) call internal_forces(m, body, cs, u, fint, eq%counts)
       rf = fint - fext

@@ -87,15 +87,18 @@ contains
   end subroutine begin_equilibrium
 
   !> f_int of the bodies (stored stiffness) and of the CFEs (which also
-  !> updates their gaps and forces).
-  subroutine internal_forces(m, body, cs, u, fint, counts)
+  !> updates their gaps and forces); energy, if present, the bodies'
+  !> strain energy 1/2 u . f_body.
+  subroutine internal_forces(m, body, cs, u, fint, counts, energy)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     type(contact_set_t), intent(inout) :: cs
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(out) :: fint(:, :)
     type(element_counts_t), intent(inout) :: counts
+    real(dp), intent(out), optional :: energy
     call body_forces(m, body, u, fint)
+    if (present(energy)) energy = 0.5_dp * sum(u * fint)
     call contact_forces(m, cs, u, fint, counts%coupling)
   end subroutine internal_forces
 

@@ -25,14 +25,22 @@
 !> of the paper's section 5. It is fast but may cycle. Judice & Pires
 !> (1994, "A block principal pivoting algorithm for large-scale strictly
 !> monotone linear complementarity problems", Computers & Operations
-!> Research 21, 587-596) make it terminate: while the number of violated
-!> CFEs keeps falling below its best so far, block pivots; after
-!> max_block_tries block pivots without a new best, single pivots by
-!> Murty's least-index rule (Murty 1974: change only the violated CFE of
-!> least index), which terminates for any P-matrix, until the count falls
-!> below the best again. So the status search ends after finitely many
-!> iterations with the LCP's solution, for any number of CFEs and however
-!> the bodies are held (supports, contact alone, clearance).
+!> Research 21, 587-596) make it terminate: block pivots while a merit of
+!> the status keeps reaching a new best; after max_block_tries block
+!> pivots without one, single pivots by Murty's least-index rule (Murty
+!> 1974: change only the violated CFE of least index), which terminates
+!> for any P-matrix, until the merit reaches a new best again. Any merit
+!> that is a function of the status alone serves the argument (a new
+!> best cannot repeat a status, and there are finitely many): Judice and
+!> Pires count the violated CFEs; here it is the total potential energy
+!> Pi of the status's solution (bodies, loads and CFEs; eqs. 1 and 9),
+!> whose minimum over all displacements is the LCP's solution. The count
+!> misleads where a contact zone shrinks from too many closed points (it
+!> stays at one or two while the zone peels, and the least-index rule
+!> then peels one point per iteration); the energy falls steadily there.
+!> So the status search ends after finitely many iterations with the
+!> LCP's solution, for any number of CFEs and however the bodies are held
+!> (supports, contact alone, clearance).
 !>
 !> Round-off: a CFE whose shifted gap is zero to the round-off of the
 !> problem is settled in either state: it is not counted as violated when
@@ -48,7 +56,7 @@ module contact_status
   use contact, only: contact_set_t, cfe_label, open_penalty
   implicit none
   private
-  public :: status_search_t, begin_status_search, contact_switch, shifted_gap
+  public :: status_search_t, begin_status_search, contact_switch, shifted_gap, contact_energy
 
   !> Relative round-off under which gap and force count as zero.
   real(dp), parameter :: round_off = 1.0e-10_dp
@@ -62,7 +70,7 @@ module contact_status
   !> since it was made: block (every violated CFE changes) and single (the
   !> least-index rule).
   type :: status_search_t
-    integer :: best = huge(0)           ! fewest violated CFEs so far
+    real(dp) :: best = huge(1.0_dp)     ! lowest potential energy so far
     integer :: tries = max_block_tries  ! block pivots left without a new best
     integer :: block_pivots = 0, single_pivots = 0
   end type status_search_t
@@ -73,7 +81,7 @@ contains
   !> open penalty changed); the pivot counts go on.
   pure subroutine begin_status_search(ss)
     type(status_search_t), intent(inout) :: ss
-    ss%best = huge(0)
+    ss%best = huge(1.0_dp)
     ss%tries = max_block_tries
   end subroutine begin_status_search
 
@@ -95,13 +103,15 @@ contains
   !> current status has been solved and every CFE evaluated (its gap):
   !> block or single principal pivot (module comment).
   !> Arguments: force_scale the force scale F of the increment (> 0);
-  !> nchanged the status changes (0: the status solves the LCP); changed
-  !> the names of the first CFEs that changed, for messages.
-  subroutine contact_switch(m, cs, ss, force_scale, nchanged, changed)
+  !> energy the potential energy of the current status's solution (up to
+  !> a constant of the increment: see contact_energy); nchanged the
+  !> status changes (0: the status solves the LCP); changed the names of
+  !> the first CFEs that changed, for messages.
+  subroutine contact_switch(m, cs, ss, force_scale, energy, nchanged, changed)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(inout) :: cs
     type(status_search_t), intent(inout) :: ss
-    real(dp), intent(in) :: force_scale
+    real(dp), intent(in) :: force_scale, energy
     integer, intent(out) :: nchanged
     character(len=:), allocatable, intent(out) :: changed
     logical :: violated(cs%n)
@@ -113,8 +123,8 @@ contains
     nchanged = 0
     changed = ''
     if (nviol == 0) return
-    if (nviol < ss%best) then
-      ss%best = nviol
+    if (energy < ss%best) then
+      ss%best = energy
       ss%tries = max_block_tries
     else
       ss%tries = ss%tries - 1
@@ -135,6 +145,26 @@ contains
     end do
     if (nchanged > max_named) changed = changed // ' ...'
   end subroutine contact_switch
+
+  !> Purpose: the CFEs' share of the potential energy at their last
+  !> evaluation: per CFE, the open state's energy 1/2 k_open (n.B_e D_e)^2
+  !> (relative motion only) plus 1/2 (k_closed - k_open) min(0, gh)^2.
+  !> Its gradient is each CFE's force in the state its shifted gap
+  !> gives (eq. 9 closed), so bodies' energy, loads' work and this sum make
+  !> the potential whose minimum solves the LCP.
+  pure real(dp) function contact_energy(cs) result(e)
+    type(contact_set_t), intent(in) :: cs
+    integer :: j
+    real(dp) :: ko
+    e = 0.0_dp
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        ko = open_penalty(c, cs%stabilised)
+        e = e + 0.5_dp * ko * (c%gap - dot_product(c%normal, c%gap0))**2 + &
+            0.5_dp * max(c%k_closed - ko, 0.0_dp) * min(0.0_dp, shifted_gap(cs, j))**2
+      end associate
+    end do
+  end function contact_energy
 
   !> Is CFE j's complementarity violated beyond round-off: closed and in
   !> tension, or open and penetrating?
