@@ -1,8 +1,8 @@
 !> Contact with coupling finite elements: the search that couples each
 !> slave point with the master element edge under it (eq. 8's initial
 !> gap), the slave points' areas, penalties, the open/closed status of
-!> every CFE and its switching rule (section 5), the re-search on the
-!> deformed configuration, and the CFE forces at given displacements.
+!> every CFE (decided by contact_status), the re-search on the deformed
+!> configuration, and the CFE forces at given displacements.
 !>
 !> Slave points: the nodes of a node surface, and of an element surface
 !> with straight (2-node) faces, each with its tributary area (node-to-
