@@ -20,7 +20,7 @@ module condensed_equilibrium
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, report_iteration, describe, singular, &
-                                contact_force_scale
+                                contact_force_scale, take_back
   use analysis_events, only: observer_ref_t, tell_note, wall_time
   implicit none
   private
@@ -51,9 +51,9 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), allocatable :: fold(:)
-    integer :: it, nchanged
+    integer :: it, its, nchanged
     logical :: whole                    ! u holds every equation's solution
-    logical :: finite
+    logical :: finite, usable
     real(dp) :: scale, fext_norm, energy
     ok = .false.
     cs%stabilised = .false.
@@ -64,13 +64,22 @@ contains
     fext_norm = norm2(fext)
     call begin_status_search(eq%search)
     whole = .false.
-    do it = 1, m%contact_max_iter
+    it = 0
+    its = 0
+    ! MAXIT counts the iterations of each status search
+    do while (its < m%contact_max_iter)
+      it = it + 1
+      its = its + 1
       if (whole) then
         ! settled but not yet in balance: a correction with the same matrix
         call correct(eq, m, dm, sys, fext, rf, u)
         call check_finite(m, is, inc, u)
       else
-        call condensed_factor_if_needed(eq, m, body, cs, dm, obs)
+        call condensed_factor_if_needed(eq, m, body, cs, dm, obs, usable)
+        if (.not. usable) then
+          call take_back(eq, m, cs, dm, obs)
+          cycle
+        end if
         call condensed_solve(eq%cd, m, cs, dm, u, finite, eq%counts%coupling)
         if (.not. finite) call check_finite(m, is, inc, u)
       end if
@@ -88,9 +97,10 @@ contains
       eq%iterations = eq%iterations + 1
       call report_iteration(eq, cs, obs, it, nchanged)
       if (nchanged == 0 .and. cs%stabilised) then
-        ! settled while stabilised: on with the nominal open penalty
+        ! settled while stabilised: a new search with the nominal open penalty
         cs%stabilised = .false.
         call begin_status_search(eq%search)
+        its = 0
         u = eq%cd%u0
         whole = .false.
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
@@ -106,7 +116,7 @@ contains
         return
       end if
     end do
-    iters = m%contact_max_iter
+    iters = it
   end subroutine solve_condensed
 
   !> The start of the increment: the free equations from the last
@@ -244,15 +254,19 @@ contains
 
   !> Factors the condensed matrix unless the one in hand was made for the
   !> current contact status; stabilises open contact as the full
-  !> iteration does when it is singular with open CFEs.
-  subroutine condensed_factor_if_needed(eq, m, body, cs, dm, obs)
+  !> iteration does when it is singular with open CFEs; usable false
+  !> where it is singular after a pivot of the search with the
+  !> stabilisation used (as the full iteration's factor_if_needed).
+  subroutine condensed_factor_if_needed(eq, m, body, cs, dm, obs, usable)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     type(contact_set_t), intent(inout) :: cs
     type(dofmap_t), intent(in) :: dm
     type(observer_ref_t), intent(in) :: obs(:)
+    logical, intent(out) :: usable
     integer :: status, bad
+    usable = .true.
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states .eqv. cs%c(1:cs%n)%closed)) return
     end if
@@ -263,6 +277,12 @@ contains
       call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                           'until the status settles')
       call dense_status(eq, m, cs, dm, body, status, bad)
+    end if
+    if (status == factor_singular .and. eq%search%pivoted) then
+      usable = .false.
+      eq%factor_valid = .false.
+      eq%bad = bad
+      return
     end if
     if (status == factor_singular) call singular(m, cs, dm, bad)
     eq%kmax = eq%cd%kmax

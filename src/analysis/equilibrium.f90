@@ -18,7 +18,7 @@ module equilibrium
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
-                                report_iteration, describe, singular, contact_force_scale
+                                report_iteration, describe, singular, contact_force_scale, take_back
   use condensed_equilibrium, only: solve_condensed
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
   use messages, only: warn
@@ -81,8 +81,8 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), allocatable :: fint(:, :)
-    integer :: it, a, d, nchanged
-    logical :: restabilised
+    integer :: it, its, a, d, nchanged
+    logical :: restabilised, usable
     real(dp) :: scale, energy
     allocate(fint(2, m%nn))
     ok = .false.
@@ -91,8 +91,18 @@ contains
     call expand_dependent(dm, u)
     call internal_forces(m, body, cs, u, fint, eq%counts)
     call begin_status_search(eq%search)
-    do it = 1, m%contact_max_iter
-      call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised)
+    it = 0
+    its = 0
+    ! MAXIT counts the iterations of each status search
+    do while (its < m%contact_max_iter)
+      it = it + 1
+      its = its + 1
+      call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable)
+      if (.not. usable) then
+        call take_back(eq, m, cs, dm, obs)
+        call internal_forces(m, body, cs, u, fint, eq%counts)
+        cycle
+      end if
       if (restabilised) call internal_forces(m, body, cs, u, fint, eq%counts)
       call free_residual(dm, fext, fint, eq%rhs)
       call sys_solve(sys, eq%rhs)
@@ -115,9 +125,10 @@ contains
       eq%iterations = eq%iterations + 1
       call report_iteration(eq, cs, obs, it, nchanged)
       if (nchanged == 0 .and. cs%stabilised) then
-        ! settled while stabilised: on with the nominal open penalty
+        ! settled while stabilised: a new search with the nominal open penalty
         cs%stabilised = .false.
         call begin_status_search(eq%search)
+        its = 0
         call internal_forces(m, body, cs, u, fint, eq%counts)
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
                             'iterating on with the nominal one')
@@ -130,14 +141,17 @@ contains
         return
       end if
     end do
-    iters = m%contact_max_iter
+    iters = it
   end subroutine solve_full
 
   !> Assembles and factors the stiffness unless the factor in hand was made
   !> for the current contact status. A singular stiffness with open CFEs
   !> (a body held only by open contact) is factored again with the
-  !> stabilised open penalty (contact_set_t); restabilised says so.
-  subroutine factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised)
+  !> stabilised open penalty (contact_set_t); restabilised says so. Where
+  !> the stabilisation was used already and the status comes from a pivot
+  !> of the search, usable is false (the pivot is to be taken back);
+  !> otherwise a singular stiffness stops the run.
+  subroutine factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
@@ -147,9 +161,10 @@ contains
     real(dp), intent(in) :: u(:, :)
     type(linear_system_t), intent(inout) :: sys
     type(observer_ref_t), intent(in) :: obs(:)
-    logical, intent(out) :: restabilised
+    logical, intent(out) :: restabilised, usable
     integer :: status, bad
     restabilised = .false.
+    usable = .true.
     ! (with every CFE closed, stabilising changes no penalty)
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states .eqv. cs%c(1:cs%n)%closed)) return
@@ -162,6 +177,12 @@ contains
       call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                           'until the status settles')
       call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+    end if
+    if (status == factor_singular .and. eq%search%pivoted) then
+      usable = .false.
+      eq%factor_valid = .false.
+      eq%bad = bad
+      return
     end if
     if (status == factor_singular) call singular(m, cs, dm, bad)
     if (status == factor_fallback) then

@@ -10,18 +10,18 @@ module equilibrium_common
   use strings, only: itoa
   use model, only: model_t
   use contact, only: contact_set_t, contact_forces
-  use contact_status, only: status_search_t
+  use contact_status, only: status_search_t, reject_pivot
   use assembly, only: element_counts_t, body_t, body_forces
   use dof_numbering, only: dofmap_t
   use linear_solver, only: linear_system_t, sys_describe
   use condensed_contact, only: condensed_t
   use analysis_events, only: observer_ref_t, iteration_info_t, solver_info_t, run_timing_t, tell_iteration, &
-                             tell_solver_ready
+                             tell_solver_ready, tell_note
   use messages, only: fatal
   implicit none
   private
   public :: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, report_iteration, &
-            describe, singular, contact_force_scale
+            describe, singular, contact_force_scale, take_back
 
   type :: equilibrium_t
     ! factor reuse policy: the factor is valid for the statuses it was made for
@@ -54,6 +54,7 @@ module equilibrium_common
     !> The contact status search of the increment (contact_status), with
     !> the pivots of the step.
     type(status_search_t) :: search
+    integer :: bad = 0                  ! the equation of the last singular factorisation
     real(dp), allocatable :: rhs(:)
     !> The last converged displacements and the bodies' internal forces
     !> there: the condensed solve starts an increment from them (the free
@@ -175,6 +176,23 @@ contains
     call tell_solver_ready(obs, info)
     eq%described = .true.
   end subroutine describe
+
+  !> The last pivot led to a status whose stiffness is singular: it is
+  !> taken back for a single pivot (contact_status's reject_pivot); none
+  !> left stops the run naming the node and dof of the last singular
+  !> factorisation.
+  subroutine take_back(eq, m, cs, dm, obs)
+    type(equilibrium_t), intent(inout) :: eq
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    type(dofmap_t), intent(in) :: dm
+    type(observer_ref_t), intent(in) :: obs(:)
+    logical :: found
+    call reject_pivot(m, cs, eq%search, found, eq%changed)
+    if (.not. found) call singular(m, cs, dm, eq%bad)
+    call tell_note(obs, 'the contact status of the last pivot has a singular stiffness: pivot taken back, ' // &
+                        'single pivot on' // eq%changed)
+  end subroutine take_back
 
   !> Stops on a singular stiffness, naming the node and dof where the
   !> factorisation found it.

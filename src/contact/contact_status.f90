@@ -56,7 +56,7 @@ module contact_status
   use contact, only: contact_set_t, cfe_label, open_penalty
   implicit none
   private
-  public :: status_search_t, begin_status_search, contact_switch, shifted_gap, contact_energy
+  public :: status_search_t, begin_status_search, contact_switch, reject_pivot, shifted_gap, contact_energy
 
   !> Relative round-off under which gap and force count as zero.
   real(dp), parameter :: round_off = 1.0e-10_dp
@@ -73,6 +73,12 @@ module contact_status
     real(dp) :: best = huge(1.0_dp)     ! lowest potential energy so far
     integer :: tries = max_block_tries  ! block pivots left without a new best
     integer :: block_pivots = 0, single_pivots = 0
+    !> The last pivot: the status before it, the CFEs violated there, and
+    !> the CFE a single pivot changed (0 for a block pivot), so that a
+    !> pivot to a status that cannot be factored can be taken back.
+    logical :: pivoted = .false.
+    logical, allocatable :: before(:), violated(:)
+    integer :: single = 0
   end type status_search_t
 
 contains
@@ -83,6 +89,7 @@ contains
     type(status_search_t), intent(inout) :: ss
     ss%best = huge(1.0_dp)
     ss%tries = max_block_tries
+    ss%pivoted = .false.
   end subroutine begin_status_search
 
   !> Purpose: the shifted gap gh of CFE j at its last evaluation (see the
@@ -123,6 +130,10 @@ contains
     nchanged = 0
     changed = ''
     if (nviol == 0) return
+    ss%pivoted = .true.
+    ss%before = cs%c(1:cs%n)%closed
+    ss%violated = violated
+    ss%single = 0
     if (energy < ss%best) then
       ss%best = energy
       ss%tries = max_block_tries
@@ -134,7 +145,8 @@ contains
     else
       ! Murty's least-index rule: only the first violated CFE changes
       ss%single_pivots = ss%single_pivots + 1
-      violated(findloc(violated, .true., dim=1) + 1:) = .false.
+      ss%single = findloc(violated, .true., dim=1)
+      violated(ss%single + 1:) = .false.
       ss%tries = -1
     end if
     do j = 1, cs%n
@@ -145,6 +157,36 @@ contains
     end do
     if (nchanged > max_named) changed = changed // ' ...'
   end subroutine contact_switch
+
+  !> Purpose: takes back the last pivot, whose status cannot be factored
+  !> (its stiffness is singular: a body it leaves held by open contact
+  !> only, which cannot be the solution where a load acts on that body),
+  !> and makes a single pivot instead: the violated CFE of least index
+  !> after the one a rejected single pivot changed.
+  !> Arguments: found false when no pivot is left to try (the status
+  !> stays as it was).
+  subroutine reject_pivot(m, cs, ss, found, changed)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    type(status_search_t), intent(inout) :: ss
+    logical, intent(out) :: found
+    character(len=:), allocatable, intent(out) :: changed
+    integer :: j
+    found = .false.
+    changed = ''
+    if (.not. ss%pivoted) return
+    do j = ss%single + 1, cs%n
+      if (ss%violated(j)) exit
+    end do
+    if (j > cs%n) return
+    found = .true.
+    cs%c(1:cs%n)%closed = ss%before
+    cs%c(j)%closed = .not. cs%c(j)%closed
+    ss%single = j
+    ss%single_pivots = ss%single_pivots + 1
+    ss%tries = -1
+    changed = ' ' // cfe_label(m, cs%c(j))
+  end subroutine reject_pivot
 
   !> Purpose: the CFEs' share of the potential energy at their last
   !> evaluation: per CFE, the open state's energy 1/2 k_open (n.B_e D_e)^2

@@ -241,7 +241,7 @@ module model
     integer :: solver = solver_cholmod   ! solver_codes
     integer :: ordering = order_amd      ! solver_codes
     real(dp) :: contact_tolerance = 1.0e-6_dp
-    integer :: contact_max_iter = 30
+    integer :: contact_max_iter = 100
     integer :: max_cutbacks = 5
     ! Decks written for CalculiX/Abaqus, ParaView output:
     logical :: vtu = .false.                          ! FORMAT=VTU on *NODE FILE / *EL FILE
