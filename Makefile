@@ -78,7 +78,7 @@ $(BUILD)/tests/test_report.o: tests/unit/test_report.f90 | $(BUILD)/tests $(MODD
 $(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) $(BUILD)/tests/test_report.o | $(BUILD)/tests
 	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(BUILD)/tests/test_report.o $(OBJS) $(LIBS)
 
-$(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o \
+$(OBJDIR)/cfe2d.o: $(OBJDIR)/directories.o $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o \
                    $(OBJDIR)/results_vtu.o $(OBJDIR)/tie_constraints.o
 
 deps:
