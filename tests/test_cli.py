@@ -61,3 +61,35 @@ def test_output_dir_that_cannot_be_made_is_an_error():
             r.stderr
         assert "Not a directory" in lines[0], lines[0]
     assert sorted(os.listdir(d)) == ["file"]
+
+
+def test_times_print_with_a_zero_before_the_point():
+    """A short run's times are below one second: the progress line's step
+    line ends '0.00 s' style (never '.00 s'), and the listing's
+    wall_seconds and timing rows are '0.001' style, without a sign."""
+    import os
+    import re
+    from helpers import ROOT, workdir
+    deck = os.path.join(ROOT, "input", "examples", "cantilever.inp")
+    out = workdir("cli_times")
+    r = run("-o", out, deck)
+    assert r.returncode == 0, r.stderr
+    steps = [line for line in r.stdout.splitlines() if re.match(r"step \d+ done:", line)]
+    assert steps, r.stdout
+    for line in steps:
+        assert re.search(r", (0|[1-9]\d*)\.\d\d s$", line), line
+        assert float(line.rsplit(", ", 1)[1][:-2]) < 1.0, "the run is meant to take under a second: " + line
+    timing = [line for line in r.stdout.splitlines() if line.startswith("time (s): ")]
+    assert len(timing) == 1, r.stdout
+    for item in timing[0][len("time (s): "):].split(", "):
+        assert re.fullmatch(r"[a-z ]+ (0|[1-9]\d*)\.\d{3}", item), item
+    text = open(os.path.join(out, "cantilever.out")).read()
+    seconds = re.findall(r"^wall_seconds (\S+)$", text, re.M)
+    assert seconds, "no wall_seconds in the listing"
+    for s in seconds:
+        assert re.fullmatch(r"(0|[1-9]\d*)\.\d{3}", s), s
+    rows = text[text.index("--- TIMING"):].splitlines()[2:]
+    times = [row.split() for row in rows if row and not row.split()[0].endswith("factorisations")]
+    assert len(times) == 11, rows
+    for name, value in times:
+        assert re.fullmatch(r"(0|[1-9]\d*)\.\d{3}", value), (name, value)
