@@ -25,7 +25,7 @@ vpath %.f90 $(LAYERS:%=src/%) src
 vpath %.c $(LAYERS:%=src/%)
 OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
-TESTS := test_elements test_skyline test_cfe test_solvers test_numbering test_constraints
+TESTS := test_elements test_skyline test_cfe test_solvers test_numbering test_constraints test_strings
 
 .PHONY: all debug sanitize run check bench deps clean help fuzz
 all: bin/cfe2d
@@ -78,7 +78,7 @@ $(BUILD)/tests/test_report.o: tests/unit/test_report.f90 | $(BUILD)/tests $(MODD
 $(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) $(BUILD)/tests/test_report.o | $(BUILD)/tests
 	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(BUILD)/tests/test_report.o $(OBJS) $(LIBS)
 
-$(OBJDIR)/cfe2d.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o \
+$(OBJDIR)/cfe2d.o: $(OBJDIR)/directories.o $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o \
                    $(OBJDIR)/results_vtu.o $(OBJDIR)/tie_constraints.o
 
 deps:

@@ -11,9 +11,10 @@ program cfe2d
   use results_vtu, only: vtu_series_t, open_vtu_series
   use progress, only: progress_t
   use messages, only: fatal, terminate
+  use directories, only: make_directories
   implicit none
   character(len=4096) :: arg
-  character(len=:), allocatable :: deck, outdir, job, base
+  character(len=:), allocatable :: deck, outdir, job, base, why
   type(model_t) :: m
   type(listing_t), target :: lst
   type(result_file_t), target :: res
@@ -21,7 +22,7 @@ program cfe2d
   type(vtu_series_t), target :: vtu
   type(observer_ref_t), allocatable :: observers(:)
   type(run_timing_t) :: timing
-  logical :: quiet, want_vtu
+  logical :: quiet, want_vtu, made
   integer :: i, k, ios, digits, nobs
 
   timing%started = wall_time()
@@ -83,6 +84,12 @@ program cfe2d
   ! *TIE needs the projection onto faces, which the contact layer owns.
   call tie_surfaces(m)
   timing%read = wall_time() - timing%started
+  ! The output directory is made (with its parents) only once the deck has
+  ! been read, so that a deck with errors leaves no empty folders behind.
+  if (len(outdir) > 0) then
+    call make_directories(outdir, made, why)
+    if (.not. made) call fatal('cannot create output directory "' // outdir // '" (' // why // ')')
+  end if
   if (size(m%pairs) > 0) then
     call open_listing(job // '.out', job // '_contact.csv', digits, lst)
   else
@@ -131,7 +138,7 @@ contains
     print '(a)', '*NODE FILE or *EL FILE) also ParaView files: <job>_NNNN.vtu per increment and'
     print '(a)', 'the time series <job>.pvd.'
     print '(a)', ''
-    print '(a)', '  -o, --output-dir DIR   write the results into DIR'
+    print '(a)', '  -o, --output-dir DIR   write the results into DIR (made, with its parents, if missing)'
     print '(a)', '  -d, --digits N         significant digits of reals in the listing (default 7)'
     print '(a)', '  -q, --quiet            no progress lines'
     print '(a)', '      --vtu              also write ParaView files (<job>_NNNN.vtu, <job>.pvd)'

@@ -21,7 +21,8 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 
 from helpers import Skip  # noqa: E402
 
-UNIT_PROGRAMS = ["test_elements", "test_skyline", "test_cfe", "test_solvers", "test_numbering", "test_constraints"]
+UNIT_PROGRAMS = ["test_elements", "test_skyline", "test_cfe", "test_solvers", "test_numbering", "test_constraints",
+                 "test_strings"]
 
 
 def main():

@@ -219,6 +219,48 @@ def test_output_request_keyword_only_warns():
     assert f"{run.deck}:{line_of(deck, '*NODE OUTPUT')}: warning:" in run.stderr, run.stderr
 
 
+def test_card_on_empty_set_warns():
+    """Cards that name an empty node set, element set or surface warn
+    "file:line: warning: <set> is empty: *<card> does nothing for it" at
+    the line naming the set (in an included file: that file and its own
+    line), once each, and the run completes with the answer of the deck
+    without them. Set definitions (*NSET, *ELSET) do not warn."""
+    empty = ("*NSET, NSET=NOWHERE\n*ELSET, ELSET=NOBODY\n*NSET, NSET=STILLNONE\nNOWHERE\n"
+             "*SURFACE, NAME=NOFACES\nNOBODY, S1\n*MATERIAL, NAME=STEEL")
+    deck = replace("*MATERIAL, NAME=STEEL", empty)
+    deck = replace("1.\n*BOUNDARY\n", "1.\n*SOLID SECTION, ELSET=NOBODY, MATERIAL=STEEL\n1.\n*BOUNDARY\n", deck)
+    deck = replace("LEFT, 1, 2\n", "LEFT, 1, 2\n*INCLUDE, INPUT=more_bcs.inp\n", deck)
+    deck = replace("*NODE PRINT\nU\n", "*CLOAD\nSTILLNONE, 2, 7.\n*DLOAD\nNOBODY, P2, 3.\n*DSLOAD\nNOFACES, P, 4.\n"
+                   "*NODE PRINT, NSET=NOWHERE\nU\n*EL PRINT, ELSET=NOBODY\nS\n*NODE PRINT\nU\n", deck)
+    more = "** boundary conditions kept apart\n*BOUNDARY\nNOWHERE, 1, 2\n"
+    run = run_deck("warn_empty_sets", deck, files={"more_bcs.inp": more})
+    assert run.rc == 0, run.stderr
+    inc = os.path.join(os.path.dirname(run.deck), "more_bcs.inp")
+    expected = [
+        (run.deck, "NOBODY, S1", "element set NOBODY", "*SURFACE"),
+        (run.deck, "*SOLID SECTION, ELSET=NOBODY", "element set NOBODY", "*SOLID SECTION"),
+        (inc, "NOWHERE, 1, 2", "node set NOWHERE", "*BOUNDARY"),
+        (run.deck, "STILLNONE, 2, 7.", "node set STILLNONE", "*CLOAD"),
+        (run.deck, "NOBODY, P2, 3.", "element set NOBODY", "*DLOAD"),
+        (run.deck, "NOFACES, P, 4.", "surface NOFACES", "*DSLOAD"),
+        (run.deck, "*NODE PRINT, NSET=NOWHERE", "node set NOWHERE", "*NODE PRINT"),
+        (run.deck, "*EL PRINT, ELSET=NOBODY", "element set NOBODY", "*EL PRINT"),
+    ]
+    warnings = [line for line in run.stderr.splitlines() if "is empty:" in line]
+    for fname, text, what, card in expected:
+        lineno = line_of(open(fname).read(), text)
+        message = f"{fname}:{lineno}: warning: {what} is empty: {card} does nothing for it"
+        assert warnings.count(message) == 1, f"expected once: {message}\ngot:\n{run.stderr}"
+    assert len(warnings) == len(expected), run.stderr
+    # the cards on empty sets changed nothing
+    plain = run_deck("warn_empty_sets_plain", GOOD).ok()
+    assert "is empty" not in plain.stderr, plain.stderr
+    got, want = run.listing.increments[-1], plain.listing.increments[-1]
+    assert len(got.block("NODE U", set="NOWHERE")) == 0
+    for col in ("U1", "U2"):
+        assert list(got.block("NODE U", set="ALL")[col]) == list(want.block("NODE U", set="ALL")[col]), col
+
+
 def test_deck_without_keywords():
     """An empty deck, one of comments only, one of blank and CR-LF lines:
     no line is at fault, so the message is cfe2d: error: and says why."""

@@ -48,6 +48,7 @@ def stops_at(name, card, bad_line, fragment):
     line = deck.splitlines().index(bad_line) + 1
     assert run.rc == 1 and f"{name}.inp:{line}: error:" in run.stderr, run.stderr
     assert fragment in run.stderr, run.stderr
+    return run
 
 
 def test_pretension_bad_cards_stop_at_their_line():
@@ -87,6 +88,16 @@ def test_pretension_normals_that_cancel_need_a_data_line():
     give one."""
     card = "*SURFACE, NAME=BOTH\n1, S2\n2, S4\n*PRE-TENSION SECTION, SURFACE=BOTH, NODE=7\n"
     stops_at("pret_cancel", card, "*PRE-TENSION SECTION, SURFACE=BOTH, NODE=7", "give the normal on a data line")
+
+
+def test_pretension_on_an_empty_surface_is_an_error():
+    """A surface made only of an empty element set (a warning at its line)
+    has no faces to cut: the *PRE-TENSION SECTION naming it stops the run,
+    as a reference node in no element could not be what was meant."""
+    card = "*ELSET, ELSET=NOTHING\n*SURFACE, NAME=HOLLOW\nNOTHING, S2\n*PRE-TENSION SECTION, SURFACE=HOLLOW, NODE=7\n1., 0.\n"
+    run = stops_at("pret_empty", card, "*PRE-TENSION SECTION, SURFACE=HOLLOW, NODE=7",
+                   "surface HOLLOW is empty: *PRE-TENSION SECTION has no faces to cut")
+    assert "warning: element set NOTHING is empty: *SURFACE does nothing for it" in run.stderr, run.stderr
 
 
 def test_pretension_keyword_without_blanks():

@@ -267,3 +267,57 @@ def test_unsettled_status_bisects_then_stops_keeping_completed_increments():
     assert text.count("increment bisected") == 2, text.count("increment bisected")
     incs = run.listing.increments
     assert len(incs) == 1 and incs[0].step == 1, [(i.step, i.number) for i in incs]
+
+
+def tilted_step(d_left):
+    """The upper block's top pushed down by d_left at x = 0 falling
+    linearly to 0 at x = W: its left part closes, its right part stays open
+    but moves, so the open CFEs carry their open penalty force."""
+    ids = [1001 + NY2 * (NX2 + 1) + i for i in range(NX2 + 1)]
+    lines = "".join(f"{n}, 2, 2, {-d_left * (1.0 - i / NX2):.17g}\n" for i, n in enumerate(ids))
+    return push_step(d_left).replace(f"TOP, 2, 2, {-d_left}\n", lines).replace(
+        "*END STEP", "*NODE FILE\nCSTRESS\n*END STEP")
+
+
+def test_open_points_report_zero_force_and_pressure():
+    """Open coupling points (status OPEN) report exactly zero force and
+    pressure in the listing, the contact table and the nodal pressure
+    field, and the pair's totals are the sums over the closed rows; the
+    open points moved, so their stabilising force is not zero."""
+    import csv
+    import numpy as np
+    from test_decks_vtu import series
+    run = run_deck("contact_open_rows", blocks_deck([tilted_step(3 * G0)]), args=("--vtu",)).ok()
+    inc = run.listing.increments[-1]
+    slave, master, summ = contact_blocks(inc)
+    state = np.array(slave["state"])
+    is_open = state == "OPEN"
+    assert 2 <= is_open.sum() <= len(state) - 2, state
+    # the open points moved towards the master but stayed apart
+    assert np.all(slave["gap"][is_open] > 0.0) and np.all(slave["gap"][is_open] < 0.999 * G0), slave.rows
+    assert np.all(slave["force"][is_open] == 0.0) and np.all(slave["pressure"][is_open] == 0.0), slave.rows
+    assert np.all(slave["force"][~is_open] > 0.0)
+    # master nodes beyond the closed points' segments carry nothing
+    assert np.any(master["force"] == 0.0) and np.all(master["force"] >= 0.0), master.rows
+    closed = slave["force"][~is_open]
+    assert summ["closed"][0] == (~is_open).sum()
+    assert abs(summ["total_force"][0] - closed.sum()) <= 1e-12 * closed.sum(), (summ.rows, closed.sum())
+    assert abs(summ["resultant_y"][0] + closed.sum()) <= 1e-9 * closed.sum(), summ.rows
+    # the contact table: every OPEN row exactly 0, the closed rows the listing's
+    with open(run.listing_path[:-4] + "_contact.csv") as f:
+        rows = [r for r in csv.DictReader(f) if r["side"] == "slave"]
+    assert [r["state"] for r in rows] == list(state)
+    for r in rows:
+        if r["state"] == "OPEN":
+            assert float(r["force"]) == 0.0 and float(r["pressure"]) == 0.0, r
+            assert not r["force"].startswith("-"), r
+    assert np.allclose([float(r["force"]) for r in rows], slave["force"], rtol=1e-7, atol=0.0)
+    # the nodal pressure field: zero at the open slave nodes
+    _, meshes = series(run, "contact_open_rows")
+    at = {int(n): k for k, n in enumerate(meshes[-1].point_data["NodeId"])}
+    cstress = meshes[-1].point_data["CSTRESS"]
+    for n, p, st in zip(slave["node"], slave["pressure"], state):
+        if st == "OPEN":
+            assert cstress[at[int(n)]] == 0.0, (n, cstress[at[int(n)]])
+        else:
+            assert np.isclose(cstress[at[int(n)]], p, rtol=1e-14, atol=0.0), (n, p, cstress[at[int(n)]])

@@ -119,7 +119,9 @@ contains
   end function rtoa
 
   !> A real as fixed-point text without blanks, `decimals` after the point
-  !> (times in seconds: 0.041).
+  !> (times in seconds: 0.041). Values below 1 keep their leading zero,
+  !> which the F edit descriptor may drop (f0.2 writes .04), and a value
+  !> that rounds to zero has no sign (-0.0001 and -0.0 give 0.000).
   pure function ftoa(x, decimals) result(s)
     real(dp), intent(in) :: x
     integer, intent(in) :: decimals
@@ -128,5 +130,11 @@ contains
     write(fmt, '(a,i0,a)') '(f40.', decimals, ')'
     write(buf, fmt) x
     s = trim(adjustl(buf))
+    if (s(1:1) == '-' .and. verify(s, '-0.') == 0) s = s(2:)
+    if (s(1:1) == '.') then
+      s = '0' // s
+    else if (len(s) > 1) then
+      if (s(1:2) == '-.') s = '-0' // s(2:)
+    end if
   end function ftoa
 end module strings

@@ -109,7 +109,8 @@ contains
     end associate
     do j = 1, cs%n
       associate(c => cs%c(j))
-        if (c%pair /= ip .or. c%ns == 1) cycle
+        ! open points carry no contact pressure (see pass_results)
+        if (c%pair /= ip .or. c%ns == 1 .or. .not. c%closed) cycle
         do q = 1, c%ns
           f(c%snode(q)) = f(c%snode(q)) - c%sw(q) * c%force
         end do
@@ -180,7 +181,7 @@ contains
 
   !> Purpose: one pass: slave rows and the master-side forces its CFEs
   !> produce (each CFE force goes to the master edge nodes with the
-  !> weights N_i(X_C)).
+  !> weights N_i(X_C)). Only closed CFEs report a force.
   subroutine pass_results(m, cs, u, ip, r)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
@@ -222,9 +223,17 @@ contains
         r%slave_x(:, j) = matmul(m%x(:, c%snode(1:ns)) + u(:, c%snode(1:ns)), c%sw(1:ns))
         r%slave_gap(j) = c%gap
         r%slave_closed(j) = c%closed
+        r%slave_area(j) = c%area
+        ! An open CFE still carries its open penalty times the relative
+        ! motion (1e-12 of the closed penalty, more while stabilised): a
+        ! force that keeps the equations regular, not contact pressure. Its
+        ! row, its master shares and the totals report none.
+        if (.not. c%closed) then
+          r%slave_force(j) = 0.0_dp
+          cycle
+        end if
         ! compressive force counted positive
         r%slave_force(j) = -c%force
-        r%slave_area(j) = c%area
         ed = get_edge(m, m%x, c%elem, c%edge)
         if (ed%nn == 2) then
           r%master_force(pos(ed%node(1))) = r%master_force(pos(ed%node(1))) - (1.0_dp - c%t) * c%force
@@ -237,10 +246,8 @@ contains
         end if
         r%total = r%total - c%force
         r%resultant = r%resultant + c%force * c%normal
-        if (c%closed) then
-          r%nclosed = r%nclosed + 1
-          r%max_pen = max(r%max_pen, -c%gap)
-        end if
+        r%nclosed = r%nclosed + 1
+        r%max_pen = max(r%max_pen, -c%gap)
       end associate
     end do
   end subroutine pass_results

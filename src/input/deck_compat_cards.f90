@@ -6,7 +6,8 @@
 submodule (deck_parser) deck_compat_cards
   use kinds, only: dp
   use strings, only: split_fields, field_t, itoa
-  use deck_cursor, only: line_text, err, next_data, allow_params, get_real, get_int, is_int, node_of, need_nset
+  use deck_cursor, only: line_text, err, next_data, allow_params, get_real, get_int, is_int, node_of, need_nset, &
+                         warn_empty_set
   use model, only: equation_t
   use model_growth, only: grow
   use growable, only: grow
@@ -24,7 +25,7 @@ contains
     type(field_t), allocatable :: f(:)
     integer, allocatable :: nodes(:)
     real(dp) :: t
-    integer :: n, nlines
+    integer :: n, nlines, iset
     call allow_params(p, kw, '')
     p%nodal_thickness_line = p%i
     call grow(p%node_thickness, m%nn, fill=-1.0_dp)
@@ -32,7 +33,8 @@ contains
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
       if (n < 2 .or. n > 3) call err(p, '*NODAL THICKNESS data line needs: node or node set, thickness')
-      nodes = target_of(p, m, f(1))
+      nodes = target_of(p, m, f(1), iset)
+      if (iset > 0) call warn_empty_set(p, size(nodes), 'node set', m%nsets(iset)%name, kw%name)
       t = get_real(p, f(2), 'thickness')
       if (t <= 0.0_dp) call err(p, 'the thickness must be positive')
       if (n == 3) then
@@ -44,16 +46,20 @@ contains
     if (nlines == 0) call err(p, 'missing data line (node or node set, thickness)')
   end subroutine read_nodal_thickness
 
-  !> Nodes named by a node id or a node set name.
-  function target_of(p, m, f) result(nodes)
+  !> Nodes named by a node id or a node set name, and the set (0 for a
+  !> node id).
+  function target_of(p, m, f, iset) result(nodes)
     type(parser_t), intent(in) :: p
     type(model_t), intent(in) :: m
     type(field_t), intent(in) :: f
+    integer, intent(out) :: iset
     integer, allocatable :: nodes(:)
+    iset = 0
     if (is_int(f%s)) then
       nodes = [node_of(p, m, get_int(p, f, 'node'))]
     else
-      nodes = m%nsets(need_nset(p, m, f%s))%items
+      iset = need_nset(p, m, f%s)
+      nodes = m%nsets(iset)%items
     end if
   end function target_of
 
@@ -93,20 +99,30 @@ contains
     type(field_t), allocatable :: f(:)
     type(equation_t) :: eq
     integer, allocatable :: first(:), count(:), all_nodes(:)
-    integer :: n, k, j, nread, nkept, ncopies
+    integer :: n, k, j, nread, nkept, ncopies, iset, nempty
+    integer :: empty_named(nterms)
     logical :: kept(nterms)
     allocate(eq%node(nterms), eq%dof(nterms), eq%coef(nterms), first(nterms), count(nterms), all_nodes(0))
     nread = 0
     do while (nread < nterms)
       if (.not. next_data(p)) call err(p, '*EQUATION: fewer terms than announced (' // itoa(nterms) // ')')
       if (nread == 0) eq%src%line = p%i
+      nempty = 0
       call split_fields(line_text(p), f, n)
       if (mod(n, 3) /= 0 .or. nread + n / 3 > nterms) &
         call err(p, '*EQUATION data line needs node, dof, coefficient triples (' // itoa(nterms) // ' in all)')
       do k = 1, n, 3
         nread = nread + 1
         first(nread) = size(all_nodes) + 1
-        all_nodes = [all_nodes, target_of(p, m, f(k))]
+        all_nodes = [all_nodes, target_of(p, m, f(k), iset)]
+        ! an empty set named by several terms of a line: one warning
+        if (iset > 0 .and. .not. any(empty_named(1:nempty) == iset)) then
+          call warn_empty_set(p, size(m%nsets(iset)%items), 'node set', m%nsets(iset)%name, 'EQUATION')
+          if (size(m%nsets(iset)%items) == 0) then
+            nempty = nempty + 1
+            empty_named(nempty) = iset
+          end if
+        end if
         count(nread) = size(all_nodes) - first(nread) + 1
         eq%dof(nread) = get_int(p, f(k + 1), 'dof')
         eq%coef(nread) = get_real(p, f(k + 2), 'coefficient')

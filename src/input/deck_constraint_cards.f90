@@ -8,7 +8,7 @@ submodule (deck_parser) deck_constraint_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param
   use deck_cursor, only: max_id, line_text, err, next_data, allow_params, required_param, name_param, get_real, &
-                         get_int, param_real, node_of, is_int, need_nset
+                         get_int, param_real, node_of, is_int, need_nset, warn_empty_set
   use model, only: pretension_t, tie_t, equation_t, temp_t, surf_element, find_name, edge_nodes, elem_nodes
   use element_catalogue, only: catalogue
   use growable, only: grow
@@ -41,6 +41,10 @@ contains
     if (pt%surface == 0) call err(p, 'undefined surface ' // v)
     if (m%surfaces(pt%surface)%kind /= surf_element) &
       call err(p, 'the pre-tension surface must be made of element faces, not of nodes')
+    ! Not a warning, as for other cards on empty sets: without faces there
+    ! is no cut, and the reference node would be left in no element.
+    if (size(m%surfaces(pt%surface)%elem) == 0) call err(p, 'surface ' // trim(m%surfaces(pt%surface)%name) // &
+      ' is empty: *PRE-TENSION SECTION has no faces to cut')
     v = required_param(p, kw, 'NODE')
     if (is_int(v)) then
       pt%ref_node = node_of(p, m, get_int(p, field_t(v), 'reference node'))
@@ -374,6 +378,10 @@ contains
     if (m%surfaces(t%master_surface)%kind /= surf_element) &
       call err(p, 'the master surface of a tie must be made of element faces')
     if (t%master_surface == t%slave_surface) call err(p, 'slave and master are the same surface')
+    call warn_empty_set(p, size(m%surfaces(t%slave_surface)%nodes), 'surface', m%surfaces(t%slave_surface)%name, &
+                        kw%name)
+    call warn_empty_set(p, size(m%surfaces(t%master_surface)%elem), 'surface', m%surfaces(t%master_surface)%name, &
+                        kw%name)
     t%src%line = p%i
     if (next_data(p)) call err(p, '*TIE takes one data line (slave, master): give one *TIE per pair of surfaces')
     m%ties = [m%ties, t]

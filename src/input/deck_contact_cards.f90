@@ -6,7 +6,7 @@ submodule (deck_parser) deck_contact_cards
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_cutbacks, max_contact_iterations, line_text, err, next_data, no_data, &
                          allow_params, param_real, param_int, need_nset, new_surface, get_real, &
-                         behaviour_linear, add_pair_interaction, check_name_length
+                         behaviour_linear, add_pair_interaction, check_name_length, warn_empty_set
   use model, only: contact_pair_t, surface_t, surf_element, surf_node, find_name, edge_nodes
   use model_growth, only: grow
   use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
@@ -51,6 +51,8 @@ contains
       if (c%master_surface == 0) call err(p, 'undefined surface ' // to_upper(f(2)%s))
       if (m%surfaces(c%master_surface)%kind /= surf_element) &
         call err(p, 'the master surface must be element-based')
+      call warn_empty_set(p, size(m%surfaces(c%master_surface)%elem), 'surface', &
+                          m%surfaces(c%master_surface)%name, kw%name)
       if (c%master_surface == c%slave_surface) call err(p, 'slave and master are the same surface')
       c%src%line = p%i
       c%twin = 0
@@ -94,6 +96,10 @@ contains
     integer, intent(in) :: s1, s2
     real(dp), intent(out) :: ratio
     real(dp) :: h1, h2
+    ! an empty surface (warned about) has no density to compare
+    ratio = 1.0_dp
+    similar_density = .true.
+    if (size(m%surfaces(s1)%elem) == 0 .or. size(m%surfaces(s2)%elem) == 0) return
     h1 = mean_edge_length(m, m%surfaces(s1))
     h2 = mean_edge_length(m, m%surfaces(s2))
     ratio = max(h1, h2) / max(min(h1, h2), tiny(1.0_dp))
@@ -212,7 +218,9 @@ contains
       nodes = m%surfaces(c%slave_surface)%nodes
     else
       by_set = .true.
-      nodes = m%nsets(need_nset(p, m, value))%items
+      k = need_nset(p, m, value)
+      nodes = m%nsets(k)%items
+      call warn_empty_set(p, size(nodes), 'node set', m%nsets(k)%name, 'CONTACT PAIR (ADJUST=)')
     end if
     moved = 0
     largest = 0.0_dp
@@ -274,15 +282,20 @@ contains
   end subroutine add_pair
 
   !> The slave surface named on a *CONTACT PAIR line: a surface, or a node
-  !> set, which becomes a node surface of the same name.
+  !> set, which becomes a node surface of the same name. Either one empty
+  !> is warned about.
   integer function slave_surface(p, m, name) result(isurf)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     character(len=*), intent(in) :: name
     integer :: ns
     isurf = find_name(m%surfaces(1:p%nsurf)%name, to_upper(name))
-    if (isurf > 0) return
+    if (isurf > 0) then
+      call warn_empty_set(p, size(m%surfaces(isurf)%nodes), 'surface', m%surfaces(isurf)%name, 'CONTACT PAIR')
+      return
+    end if
     ns = need_nset(p, m, name)
+    call warn_empty_set(p, size(m%nsets(ns)%items), 'node set', m%nsets(ns)%name, 'CONTACT PAIR')
     isurf = new_surface(p, m)
     m%surfaces(isurf)%name = m%nsets(ns)%name
     m%surfaces(isurf)%kind = surf_node

@@ -10,7 +10,7 @@ module deck_cursor
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, name_len
   use strings, only: to_upper, parse_real, parse_int, field_t, itoa
-  use deck_input, only: deck_t, keyword_t, deck_error, param_value, has_param, is_keyword
+  use deck_input, only: deck_t, keyword_t, deck_error, deck_warning, param_value, has_param, is_keyword
   use model, only: model_t, find_name
   use model_growth, only: grow
   implicit none
@@ -21,7 +21,7 @@ module deck_cursor
   public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
             name_param, check_name_length, get_real, get_int, param_real, param_int, &
             node_of, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
-            new_surface, in_step
+            new_surface, in_step, warn_empty_set
 
   !> Node and element ids are 1..max_id (an id indexes a lookup table).
   integer, parameter :: max_id = 100000000
@@ -287,6 +287,26 @@ contains
         to_upper(name) // ' (there is a node set of that name)')
     if (need_elset == 0) call err(p, 'undefined element set ' // to_upper(name))
   end function need_elset
+
+  !> Purpose: a card that names an empty set acts on nothing there; say so
+  !> (file:line: warning: at the current line, the data line or the card
+  !> naming the set) instead of doing nothing silently, since it is mostly
+  !> a set left unfilled or the wrong set named. Set definitions (*NSET,
+  !> *ELSET) do not call this: a union may well hold an empty set, and a
+  !> set left empty is reported where a card uses it.
+  !> Arguments:
+  !>   p     parser state (its current line is the one named)
+  !>   n     number of nodes, elements or faces in the set
+  !>   what  'node set', 'element set' or 'surface'
+  !>   name  the set's name
+  !>   card  the keyword, without its '*'
+  subroutine warn_empty_set(p, n, what, name, card)
+    type(parser_t), intent(in) :: p
+    integer, intent(in) :: n
+    character(len=*), intent(in) :: what, name, card
+    if (n > 0) return
+    call deck_warning(p%deck, p%i, what // ' ' // trim(name) // ' is empty: *' // card // ' does nothing for it')
+  end subroutine warn_empty_set
 
   !> A new, empty surface slot (element and node surfaces, and the node
   !> surface a *CONTACT PAIR makes of a node set).

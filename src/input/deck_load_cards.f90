@@ -5,7 +5,7 @@ submodule (deck_parser) deck_load_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param
   use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, get_int, elem_of, &
-                         is_int, need_elset
+                         is_int, need_elset, warn_empty_set
   use model, only: dload_t, surf_element, find_name, is_continuum, is_mass, axisymmetric_model, step_dloads, &
                    dload_p, dload_bx, dload_by, dload_grav, dload_centrif
   use element_catalogue, only: catalogue, state_axisymmetric, is_line
@@ -50,7 +50,7 @@ contains
     type(field_t), allocatable :: f(:)
     type(dload_t), allocatable :: new(:)
     integer, allocatable :: elems(:)
-    integer :: n, k, amp, nnew
+    integer :: n, k, amp, nnew, es
     call allow_params(p, kw, 'OP,AMPLITUDE')
     call load_options(p, m, kw, amp)
     nnew = 0
@@ -60,14 +60,16 @@ contains
       if (is_int(f(1)%s)) then
         elems = [elem_of(p, m, get_int(p, f(1), 'element'))]
       else
-        elems = m%elsets(need_elset(p, m, f(1)%s))%items
+        es = need_elset(p, m, f(1)%s)
+        elems = m%elsets(es)%items
+        call warn_empty_set(p, size(elems), 'element set', m%elsets(es)%name, kw%name)
       end if
       allocate(new(size(elems)))
       do k = 1, size(elems)
         new(k) = element_dload(p, m, elems(k), f, n, amp)
       end do
       call add_dloads(m, p%step, new)
-      nnew = nnew + size(new)
+      nnew = nnew + 1
       deallocate(new)
     end do
     ! OP=NEW alone removes the earlier distributed loads
@@ -84,6 +86,7 @@ contains
     type(field_t), allocatable :: f(:)
     type(dload_t), allocatable :: new(:)
     integer :: n, k, amp, isurf, nnew
+    real(dp) :: pressure
     call allow_params(p, kw, 'OP,AMPLITUDE')
     call load_options(p, m, kw, amp)
     nnew = 0
@@ -96,15 +99,16 @@ contains
           ' is a node surface: *DSLOAD needs an element-based surface')
       if (to_upper(f(2)%s) /= 'P') call err(p, 'load label ' // to_upper(f(2)%s) // &
           ' is not implemented on *DSLOAD (only P, a pressure)')
+      pressure = get_real(p, f(3), 'pressure')
       associate(s => m%surfaces(isurf))
+        call warn_empty_set(p, size(s%elem), 'surface', s%name, kw%name)
         allocate(new(size(s%elem)))
         do k = 1, size(s%elem)
-          new(k) = dload_t(elem=s%elem(k), label=dload_p, face=s%edge(k), amp=amp, &
-                           value=get_real(p, f(3), 'pressure'))
+          new(k) = dload_t(elem=s%elem(k), label=dload_p, face=s%edge(k), amp=amp, value=pressure)
         end do
       end associate
       call add_dloads(m, p%step, new)
-      nnew = nnew + size(new)
+      nnew = nnew + 1
       deallocate(new)
     end do
     if (nnew == 0 .and. .not. m%steps(p%step)%new_dloads) call err(p, 'missing data line (surface, P, magnitude)')

@@ -5,7 +5,7 @@ submodule (deck_parser) deck_material_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
-                         name_param, get_real, get_int, is_int, need_elset, param_real
+                         name_param, get_real, get_int, is_int, need_elset, param_real, warn_empty_set
   use element_catalogue, only: catalogue, state_plane_stress, state_plane_strain, state_axisymmetric, &
                                shape_spring1, shape_spring2, is_spring_shape, shape_mass
   use model, only: material_t, section_t, find_name
@@ -105,6 +105,7 @@ contains
     m%sections(p%nsec) = section_t()
     associate(s => m%sections(p%nsec))
       s%elset = need_elset(p, m, required_param(p, kw, 'ELSET'))
+      call warn_empty_set(p, size(m%elsets(s%elset)%items), 'element set', m%elsets(s%elset)%name, kw%name)
       s%material_name = name_param(p, kw, 'MATERIAL')
       s%src%line = p%i
       s%state = state_param(p, kw)
@@ -211,6 +212,7 @@ contains
     integer :: n, es, k, e, line
     call allow_params(p, kw, 'ELSET')
     es = need_elset(p, m, required_param(p, kw, 'ELSET'))
+    call warn_empty_set(p, size(m%elsets(es)%items), 'element set', m%elsets(es)%name, kw%name)
     do k = 1, size(m%elsets(es)%items)
       e = m%elsets(es)%items(k)
       if (catalogue(m%etype(e))%shape /= shape_mass) call err(p, 'element ' // itoa(m%elem_id(e)) // &

@@ -5,7 +5,7 @@ submodule (deck_parser) deck_mesh_cards
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_id, line_text, err, next_data, no_data, allow_params, required_param, &
                          name_param, check_name_length, get_real, get_int, node_of, elem_of, is_int, &
-                         nset_index, elset_index, need_nset, need_elset, new_surface
+                         nset_index, elset_index, need_nset, need_elset, new_surface, warn_empty_set
   use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name
   use growable, only: append, grow
   use model_growth, only: grow
@@ -316,7 +316,7 @@ contains
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     character(len=:), allocatable :: name, stype
-    integer :: k, ne, nn, isurf
+    integer :: k, ne, nn, isurf, nlines
     integer, allocatable :: elems(:), edges(:), nodes(:), ends(:)
     call allow_params(p, kw, 'NAME,TYPE,INTERNAL')
     name = name_param(p, kw, 'NAME')
@@ -326,6 +326,7 @@ contains
     if (find_name(m%surfaces(1:p%nsurf)%name, name) > 0) call err(p, 'duplicate surface ' // name)
     ne = 0
     nn = 0
+    nlines = 0
     allocate(elems(0), edges(0), nodes(0))
     do while (next_data(p))
       if (stype == 'NODE') then
@@ -333,8 +334,10 @@ contains
       else
         call surface_faces_line(p, m, elems, edges, ne)
       end if
+      nlines = nlines + 1
     end do
-    if (ne == 0 .and. nn == 0) call err(p, 'missing data line (empty surface)')
+    ! (lines naming only empty sets leave the surface empty: warned there)
+    if (nlines == 0) call err(p, 'missing data line (empty surface)')
     isurf = new_surface(p, m)
     associate(s => m%surfaces(isurf))
       s%name = name
@@ -364,13 +367,15 @@ contains
     integer, allocatable, intent(inout) :: nodes(:)
     integer, intent(inout) :: nn
     type(field_t), allocatable :: f(:)
-    integer :: n
+    integer :: n, iset
     call split_fields(line_text(p), f, n)
     if (n > 2) call err(p, 'node surface data line needs: node or node set[, area]')
     if (is_int(f(1)%s)) then
       call append(nodes, nn, node_of(p, m, get_int(p, f(1), 'node')))
     else
-      call append(nodes, nn, m%nsets(need_nset(p, m, f(1)%s))%items)
+      iset = need_nset(p, m, f(1)%s)
+      call warn_empty_set(p, size(m%nsets(iset)%items), 'node set', m%nsets(iset)%name, 'SURFACE')
+      call append(nodes, nn, m%nsets(iset)%items)
     end if
   end subroutine surface_nodes_line
 
@@ -385,13 +390,15 @@ contains
     type(field_t), allocatable :: f(:)
     character(len=:), allocatable :: face
     integer, allocatable :: list(:)
-    integer :: n, k, e, edge, owner, nedge
+    integer :: n, k, e, edge, owner, nedge, iset
     call split_fields(line_text(p), f, n)
     if (n > 2) call err(p, 'element surface data line needs: element or element set[, face S1..S4]')
     if (is_int(f(1)%s)) then
       list = [elem_of(p, m, get_int(p, f(1), 'element'))]
     else
-      list = m%elsets(need_elset(p, m, f(1)%s))%items
+      iset = need_elset(p, m, f(1)%s)
+      list = m%elsets(iset)%items
+      call warn_empty_set(p, size(list), 'element set', m%elsets(iset)%name, 'SURFACE')
     end if
     face = ''
     if (n == 2) face = to_upper(f(2)%s)

@@ -8,7 +8,7 @@ submodule (deck_parser) deck_step_cards
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, node_of, is_int, &
-                         need_nset, need_elset, required_param
+                         need_nset, need_elset, required_param, warn_empty_set
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, amp_step_time, amp_total_time, find_name
   use growable, only: append
   use model_growth, only: grow
@@ -76,12 +76,13 @@ contains
     if (amplitude_param == 0) call err(p, 'undefined amplitude ' // to_upper(param_value(kw, 'AMPLITUDE')))
   end function amplitude_param
 
-  !> Nodes named by the first field of a *BOUNDARY or *CLOAD line, and
-  !> the node set they came from (0 for a single node).
-  subroutine target_nodes(p, m, s, nodes, iset)
+  !> Nodes named by the first field of a *BOUNDARY, *CLOAD or temperature
+  !> line, and the node set they came from (0 for a single node); an empty
+  !> set is warned about on the line of `card`.
+  subroutine target_nodes(p, m, s, card, nodes, iset)
     type(parser_t), intent(in) :: p
     type(model_t), intent(in) :: m
-    character(len=*), intent(in) :: s
+    character(len=*), intent(in) :: s, card
     integer, allocatable, intent(out) :: nodes(:)
     integer, intent(out) :: iset
     type(field_t) :: f
@@ -93,6 +94,7 @@ contains
       if (len(s) == 0) call err(p, 'missing node or node set')
       iset = need_nset(p, m, s)
       nodes = m%nsets(iset)%items
+      call warn_empty_set(p, size(nodes), 'node set', m%nsets(iset)%name, card)
     end if
   end subroutine target_nodes
 
@@ -121,7 +123,7 @@ contains
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
       if (n > 4) call err(p, '*BOUNDARY data line needs: node or set, first dof[, last dof[, value]]')
-      call target_nodes(p, m, f(1)%s, nodes, iset)
+      call target_nodes(p, m, f(1)%s, kw%name, nodes, iset)
       call boundary_dofs(p, f, n, d1, d2, v)
       do k = 1, size(nodes)
         do d = d1, d2
@@ -213,7 +215,7 @@ contains
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
       if (n /= 3) call err(p, '*CLOAD data line needs: node or set, dof, value')
-      call target_nodes(p, m, f(1)%s, nodes, iset)
+      call target_nodes(p, m, f(1)%s, kw%name, nodes, iset)
       d = get_int(p, f(2), 'dof')
       if (d < 1 .or. d > 2) call err(p, 'dof must be 1 or 2 in 2D')
       v = get_real(p, f(3), 'load value')
@@ -222,7 +224,7 @@ contains
         m%steps(p%step)%loads(p%nload + k) = cload_t(node=nodes(k), dof=d, amp=amp, value=v)
       end do
       p%nload = p%nload + size(nodes)
-      nnew = nnew + size(nodes)
+      nnew = nnew + 1
     end do
     if (nnew == 0) call err(p, 'missing data line (node or set, dof, value)')
   end subroutine read_cload
@@ -240,7 +242,7 @@ contains
     if (kind /= 'TEMPERATURE') call err(p, '*INITIAL CONDITIONS, TYPE=' // kind // &
       ' is not implemented (only TYPE=TEMPERATURE)')
     if (.not. allocated(m%initial_temps)) allocate(m%initial_temps(0))
-    call read_temperature_lines(p, m, 0, .false., m%initial_temps)
+    call read_temperature_lines(p, m, kw%name, 0, .false., m%initial_temps)
   end subroutine read_initial_conditions
 
   !> Purpose: *TEMPERATURE (in a step): the nodal temperatures at the end
@@ -257,14 +259,15 @@ contains
     new = op_param(p, kw) == 'NEW'
     if (new) m%steps(p%step)%new_temps = .true.
     if (.not. allocated(m%steps(p%step)%temps)) allocate(m%steps(p%step)%temps(0))
-    call read_temperature_lines(p, m, amplitude_param(p, m, kw), new, m%steps(p%step)%temps)
+    call read_temperature_lines(p, m, kw%name, amplitude_param(p, m, kw), new, m%steps(p%step)%temps)
   end subroutine read_temperature
 
-  !> The `node or nset, temperature` lines of a temperature card, appended
-  !> to temps; none is allowed if may_be_empty (OP=NEW alone).
-  subroutine read_temperature_lines(p, m, amp, may_be_empty, temps)
+  !> The `node or nset, temperature` lines of a temperature card (`card`),
+  !> appended to temps; none is allowed if may_be_empty (OP=NEW alone).
+  subroutine read_temperature_lines(p, m, card, amp, may_be_empty, temps)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: card
     integer, intent(in) :: amp
     logical, intent(in) :: may_be_empty
     type(temp_t), allocatable, intent(inout) :: temps(:)
@@ -276,10 +279,10 @@ contains
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
       if (n /= 2) call err(p, 'temperature data line needs: node or set, temperature')
-      call target_nodes(p, m, f(1)%s, nodes, iset)
+      call target_nodes(p, m, f(1)%s, card, nodes, iset)
       v = get_real(p, f(2), 'temperature')
       temps = [temps, (temp_t(node=nodes(k), amp=amp, value=v), k = 1, size(nodes))]
-      nnew = nnew + size(nodes)
+      nnew = nnew + 1
     end do
     if (nnew == 0 .and. .not. may_be_empty) call err(p, 'missing data line (node or set, temperature)')
   end subroutine read_temperature_lines
@@ -386,10 +389,19 @@ contains
     if (r%to_file) call file_format(p, m, kw)
     if (r%nodal) then
       call allow_params(p, kw, 'NSET,FREQUENCY,TOTALS,GLOBAL,SUMMARY,OUTPUT,FORMAT')
-      if (has_param(kw, 'NSET')) r%set = need_nset(p, m, param_value(kw, 'NSET'))
+      if (has_param(kw, 'NSET')) then
+        r%set = need_nset(p, m, param_value(kw, 'NSET'))
+        ! (the result files hold every node whatever the set)
+        if (.not. r%to_file) &
+          call warn_empty_set(p, size(m%nsets(r%set)%items), 'node set', m%nsets(r%set)%name, kw%name)
+      end if
     else
       call allow_params(p, kw, 'ELSET,FREQUENCY,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL,FORMAT')
-      if (has_param(kw, 'ELSET')) r%set = need_elset(p, m, param_value(kw, 'ELSET'))
+      if (has_param(kw, 'ELSET')) then
+        r%set = need_elset(p, m, param_value(kw, 'ELSET'))
+        if (.not. r%to_file) &
+          call warn_empty_set(p, size(m%elsets(r%set)%items), 'element set', m%elsets(r%set)%name, kw%name)
+      end if
     end if
     call require_data(p, 'output quantities')
     do

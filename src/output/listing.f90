@@ -217,7 +217,7 @@ contains
     write(u, '(a,i0)') 'element_calls_continuum_stiffness ', summary%continuum_tangent
     write(u, '(a,i0)') 'element_calls_continuum_stresses ', summary%continuum_stresses
     write(u, '(a,i0)') 'element_calls_coupling ', summary%coupling
-    write(u, '(a,f0.3)') 'wall_seconds ', summary%wall_seconds
+    write(u, '(a)') 'wall_seconds ' // ftoa(summary%wall_seconds, 3)
     flush(u)
   end subroutine write_step_summary
 

@@ -33,10 +33,10 @@ contains
   subroutine progress_step(self, summary)
     class(progress_t), intent(inout) :: self
     type(step_summary_t), intent(in) :: summary
-    write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,f0.2,a)') 'step ', summary%step, ' done: ', &
+    write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'step ', summary%step, ' done: ', &
       summary%increments, ' increments, ', summary%iterations, ' contact iterations, ', summary%factorisations, &
-      ' factorisations, ', summary%condensed_factorisations, ' condensed factorisations, ', &
-      summary%wall_seconds, ' s'
+      ' factorisations, ', summary%condensed_factorisations, ' condensed factorisations, ' // &
+      ftoa(summary%wall_seconds, 2) // ' s'
     flush(output_unit)
   end subroutine progress_step
 
