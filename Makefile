@@ -27,7 +27,7 @@ OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
 TESTS := test_elements test_skyline test_cfe test_solvers test_numbering test_constraints test_strings
 
-.PHONY: all debug sanitize run check bench deps clean help fuzz
+.PHONY: all debug sanitize run check bench deps clean help fuzz kernels
 all: bin/cfe2d
 
 help:
@@ -40,6 +40,8 @@ help:
 	@echo "                BENCH_ARGS=--solvers adds the solver table (about 1e4, 1e5, 1e6 dofs)"
 	@echo "make deps       install compilers, libraries, gmsh and Python packages"
 	@echo "make fuzz       mutate the example and test decks and run both builds on them"
+	@echo "make kernels    the contact decks under every OpenBLAS kernel of this CPU and the debug build:"
+	@echo "                the same contact decisions (tests/test_kernels.py; also part of make check)"
 
 bin/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o | bin
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
@@ -100,6 +102,12 @@ check: deps
 	$(MAKE) debug
 	$(MAKE) sanitize
 	$(PYTHON) tests/run_tests.py --build $(BUILD)
+
+# Contact decisions independent of the BLAS kernel and of the build (tests/test_kernels.py,
+# which `make check` runs with the rest; the debug build is compared too).
+kernels: bin/cfe2d
+	$(MAKE) debug
+	$(PYTHON) tests/run_tests.py --build $(BUILD) -k test_kernels
 
 # Mutation fuzzer over the project's decks (scripts/fuzz.py; `make check` runs a short slice).
 FUZZ_ARGS ?=

@@ -25,9 +25,9 @@ MESHES = {"coarse": 0.1, "default": 0.05, "fine": 0.025}
 DECKS = {"auto": "hertz.inp", "paper": "hertz_paper_penalty.inp"}
 
 
-def run_case(outdir, mesh="default", penalty="auto", plate=1.0, approach=None, quiet=True, digits=10):
-    """Mesh, write the deck and run cfe2d in outdir; returns the job path
-    (outdir/hertz) and the wall time of the cfe2d run."""
+def write_case(outdir, mesh="default", penalty="auto", plate=1.0, approach=None):
+    """Mesh and write the deck in outdir; returns the deck's path
+    (outdir/hertz.inp)."""
     os.makedirs(outdir, exist_ok=True)
     h = MESHES[mesh] if isinstance(mesh, str) else float(mesh)
     geo = os.path.join(ROOT, "input", "hertz", "hertz.geo")
@@ -40,13 +40,21 @@ def run_case(outdir, mesh="default", penalty="auto", plate=1.0, approach=None, q
     if approach is not None:
         deck, n = re.subn(r"CYL_TOP, 2, 2, -0\.4", f"CYL_TOP, 2, 2, {-approach}", deck)
         assert n == 1
-    with open(os.path.join(outdir, "hertz.inp"), "w") as f:
+    path = os.path.join(outdir, "hertz.inp")
+    with open(path, "w") as f:
         f.write(deck)
+    return path
+
+
+def run_case(outdir, mesh="default", penalty="auto", plate=1.0, approach=None, quiet=True, digits=10):
+    """Mesh, write the deck and run cfe2d in outdir; returns the job path
+    (outdir/hertz) and the wall time of the cfe2d run."""
+    path = write_case(outdir, mesh, penalty, plate, approach)
     t0 = time.time()
     args = [os.path.join(ROOT, "bin", "cfe2d"), "--digits", str(digits), "-o", outdir]
     if quiet:
         args.append("-q")
-    subprocess.run(args + [os.path.join(outdir, "hertz.inp")], check=True)
+    subprocess.run(args + [path], check=True)
     return os.path.join(outdir, "hertz"), time.time() - t0
 
 

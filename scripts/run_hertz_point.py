@@ -22,9 +22,9 @@ sys.path.insert(0, HERE)
 import compare_hertz  # noqa: E402
 
 
-def run_case(outdir, order=1, h=0.04, quiet=True, digits=10):
-    """Mesh, write the deck and run cfe2d in outdir; returns the job path
-    (outdir/hertz_point) and the wall time of the cfe2d run."""
+def write_case(outdir, order=1, h=0.04):
+    """Mesh and write the deck in outdir; returns the deck's path
+    (outdir/hertz_point.inp)."""
     os.makedirs(outdir, exist_ok=True)
     mesh = os.path.join(outdir, "hertz_point_mesh.inp")
     cmd = ["gmsh", "-2", "-format", "inp", "-setnumber", "Mesh.SaveGroupsOfNodes", "1", "-setnumber", "h", str(h),
@@ -40,13 +40,21 @@ def run_case(outdir, order=1, h=0.04, quiet=True, digits=10):
         f.write(text)
     with open(os.path.join(ROOT, "input", "hertz", "hertz_point.inp")) as f:
         deck = f.read()
-    with open(os.path.join(outdir, "hertz_point.inp"), "w") as f:
+    path = os.path.join(outdir, "hertz_point.inp")
+    with open(path, "w") as f:
         f.write(deck)
+    return path
+
+
+def run_case(outdir, order=1, h=0.04, quiet=True, digits=10):
+    """Mesh, write the deck and run cfe2d in outdir; returns the job path
+    (outdir/hertz_point) and the wall time of the cfe2d run."""
+    path = write_case(outdir, order, h)
     t0 = time.time()
     args = [os.path.join(ROOT, "bin", "cfe2d"), "--digits", str(digits), "-o", outdir]
     if quiet:
         args.append("-q")
-    subprocess.run(args + [os.path.join(outdir, "hertz_point.inp")], check=True)
+    subprocess.run(args + [path], check=True)
     return os.path.join(outdir, "hertz_point"), time.time() - t0
 
 
