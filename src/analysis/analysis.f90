@@ -159,6 +159,8 @@ contains
     summary%factorisations = rs%eq%factorisations
     summary%condensed_factorisations = rs%eq%condensed_factorisations
     summary%iterations = rs%eq%iterations
+    summary%block_pivots = rs%eq%search%block_pivots
+    summary%single_pivots = rs%eq%search%single_pivots
     summary%continuum_tangent = rs%eq%counts%continuum_tangent
     summary%continuum_stresses = rs%eq%counts%continuum_stresses
     summary%coupling = rs%eq%counts%coupling

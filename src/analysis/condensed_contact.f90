@@ -35,7 +35,8 @@ module condensed_contact
   implicit none
   private
   public :: condensed_t, number_equations, condensed_factor_k0, condensed_status, condensed_begin, &
-            condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces
+            condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
+            condensed_energy
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -61,6 +62,7 @@ module condensed_contact
     real(dp), allocatable :: kdiag(:)   ! the diagonal of the current status
     real(dp), allocatable :: z(:)       ! (n) forward-solved right-hand side of the increment
     real(dp), allocatable :: q0(:), x2(:)       ! (m) condensed right-hand side, solution
+    real(dp), allocatable :: gap_start(:)       ! (ncfe) every CFE's gap at the increment's start
     real(dp), allocatable :: u0(:, :)   ! displacements at the start of the increment
     real(dp) :: umax_rest = 0.0_dp      ! largest |u0| off the contact equations
     real(dp), allocatable :: fw(:, :)   ! (2, nn) work: CFE forces, zero between uses
@@ -489,12 +491,43 @@ contains
     real(dp) :: fc(cd%m)
     ! the CFE forces are affine in u: at the start, they are the constant part
     call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
+    cd%gap_start = cs%c(1:cs%n)%gap
     cd%x2 = cd%q0 - fc
     call dense_solve(cd%s, cd%x2)
     finite = all(ieee_is_finite(cd%x2))
     call add_contact_part(cd, dm, u)
     if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
   end subroutine condensed_solve
+
+  !> Purpose: the potential energy of the displacements u relative to
+  !> the increment's start (u0), up to a constant of the increment, with
+  !> the contact equations' displacements x = u - u0 and the other
+  !> equations at their best for them: 1/2 x.S0 x - q0.x (the condensed
+  !> bodies and open CFEs of K0, the condensed out-of-balance at u0)
+  !> minus the open CFEs' share of S0, 1/2 k_open (gap change)^2, which
+  !> the caller's contact_energy counts in full. cs holds the gaps at u
+  !> (its last evaluation).
+  real(dp) function condensed_energy(cd, dm, cs, u) result(e)
+    type(condensed_t), intent(in) :: cd
+    type(dofmap_t), intent(in) :: dm
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: u(:, :)
+    real(dp) :: x(cd%m), sx
+    integer :: p, q, eqn, nd, nn
+    do p = 1, cd%m
+      eqn = cd%eq_at(p)
+      nd = dm%dof_of_eq(eqn)
+      nn = dm%node_of_eq(eqn)
+      x(p) = u(nd, nn) - cd%u0(nd, nn)
+    end do
+    ! S0 is kept as its diagonal and strict lower triangle
+    e = 0.0_dp
+    do q = 1, cd%m
+      sx = 0.5_dp * cd%s0_diag(q) * x(q) + dot_product(cd%l22(q + 1:cd%m, q), x(q + 1:cd%m))
+      e = e + x(q) * sx - cd%q0(q) * x(q)
+    end do
+    e = e - 0.5_dp * sum(cs%c(1:cs%n)%k_open * (cs%c(1:cs%n)%gap - cd%gap_start)**2)
+  end function condensed_energy
 
   !> u(contact equations) = u0 + x2.
   subroutine add_contact_part(cd, dm, u)

@@ -11,13 +11,16 @@
 module condensed_equilibrium
   use kinds, only: dp
   use model, only: model_t
-  use contact, only: contact_set_t, contact_forces, contact_switch
+  use contact, only: contact_set_t, contact_forces
+  use contact_status, only: contact_switch, begin_status_search, contact_energy
   use assembly, only: body_t, body_forces, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_analyse, factor_singular
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
-                               condensed_recover, condensed_correct, contact_part_forces, add_body_forces
-  use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, report_iteration, describe, singular
+                               condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
+                               condensed_energy
+  use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, report_iteration, describe, singular, &
+                                contact_force_scale
   use analysis_events, only: observer_ref_t, tell_note, wall_time
   implicit none
   private
@@ -51,7 +54,7 @@ contains
     integer :: it, nchanged
     logical :: whole                    ! u holds every equation's solution
     logical :: finite
-    real(dp) :: scale, fext_norm
+    real(dp) :: scale, fext_norm, energy
     ok = .false.
     cs%stabilised = .false.
     eq%stabilisation_used = .false.
@@ -59,6 +62,7 @@ contains
     allocate(fold(eq%cd%m))
     call begin(eq, m, body, dm, sys, fext, u)
     fext_norm = norm2(fext)
+    call begin_status_search(eq%search)
     whole = .false.
     do it = 1, m%contact_max_iter
       if (whole) then
@@ -71,7 +75,9 @@ contains
         if (.not. finite) call check_finite(m, is, inc, u)
       end if
       call contact_part_forces(eq%cd, m, cs, dm, u, fold, eq%counts%coupling)
-      call contact_switch(m, cs, nchanged, eq%changed)
+      ! the potential energy of this status's solution, eqs. (1) and (9)
+      energy = condensed_energy(eq%cd, dm, cs, u) + contact_energy(cs)
+      call contact_switch(m, cs, eq%search, contact_force_scale(eq, cs, fext_norm), energy, nchanged, eq%changed)
       if (nchanged > 0) then
         if (whole) u = eq%cd%u0          ! the next solve starts from the increment's start
         whole = .false.
@@ -84,6 +90,7 @@ contains
       if (nchanged == 0 .and. cs%stabilised) then
         ! settled while stabilised: on with the nominal open penalty
         cs%stabilised = .false.
+        call begin_status_search(eq%search)
         u = eq%cd%u0
         whole = .false.
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &

@@ -12,12 +12,13 @@
 module equilibrium
   use kinds, only: dp
   use model, only: model_t
-  use contact, only: contact_set_t, contact_switch
+  use contact, only: contact_set_t
+  use contact_status, only: contact_switch, begin_status_search, contact_energy
   use assembly, only: body_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
-                                report_iteration, describe, singular
+                                report_iteration, describe, singular, contact_force_scale
   use condensed_equilibrium, only: solve_condensed
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
   use messages, only: warn
@@ -82,13 +83,14 @@ contains
     real(dp), allocatable :: fint(:, :)
     integer :: it, a, d, nchanged
     logical :: restabilised
-    real(dp) :: scale
+    real(dp) :: scale, energy
     allocate(fint(2, m%nn))
     ok = .false.
     cs%stabilised = .false.
     eq%stabilisation_used = .false.
     call expand_dependent(dm, u)
     call internal_forces(m, body, cs, u, fint, eq%counts)
+    call begin_status_search(eq%search)
     do it = 1, m%contact_max_iter
       call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised)
       if (restabilised) call internal_forces(m, body, cs, u, fint, eq%counts)
@@ -101,8 +103,10 @@ contains
       end do
       call expand_dependent(dm, u)
       call check_finite(m, is, inc, u)
-      call internal_forces(m, body, cs, u, fint, eq%counts)
-      call contact_switch(m, cs, nchanged, eq%changed)
+      call internal_forces(m, body, cs, u, fint, eq%counts, energy)
+      ! the potential energy of this status's solution, eqs. (1) and (9)
+      energy = energy - sum(fext * u) + contact_energy(cs)
+      call contact_switch(m, cs, eq%search, contact_force_scale(eq, cs, norm2(fext)), energy, nchanged, eq%changed)
       ! the residual of the new status
       if (nchanged > 0) call internal_forces(m, body, cs, u, fint, eq%counts)
       rf = fint - fext
@@ -113,6 +117,7 @@ contains
       if (nchanged == 0 .and. cs%stabilised) then
         ! settled while stabilised: on with the nominal open penalty
         cs%stabilised = .false.
+        call begin_status_search(eq%search)
         call internal_forces(m, body, cs, u, fint, eq%counts)
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
                             'iterating on with the nominal one')

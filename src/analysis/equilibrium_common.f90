@@ -10,6 +10,7 @@ module equilibrium_common
   use strings, only: itoa
   use model, only: model_t
   use contact, only: contact_set_t, contact_forces
+  use contact_status, only: status_search_t
   use assembly, only: element_counts_t, body_t, body_forces
   use dof_numbering, only: dofmap_t
   use linear_solver, only: linear_system_t, sys_describe
@@ -20,7 +21,7 @@ module equilibrium_common
   implicit none
   private
   public :: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, report_iteration, &
-            describe, singular
+            describe, singular, contact_force_scale
 
   type :: equilibrium_t
     ! factor reuse policy: the factor is valid for the statuses it was made for
@@ -50,6 +51,9 @@ module equilibrium_common
     !> the average force of the history.
     real(dp) :: force_history = 0.0_dp
     character(len=:), allocatable :: changed   ! slave nodes that switched last
+    !> The contact status search of the increment (contact_status), with
+    !> the pivots of the step.
+    type(status_search_t) :: search
     real(dp), allocatable :: rhs(:)
     !> The last converged displacements and the bodies' internal forces
     !> there: the condensed solve starts an increment from them (the free
@@ -78,19 +82,23 @@ contains
       eq%factorisations = 0
       eq%condensed_factorisations = 0
       eq%iterations = 0
+      eq%search = status_search_t()
     end if
   end subroutine begin_equilibrium
 
   !> f_int of the bodies (stored stiffness) and of the CFEs (which also
-  !> updates their gaps and forces).
-  subroutine internal_forces(m, body, cs, u, fint, counts)
+  !> updates their gaps and forces); energy, if present, the bodies'
+  !> strain energy 1/2 u . f_body.
+  subroutine internal_forces(m, body, cs, u, fint, counts, energy)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     type(contact_set_t), intent(inout) :: cs
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(out) :: fint(:, :)
     type(element_counts_t), intent(inout) :: counts
+    real(dp), intent(out), optional :: energy
     call body_forces(m, body, u, fint)
+    if (present(energy)) energy = 0.5_dp * sum(u * fint)
     call contact_forces(m, cs, u, fint, counts%coupling)
   end subroutine internal_forces
 
@@ -110,6 +118,15 @@ contains
               1.0e-6_dp * kmax * maxval(abs(u)), tiny(1.0_dp))
     r = norm2(pack(rf, dm%eq > 0)) / max(ref, history)
   end function relative_residual
+
+  !> The force scale that the contact status search judges round-off
+  !> against: loads, contact forces and the forces of the history.
+  real(dp) function contact_force_scale(eq, cs, fext_norm) result(f)
+    type(equilibrium_t), intent(in) :: eq
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: fext_norm
+    f = max(fext_norm, sum(abs(cs%c(1:cs%n)%force)), eq%force_history, tiny(1.0_dp))
+  end function contact_force_scale
 
   !> Stops if a displacement is not a finite number.
   subroutine check_finite(m, is, inc, u)

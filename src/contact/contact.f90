@@ -1,8 +1,8 @@
 !> Contact with coupling finite elements: the search that couples each
 !> slave point with the master element edge under it (eq. 8's initial
 !> gap), the slave points' areas, penalties, the open/closed status of
-!> every CFE and its switching rule (section 5), the re-search on the
-!> deformed configuration, and the CFE forces at given displacements.
+!> every CFE (decided by contact_status), the re-search on the deformed
+!> configuration, and the CFE forces at given displacements.
 !>
 !> Slave points: the nodes of a node surface, and of an element surface
 !> with straight (2-node) faces, each with its tributary area (node-to-
@@ -31,7 +31,7 @@ module contact
   implicit none
   private
   public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
-            contact_switch, coupling_node, cfe_nodes
+            coupling_node, cfe_nodes, cfe_label, open_penalty
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -48,8 +48,6 @@ module contact
   !> A projection this far outside [0, 1] along an edge still counts: it
   !> catches slave nodes exactly above a master vertex.
   real(dp), parameter :: edge_tol = 1.0e-6_dp
-  !> Status changes named in a message.
-  integer, parameter :: max_named = 20
   !> Open penalty (fraction of the closed one) while a body that only open
   !> contact holds is being brought into contact; see contact_set_t.
   real(dp), parameter :: stabilised_open_ratio = 1.0e-6_dp
@@ -69,6 +67,7 @@ module contact
     real(dp) :: normal(2) = 0.0_dp   ! outward unit normal of the master edge
     real(dp) :: gap0(2) = 0.0_dp     ! [[U]]_0 = X_slave - X_C
     real(dp) :: area = 0.0_dp        ! tributary area of the coupling point
+    real(dp) :: h = 0.0_dp           ! mesh length at the coupling point (slave or master edge)
     real(dp) :: k_closed = 0.0_dp    ! normal penalty of the CFE (force/length)
     real(dp) :: k_open = 0.0_dp
     logical :: closed = .false.
@@ -413,6 +412,7 @@ contains
       c%area = sum(edge_areas(ref))
       hm = len / (ed%nn - 1)
     end if
+    c%h = hm
     c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, hm, c%ns > 1)
     c%k_open = m%pairs(ip)%open_ratio * c%k_closed
     ! [[U]]_0 between the reference positions of the slave point and of
@@ -545,12 +545,19 @@ contains
     ein%closed = c%closed
     if (c%closed) then
       ein%penalty = c%k_closed
-    else if (stabilised) then
-      ein%penalty = max(c%k_open, stabilised_open_ratio * c%k_closed)
     else
-      ein%penalty = c%k_open
+      ein%penalty = open_penalty(c, stabilised)
     end if
   end subroutine cfe_input
+
+  !> Purpose: the penalty of CFE c while open (stabilised: see
+  !> contact_set_t).
+  pure real(dp) function open_penalty(c, stabilised)
+    type(cfe_t), intent(in) :: c
+    logical, intent(in) :: stabilised
+    open_penalty = c%k_open
+    if (stabilised) open_penalty = max(c%k_open, stabilised_open_ratio * c%k_closed)
+  end function open_penalty
 
   !> Purpose: evaluates every CFE at displacements u with its current
   !> status: stores its gap and normal force and adds its internal force
@@ -575,28 +582,4 @@ contains
       cs%c(j)%force = eout%normal_force
     end do
   end subroutine contact_forces
-
-  !> Purpose: penalty switching (section 5): a compressive normal force
-  !> (negative gap) closes a CFE, a tensile one opens it.
-  !> Arguments: nchanged status changes; changed the user ids of the first
-  !> slave nodes that switched, for messages.
-  subroutine contact_switch(m, cs, nchanged, changed)
-    type(model_t), intent(in) :: m
-    type(contact_set_t), intent(inout) :: cs
-    integer, intent(out) :: nchanged
-    character(len=:), allocatable, intent(out) :: changed
-    logical :: closed
-    integer :: j
-    nchanged = 0
-    changed = ''
-    do j = 1, cs%n
-      closed = cs%c(j)%gap < 0.0_dp
-      if (closed .neqv. cs%c(j)%closed) then
-        nchanged = nchanged + 1
-        if (nchanged <= max_named) changed = changed // ' ' // cfe_label(m, cs%c(j))
-        cs%c(j)%closed = closed
-      end if
-    end do
-    if (nchanged > max_named) changed = changed // ' ...'
-  end subroutine contact_switch
 end module contact

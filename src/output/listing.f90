@@ -212,6 +212,8 @@ contains
     write(u, '(a,i0)') 'numeric_factorisations ', summary%factorisations
     write(u, '(a,i0)') 'condensed_factorisations ', summary%condensed_factorisations
     write(u, '(a,i0)') 'contact_iterations ', summary%iterations
+    write(u, '(a,i0)') 'contact_block_pivots ', summary%block_pivots
+    write(u, '(a,i0)') 'contact_single_pivots ', summary%single_pivots
     write(u, '(a,i0)') 'element_calls_continuum_stiffness ', summary%continuum_tangent
     write(u, '(a,i0)') 'element_calls_continuum_stresses ', summary%continuum_stresses
     write(u, '(a,i0)') 'element_calls_coupling ', summary%coupling

@@ -1,0 +1,186 @@
+!> The contact status of an increment, decided by a method that
+!> terminates.
+!>
+!> For a fixed open/closed status the equilibrium of an increment is
+!> linear (small strain, linear bodies, penalty CFEs). Which status is
+!> the right one is a linear complementarity problem (LCP). Condensed on
+!> the contact equations (docs/contact.md), with S0 the stiffness of the
+!> bodies and every CFE open, b_c = B_e^T n of CFE c (eq. 4) and
+!> d_c = k_closed - k_open, the closed CFEs' forces beyond their open
+!> force, lambda_c = -d_c gh_c, satisfy
+!>   lambda >= 0,  w = q + M lambda >= 0,  lambda_c w_c = 0,
+!>   M = B^T S0^-1 B + diag(1/d_c),
+!> where w_c = gh_c for an open CFE and gh_c is the CFE's shifted gap
+!>   gh = g + k_open g0 / d          (g0 = n . [[U]]_0, eq. 8),
+!> the gap at which the closed force (eq. 9, k_closed g) equals the open
+!> one (k_open (g - g0): relative motion only): the status switches where
+!> the force is continuous, which makes the problem an LCP. M is
+!> symmetric positive definite (S0 is, and d_c > 0), so the LCP has one
+!> solution (a P-matrix), whatever holds the bodies.
+!>
+!> An equilibrium iteration that solves the status's linear system and
+!> then changes the status of every CFE whose complementarity is violated
+!> (closed in tension: gh > 0; open and penetrating: gh < 0) is block
+!> principal pivoting on that LCP (Kostreva 1978), the penalty switching
+!> of the paper's section 5. It is fast but may cycle. Judice & Pires
+!> (1994, "A block principal pivoting algorithm for large-scale strictly
+!> monotone linear complementarity problems", Computers & Operations
+!> Research 21, 587-596) make it terminate: block pivots while a merit of
+!> the status keeps reaching a new best; after max_block_tries block
+!> pivots without one, single pivots by Murty's least-index rule (Murty
+!> 1974: change only the violated CFE of least index), which terminates
+!> for any P-matrix, until the merit reaches a new best again. Any merit
+!> that is a function of the status alone serves the argument (a new
+!> best cannot repeat a status, and there are finitely many): Judice and
+!> Pires count the violated CFEs; here it is the total potential energy
+!> Pi of the status's solution (bodies, loads and CFEs; eqs. 1 and 9),
+!> whose minimum over all displacements is the LCP's solution. The count
+!> misleads where a contact zone shrinks from too many closed points (it
+!> stays at one or two while the zone peels, and the least-index rule
+!> then peels one point per iteration); the energy falls steadily there.
+!> So the status search ends after finitely many iterations with the
+!> LCP's solution, for any number of CFEs and however the bodies are held
+!> (supports, contact alone, clearance).
+!>
+!> Round-off: a CFE whose shifted gap is zero to the round-off of the
+!> problem is settled in either state: it is not counted as violated when
+!> |gh| <= round_off * min(h, F / d), h the mesh length at the point and
+!> F the force scale of the increment (loads, contact forces, forces
+!> carried so far). Its force either way is then below round_off * F,
+!> and its gap below round_off * h: either status gives the same answer to
+!> the round-off of the problem, and a decision there no longer depends on
+!> the BLAS kernel. The tolerance changes no answer beyond that.
+module contact_status
+  use kinds, only: dp
+  use model, only: model_t
+  use contact, only: contact_set_t, cfe_label, open_penalty
+  implicit none
+  private
+  public :: status_search_t, begin_status_search, contact_switch, shifted_gap, contact_energy
+
+  !> Relative round-off under which gap and force count as zero.
+  real(dp), parameter :: round_off = 1.0e-10_dp
+  !> Block pivots allowed without a new fewest number of violated CFEs
+  !> before single pivots take over (Judice & Pires' p).
+  integer, parameter :: max_block_tries = 3
+  !> Status changes named in a message.
+  integer, parameter :: max_named = 20
+
+  !> The state of one increment's status search, and the pivots made
+  !> since it was made: block (every violated CFE changes) and single (the
+  !> least-index rule).
+  type :: status_search_t
+    real(dp) :: best = huge(1.0_dp)     ! lowest potential energy so far
+    integer :: tries = max_block_tries  ! block pivots left without a new best
+    integer :: block_pivots = 0, single_pivots = 0
+  end type status_search_t
+
+contains
+
+  !> Purpose: a new status search (a new increment, or a new LCP: the
+  !> open penalty changed); the pivot counts go on.
+  pure subroutine begin_status_search(ss)
+    type(status_search_t), intent(inout) :: ss
+    ss%best = huge(1.0_dp)
+    ss%tries = max_block_tries
+  end subroutine begin_status_search
+
+  !> Purpose: the shifted gap gh of CFE j at its last evaluation (see the
+  !> module's comment): where the closed and the open force are equal.
+  pure real(dp) function shifted_gap(cs, j) result(gh)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: j
+    real(dp) :: ko, d
+    associate(c => cs%c(j))
+      ko = open_penalty(c, cs%stabilised)
+      d = c%k_closed - ko
+      gh = c%gap
+      if (d > 0.0_dp) gh = c%gap + ko * dot_product(c%normal, c%gap0) / d
+    end associate
+  end function shifted_gap
+
+  !> Purpose: one pivot of the status search after the equilibrium of the
+  !> current status has been solved and every CFE evaluated (its gap):
+  !> block or single principal pivot (module comment).
+  !> Arguments: force_scale the force scale F of the increment (> 0);
+  !> energy the potential energy of the current status's solution (up to
+  !> a constant of the increment: see contact_energy); nchanged the
+  !> status changes (0: the status solves the LCP); changed the names of
+  !> the first CFEs that changed, for messages.
+  subroutine contact_switch(m, cs, ss, force_scale, energy, nchanged, changed)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    type(status_search_t), intent(inout) :: ss
+    real(dp), intent(in) :: force_scale, energy
+    integer, intent(out) :: nchanged
+    character(len=:), allocatable, intent(out) :: changed
+    logical :: violated(cs%n)
+    integer :: j, nviol
+    do j = 1, cs%n
+      violated(j) = is_violated(cs, j, force_scale)
+    end do
+    nviol = count(violated)
+    nchanged = 0
+    changed = ''
+    if (nviol == 0) return
+    if (energy < ss%best) then
+      ss%best = energy
+      ss%tries = max_block_tries
+    else
+      ss%tries = ss%tries - 1
+    end if
+    if (ss%tries >= 0) then
+      ss%block_pivots = ss%block_pivots + 1
+    else
+      ! Murty's least-index rule: only the first violated CFE changes
+      ss%single_pivots = ss%single_pivots + 1
+      violated(findloc(violated, .true., dim=1) + 1:) = .false.
+      ss%tries = -1
+    end if
+    do j = 1, cs%n
+      if (.not. violated(j)) cycle
+      nchanged = nchanged + 1
+      if (nchanged <= max_named) changed = changed // ' ' // cfe_label(m, cs%c(j))
+      cs%c(j)%closed = .not. cs%c(j)%closed
+    end do
+    if (nchanged > max_named) changed = changed // ' ...'
+  end subroutine contact_switch
+
+  !> Purpose: the CFEs' share of the potential energy at their last
+  !> evaluation: per CFE, the open state's energy 1/2 k_open (n.B_e D_e)^2
+  !> (relative motion only) plus 1/2 (k_closed - k_open) min(0, gh)^2.
+  !> Its gradient is each CFE's force in the state its shifted gap
+  !> gives (eq. 9 closed), so bodies' energy, loads' work and this sum make
+  !> the potential whose minimum solves the LCP.
+  pure real(dp) function contact_energy(cs) result(e)
+    type(contact_set_t), intent(in) :: cs
+    integer :: j
+    real(dp) :: ko
+    e = 0.0_dp
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        ko = open_penalty(c, cs%stabilised)
+        e = e + 0.5_dp * ko * (c%gap - dot_product(c%normal, c%gap0))**2 + &
+            0.5_dp * max(c%k_closed - ko, 0.0_dp) * min(0.0_dp, shifted_gap(cs, j))**2
+      end associate
+    end do
+  end function contact_energy
+
+  !> Is CFE j's complementarity violated beyond round-off: closed and in
+  !> tension, or open and penetrating?
+  logical function is_violated(cs, j, force_scale)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: j
+    real(dp), intent(in) :: force_scale
+    real(dp) :: gh, tol
+    associate(c => cs%c(j))
+      gh = shifted_gap(cs, j)
+      tol = round_off * min(c%h, force_scale / max(c%k_closed - open_penalty(c, cs%stabilised), tiny(1.0_dp)))
+      if (c%closed) then
+        is_violated = gh > tol
+      else
+        is_violated = gh < -tol
+      end if
+    end associate
+  end function is_violated
+end module contact_status
