@@ -155,12 +155,20 @@ def load_case(folder):
 
 
 def example_seeds():
+    """The self-contained examples. A deck that *INCLUDEs a file the folder
+    does not hold (a gmsh mesh made from its .geo, e.g. sphere_on_block) is
+    left out: its mesh is too large for quick mutants, and the Hertz seeds
+    already carry a gmsh mesh."""
     seeds = []
     folder = os.path.join(ROOT, "input", "examples")
     for name in sorted(os.listdir(folder)):
         if name.endswith(".inp"):
             with open(os.path.join(folder, name), "rb") as f:
-                seeds.append(Deck("examples/" + name[:-4], name, {name: f.read()}))
+                text = f.read()
+            includes = re.findall(rb"(?im)^\*\s*INCLUDE\s*,\s*INPUT\s*=\s*([^,\r\n]+)", text)
+            if any(not os.path.exists(os.path.join(folder, inc.strip().decode())) for inc in includes):
+                continue
+            seeds.append(Deck("examples/" + name[:-4], name, {name: text}))
     return seeds
 
 
