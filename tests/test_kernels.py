@@ -193,6 +193,19 @@ def needs_gmsh():
         raise Skip("gmsh is not installed")
 
 
+def meshed_example(base, order):
+    """input/examples/<base>.inp with its mesh made by gmsh from <base>.geo
+    (as tests/test_settle_decks.py meshes it)."""
+    def build(d):
+        needs_gmsh()
+        import test_settle_decks
+        test_settle_decks.mesh(os.path.join(ROOT, "input", "examples", base + ".geo"), d, order)
+        path = os.path.join(d, base + ".inp")
+        shutil.copy(os.path.join(ROOT, "input", "examples", base + ".inp"), path)
+        return path
+    return build
+
+
 def hertz_point(order, h):
     def build(d):
         needs_gmsh()
@@ -327,6 +340,10 @@ DECKS = [
      from_text(equation_contact("CONDENSED"), "equation_contact")),
     ("equation_contact_full", "the same with CONTACT SOLVE=FULL",
      from_text(equation_contact("FULL"), "equation_contact_full")),
+    ("sphere_on_block", "input/examples/sphere_on_block.inp: a sphere pushed by a pressure, held only by "
+     "contact and its axis, SURFACE TO SURFACE two-pass", meshed_example("sphere_on_block", 1)),
+    ("hanging_plate", "input/examples/hanging_plate.inp: a CPS8 plate hanging on three pins with clearance "
+     "(stabilised search, then the nominal one; full solve)", meshed_example("hanging_plate", 2)),
 ]
 
 # Families not compared as numbers: the unsettled deck completes only its
