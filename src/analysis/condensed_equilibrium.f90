@@ -51,7 +51,7 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), allocatable :: fold(:)
-    integer :: it, its, nchanged
+    integer :: it, nchanged
     logical :: whole                    ! u holds every equation's solution
     logical :: finite, usable
     real(dp) :: scale, fext_norm, energy
@@ -65,11 +65,9 @@ contains
     call begin_status_search(eq%search)
     whole = .false.
     it = 0
-    its = 0
     ! MAXIT counts the iterations of each status search
-    do while (its < m%contact_max_iter)
+    do while (eq%search%iterations < m%contact_max_iter)
       it = it + 1
-      its = its + 1
       if (whole) then
         ! settled but not yet in balance: a correction with the same matrix
         call correct(eq, m, dm, sys, fext, rf, u)
@@ -100,7 +98,6 @@ contains
         ! settled while stabilised: a new search with the nominal open penalty
         cs%stabilised = .false.
         call begin_status_search(eq%search)
-        its = 0
         u = eq%cd%u0
         whole = .false.
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
@@ -272,8 +269,10 @@ contains
     end if
     call dense_status(eq, m, cs, dm, body, status, bad)
     if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
+      ! a new problem (the open penalty changed): a new search
       cs%stabilised = .true.
       eq%stabilisation_used = .true.
+      call begin_status_search(eq%search)
       call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                           'until the status settles')
       call dense_status(eq, m, cs, dm, body, status, bad)

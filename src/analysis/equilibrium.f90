@@ -81,7 +81,7 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), allocatable :: fint(:, :)
-    integer :: it, its, a, d, nchanged
+    integer :: it, a, d, nchanged
     logical :: restabilised, usable
     real(dp) :: scale, energy
     allocate(fint(2, m%nn))
@@ -92,11 +92,9 @@ contains
     call internal_forces(m, body, cs, u, fint, eq%counts)
     call begin_status_search(eq%search)
     it = 0
-    its = 0
     ! MAXIT counts the iterations of each status search
-    do while (its < m%contact_max_iter)
+    do while (eq%search%iterations < m%contact_max_iter)
       it = it + 1
-      its = its + 1
       call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable)
       if (.not. usable) then
         call take_back(eq, m, cs, dm, obs)
@@ -128,7 +126,6 @@ contains
         ! settled while stabilised: a new search with the nominal open penalty
         cs%stabilised = .false.
         call begin_status_search(eq%search)
-        its = 0
         call internal_forces(m, body, cs, u, fint, eq%counts)
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
                             'iterating on with the nominal one')
@@ -171,8 +168,10 @@ contains
     end if
     call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
     if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
+      ! a new problem (the open penalty changed): a new search
       cs%stabilised = .true.
       eq%stabilisation_used = .true.
+      call begin_status_search(eq%search)
       restabilised = .true.
       call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                           'until the status settles')

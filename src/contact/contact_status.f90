@@ -73,6 +73,7 @@ module contact_status
     real(dp) :: best = huge(1.0_dp)     ! lowest potential energy so far
     integer :: tries = max_block_tries  ! block pivots left without a new best
     integer :: block_pivots = 0, single_pivots = 0
+    integer :: iterations = 0           ! of the current search
     !> The last pivot: the status before it, the CFEs violated there, and
     !> the CFE a single pivot changed (0 for a block pivot), so that a
     !> pivot to a status that cannot be factored can be taken back.
@@ -90,6 +91,7 @@ contains
     ss%best = huge(1.0_dp)
     ss%tries = max_block_tries
     ss%pivoted = .false.
+    ss%iterations = 0
   end subroutine begin_status_search
 
   !> Purpose: the shifted gap gh of CFE j at its last evaluation (see the
@@ -123,6 +125,7 @@ contains
     character(len=:), allocatable, intent(out) :: changed
     logical :: violated(cs%n)
     integer :: j, nviol
+    ss%iterations = ss%iterations + 1
     do j = 1, cs%n
       violated(j) = is_violated(cs, j, force_scale)
     end do
@@ -174,6 +177,7 @@ contains
     integer :: j
     found = .false.
     changed = ''
+    ss%iterations = ss%iterations + 1
     if (.not. ss%pivoted) return
     do j = ss%single + 1, cs%n
       if (ss%violated(j)) exit
