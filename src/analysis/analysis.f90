@@ -7,7 +7,7 @@ module analysis
   use kinds, only: dp
   use strings, only: itoa, rtoa
   use model
-  use contact, only: contact_set_t, contact_search, contact_research
+  use contact, only: contact_set_t, cfe_t, contact_search, contact_research, contact_commit
   use assembly, only: body_t, element_counts_t, body_setup
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
@@ -184,7 +184,7 @@ contains
     real(dp), intent(in) :: t0, t1
     type(interval_t), allocatable :: stack(:)
     type(interval_t) :: iv
-    logical, allocatable :: saved(:)
+    type(cfe_t), allocatable :: saved(:)
     logical :: ok
     integer :: top, iters
     real(dp) :: mid
@@ -195,15 +195,19 @@ contains
       iv = stack(top)
       top = top - 1
       if (rs%update_search .and. rs%inc + iv%level > 0) call research(m, rs)
-      saved = rs%cs%c(1:rs%cs%n)%closed
+      saved = rs%cs%c(1:rs%cs%n)
       call values_at(m, rs%ls, iv%t1, rs%u, rs%fext)
       call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, ok, iters)
       if (ok) then
+        ! the friction history of the converged increment
+        call contact_commit(rs%cs)
         rs%inc = rs%inc + 1
         call report(m, is, rs, obs, iv%t1, iters)
         cycle
       end if
-      rs%cs%c(1:rs%cs%n)%closed = saved
+      ! the statuses the increment started with (the friction history is
+      ! committed only by converged increments)
+      rs%cs%c(1:rs%cs%n) = saved
       mid = 0.5_dp * (iv%t0 + iv%t1)
       if (iv%level >= m%max_cutbacks .or. mid <= iv%t0 .or. mid >= iv%t1) then
         call tell_note(obs, 'contact status did not settle; nodes still switching:' // rs%eq%changed)

@@ -22,8 +22,8 @@ module condensed_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use model, only: model_t, carries_stiffness, elem_nodes
-  use solver_codes, only: solver_cholmod, contact_solve_full, contact_solve_condensed
-  use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces
+  use solver_codes, only: solver_cholmod, solver_umfpack, contact_solve_full, contact_solve_condensed
+  use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set
   use element_interface, only: elem_in_t, elem_out_t, max_en, max_edof, act_tangent
   use element_library, only: element_routine
   use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
@@ -32,6 +32,7 @@ module condensed_contact
   use linear_solver, only: linear_system_t, sys_condensed_factor, sys_trailing_order, sys_forward, sys_backward, &
                            sys_factor_flops, sys_nlast, factor_ok, factor_singular, pivot_ratio_min
   use dense_cholesky, only: dense_factor, dense_solve, upper_times, lower_gram
+  use dense_lu, only: lu_factor, lu_solve
   implicit none
   private
   public :: condensed_t, number_equations, condensed_factor_k0, condensed_status, condensed_begin, &
@@ -58,6 +59,10 @@ module condensed_contact
     !> diagonal in s0_diag), so that S's columns are copied contiguously.
     real(dp), allocatable :: l22(:, :), s0_diag(:)
     real(dp), allocatable :: s(:, :)    ! Cholesky factor of S of the current status (lower)
+    !> A sliding frictional CFE makes S unsymmetric: s then holds its LU
+    !> factors (whole matrix), ipiv the row interchanges.
+    logical :: lu = .false.
+    integer, allocatable :: ipiv(:)
     real(dp), allocatable :: diag22(:)  ! K0's diagonal on the contact equations
     real(dp), allocatable :: kdiag(:)   ! the diagonal of the current status
     real(dp), allocatable :: z(:)       ! (n) forward-solved right-hand side of the increment
@@ -79,7 +84,8 @@ contains
   !> for (m%contact_solve) and sets up the solver's structure: with the
   !> condensed solve the contact equations last, cd%active and cd%m say so.
   !> The full solve where the model says FULL, without coupling elements,
-  !> with a solver other than CHOLMOD, and (AUTO) where a dense
+  !> with a solver other than CHOLMOD (and with UMFPACK where friction may
+  !> make the matrix unsymmetric), and (AUTO) where a dense
   !> factorisation of the condensed matrix would not be cheaper than a
   !> sparse one of the whole (m comparable to n).
   !> Arguments: mpc the linear constraints (their dependent dofs
@@ -95,7 +101,7 @@ contains
     type(condensed_t), intent(inout) :: cd
     real(dp), intent(out) :: t_analyse
     logical, allocatable :: mask(:, :)
-    integer :: mc
+    integer :: mc, solver
     real(dp) :: flops
     integer(kind=8) :: c0, c1, rate
     t_analyse = 0.0_dp
@@ -121,7 +127,12 @@ contains
         end if
       end if
     end if
-    call number_dofs(m, cs, prescribed, m%solver, m%ordering, dm, sys, constraints=mpc)
+    ! A sliding frictional CFE makes the full matrix unsymmetric: the
+    ! symmetric backends (CHOLMOD, skyline) keep one triangle, so the full
+    ! solve of a frictional model takes UMFPACK, which keeps both.
+    solver = m%solver
+    if (frictional_set(cs)) solver = solver_umfpack
+    call number_dofs(m, cs, prescribed, solver, m%ordering, dm, sys, constraints=mpc)
   end subroutine number_equations
 
   !> The contact equations: free dofs on the diagonal of some CFE's closed
@@ -145,7 +156,10 @@ contains
     u = 0.0_dp
     do j = 1, cs%n
       c = cs%c(j)
+      ! closed and (with friction) sticking: every dof its B_e^T n or
+      ! B_e^T t reaches
       c%closed = .true.
+      c%sliding = .false.
       call cfe_input(m, c, u, .false., ein, nodes)
       call element_routine(act_tangent, ein, eout)
       kmax = 0.0_dp
@@ -331,9 +345,13 @@ contains
     integer, allocatable :: geq(:)
     integer :: j, a, b, pa, pb, ng, info
     real(dp) :: dk, ratio, kraw
+    ! S0: its diagonal and strict lower triangle; the whole matrix when a
+    ! sliding CFE's tangent is unsymmetric (never symmetrised)
+    cd%lu = any(cs%c(1:cs%n)%closed .and. cs%c(1:cs%n)%sliding)
     do b = 1, cd%m
       cd%s(b, b) = cd%s0_diag(b)
       cd%s(b + 1:cd%m, b) = cd%l22(b + 1:cd%m, b)
+      if (cd%lu) cd%s(b, b + 1:cd%m) = cd%l22(b + 1:cd%m, b)
     end do
     cd%kdiag = cd%diag22
     cd%kmax = kbody
@@ -345,7 +363,8 @@ contains
         if (pb == 0) cycle
         do a = 1, ng
           pa = cd%cfe_pos(a, j)
-          if (pa < pb) cycle               ! the lower triangle only
+          if (pa == 0) cycle
+          if (pa < pb .and. .not. cd%lu) cycle   ! the lower triangle only
           dk = kt(a, b) - cd%ke0(a, b, j)
           cd%s(pa, pb) = cd%s(pa, pb) + dk
           if (pa == pb) cd%kdiag(pa) = cd%kdiag(pa) + dk
@@ -354,7 +373,16 @@ contains
     end do
     status = factor_ok
     bad = 0
-    call dense_factor(cd%s, info)
+    if (cd%lu) then
+      if (.not. allocated(cd%ipiv)) allocate(cd%ipiv(cd%m))
+      if (size(cd%ipiv) /= cd%m) then
+        deallocate(cd%ipiv)
+        allocate(cd%ipiv(cd%m))
+      end if
+      call lu_factor(cd%s, cd%ipiv, info)
+    else
+      call dense_factor(cd%s, info)
+    end if
     if (info > 0) then
       status = factor_singular
       bad = cd%eq_at(info)
@@ -362,7 +390,14 @@ contains
     end if
     do a = 1, cd%m
       ratio = 0.0_dp
-      if (cd%kdiag(a) > 0.0_dp) ratio = cd%s(a, a)**2 / cd%kdiag(a)
+      ! the pivot relative to the diagonal entry (Cholesky: its square)
+      if (cd%kdiag(a) > 0.0_dp) then
+        if (cd%lu) then
+          ratio = abs(cd%s(a, a)) / cd%kdiag(a)
+        else
+          ratio = cd%s(a, a)**2 / cd%kdiag(a)
+        end if
+      end if
       if (ratio < pivot_ratio_min) then
         status = factor_singular
         bad = cd%eq_at(a)
@@ -501,7 +536,7 @@ contains
     call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
     cd%gap_start = cs%c(1:cs%n)%gap
     cd%x2 = cd%q0 - fc
-    call dense_solve(cd%s, cd%x2)
+    call solve_s(cd, cd%x2)
     finite = all(ieee_is_finite(cd%x2))
     call add_contact_part(cd, dm, u)
     if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
@@ -536,6 +571,17 @@ contains
     end do
     e = e - 0.5_dp * sum(cs%c(1:cs%n)%k_open * (cs%c(1:cs%n)%gap - cd%gap_start)**2)
   end function condensed_energy
+
+  !> x := S^-1 x with the factor of the current status.
+  subroutine solve_s(cd, x)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(inout) :: x(:)
+    if (cd%lu) then
+      call lu_solve(cd%s, cd%ipiv, x)
+    else
+      call dense_solve(cd%s, x)
+    end if
+  end subroutine solve_s
 
   !> u(contact equations) = u0 + x2.
   subroutine add_contact_part(cd, dm, u)
@@ -583,7 +629,7 @@ contains
     call sys_forward(sys, r)
     t = r(cd%n - cd%m + 1:cd%n)
     call upper_times(cd%l22, t, .true.)
-    call dense_solve(cd%s, t)
+    call solve_s(cd, t)
     call upper_times(cd%l22, t, .false.)
     r(cd%n - cd%m + 1:cd%n) = t
     call sys_backward(sys, r)

@@ -11,7 +11,7 @@
 module condensed_equilibrium
   use kinds, only: dp
   use model, only: model_t
-  use contact, only: contact_set_t, contact_forces
+  use contact, only: contact_set_t, contact_forces, status_codes
   use contact_status, only: contact_switch, begin_status_search, contact_energy
   use assembly, only: body_t, body_forces, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
@@ -265,7 +265,7 @@ contains
     integer :: status, bad
     usable = .true.
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
-      if (all(eq%factor_states .eqv. cs%c(1:cs%n)%closed)) return
+      if (all(eq%factor_states == status_codes(cs))) return
     end if
     call dense_status(eq, m, cs, dm, body, status, bad)
     if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
@@ -285,7 +285,7 @@ contains
     end if
     if (status == factor_singular) call singular(m, cs, dm, bad)
     eq%kmax = eq%cd%kmax
-    eq%factor_states = cs%c(1:cs%n)%closed
+    eq%factor_states = status_codes(cs)
     eq%factor_stabilised = cs%stabilised
     eq%factor_valid = .true.
   end subroutine condensed_factor_if_needed

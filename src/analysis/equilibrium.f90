@@ -12,7 +12,7 @@
 module equilibrium
   use kinds, only: dp
   use model, only: model_t
-  use contact, only: contact_set_t
+  use contact, only: contact_set_t, status_codes
   use contact_status, only: contact_switch, begin_status_search, contact_energy
   use assembly, only: body_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
@@ -164,7 +164,7 @@ contains
     usable = .true.
     ! (with every CFE closed, stabilising changes no penalty)
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
-      if (all(eq%factor_states .eqv. cs%c(1:cs%n)%closed)) return
+      if (all(eq%factor_states == status_codes(cs))) return
     end if
     call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
     if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
@@ -189,7 +189,7 @@ contains
       call warn(sys%note)
     end if
     call describe(eq, is, cs, sys, obs)
-    eq%factor_states = cs%c(1:cs%n)%closed
+    eq%factor_states = status_codes(cs)
     eq%factor_stabilised = cs%stabilised
     eq%factor_valid = .true.
   end subroutine factor_if_needed

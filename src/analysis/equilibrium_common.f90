@@ -26,7 +26,7 @@ module equilibrium_common
   type :: equilibrium_t
     ! factor reuse policy: the factor is valid for the statuses it was made for
     logical :: factor_valid = .false.
-    logical, allocatable :: factor_states(:)
+    integer, allocatable :: factor_states(:)   ! contact's status_codes
     logical :: factor_stabilised = .false.
     !> The stabilisation of open contact was used in this increment (once
     !> at most: singular again with the nominal open penalty means a body

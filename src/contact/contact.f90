@@ -31,7 +31,7 @@ module contact
   implicit none
   private
   public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
-            coupling_node, cfe_nodes, cfe_label, open_penalty
+            coupling_node, cfe_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -71,8 +71,19 @@ module contact
     real(dp) :: k_closed = 0.0_dp    ! normal penalty of the CFE (force/length)
     real(dp) :: k_open = 0.0_dp
     logical :: closed = .false.
+    !> Coulomb friction (mu = 0: none): tangential penalty (force/length);
+    !> a closed CFE sticks or slides (slip_sign: +-1 along the tangent
+    !> t = (-n_y, n_x)); anchor: the tangential relative displacement t.[[U]]
+    !> where a sticking CFE carries no tangential force, its slip so far
+    !> (committed at the end of each converged increment, as slip_total,
+    !> the accumulated slip, and slip_inc, the increment's slip).
+    real(dp) :: mu = 0.0_dp, k_tan = 0.0_dp
+    logical :: sliding = .false.
+    real(dp) :: slip_sign = 0.0_dp
+    real(dp) :: anchor = 0.0_dp, slip_total = 0.0_dp, slip_inc = 0.0_dp
     ! results of the last evaluation
     real(dp) :: gap = 0.0_dp, force = 0.0_dp
+    real(dp) :: slide = 0.0_dp, tforce = 0.0_dp    ! t.[[U]], tangential force
   end type cfe_t
 
   type :: contact_set_t
@@ -415,6 +426,8 @@ contains
     c%h = hm
     c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, hm, c%ns > 1)
     c%k_open = m%pairs(ip)%open_ratio * c%k_closed
+    c%mu = m%pairs(ip)%mu
+    if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
     ! [[U]]_0 between the reference positions of the slave point and of
     ! X_C: with a search on the deformed configuration, [[U]] of eq. (8)
     ! is then the current slave-to-X_C vector.
@@ -467,7 +480,8 @@ contains
 
   !> Purpose: UPDATE SEARCH: pair again on the deformed configuration x. A
   !> slave point keeps the status it had in the same pair (the same node,
-  !> or the same Gauss point of the same slave face).
+  !> or the same Gauss point of the same slave face), and its friction
+  !> history.
   subroutine contact_research(m, x, cs)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
@@ -483,6 +497,12 @@ contains
             old%c(q)%selem == cs%c(j)%selem .and. old%c(q)%sedge == cs%c(j)%sedge .and. &
             old%c(q)%sip == cs%c(j)%sip) then
           cs%c(j)%closed = old%c(q)%closed
+          ! friction: the new coupling is made where the point is now
+          ! (t.[[U]] = 0 there); its elastic tangential offset carries over
+          cs%c(j)%sliding = old%c(q)%sliding
+          cs%c(j)%slip_sign = old%c(q)%slip_sign
+          cs%c(j)%slip_total = old%c(q)%slip_total
+          cs%c(j)%anchor = old%c(q)%anchor - old%c(q)%slide
           exit
         end if
       end do
@@ -506,6 +526,17 @@ contains
       cfe_penalty = auto_penalty_factor * e / h * area
     end if
   end function cfe_penalty
+
+  !> Tangential (stick) penalty of one CFE: the pair's stick slope per
+  !> unit area times the CFE's area, or (no slope given) the normal
+  !> penalty, as CalculiX and Abaqus choose a stick stiffness of the order
+  !> of the normal one.
+  pure real(dp) function stick_penalty(pr, area, k_closed)
+    type(contact_pair_t), intent(in) :: pr
+    real(dp), intent(in) :: area, k_closed
+    stick_penalty = k_closed
+    if (pr%stick_slope > 0.0_dp) stick_penalty = pr%stick_slope * area
+  end function stick_penalty
 
   !> Purpose: the nodes of a CFE: slave nodes, then the master element's.
   pure subroutine cfe_nodes(m, c, nodes, nen)
@@ -548,6 +579,11 @@ contains
     else
       ein%penalty = open_penalty(c, stabilised)
     end if
+    ein%mu = c%mu
+    ein%k_tan = c%k_tan
+    ein%sliding = c%sliding
+    ein%slip_sign = c%slip_sign
+    ein%anchor = c%anchor
   end subroutine cfe_input
 
   !> Purpose: the penalty of CFE c while open (stabilised: see
@@ -580,6 +616,53 @@ contains
       end do
       cs%c(j)%gap = eout%gap
       cs%c(j)%force = eout%normal_force
+      cs%c(j)%slide = eout%slide
+      cs%c(j)%tforce = eout%tangential_force
     end do
   end subroutine contact_forces
+
+  !> Purpose: the status of every CFE as a code that says which tangent
+  !> it has: 0 open, 1 closed (sticking), 2 sliding along +t, 3 along -t.
+  pure function status_codes(cs) result(k)
+    type(contact_set_t), intent(in) :: cs
+    integer :: k(cs%n)
+    integer :: j
+    do j = 1, cs%n
+      k(j) = 0
+      if (cs%c(j)%closed) k(j) = 1
+      if (cs%c(j)%closed .and. cs%c(j)%sliding) k(j) = merge(2, 3, cs%c(j)%slip_sign > 0.0_dp)
+    end do
+  end function status_codes
+
+  !> Purpose: does any CFE carry friction?
+  pure logical function frictional_set(cs)
+    type(contact_set_t), intent(in) :: cs
+    frictional_set = any(cs%c(1:cs%n)%mu > 0.0_dp)
+  end function frictional_set
+
+  !> Purpose: commits the friction history of a converged increment
+  !> (after the last evaluation of every CFE): an open CFE's anchor
+  !> follows it (it touches again where it is), a sticking one keeps its
+  !> anchor, a sliding one moves its anchor by its slip, so that its
+  !> elastic tangential offset is the tangential force over the stick
+  !> penalty (the return mapping); slip_inc and slip_total take the slip.
+  subroutine contact_commit(cs)
+    type(contact_set_t), intent(inout) :: cs
+    integer :: j
+    real(dp) :: new_anchor
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        c%slip_inc = 0.0_dp
+        if (c%mu <= 0.0_dp) cycle
+        if (.not. c%closed) then
+          c%anchor = c%slide
+        else if (c%sliding) then
+          new_anchor = c%slide - c%tforce / c%k_tan
+          c%slip_inc = new_anchor - c%anchor
+          c%slip_total = c%slip_total + abs(c%slip_inc)
+          c%anchor = new_anchor
+        end if
+      end associate
+    end do
+  end subroutine contact_commit
 end module contact

@@ -53,7 +53,7 @@
 module contact_status
   use kinds, only: dp
   use model, only: model_t
-  use contact, only: contact_set_t, cfe_label, open_penalty
+  use contact, only: contact_set_t, cfe_label, open_penalty, frictional_set
   implicit none
   private
   public :: status_search_t, begin_status_search, contact_switch, reject_pivot, shifted_gap, contact_energy
@@ -78,7 +78,8 @@ module contact_status
     !> the CFE a single pivot changed (0 for a block pivot), so that a
     !> pivot to a status that cannot be factored can be taken back.
     logical :: pivoted = .false.
-    logical, allocatable :: before(:), violated(:)
+    logical, allocatable :: before(:), before_sliding(:), violated(:)
+    real(dp), allocatable :: before_sign(:)
     integer :: single = 0
   end type status_search_t
 
@@ -123,43 +124,103 @@ contains
     real(dp), intent(in) :: force_scale, energy
     integer, intent(out) :: nchanged
     character(len=:), allocatable, intent(out) :: changed
-    logical :: violated(cs%n)
+    logical :: violated(cs%n), frictional
     integer :: j, nviol
     ss%iterations = ss%iterations + 1
+    frictional = frictional_set(cs)
     do j = 1, cs%n
       violated(j) = is_violated(cs, j, force_scale)
     end do
     nviol = count(violated)
     nchanged = 0
     changed = ''
-    if (nviol == 0) return
-    ss%pivoted = .true.
-    ss%before = cs%c(1:cs%n)%closed
-    ss%violated = violated
-    ss%single = 0
-    if (energy < ss%best) then
-      ss%best = energy
-      ss%tries = max_block_tries
-    else
-      ss%tries = ss%tries - 1
+    if (nviol > 0) then
+      ss%pivoted = .true.
+      ss%before = cs%c(1:cs%n)%closed
+      ss%before_sliding = cs%c(1:cs%n)%sliding
+      ss%before_sign = cs%c(1:cs%n)%slip_sign
+      ss%violated = violated
+      ss%single = 0
+      if (energy < ss%best .or. frictional) then
+        ! (Coulomb friction has no potential: block pivots only)
+        ss%best = energy
+        ss%tries = max_block_tries
+      else
+        ss%tries = ss%tries - 1
+      end if
+      if (ss%tries >= 0) then
+        ss%block_pivots = ss%block_pivots + 1
+      else
+        ! Murty's least-index rule: only the first violated CFE changes
+        ss%single_pivots = ss%single_pivots + 1
+        ss%single = findloc(violated, .true., dim=1)
+        violated(ss%single + 1:) = .false.
+        ss%tries = -1
+      end if
+      do j = 1, cs%n
+        if (.not. violated(j)) cycle
+        call note_change(m, cs, j, nchanged, changed)
+        cs%c(j)%closed = .not. cs%c(j)%closed
+      end do
     end if
-    if (ss%tries >= 0) then
-      ss%block_pivots = ss%block_pivots + 1
-    else
-      ! Murty's least-index rule: only the first violated CFE changes
-      ss%single_pivots = ss%single_pivots + 1
-      ss%single = findloc(violated, .true., dim=1)
-      violated(ss%single + 1:) = .false.
-      ss%tries = -1
-    end if
-    do j = 1, cs%n
-      if (.not. violated(j)) cycle
-      nchanged = nchanged + 1
-      if (nchanged <= max_named) changed = changed // ' ' // cfe_label(m, cs%c(j))
-      cs%c(j)%closed = .not. cs%c(j)%closed
-    end do
+    if (frictional) call return_mapping(m, cs, force_scale, nchanged, changed)
     if (nchanged > max_named) changed = changed // ' ...'
   end subroutine contact_switch
+
+  !> One more changed CFE, named in changed while there are few.
+  subroutine note_change(m, cs, j, nchanged, changed)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: j
+    integer, intent(inout) :: nchanged
+    character(len=:), allocatable, intent(inout) :: changed
+    nchanged = nchanged + 1
+    if (nchanged <= max_named) changed = changed // ' ' // cfe_label(m, cs%c(j))
+  end subroutine note_change
+
+  !> Coulomb's law on every closed frictional CFE (after the normal
+  !> pivot): the return mapping of the increment. The trial tangential
+  !> force k_t (t.[[U]] - anchor), from the anchor committed at the end of
+  !> the last increment, sticks while it lies within mu times the normal
+  !> force N = -k_closed g, and slides along its sign otherwise (the
+  !> sliding force is then mu N). A sliding CFE keeps sliding while its
+  !> trial force exceeds mu N in its direction, to round-off. Open CFEs
+  !> neither stick nor slide.
+  subroutine return_mapping(m, cs, force_scale, nchanged, changed)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    real(dp), intent(in) :: force_scale
+    integer, intent(inout) :: nchanged
+    character(len=:), allocatable, intent(inout) :: changed
+    real(dp) :: trial, limit, tol, sgn
+    logical :: slide
+    integer :: j
+    tol = round_off * force_scale
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        if (c%mu <= 0.0_dp) cycle
+        slide = .false.
+        sgn = 0.0_dp
+        if (c%closed) then
+          trial = c%k_tan * (c%slide - c%anchor)
+          limit = c%mu * max(-c%k_closed * c%gap, 0.0_dp)
+          if (c%sliding) then
+            ! slides on while the trial force exceeds the limit its way;
+            ! otherwise it sticks first (never reverses in one pivot,
+            ! which makes neighbouring points swing together)
+            slide = c%slip_sign * trial > limit - tol
+            if (slide) sgn = c%slip_sign
+          else if (abs(trial) > limit + tol) then
+            slide = .true.
+            sgn = sign(1.0_dp, trial)
+          end if
+        end if
+        if ((slide .neqv. c%sliding) .or. sgn /= c%slip_sign) call note_change(m, cs, j, nchanged, changed)
+        c%sliding = slide
+        c%slip_sign = sgn
+      end associate
+    end do
+  end subroutine return_mapping
 
   !> Purpose: takes back the last pivot, whose status cannot be factored
   !> (its stiffness is singular: a body it leaves held by open contact
@@ -185,6 +246,8 @@ contains
     if (j > cs%n) return
     found = .true.
     cs%c(1:cs%n)%closed = ss%before
+    cs%c(1:cs%n)%sliding = ss%before_sliding
+    cs%c(1:cs%n)%slip_sign = ss%before_sign
     cs%c(j)%closed = .not. cs%c(j)%closed
     ss%single = j
     ss%single_pivots = ss%single_pivots + 1

@@ -39,23 +39,41 @@ contains
 
   !> Purpose: element arrays of a coupling element.
   !> Arguments: action (act_tangent: K_e; act_residual: F_int, the
-  !> relative displacement, gap and normal force), ein, eout.
+  !> relative displacement, gap, normal force, slide and tangential
+  !> force), ein, eout.
+  !> Friction (ein%mu > 0, closed only): eq. (7)'s c gets a tangential
+  !> factor. Sticking, C = c_n n n^T + k_t t t^T and the tangential force
+  !> is k_t (t.[[U]] - anchor); sliding, the tangential force is
+  !> slip_sign mu times the normal pressure force -c_n g, whose
+  !> derivative makes K_e unsymmetric: -slip_sign mu c_n B^T t n^T B.
   pure subroutine cfe(action, ein, eout)
     integer, intent(in) :: action
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
-    real(dp) :: b(2, 2 * ein%nen), c(2, 2), rel(2)
+    real(dp) :: b(2, 2 * ein%nen), c(2, 2), rel(2), t(2), ft
     integer :: nd, i, j
     nd = 2 * ein%nen
     eout%ndof = nd
     eout%nip = 0
     call cfe_b_matrix(ein, b)
+    t = [-ein%normal(2), ein%normal(1)]
     ! eq. (7): C = R^T c R with c = diag(c_n, 0): only the normal penalty.
     do j = 1, 2
       do i = 1, 2
         c(i, j) = ein%penalty * ein%normal(i) * ein%normal(j)
       end do
     end do
+    if (frictional(ein)) then
+      do j = 1, 2
+        do i = 1, 2
+          if (ein%sliding) then
+            c(i, j) = c(i, j) - ein%slip_sign * ein%mu * ein%penalty * t(i) * ein%normal(j)
+          else
+            c(i, j) = c(i, j) + ein%k_tan * t(i) * t(j)
+          end if
+        end do
+      end do
+    end if
     ! eq. (10): K_e = B_e^T C B_e
     if (wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = matmul(transpose(b), matmul(c, b))
     if (wants(action, act_residual)) then
@@ -63,10 +81,24 @@ contains
       ! eq. (8): [[U]] = B_e D_e + [[U]]_0
       eout%jump = rel + ein%gap0
       eout%gap = dot_product(ein%normal, eout%jump)
+      eout%slide = dot_product(t, eout%jump)
       if (ein%closed) then
         ! eq. (9): F_int = B_e^T C B_e D_e + B_e^T C [[U]]_0 = B_e^T C [[U]]
         eout%normal_force = ein%penalty * eout%gap
-        eout%fe(1:nd) = matmul(transpose(b), matmul(c, eout%jump))
+        ft = 0.0_dp
+        if (frictional(ein)) then
+          if (ein%sliding) then
+            ft = -ein%slip_sign * ein%mu * eout%normal_force
+          else
+            ft = ein%k_tan * (eout%slide - ein%anchor)
+          end if
+        end if
+        eout%tangential_force = ft
+        if (frictional(ein)) then
+          eout%fe(1:nd) = matmul(transpose(b), eout%normal_force * ein%normal + ft * t)
+        else
+          eout%fe(1:nd) = matmul(transpose(b), matmul(c, eout%jump))
+        end if
       else
         ! The open state's small penalty (the paper's c -> 0) only resists
         ! relative motion: without the [[U]]_0 term an open element pulls
@@ -77,4 +109,10 @@ contains
       end if
     end if
   end subroutine cfe
+
+  !> Does the closed element carry friction?
+  pure logical function frictional(ein)
+    type(elem_in_t), intent(in) :: ein
+    frictional = ein%closed .and. ein%mu > 0.0_dp
+  end function frictional
 end module cfe_element

@@ -66,6 +66,14 @@ module element_interface
     !> the relative motion B_e D_e only, so that an open CFE carries no
     !> force at zero relative motion whatever its initial gap.
     logical :: closed = .true.
+    !> Coulomb friction of a closed coupling element (mu = 0: none): the
+    !> tangential penalty, sliding or sticking, the direction of sliding
+    !> (+-1 along t = (-n_y, n_x)) and the anchor, the tangential relative
+    !> displacement t.[[U]] at which a sticking element carries no
+    !> tangential force (its slip so far).
+    real(dp) :: mu = 0.0_dp, k_tan = 0.0_dp
+    logical :: sliding = .false.
+    real(dp) :: slip_sign = 0.0_dp, anchor = 0.0_dp
   end type elem_in_t
 
   type :: elem_out_t
@@ -81,6 +89,9 @@ module element_interface
     real(dp) :: jump(2) = 0.0_dp
     real(dp) :: gap = 0.0_dp
     real(dp) :: normal_force = 0.0_dp
+    !> and its tangential component t.[[U]] and tangential force (the
+    !> internal force's component along t)
+    real(dp) :: slide = 0.0_dp, tangential_force = 0.0_dp
     !> continuum element: the smallest det J (times r in axisymmetry) at
     !> its integration points; not positive means an invalid element
     real(dp) :: detj_min = 0.0_dp

@@ -34,11 +34,12 @@ contains
     real(dp) :: ratio
     card = p%i
     call allow_params(p, kw, 'PENALTY,OPEN PENALTY,NODAL,SEARCH DISTANCE,UPDATE SEARCH,TYPE,SYMMETRIC,' // &
-                      'INTERACTION,SMALL SLIDING,ADJUST')
+                      'INTERACTION,SMALL SLIDING,ADJUST,FRICTION,STICK SLOPE')
     two_pass = has_param(kw, 'SYMMETRIC') .or. surface_to_surface(p, kw)
     call pair_penalty(p, kw, c)
     c%open_ratio = param_real(p, kw, 'OPEN PENALTY', 1.0e-12_dp)
     if (c%open_ratio < 0.0_dp .or. c%open_ratio >= 1.0_dp) call err(p, 'OPEN PENALTY (a ratio) must lie in [0, 1)')
+    call pair_friction(p, kw, c)
     c%search_distance = param_real(p, kw, 'SEARCH DISTANCE', -1.0_dp)
     c%update_search = has_param(kw, 'UPDATE SEARCH') .or. &
         (has_param(kw, 'INTERACTION') .and. .not. two_pass .and. .not. has_param(kw, 'SMALL SLIDING'))
@@ -163,12 +164,29 @@ contains
     if (c%nodal .and. .not. has_param(kw, 'PENALTY')) call err(p, 'NODAL needs PENALTY=')
   end subroutine pair_penalty
 
+  !> cfe2d's own friction parameters of a pair: FRICTION= (the Coulomb
+  !> coefficient) and STICK SLOPE= (shear stress per unit slip); with
+  !> INTERACTION= the interaction's *FRICTION gives them.
+  subroutine pair_friction(p, kw, c)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    type(contact_pair_t), intent(inout) :: c
+    if (has_param(kw, 'INTERACTION') .and. (has_param(kw, 'FRICTION') .or. has_param(kw, 'STICK SLOPE'))) &
+      call err(p, 'give either INTERACTION= or FRICTION= (the interaction''s *FRICTION is the friction)')
+    c%mu = param_real(p, kw, 'FRICTION', 0.0_dp)
+    if (c%mu < 0.0_dp) call err(p, 'FRICTION (the friction coefficient) must not be negative')
+    c%stick_slope = param_real(p, kw, 'STICK SLOPE', -1.0_dp)
+    if (has_param(kw, 'STICK SLOPE') .and. c%stick_slope <= 0.0_dp) call err(p, 'STICK SLOPE must be positive')
+    if (has_param(kw, 'STICK SLOPE') .and. c%mu == 0.0_dp) call err(p, 'STICK SLOPE needs FRICTION=')
+  end subroutine pair_friction
+
   !> Purpose: the pairs read with INTERACTION= take the penalty of their
   !> *SURFACE INTERACTION (defined anywhere in the deck, as CalculiX allows):
   !> a LINEAR slope K is the penalty per area, split between the two passes
   !> of a two-pass pair so that the interface still yields K per unit
   !> overclosure; HARD (or no *SURFACE BEHAVIOR, as in Abaqus) is the
-  !> automatic penalty.
+  !> automatic penalty. *FRICTION's coefficient and stick slope likewise
+  !> (the slope split between the passes as K is).
   module subroutine interaction_penalties(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -187,6 +205,9 @@ contains
           c%penalty = -1.0_dp
           if (p%inter(it)%behaviour == behaviour_linear) c%penalty = p%inter(it)%slope
           if (c%twin /= 0 .and. c%penalty > 0.0_dp) c%penalty = 0.5_dp * c%penalty
+          c%mu = p%inter(it)%mu
+          c%stick_slope = p%inter(it)%stick_slope
+          if (c%twin /= 0 .and. c%stick_slope > 0.0_dp) c%stick_slope = 0.5_dp * c%stick_slope
         end associate
       end associate
     end do

@@ -46,6 +46,8 @@ module deck_cursor
     character(len=name_len) :: name = ''
     integer :: behaviour = behaviour_none
     real(dp) :: slope = -1.0_dp     ! K of LINEAR (pressure per overclosure); < 0: automatic penalty
+    real(dp) :: mu = 0.0_dp         ! *FRICTION: coefficient (0: frictionless)
+    real(dp) :: stick_slope = -1.0_dp   ! *FRICTION: shear stress per unit slip; < 0: automatic
     integer :: line = 0             ! the *SURFACE INTERACTION line
   end type interaction_t
 

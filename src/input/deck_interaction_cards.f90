@@ -1,9 +1,10 @@
 !> Contact interaction cards as CalculiX and Abaqus write them:
 !> *SURFACE INTERACTION opens a block, *SURFACE BEHAVIOR and *FRICTION
-!> describe it, and a *CONTACT PAIR, INTERACTION= takes its penalty (see
-!> docs/contact.md, "Decks written for CalculiX or Abaqus"). What cfe2d
-!> cannot do (friction, a soft exponential or tabular law, tied contact)
-!> stops at the card that asks for it.
+!> describe it, and a *CONTACT PAIR, INTERACTION= takes its penalty and
+!> friction (see docs/contact.md, "Decks written for CalculiX or
+!> Abaqus"). What cfe2d cannot do (a soft exponential or tabular law,
+!> tied contact, friction models other than Coulomb's) stops at the card
+!> that asks for it.
 submodule (deck_parser) deck_interaction_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, rtoa
@@ -126,15 +127,25 @@ contains
              'implemented; use LINEAR (K, sigma_inf) or HARD')
   end subroutine exponential_error
 
-  !> Purpose: *FRICTION: `mu[, stick slope]` of the current interaction.
-  !> cfe2d's contact is frictionless: mu = 0 is a warning (it changes
-  !> nothing), any other value an error.
+  !> Purpose: *FRICTION: `mu[, stick slope]` of the current interaction
+  !> (Coulomb friction, docs/contact.md): mu the friction coefficient,
+  !> the stick slope CalculiX's lambda, the shear stress per unit slip
+  !> while sticking (the tangential penalty per unit area; automatic, as
+  !> the normal penalty, when not given). Abaqus' ROUGH, EXPONENTIAL
+  !> DECAY, SLIP TOLERANCE= and the other friction models stop here.
   module subroutine read_friction(p, kw)
     type(parser_t), intent(inout) :: p
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
-    real(dp) :: mu
+    real(dp) :: mu, slope
     integer :: n
+    if (has_param(kw, 'ROUGH')) call err(p, '*FRICTION, ROUGH (no slip at all) is not implemented; ' // &
+        'give a friction coefficient (Coulomb friction)')
+    if (has_param(kw, 'EXPONENTIAL DECAY')) call err(p, '*FRICTION, EXPONENTIAL DECAY (a coefficient ' // &
+        'that falls with the slip rate) is not implemented; give one friction coefficient')
+    if (has_param(kw, 'SLIP TOLERANCE')) call err(p, '*FRICTION, SLIP TOLERANCE= (Abaqus'' elastic slip ' // &
+        'as a fraction of the element length) is not implemented; give the stick slope as the second ' // &
+        'value of the data line, or leave it out for the automatic one')
     call allow_params(p, kw, '')
     if (p%interaction == 0) call err(p, '*FRICTION outside a *SURFACE INTERACTION block')
     call require_data(p, 'friction coefficient[, stick slope]')
@@ -142,9 +153,14 @@ contains
     if (n > 2) call err(p, '*FRICTION data line needs: friction coefficient[, stick slope]')
     mu = get_real(p, f(1), 'friction coefficient')
     if (mu < 0.0_dp) call err(p, 'the friction coefficient must not be negative')
-    if (mu > 0.0_dp) call err(p, 'friction is not implemented: cfe2d''s contact is frictionless ' // &
-        '(a friction coefficient of 0 is accepted)')
-    call deck_warning(p%deck, p%i, 'friction coefficient 0: frictionless, as cfe2d''s contact is; ' // &
-        '*FRICTION is ignored')
+    slope = -1.0_dp
+    if (n == 2) then
+      if (len(f(2)%s) > 0) then
+        slope = get_real(p, f(2), 'stick slope')
+        if (slope <= 0.0_dp) call err(p, 'the stick slope (shear stress per unit slip) must be positive')
+      end if
+    end if
+    p%inter(p%interaction)%mu = mu
+    p%inter(p%interaction)%stick_slope = slope
   end subroutine read_friction
 end submodule deck_interaction_cards

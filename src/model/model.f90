@@ -167,6 +167,11 @@ module model
     logical :: nodal = .false.            ! penalty given per node, not per area
     real(dp) :: search_distance = -1.0_dp ! < 0: automatic
     logical :: update_search = .false.
+    !> Coulomb friction: the coefficient (0: frictionless) and the stick
+    !> slope, the tangential penalty per unit area (shear stress per unit
+    !> slip; < 0: automatic, as the normal penalty).
+    real(dp) :: mu = 0.0_dp
+    real(dp) :: stick_slope = -1.0_dp
     !> SYMMETRIC: the pair made for the second pass (master and slave
     !> swapped) and the other way round; 0 for a single pass.
     integer :: twin = 0
