@@ -11,7 +11,12 @@
    block), one factorisation plus solve of the same mesh without contact
    (analysis + factorisation + solve of a one-increment run without the
    contact pair), and their ratios.
-2. With --solvers: the solvers on a structured plane-stress square (Q4) at
+2. Friction: the flagship mesh pressed (10 increments) then pushed
+   sideways 0.2 mm (10 increments) until the cylinder slides (its
+   tangential reaction reaches mu P, mu = 0.3), against the same two-step
+   history without friction: wall times, their ratio (target <= 2), the
+   sparse factorisations per step (target 1) and the contact iterations.
+3. With --solvers: the solvers on a structured plane-stress square (Q4) at
    about 1e4, 1e5 and 1e6 dofs (tests/bench/bench.f90, one process per
    case): dofs, stored nonzeros, factor size, wall times of structure,
    assembly, ordering+symbolic analysis, numeric factorisation and solve,
@@ -121,6 +126,73 @@ def hertz_decks(mesh):
     return deck, plain
 
 
+FRICTION_STEPS = """*STEP, NAME=PRESS
+*STATIC
+0.1, 1.0
+*BOUNDARY
+CYL_TOP, 1, 1
+CYL_TOP, 2, 2, -0.4
+*END STEP
+*STEP, NAME=PUSH
+*STATIC
+0.1, 1.0
+*BOUNDARY
+CYL_TOP, 1, 1, 0.2
+CYL_TOP, 2, 2, -0.4
+*NODE PRINT, NSET=CYL_TOP, TOTALS=ONLY
+RF
+*END STEP
+"""
+
+
+def friction_decks(mesh):
+    """The flagship mesh pressed, then pushed sideways until it slides:
+    with mu = 0.3 and without friction (same history)."""
+    deck, _ = hertz_decks(mesh)
+    with open(deck) as f:
+        text = f.read()
+    model = text[:text.index("*STEP")]
+    model = re.sub(r"\*AMPLITUDE.*\n.*\n", "", model)
+    model = model.replace("CYL_TOP, 1, 1\n", "")
+    assert "*CONTACT PAIR, SEARCH DISTANCE=1.0\n" in model
+    out = []
+    for tag, extra in (("frictionless", ""), ("friction", ", FRICTION=0.3")):
+        path = os.path.join(os.path.dirname(deck), f"push_{tag}.inp")
+        with open(path, "w") as f:
+            f.write(model.replace("*CONTACT PAIR, SEARCH DISTANCE=1.0", "*CONTACT PAIR, SEARCH DISTANCE=1.0" + extra)
+                    + FRICTION_STEPS)
+        out.append(path)
+    return out
+
+
+def step_counts(listing):
+    """Per step: numeric factorisations and contact iterations (STEP SUMMARY)."""
+    with open(listing) as f:
+        blocks = [b.split("\n\n")[0] for b in f.read().split("--- STEP SUMMARY")[1:]]
+    return ([int(re.search(r"^numeric_factorisations (\d+)$", b, re.M).group(1)) for b in blocks],
+            [int(re.search(r"^contact_iterations (\d+)$", b, re.M).group(1)) for b in blocks])
+
+
+def friction_table(meshes, repeats):
+    print("\nfriction: flagship mesh pressed, then pushed sideways 0.2 mm until it slides (mu = 0.3),"
+          " against the same history without friction")
+    cols = ["mesh", "wall_s", "wall_mu0_s", "ratio", "numeric/step", "iters", "iters_mu0", "Q/P"]
+    print(" ".join(f"{c:>12}" for c in cols), flush=True)
+    for mesh in meshes:
+        plain, fric = friction_decks(mesh)
+        w0 = best_of(plain, repeats)[0]
+        w1 = best_of(fric, repeats)[0]
+        nf, it1 = step_counts(os.path.splitext(fric)[0] + ".out")
+        _, it0 = step_counts(os.path.splitext(plain)[0] + ".out")
+        with open(os.path.splitext(fric)[0] + ".out") as f:
+            rf = re.findall(r"^CYL_TOP\s+(\S+)\s+(\S+)$", f.read(), re.M)
+        q_over_p = -float(rf[-1][0]) / float(rf[-1][1]) if rf else float("nan")
+        row = [mesh, f"{w1:.2f}", f"{w0:.2f}", f"{w1 / w0:.2f}", "/".join(map(str, nf)), sum(it1), sum(it0),
+               f"{q_over_p:.4f}"]
+        print(" ".join(f"{c:>12}" for c in row), flush=True)
+    print("targets: ratio <= 2, one numeric factorisation per step, Q/P = mu = 0.3 at the end")
+
+
 def square_deck(nx=SQUARE_NX):
     """The unit square of nx * nx CPS4 with rollers on two sides and a load
     on every node, as a deck (about 43 MB at nx = 706, 1e6 dofs)."""
@@ -213,6 +285,7 @@ def main(argv=None):
     else:
         meshes = [m for m in args.meshes.split(",") if m]
     contact_table(meshes, args.repeats, not args.no_square)
+    friction_table([m for m in meshes if m != "fine"], args.repeats)
     failed = solver_table(args.exe, args.sizes.split(",")) if args.solvers else False
     return 1 if failed else 0
 

@@ -163,7 +163,10 @@ contains
         cs%c(j)%closed = .not. cs%c(j)%closed
       end do
     end if
-    if (frictional) call return_mapping(m, cs, force_scale, nchanged, changed)
+    if (frictional) then
+      call return_mapping(m, cs, force_scale, nchanged, changed)
+      if (nviol == 0 .and. nchanged > 0) ss%block_pivots = ss%block_pivots + 1
+    end if
     if (nchanged > max_named) changed = changed // ' ...'
   end subroutine contact_switch
 

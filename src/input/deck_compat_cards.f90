@@ -178,8 +178,8 @@ contains
                'elastic (*ELASTIC)')
     case ('CHANGE FRICTION', 'CHANGE SURFACE BEHAVIOR', 'CHANGE CONTACT TYPE', 'CONTACT DAMPING', &
           'GAP CONDUCTANCE', 'GAP HEAT GENERATION')
-      call err(p, '*' // kw%name // ' is not implemented: cfe2d''s contact is frictionless, static and ' // &
-               'keeps the law of its *SURFACE INTERACTION')
+      call err(p, '*' // kw%name // ' is not implemented: cfe2d''s contact is static and keeps the law ' // &
+               'and the friction of its *SURFACE INTERACTION')
     case default
       call err(p, 'keyword *' // kw%name // ' is not implemented in cfe2d')
     end select
