@@ -1,0 +1,82 @@
+"""What CalculiX accepts and cfe2d used to refuse (issue 20): an empty
+*NODE block and an empty *SURFACE (cgx writes both for a set without
+nodes or faces of its own), nodes that belong to no element (left over
+from meshing), CENTRIF about an axis in the plane of plane elements; and
+the message for CalculiX's temperature dof 11. Each is accepted with a
+warning at its line, or refused with an error naming the line."""
+import os
+
+from helpers import rel_err, run_deck
+
+BAR = """*HEADING
+two-element bar
+*NODE, NSET=ALLN
+1, 0, 0
+2, 1, 0
+3, 2, 0
+4, 0, 1
+5, 1, 1
+6, 2, 1
+*ELEMENT, TYPE=CPS4, ELSET=BAR
+1, 1, 2, 5, 4
+2, 2, 3, 6, 5
+*NSET, NSET=LEFT
+1, 4
+*MATERIAL, NAME=STEEL
+*ELASTIC
+1000., 0.25
+*SOLID SECTION, ELSET=BAR, MATERIAL=STEEL
+1.
+*BOUNDARY
+LEFT, 1, 2
+*STEP
+*STATIC
+*CLOAD
+3, 1, 5.
+*NODE PRINT, NSET=ALLN
+U, RF
+*END STEP
+"""
+
+
+def replace(old, new, deck=BAR):
+    assert old in deck, old
+    return deck.replace(old, new, 1)
+
+
+def line_of(text, fragment):
+    for k, line in enumerate(text.splitlines(), 1):
+        if fragment in line:
+            return k
+    raise AssertionError(fragment)
+
+
+def displacements(run, nset="ALLN"):
+    u = run.listing.increments[-1].block("NODE U", set=nset)
+    return {int(n): (a, b) for n, a, b in zip(u["node"], u["U1"], u["U2"])}
+
+
+def same_answer(run, plain):
+    """run's displacements of the bar's nodes are plain's, to the bit."""
+    got, want = displacements(run), displacements(plain)
+    for node in range(1, 7):
+        assert got[node] == want[node], (node, got[node], want[node])
+
+
+def test_empty_node_block_warns():
+    """*NODE without data lines (cgx writes `*NODE, NSET=N` for a set with
+    no nodes of its own) defines nothing: a warning at its line, in the
+    deck or in an included file; its node set exists, empty (a card naming
+    it warns as for any empty set), and the answer is the bar's."""
+    mesh = "** written by cgx\n*NODE, NSET=NONE\n"
+    deck = replace("*ELEMENT", "*NODE\n*INCLUDE, INPUT=empty_nodes.inp\n*ELEMENT")
+    deck = replace("*END STEP", "*NODE PRINT, NSET=NONE\nU\n*END STEP", deck)
+    run = run_deck("empty_node_block", deck, files={"empty_nodes.inp": mesh}).ok()
+    inc = os.path.join(os.path.dirname(run.deck), "empty_nodes.inp")
+    assert f"{run.deck}:{deck.splitlines().index('*NODE') + 1}: warning: *NODE without data lines defines " \
+           "no node\n" in run.stderr, run.stderr
+    assert f"{inc}:2: warning: *NODE without data lines defines no node (node set NONE gets none)" in run.stderr, \
+        run.stderr
+    assert f"{run.deck}:{line_of(deck, '*NODE PRINT, NSET=NONE')}: warning: node set NONE is empty" in run.stderr
+    assert "error" not in run.stderr, run.stderr
+    same_answer(run, run_deck("empty_node_block_plain", BAR).ok())
