@@ -80,3 +80,32 @@ def test_empty_node_block_warns():
     assert f"{run.deck}:{line_of(deck, '*NODE PRINT, NSET=NONE')}: warning: node set NONE is empty" in run.stderr
     assert "error" not in run.stderr, run.stderr
     same_answer(run, run_deck("empty_node_block_plain", BAR).ok())
+
+
+def test_empty_surface_warns():
+    """A *SURFACE without data lines (cgx's .sur file of a set without
+    faces) is an empty surface: a warning at its line in the included
+    file, element and node surfaces alike. Unused, it changes nothing;
+    used by a *CONTACT PAIR (as slave or master) or a *DSLOAD, each use
+    warns at its own line as for any empty surface, and the run goes on
+    with the answer of the bar."""
+    sur = "** written by cgx\n*SURFACE, NAME=SEMPTY, TYPE=ELEMENT\n*SURFACE, NAME=NEMPTY, TYPE=NODE\n" \
+          "*SURFACE, NAME=UNUSED\n"
+    deck = replace("*NSET, NSET=LEFT", "*INCLUDE, INPUT=empty.sur\n*SURFACE, NAME=RIGHT\nBAR, S2\n"
+                   "*NSET, NSET=LEFT")
+    plain = run_deck("empty_surface_plain", deck, files={"empty.sur": sur}).ok()
+    inc = os.path.join(os.path.dirname(plain.deck), "empty.sur")
+    for k, name in ((2, "SEMPTY"), (3, "NEMPTY"), (4, "UNUSED")):
+        message = f"{inc}:{k}: warning: *SURFACE without data lines: surface {name} is empty"
+        assert plain.stderr.count(message) == 1, plain.stderr
+    assert "error" not in plain.stderr, plain.stderr
+    same_answer(plain, run_deck("empty_surface_bar", BAR).ok())
+
+    used = replace("*BOUNDARY", "*CONTACT PAIR\nSEMPTY, RIGHT\nNEMPTY, RIGHT\nRIGHT, SEMPTY\n*BOUNDARY", deck)
+    used = replace("*NODE PRINT", "*DSLOAD\nSEMPTY, P, 3.\n*NODE PRINT", used)
+    run = run_deck("empty_surface_used", used, files={"empty.sur": sur}).ok()
+    for text, what, card in (("SEMPTY, RIGHT", "SEMPTY", "*CONTACT PAIR"), ("NEMPTY, RIGHT", "NEMPTY", "*CONTACT PAIR"),
+                             ("RIGHT, SEMPTY", "SEMPTY", "*CONTACT PAIR"), ("SEMPTY, P, 3.", "SEMPTY", "*DSLOAD")):
+        message = f"{run.deck}:{line_of(used, text)}: warning: surface {what} is empty: {card} does nothing for it"
+        assert message in run.stderr, (message, run.stderr)
+    same_answer(run, plain)

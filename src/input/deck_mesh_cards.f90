@@ -346,8 +346,11 @@ contains
       end if
       nlines = nlines + 1
     end do
-    ! (lines naming only empty sets leave the surface empty: warned there)
-    if (nlines == 0) call err(p, 'missing data line (empty surface)')
+    ! Lines naming only empty sets leave the surface empty (warned there);
+    ! a card without lines (cgx writes one for a set without faces) too. A
+    ! card that names an empty surface warns where it does.
+    if (nlines == 0) call deck_warning(p%deck, p%i, '*SURFACE without data lines: surface ' // name // &
+                                       ' is empty')
     isurf = new_surface(p, m)
     associate(s => m%surfaces(isurf))
       s%name = name
