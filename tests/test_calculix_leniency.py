@@ -109,3 +109,25 @@ def test_empty_surface_warns():
         message = f"{run.deck}:{line_of(used, text)}: warning: surface {what} is empty: {card} does nothing for it"
         assert message in run.stderr, (message, run.stderr)
     same_answer(run, plain)
+
+
+def test_temperature_dof_says_heat_transfer_is_not_part_of_cfe2d():
+    """CalculiX's dof 11 is the temperature: a *BOUNDARY on it (a
+    prescribed temperature) or a *CLOAD on it (a heat flux) belongs to a
+    heat transfer analysis. The error names the line and says so, instead
+    of the generic message about dofs 1 and 2."""
+    cases = [("bc_dof11", replace("LEFT, 1, 2", "LEFT, 1, 2\nLEFT, 11, 11, 293."), "LEFT, 11, 11, 293.",
+              "*BOUNDARY on it is a prescribed temperature"),
+             ("bc_dof11_alone", replace("LEFT, 1, 2", "LEFT, 1, 2\n4, 11"), "4, 11",
+              "*BOUNDARY on it is a prescribed temperature"),
+             ("cload_dof11", replace("3, 1, 5.", "3, 11, 5."), "3, 11, 5.",
+              "*CLOAD on it is a concentrated heat flux")]
+    for name, deck, text, fragment in cases:
+        run = run_deck(name, deck)
+        assert run.rc == 1, (name, run.stderr)
+        assert f"{run.deck}:{line_of(deck, text)}: error: dof 11 is the temperature" in run.stderr, run.stderr
+        assert fragment in run.stderr and "heat transfer is not part of cfe2d" in run.stderr, run.stderr
+        assert "dofs must satisfy" not in run.stderr and "dof must be 1 or 2" not in run.stderr, run.stderr
+    # other dofs keep the generic message
+    run = run_deck("bc_dof7", replace("LEFT, 1, 2", "LEFT, 7, 7"))
+    assert run.rc == 1 and "dofs must satisfy" in run.stderr, run.stderr
