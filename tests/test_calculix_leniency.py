@@ -131,3 +131,169 @@ def test_temperature_dof_says_heat_transfer_is_not_part_of_cfe2d():
     # other dofs keep the generic message
     run = run_deck("bc_dof7", replace("LEFT, 1, 2", "LEFT, 7, 7"))
     assert run.rc == 1 and "dofs must satisfy" in run.stderr, run.stderr
+
+
+# A slender bar 0 <= x <= L, 0 <= y <= H of thickness T (plane stress,
+# nu = 0) spinning about an axis along y through (X0, Y0, 0): CENTRIF
+# about an axis in the plane, as for a blade on a hub of radius -X0.
+RL, RH, RT, RE, RHO, W2 = 10.0, 0.5, 2.0, 2.0e5, 7.8e-9, 1.0e6
+
+
+def rotating_bar_exact(x, x0):
+    """The body force rho omega^2 (x - x0) along x only (the distance from
+    the axis, perpendicular to it, lies along x), the root x = 0 held
+    axially, the tip free: with nu = 0 the plane-stress solution is the
+    1D one, u_y = 0 and sigma_xx(x) = N / A with
+        sigma(x) = c [(L^2 - x^2) / 2 - x0 (L - x)],   c = rho omega^2,
+        u(x)     = c / E [(L^2 x - x^3 / 3) / 2 - x0 (L x - x^2 / 2)]
+    (sigma(x) = rho omega^2 (L^2 - x^2) / 2 for an axis through the root)."""
+    c = RHO * W2
+    return c * ((RL ** 2 - x ** 2) / 2 - x0 * (RL - x)), c / RE * ((RL ** 2 * x - x ** 3 / 3) / 2 - x0 * (RL * x - x ** 2 / 2))
+
+
+def rotating_bar_deck(shape, nx, ny, centrif, element=None):
+    from quadmesh import Mesh, etype
+    m = Mesh(shape, nx, ny, lambda s, t: (s * RL / nx, t * RH / ny))
+    left = m.side("left")
+    return m, f"""*NODE, NSET=ALLN
+{m.node_lines()}{m.element_card(element or etype(shape, 'S'), 'BAR')}*NSET, NSET=ROOT
+{", ".join(map(str, left))}
+*MATERIAL, NAME=STEEL
+*ELASTIC
+{RE}, 0.
+*DENSITY
+{RHO}
+*SOLID SECTION, ELSET=BAR, MATERIAL=STEEL
+{RT}
+*BOUNDARY
+ROOT, 1, 1
+{left[0]}, 2, 2
+*STEP
+*STATIC
+*DLOAD
+BAR, CENTRIF, {W2}, {centrif}
+*NODE PRINT, NSET=ALLN
+U, S
+*NODE PRINT, NSET=ROOT
+RF
+*END STEP
+"""
+
+
+def test_centrif_about_an_axis_in_the_plane_spins_a_bar():
+    """CENTRIF about an axis along y (in the plane of plane-stress
+    elements) on a bar along x, against the closed form of
+    rotating_bar_exact: an axis through the root and one through a hub
+    point (x0 = -2, any y0, its direction given as (0, -2, 0): the length
+    and sense of the direction do not matter). The consistent loads are
+    exact (a linear body force) and with nu = 0 the 2D problem is the 1D
+    one; its Galerkin solution is nodally exact for linear and quadratic
+    elements (the cubic u differs from the quadratic interpolant by an odd
+    bubble, which vanishes at the middle node): every nodal U1 to 1e-10 of
+    the tip's, U2 = 0, the root reactions sum to -rho omega^2 A (L^2/2 -
+    x0 L) and carry nothing along y (an axis along y pulls along x only).
+    The CPS8 stress is linear in each element, off the exact quadratic by
+    the odd bubble's slope, rho omega^2 h^2 / 24 (3 s^2 - 1) at the local
+    coordinate s (+1/12 h^2 rho omega^2 at element ends, -1/24 at the
+    middle nodes; exact at the 2-point Gauss points): the nodal S11
+    (extrapolated, averaged) checked against that to 1e-9 of the root
+    stress, S22 and S12 zero."""
+    for x0, y0, axis in ((0.0, 0.0, "0., 1., 0."), (-2.0, 5.0, "0., -2., 0.")):
+        for shape in ("Q4", "Q8"):
+            m, deck = rotating_bar_deck(shape, 10, 2, f"{x0}, {y0}, 0., {axis}")
+            run = run_deck(f"centrif_inplane_{shape}_{-x0:g}", deck).ok()
+            inc = run.listing.increments[-1]
+            u, rf = inc.block("NODE U", set="ALLN"), inc.block("NODE RF", set="ROOT")
+            s_root, u_tip = rotating_bar_exact(0.0, x0)[0], rotating_bar_exact(RL, x0)[1]
+            for n, u1, u2 in zip(u["node"], u["U1"], u["U2"]):
+                want = rotating_bar_exact(m.nodes[int(n)][0], x0)[1]
+                assert abs(u1 - want) < 1e-10 * u_tip and abs(u2) < 1e-10 * u_tip, (shape, x0, n, u1, u2, want)
+            total = RHO * W2 * RH * RT * (RL ** 2 / 2 - x0 * RL)
+            assert rel_err(-sum(rf["RF1"]), total) < 1e-10, (shape, x0, sum(rf["RF1"]), total)
+            assert abs(sum(rf["RF2"])) < 1e-10 * total, (shape, x0, sum(rf["RF2"]))
+            if shape != "Q8":
+                continue
+            s = inc.block("NODE S", set="ALLN")
+            h = RL / 10
+            for n, s11, s22, s12 in zip(s["node"], s["S11"], s["S22"], s["S12"]):
+                x = m.nodes[int(n)][0]
+                # the local coordinate: +-1 at an element's ends, 0 at its middle
+                local = 1.0 if abs(x / h - round(x / h)) < 1e-9 else 0.0
+                want = rotating_bar_exact(x, x0)[0] + RHO * W2 * h ** 2 / 24 * (3 * local ** 2 - 1)
+                assert abs(s11 - want) < 1e-9 * s_root, (x0, n, s11, want)
+                assert abs(s22) < 1e-9 * s_root and abs(s12) < 1e-9 * s_root, (x0, n, s22, s12)
+
+
+def test_centrif_about_an_axis_in_the_plane_on_trusses_and_masses():
+    """Trusses and point masses take CENTRIF about an in-plane axis too: a
+    chain of T2D2 (and of T3D3) along x at height 1, spinning about the y
+    axis through (x0, 0, 0), with a MASS at its tip: the distributed load
+    rho A omega^2 (x - x0) along x plus the tip force M omega^2 (L - x0),
+    so u(x) = rotating_bar_exact's u + M omega^2 (L - x0) x / (E A) at
+    every node (1D Galerkin solutions are nodally exact); the transverse
+    supports carry nothing (a normal axis would pull them along y)."""
+    area, mass, x0, n = 3.0, 2.0e-4, -1.5, 8
+    for etype_, per in (("T2D2", 1), ("T3D3", 2)):
+        h = RL / (n * per)
+        nodes = "".join(f"{k + 1}, {k * h!r}, 1.\n" for k in range(n * per + 1))
+        if per == 1:
+            elems = "".join(f"{k + 1}, {k + 1}, {k + 2}\n" for k in range(n))
+        else:
+            elems = "".join(f"{k + 1}, {2 * k + 1}, {2 * k + 2}, {2 * k + 3}\n" for k in range(n))
+        tip = n * per + 1
+        deck = f"""*NODE, NSET=ALLN
+{nodes}*ELEMENT, TYPE={etype_}, ELSET=BAR
+{elems}*ELEMENT, TYPE=MASS, ELSET=TIPMASS
+{n + 1}, {tip}
+*MATERIAL, NAME=STEEL
+*ELASTIC
+{RE}, 0.
+*DENSITY
+{RHO}
+*SOLID SECTION, ELSET=BAR, MATERIAL=STEEL
+{area}
+*MASS, ELSET=TIPMASS
+{mass}
+*BOUNDARY
+1, 1, 1
+ALLN, 2, 2
+*STEP
+*STATIC
+*DLOAD
+BAR, CENTRIF, {W2}, {x0}, 0., 0., 0., 1., 0.
+TIPMASS, CENTRIF, {W2}, {x0}, 0., 0., 0., 1., 0.
+*NODE PRINT, NSET=ALLN
+U, RF
+*END STEP
+"""
+        run = run_deck(f"centrif_inplane_{etype_}", deck).ok()
+        inc = run.listing.increments[-1]
+        u, rf = inc.block("NODE U", set="ALLN"), inc.block("NODE RF", set="ALLN")
+        tip_force = mass * W2 * (RL - x0)
+        u_tip = rotating_bar_exact(RL, x0)[1] + tip_force * RL / (RE * area)
+        for node, u1 in zip(u["node"], u["U1"]):
+            x = (int(node) - 1) * h
+            want = rotating_bar_exact(x, x0)[1] + tip_force * x / (RE * area)
+            assert abs(u1 - want) < 1e-10 * u_tip, (etype_, node, u1, want)
+        total = RHO * W2 * area * (RL ** 2 / 2 - x0 * RL) + tip_force
+        assert rel_err(-sum(rf["RF1"]), total) < 1e-10, (etype_, sum(rf["RF1"]), total)
+        assert max(abs(rf["RF2"])) < 1e-12 * total, (etype_, rf["RF2"])
+
+
+def test_centrif_about_a_tilted_axis_is_an_error():
+    """About an axis neither normal to the plane nor in it, or along the
+    plane but off it (z0 not 0), the centrifugal load has an out-of-plane
+    part, which a plane element cannot carry: an error at the *DLOAD
+    line, saying why. Axisymmetric elements keep their own rule (the y
+    axis only)."""
+    cases = [("tilted", "0., 0., 0., 0., 1., 1.", "about a tilted axis the centrifugal load has an out-of-plane part"),
+             ("off_plane", "0., 0., 0.5, 0., 1., 0.", "lies along the x-y plane but off it")]
+    for name, centrif, fragment in cases:
+        _, deck = rotating_bar_deck("Q4", 4, 1, centrif)
+        run = run_deck(f"centrif_{name}", deck)
+        line = line_of(deck, "BAR, CENTRIF")
+        assert run.rc == 1 and f"{run.deck}:{line}: error:" in run.stderr, (name, run.stderr)
+        assert fragment in run.stderr, (name, run.stderr)
+    _, deck = rotating_bar_deck("Q4", 4, 1, "0., 0., 0., 1., 0., 0.", element="CAX4")
+    run = run_deck("centrif_axi_x_axis", deck)
+    assert run.rc == 1 and "must be its symmetry axis, the y axis" in run.stderr, run.stderr

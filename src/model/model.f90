@@ -113,7 +113,8 @@ module model
   !> label: a pressure Pk on face k (dload_p), a body force per unit volume
   !> along x or y (dload_bx, dload_by), gravity g along dir times the
   !> density (dload_grav), or a centrifugal load density * omega^2 times
-  !> the distance from the axis through `point` (dload_centrif). value is
+  !> the distance from the axis through `point` (dload_centrif; its dir is
+  !> the axis when it lies in the plane, 0 when normal to it). value is
   !> the magnitude at the end of the step (pressure, force per volume, g,
   !> omega^2). Element, label and face identify a load from step to step.
   type :: dload_t
