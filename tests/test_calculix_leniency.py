@@ -297,3 +297,66 @@ def test_centrif_about_a_tilted_axis_is_an_error():
     _, deck = rotating_bar_deck("Q4", 4, 1, "0., 0., 0., 1., 0., 0.", element="CAX4")
     run = run_deck("centrif_axi_x_axis", deck)
     assert run.rc == 1 and "must be its symmetry axis, the y axis" in run.stderr, run.stderr
+
+
+def test_nodes_of_no_element_are_left_out():
+    """Nodes no element uses (gmsh writes its geometry points, the centre
+    of an arc, ...) are left out of the analysis, where they stopped it
+    with 'singular stiffness' without a line: one warning at the data line
+    of the first, counting them and naming five; they show zero
+    displacement and no reaction, a *BOUNDARY on them is ignored (a node
+    set of the mesher may hold them), and the bar's answer is unchanged.
+    A zero *CLOAD on one loses nothing and passes."""
+    extra = "".join(f"{n}, {n}., 7.\n" for n in range(14, 21))
+    deck = replace("6, 2, 1\n", "6, 2, 1\n" + extra)
+    deck = replace("LEFT, 1, 2\n", "LEFT, 1, 2\n*NSET, NSET=SOME\n4, 15, 16\n*BOUNDARY\nSOME, 1, 2, 0.25\n", deck)
+    deck = replace("3, 1, 5.\n", "3, 1, 5.\nSOME, 2, 0.\n", deck)
+    run = run_deck("unused_nodes", deck).ok()
+    warnings = [line for line in run.stderr.splitlines() if "warning" in line]
+    assert warnings == [f"{run.deck}:{line_of(deck, '14, 14., 7.')}: warning: 7 nodes belong to no element with "
+                        "stiffness or mass, contact surface or *EQUATION (left over from meshing?): 14, 15, 16, 17, "
+                        "18 and 2 more; they are left out of the analysis, with zero displacement in the outputs (a "
+                        "*BOUNDARY there is ignored)"], run.stderr
+    u = displacements(run)
+    rf = run.listing.increments[-1].block("NODE RF", set="ALLN")
+    for node in range(14, 21):
+        assert u[node] == (0.0, 0.0), (node, u[node])
+    for node, r1, r2 in zip(rf["node"], rf["RF1"], rf["RF2"]):
+        if int(node) >= 14:
+            assert r1 == 0.0 and r2 == 0.0, (node, r1, r2)
+    plain = run_deck("unused_nodes_plain", replace("LEFT, 1, 2\n", "LEFT, 1, 2\n4, 1, 2, 0.25\n")).ok()
+    same_answer(run, plain)
+
+
+def test_load_on_a_node_of_no_element_is_an_error():
+    """A *CLOAD on a node that is left out would be lost: an error at the
+    *CLOAD line naming the node (also through a node set). A node of only a
+    truss, a spring or a point mass is not left out: trusses and springs
+    carry a load at their nodes, and a point mass's node without support
+    has no stiffness (the run stops naming it, as before)."""
+    deck = replace("6, 2, 1\n", "6, 2, 1\n7, 3., 3.\n")
+    for name, cload in (("node", "7, 2, 1.5"), ("set", "ALLN, 1, 2.")):
+        bad = replace("3, 1, 5.\n", f"3, 1, 5.\n{cload}\n", deck)
+        run = run_deck(f"unused_node_cload_{name}", bad)
+        assert run.rc == 1, run.stderr
+        assert f"{run.deck}:{line_of(bad, cload)}: error: node 7 is left out of the analysis (it belongs to no " \
+               "element with stiffness or mass, contact surface or *EQUATION): this *CLOAD on it would be lost" \
+               in run.stderr, run.stderr
+    # a truss from node 3 to node 21 and a spring between node 6 and node 22
+    # (held along y) carry their nodes' loads: no warning, and the pull at
+    # node 22 reaches the bar through the spring
+    attached = replace("6, 2, 1\n", "6, 2, 1\n21, 3., 0.\n22, 3., 1.\n")
+    attached = replace("*NSET, NSET=LEFT", "*ELEMENT, TYPE=T2D2, ELSET=TRUSS\n3, 3, 21\n"
+                       "*ELEMENT, TYPE=SPRING2, ELSET=SPR\n4, 6, 22\n*NSET, NSET=LEFT", attached)
+    attached = replace("*BOUNDARY", "*SOLID SECTION, ELSET=TRUSS, MATERIAL=STEEL\n0.5\n*SPRING, ELSET=SPR\n1, 1\n"
+                       "400.\n*BOUNDARY\n21, 2\n22, 2\n", attached)
+    attached = replace("3, 1, 5.\n", "3, 1, 5.\n21, 1, 1.\n22, 1, 2.\n", attached)
+    run = run_deck("attached_nodes", attached).ok()
+    assert "warning" not in run.stderr, run.stderr
+    rf = run.listing.increments[-1].block("NODE RF", set="ALLN")
+    assert abs(sum(rf["RF1"]) + 8.0) < 1e-9, sum(rf["RF1"])
+    massed = replace("*NSET, NSET=LEFT", "*ELEMENT, TYPE=MASS, ELSET=MA\n5, 7\n*NSET, NSET=LEFT", deck)
+    massed = replace("*BOUNDARY", "*MASS, ELSET=MA\n1.\n*BOUNDARY", massed)
+    run = run_deck("mass_node_unsupported", massed)
+    assert run.rc == 1 and "singular stiffness at node 7, dof 1" in run.stderr, run.stderr
+    assert "left out" not in run.stderr, run.stderr

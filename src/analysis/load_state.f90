@@ -54,6 +54,9 @@ module load_state
     real(dp), allocatable :: temp_init(:), temp_start(:), temp_target(:)
     integer, allocatable :: temp_amp(:)
     logical :: thermal = .false.
+    !> Nodes the model keeps (kept_nodes); a *BOUNDARY on a dropped node
+    !> is ignored, so that it shows zero displacement and no reaction.
+    logical, allocatable :: kept(:)
   end type load_state_t
 
 contains
@@ -95,6 +98,7 @@ contains
       ls%bc_target = 0.0_dp
       ls%bc_set = 0
       ls%ld_target = 0.0_dp
+      ls%kept = kept_nodes(m)
       call init_temperatures(m, ls)
     else
       ! distributed loads held where the previous step ended them, and
@@ -365,6 +369,7 @@ contains
     type(load_state_t), intent(inout) :: ls
     type(bc_t), intent(in) :: bc
     logical, intent(in) :: immediate
+    if (.not. ls%kept(bc%node)) return
     ls%presc(bc%dof, bc%node) = .true.
     ls%bc_target(bc%dof, bc%node) = bc%value
     ls%bc_amp(bc%dof, bc%node) = bc%amp

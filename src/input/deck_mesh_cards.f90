@@ -61,6 +61,8 @@ contains
       m%node_id(m%nn) = id
       m%x(:, m%nn) = xyz(1:2)
       m%node_index(id) = m%nn
+      call grow(p%node_line, m%nn)
+      p%node_line(m%nn) = p%i
       call append(items, nitems, m%nn)
     end do
     if (nitems == 0 .and. has_param(kw, 'NSET')) then

@@ -9,7 +9,8 @@ submodule (deck_parser) deck_step_cards
   use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, node_of, is_int, &
                          need_nset, need_elset, required_param, warn_empty_set
-  use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, amp_step_time, amp_total_time, find_name
+  use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
+                   find_name
   use growable, only: append
   use model_growth, only: grow
   implicit none
@@ -238,7 +239,7 @@ contains
       v = get_real(p, f(3), 'load value')
       call grow(m%steps(p%step)%loads, p%nload + size(nodes))
       do k = 1, size(nodes)
-        m%steps(p%step)%loads(p%nload + k) = cload_t(node=nodes(k), dof=d, amp=amp, value=v)
+        m%steps(p%step)%loads(p%nload + k) = cload_t(node=nodes(k), dof=d, amp=amp, value=v, src=src_t(p%i))
       end do
       p%nload = p%nload + size(nodes)
       nnew = nnew + 1
