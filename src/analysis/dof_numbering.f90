@@ -194,17 +194,21 @@ contains
   end subroutine number_dofs
 
   !> The dofs that get an equation: those neither prescribed nor
-  !> dependent, except the unused dof of a node that only constraints
-  !> name (no element, no CFE: a reference node), which nothing could move
-  !> (dm%inactive). A node that nothing reaches at all, with a dof left
-  !> free, has no stiffness: the run stops, naming it.
+  !> dependent, except (dm%inactive) the free dofs of a node the model
+  !> drops (no element with stiffness or mass, contact surface or
+  !> constraint: kept_nodes; the deck's checks warned) and the unused dof
+  !> of a node that only constraints name (no element, no CFE: a
+  !> reference node): nothing could move them, they stay at zero. Any
+  !> other free dof that nothing reaches (a point mass's node without
+  !> support, a slave node no CFE couples) has no stiffness: the run
+  !> stops, naming it.
   subroutine active_dofs(m, cs, prescribed, dm, numbered)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
     type(dofmap_t), intent(inout) :: dm
     logical, allocatable, intent(out) :: numbered(:, :)
-    logical, allocatable :: reached(:), named(:, :)
+    logical, allocatable :: reached(:), named(:, :), kept(:)
     integer :: g, a, d, k, nen, nodes(max_en)
     allocate(reached(m%nn), named(2, m%nn), numbered(2, m%nn), dm%inactive(2, m%nn))
     reached = .false.
@@ -216,17 +220,19 @@ contains
     do k = 1, size(dm%mpc%tnode)
       named(dm%mpc%tdof(k), dm%mpc%tnode(k)) = .true.
     end do
+    kept = kept_nodes(m)
     do a = 1, m%nn
       do d = 1, 2
         if (prescribed(d, a) .and. dm%mpc%dep(d, a) > 0) call fatal('dof ' // itoa(d) // ' of node ' // &
           itoa(m%node_id(a)) // ' is both prescribed and the dependent dof of a linear constraint' // &
           ' (' // constraint_label(m, dm%mpc%dep(d, a)) // ')')
         numbered(d, a) = .not. prescribed(d, a) .and. dm%mpc%dep(d, a) == 0
-        dm%inactive(d, a) = numbered(d, a) .and. .not. reached(a) .and. .not. named(d, a) .and. any(named(:, a))
+        dm%inactive(d, a) = numbered(d, a) .and. (.not. kept(a) .or. &
+                            (.not. reached(a) .and. .not. named(d, a) .and. any(named(:, a))))
         if (dm%inactive(d, a)) numbered(d, a) = .false.
         if (numbered(d, a) .and. .not. reached(a) .and. .not. named(d, a)) call fatal('singular stiffness at ' // &
-          'node ' // itoa(m%node_id(a)) // ', dof ' // itoa(d) // ': the node belongs to no element, contact ' // &
-          'pair or *EQUATION and this dof has no *BOUNDARY (missing boundary condition?)')
+          'node ' // itoa(m%node_id(a)) // ', dof ' // itoa(d) // ': no element with stiffness, coupling ' // &
+          'element or *EQUATION reaches this dof and it has no *BOUNDARY (missing boundary condition?)')
       end do
     end do
   end subroutine active_dofs

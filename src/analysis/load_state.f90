@@ -54,6 +54,9 @@ module load_state
     real(dp), allocatable :: temp_init(:), temp_start(:), temp_target(:)
     integer, allocatable :: temp_amp(:)
     logical :: thermal = .false.
+    !> Nodes the model keeps (kept_nodes); a *BOUNDARY on a dropped node
+    !> is ignored, so that it shows zero displacement and no reaction.
+    logical, allocatable :: kept(:)
   end type load_state_t
 
 contains
@@ -95,6 +98,7 @@ contains
       ls%bc_target = 0.0_dp
       ls%bc_set = 0
       ls%ld_target = 0.0_dp
+      ls%kept = kept_nodes(m)
       call init_temperatures(m, ls)
     else
       ! distributed loads held where the previous step ended them, and
@@ -289,9 +293,13 @@ contains
         call body_force_load(et, xy, t, rho * d%dir, g, zero, pt%f)
       case (dload_centrif)
         ! rho omega^2 times the distance from the axis: (r, 0) about the
-        ! y axis in axisymmetry, (x - x0, y - y0) about a normal axis
-        g(1, 1) = rho
-        if (catalogue(et)%state /= state_axisymmetric) g(2, 2) = rho
+        ! y axis in axisymmetry; (I - a a^T)(x - x0) about an axis a in the
+        ! plane, (x - x0, y - y0) about a normal one (a = 0)
+        if (catalogue(et)%state == state_axisymmetric) then
+          g(1, 1) = rho
+        else
+          g = rho * off_axis(d%dir)
+        end if
         call body_force_load(et, xy, t, zero, g, d%point, pt%f)
       end select
     end associate
@@ -300,7 +308,7 @@ contains
   !> The force of unit GRAV or CENTRIF load d on a point mass at x: mass
   !> times the acceleration (the centrifugal one from the distance to the
   !> axis: the radius in an axisymmetric model, whose masses are whole
-  !> rings; the in-plane distance to the axis' point otherwise).
+  !> rings; the in-plane distance to the axis otherwise).
   subroutine point_mass_forces(m, d, mass, x, f)
     type(model_t), intent(in) :: m
     type(dload_t), intent(in) :: d
@@ -311,9 +319,19 @@ contains
     else if (axisymmetric_model(m)) then
       f = mass * [x(1), 0.0_dp]
     else
-      f = mass * (x - d%point)
+      f = mass * matmul(off_axis(d%dir), x - d%point)
     end if
   end subroutine point_mass_forces
+
+  !> Purpose: the projection I - a a^T onto the directions normal to the
+  !> in-plane unit axis a of a centrifugal load (the identity for a = 0,
+  !> an axis normal to the plane): it takes the distance from the axis'
+  !> point to the distance from the axis.
+  pure function off_axis(a) result(q)
+    real(dp), intent(in) :: a(2)
+    real(dp) :: q(2, 2)
+    q = reshape([1.0_dp - a(1) * a(1), -a(2) * a(1), -a(1) * a(2), 1.0_dp - a(2) * a(2)], [2, 2])
+  end function off_axis
 
   !> Magnitude of a pattern at step time t.
   real(dp) function pattern_magnitude(m, ls, pt, t)
@@ -351,6 +369,7 @@ contains
     type(load_state_t), intent(inout) :: ls
     type(bc_t), intent(in) :: bc
     logical, intent(in) :: immediate
+    if (.not. ls%kept(bc%node)) return
     ls%presc(bc%dof, bc%node) = .true.
     ls%bc_target(bc%dof, bc%node) = bc%value
     ls%bc_amp(bc%dof, bc%node) = bc%amp

@@ -80,6 +80,7 @@ module deck_cursor
     integer :: nodal_thickness_line = 0        ! the last *NODAL THICKNESS card
     integer :: heading_line = 0                ! the *HEADING whose title is kept
     integer :: nequations = 0
+    integer, allocatable :: node_line(:)       ! the data line of each node (internal index)
   end type parser_t
 
 contains

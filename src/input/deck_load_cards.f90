@@ -40,9 +40,10 @@ contains
   !> Purpose: *DLOAD: distributed loads on elements, `element or elset,
   !> label, magnitude[, ...]` with the labels P1..P4 (face pressure), BX,
   !> BY (BR, BZ in axisymmetry: body force per unit volume), GRAV (`g, nx,
-  !> ny, nz`: gravity, needs *DENSITY) and CENTRIF (`omega^2, point, axis`:
-  !> needs *DENSITY); OP=, AMPLITUDE= as for *CLOAD. OP=NEW without data
-  !> lines removes the distributed loads of earlier steps.
+  !> ny, nz`: gravity, needs *DENSITY) and CENTRIF (`omega^2, point, axis`,
+  !> the axis normal to the plane or in it: needs *DENSITY); OP=,
+  !> AMPLITUDE= as for *CLOAD. OP=NEW without data lines removes the
+  !> distributed loads of earlier steps.
   module subroutine read_dload(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -198,7 +199,7 @@ contains
       call need_density(p, m, e, label)
     case ('CENTRIF')
       d%label = dload_centrif
-      d%point = centrifugal_axis(p, f, n, axi)
+      call centrifugal_axis(p, f, n, axi, d%point, d%dir)
       call need_density(p, m, e, label)
     case default
       call err(p, 'load label ' // label // ' is not implemented (P1..P4, BX, BY, BR, BZ, GRAV, CENTRIF)')
@@ -234,15 +235,26 @@ contains
     dir = v(1:2)
   end function gravity_direction
 
-  !> CENTRIF: `omega^2, x0, y0, z0, ax, ay, az`: a point of the axis and
-  !> its direction; the axis must be the y axis in axisymmetry and normal
-  !> to the x-y plane otherwise. Returns the axis' point in the plane.
-  function centrifugal_axis(p, f, n, axi) result(pt)
+  !> Purpose: CENTRIF: `omega^2, x0, y0, z0, ax, ay, az`, a point of the
+  !> axis and its direction. The load density is rho omega^2 r_perp, r_perp
+  !> the distance vector from the axis, perpendicular to it. Axisymmetric
+  !> elements: the axis must be the y axis (their symmetry axis). Plane
+  !> elements (the mid-plane z = 0): an axis normal to the plane gives
+  !> r_perp = x - x0 in the plane; an axis in the plane (az = 0, through a
+  !> point with z0 = 0; a blade spinning about an axis along y) gives
+  !> r_perp = (I - a a^T)(x - x0), in the plane too. Any other axis (tilted,
+  !> or in-plane but off the plane) has an out-of-plane part in r_perp,
+  !> which a 2D model cannot carry: an error.
+  !> Arguments: pt the axis' point in the plane; dir the unit in-plane
+  !> direction of an axis lying in the plane, 0 for an axis normal to it
+  !> (and for axisymmetric elements).
+  subroutine centrifugal_axis(p, f, n, axi, pt, dir)
     type(parser_t), intent(in) :: p
     type(field_t), intent(in) :: f(:)
     integer, intent(in) :: n
     logical, intent(in) :: axi
-    real(dp) :: pt(2), x(3), a(3), len
+    real(dp), intent(out) :: pt(2), dir(2)
+    real(dp) :: x(3), a(3), len, scale
     integer :: k
     if (n /= 9) call err(p, 'CENTRIF needs: element or set, CENTRIF, omega^2, x0, y0, z0, ax, ay, az')
     do k = 1, 3
@@ -252,17 +264,23 @@ contains
     len = norm2(a)
     if (.not. len > 0.0_dp) call err(p, 'the rotation axis direction is a zero vector')
     a = a / len
+    scale = axis_tol * max(1.0_dp, norm2(x))
+    dir = 0.0_dp
     if (axi) then
-      if (abs(a(1)) > axis_tol .or. abs(a(3)) > axis_tol .or. abs(x(1)) > axis_tol * max(1.0_dp, norm2(x)) &
-          .or. abs(x(3)) > axis_tol * max(1.0_dp, norm2(x))) &
+      if (abs(a(1)) > axis_tol .or. abs(a(3)) > axis_tol .or. abs(x(1)) > scale .or. abs(x(3)) > scale) &
         call err(p, 'the rotation axis of an axisymmetric element must be its symmetry axis, the y axis ' // &
                     '(point 0, y, 0; direction 0, 1, 0)')
-    else
-      if (abs(a(1)) > axis_tol .or. abs(a(2)) > axis_tol) &
-        call err(p, 'the rotation axis of a plane element must be normal to the x-y plane (direction 0, 0, 1)')
+    else if (abs(a(3)) <= axis_tol) then
+      if (abs(x(3)) > scale) call err(p, 'the rotation axis lies along the x-y plane but off it (z0 is not ' // &
+          '0): its centrifugal load has an out-of-plane part, which a plane element cannot carry')
+      dir = a(1:2) / norm2(a(1:2))
+    else if (abs(a(1)) > axis_tol .or. abs(a(2)) > axis_tol) then
+      call err(p, 'the rotation axis of a plane element must be normal to the x-y plane (direction 0, 0, 1) ' // &
+          'or lie in it (az = 0, z0 = 0): about a tilted axis the centrifugal load has an out-of-plane part, ' // &
+          'which a plane element cannot carry')
     end if
     pt = x(1:2)
-  end function centrifugal_axis
+  end subroutine centrifugal_axis
 
   !> The section (read so far) whose element set holds element e, 0 if none.
   integer function section_of(p, m, e) result(s)

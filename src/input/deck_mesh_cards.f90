@@ -19,12 +19,15 @@ contains
   !> lenient as CalculiX: a missing or empty coordinate is 0, z (gmsh
   !> writes it) is read and ignored, and so are fields after z (with a
   !> warning on the first such line). NSET= collects the nodes in a set.
+  !> A card without data lines defines nothing and warns (cgx writes one
+  !> for a set that has no nodes of its own; CalculiX accepts it); its
+  !> NSET= still exists, empty.
   module subroutine read_nodes(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
-    integer :: n, id, iset, nitems, k
+    integer :: n, id, iset, nitems, k, card
     integer, allocatable :: items(:)
     real(dp) :: xyz(3)
     logical :: warned
@@ -32,7 +35,9 @@ contains
     if (has_param(kw, 'SYSTEM')) then
       if (to_upper(param_value(kw, 'SYSTEM')) /= 'R') call err(p, 'only SYSTEM=R (rectangular) is implemented')
     end if
+    card = p%i
     nitems = 0
+    allocate(items(0))
     warned = .false.
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
@@ -56,9 +61,16 @@ contains
       m%node_id(m%nn) = id
       m%x(:, m%nn) = xyz(1:2)
       m%node_index(id) = m%nn
+      call grow(p%node_line, m%nn)
+      p%node_line(m%nn) = p%i
       call append(items, nitems, m%nn)
     end do
-    if (nitems == 0) call err(p, 'missing data line (*NODE without nodes)')
+    if (nitems == 0 .and. has_param(kw, 'NSET')) then
+      call deck_warning(p%deck, card, '*NODE without data lines defines no node (node set ' // &
+                        to_upper(param_value(kw, 'NSET')) // ' gets none)')
+    else if (nitems == 0) then
+      call deck_warning(p%deck, card, '*NODE without data lines defines no node')
+    end if
     if (has_param(kw, 'NSET')) then
       iset = add_nset(p, m, required_param(p, kw, 'NSET'))
       call extend_set(m%nsets(iset)%items, items(1:nitems))
@@ -336,8 +348,11 @@ contains
       end if
       nlines = nlines + 1
     end do
-    ! (lines naming only empty sets leave the surface empty: warned there)
-    if (nlines == 0) call err(p, 'missing data line (empty surface)')
+    ! Lines naming only empty sets leave the surface empty (warned there);
+    ! a card without lines (cgx writes one for a set without faces) too. A
+    ! card that names an empty surface warns where it does.
+    if (nlines == 0) call deck_warning(p%deck, p%i, '*SURFACE without data lines: surface ' // name // &
+                                       ' is empty')
     isurf = new_surface(p, m)
     associate(s => m%surfaces(isurf))
       s%name = name

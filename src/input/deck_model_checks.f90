@@ -8,7 +8,7 @@ submodule (deck_parser) deck_model_checks
   use strings, only: itoa, to_upper
   use deck_input, only: deck_warning
   use deck_cursor, only: err
-  use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t
+  use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t, kept_nodes
   use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
                                state_axisymmetric, shape_springa
@@ -46,8 +46,52 @@ contains
       call err(p, 'the model has no element with stiffness (no continuum element, truss or spring; line ' // &
                'elements without a section only describe boundaries): nothing to analyse')
     end if
+    call check_unused_nodes(p, m)
     call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
   end subroutine check_model
+
+  !> Purpose: nodes that no element, contact surface or constraint uses
+  !> (model's kept_nodes: left over from meshing, a gmsh geometry point or
+  !> the centre of an arc, as CalculiX ignores them) are dropped by the
+  !> analysis: one warning counts them and names the first few, at the
+  !> data line of the first. A *BOUNDARY on them is ignored, but a
+  !> *CLOAD on one would be lost without a trace: an error at its line.
+  subroutine check_unused_nodes(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    integer, parameter :: named = 5
+    logical :: kept(m%nn)
+    integer, allocatable :: unused(:)
+    character(len=:), allocatable :: ids
+    integer :: k, s, j
+    kept = kept_nodes(m)
+    if (all(kept)) return
+    unused = pack([(k, k = 1, m%nn)], .not. kept)
+    ids = itoa(m%node_id(unused(1)))
+    do k = 2, min(size(unused), named)
+      ids = ids // ', ' // itoa(m%node_id(unused(k)))
+    end do
+    if (size(unused) > named) ids = ids // ' and ' // itoa(size(unused) - named) // ' more'
+    if (size(unused) == 1) then
+      ids = '1 node belongs to no element with stiffness or mass, contact surface or *EQUATION (left over ' // &
+            'from meshing?): ' // ids // '; it is'
+    else
+      ids = itoa(size(unused)) // ' nodes belong to no element with stiffness or mass, contact surface or ' // &
+            '*EQUATION (left over from meshing?): ' // ids // '; they are'
+    end if
+    call deck_warning(p%deck, p%node_line(unused(1)), ids // ' left out of the analysis, with zero ' // &
+                      'displacement in the outputs (a *BOUNDARY there is ignored)')
+    do s = 1, size(m%steps)
+      do j = 1, size(m%steps(s)%loads)
+        associate(ld => m%steps(s)%loads(j))
+          if (kept(ld%node) .or. ld%value == 0.0_dp) cycle
+          p%i = ld%src%line
+          call err(p, 'node ' // itoa(m%node_id(ld%node)) // ' is left out of the analysis (it belongs to no ' // &
+                   'element with stiffness or mass, contact surface or *EQUATION): this *CLOAD on it would be lost')
+        end associate
+      end do
+    end do
+  end subroutine check_unused_nodes
 
   !> *EQUATION: the constraints can be eliminated (module constraints
   !> says why not), and no dependent dof (a first term) is also

@@ -9,10 +9,14 @@ submodule (deck_parser) deck_step_cards
   use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, node_of, is_int, &
                          need_nset, need_elset, required_param, warn_empty_set
-  use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, amp_step_time, amp_total_time, find_name
+  use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
+                   find_name
   use growable, only: append
   use model_growth, only: grow
   implicit none
+
+  !> CalculiX's dof of the temperature (heat transfer and coupled analyses).
+  integer, parameter :: dof_temperature = 11
 
 contains
 
@@ -168,9 +172,22 @@ contains
       d2 = 2
       return
     end if
+    if (d1 <= dof_temperature .and. dof_temperature <= d2) call err(p, heat_transfer_dof('*BOUNDARY', &
+        'a prescribed temperature'))
     if (d1 < 1 .or. d2 > 2 .or. d2 < d1) call err(p, 'dofs must satisfy 1 <= first <= last <= 2 in 2D ' // &
         '(dof 3, out of the plane, may only be held at zero)')
   end subroutine boundary_dofs
+
+  !> Purpose: the message for dof 11 (CalculiX's temperature dof) on `card`,
+  !> which would be `what` in a heat transfer analysis: that is another
+  !> procedure, not a displacement dof cfe2d lacks.
+  pure function heat_transfer_dof(card, what) result(msg)
+    character(len=*), intent(in) :: card, what
+    character(len=:), allocatable :: msg
+    msg = 'dof 11 is the temperature (' // card // ' on it is ' // what // '): heat transfer is not ' // &
+          'part of cfe2d, which runs static mechanical steps (the temperatures of a thermal strain are ' // &
+          'given by *TEMPERATURE)'
+  end function heat_transfer_dof
 
   !> One prescribed dof: to the model outside a step, to the step inside.
   subroutine add_bc(p, m, bc)
@@ -217,11 +234,12 @@ contains
       if (n /= 3) call err(p, '*CLOAD data line needs: node or set, dof, value')
       call target_nodes(p, m, f(1)%s, kw%name, nodes, iset)
       d = get_int(p, f(2), 'dof')
+      if (d == dof_temperature) call err(p, heat_transfer_dof('*CLOAD', 'a concentrated heat flux'))
       if (d < 1 .or. d > 2) call err(p, 'dof must be 1 or 2 in 2D')
       v = get_real(p, f(3), 'load value')
       call grow(m%steps(p%step)%loads, p%nload + size(nodes))
       do k = 1, size(nodes)
-        m%steps(p%step)%loads(p%nload + k) = cload_t(node=nodes(k), dof=d, amp=amp, value=v)
+        m%steps(p%step)%loads(p%nload + k) = cload_t(node=nodes(k), dof=d, amp=amp, value=v, src=src_t(p%i))
       end do
       p%nload = p%nload + size(nodes)
       nnew = nnew + 1

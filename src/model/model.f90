@@ -16,6 +16,7 @@ module model
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif
+  public :: kept_nodes
 
   integer, parameter :: surf_element = 1, surf_node = 2
   integer, parameter :: amp_step_time = 1, amp_total_time = 2
@@ -107,13 +108,15 @@ module model
   type :: cload_t
     integer :: node = 0, dof = 0, amp = 0
     real(dp) :: value = 0.0_dp
+    type(src_t) :: src       ! its data line
   end type cload_t
 
   !> One distributed load on one element (*DLOAD, *DSLOAD), by its Abaqus
   !> label: a pressure Pk on face k (dload_p), a body force per unit volume
   !> along x or y (dload_bx, dload_by), gravity g along dir times the
   !> density (dload_grav), or a centrifugal load density * omega^2 times
-  !> the distance from the axis through `point` (dload_centrif). value is
+  !> the distance from the axis through `point` (dload_centrif; its dir is
+  !> the axis when it lies in the plane, 0 when normal to it). value is
   !> the magnitude at the end of the step (pressure, force per volume, g,
   !> omega^2). Element, label and face identify a load from step to step.
   type :: dload_t
@@ -293,6 +296,39 @@ contains
     integer, intent(in) :: e
     is_drawn = carries_stiffness(m, e) .or. is_mass(m, e)
   end function is_drawn
+
+  !> Purpose: the nodes (nn) the analysis keeps: those of an element with
+  !> stiffness or of a point mass, of the surfaces of a contact pair or a
+  !> *TIE, or named by a linear constraint (*EQUATION and the equations
+  !> that cards generate). Any other node, left over from meshing (a gmsh
+  !> geometry point, the centre of an arc), is dropped: it gets no
+  !> equation, has zero displacement, and nothing could carry a load on it.
+  pure function kept_nodes(m) result(kept)
+    type(model_t), intent(in) :: m
+    logical :: kept(m%nn)
+    integer :: e, k
+    kept = .false.
+    do e = 1, m%ne
+      if (carries_stiffness(m, e) .or. is_mass(m, e)) kept(m%conn(1:elem_nodes(m, e), e)) = .true.
+    end do
+    if (allocated(m%pairs)) then
+      do k = 1, size(m%pairs)
+        kept(m%surfaces(m%pairs(k)%slave_surface)%nodes) = .true.
+        kept(m%surfaces(m%pairs(k)%master_surface)%nodes) = .true.
+      end do
+    end if
+    if (allocated(m%ties)) then
+      do k = 1, size(m%ties)
+        kept(m%surfaces(m%ties(k)%slave_surface)%nodes) = .true.
+        kept(m%surfaces(m%ties(k)%master_surface)%nodes) = .true.
+      end do
+    end if
+    if (allocated(m%equations)) then
+      do k = 1, size(m%equations)
+        kept(m%equations(k)%node) = .true.
+      end do
+    end if
+  end function kept_nodes
 
   !> Has the model axisymmetric elements (so its point loads and masses
   !> are whole rings about the y axis)?
