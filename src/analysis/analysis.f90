@@ -199,8 +199,7 @@ contains
       call values_at(m, rs%ls, iv%t1, rs%u, rs%fext)
       call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, ok, iters)
       if (ok) then
-        ! the friction history of the converged increment
-        call contact_commit(rs%cs)
+        call commit_increment(rs)
         rs%inc = rs%inc + 1
         call report(m, is, rs, obs, iv%t1, iters)
         cycle
@@ -221,6 +220,17 @@ contains
       top = top + 2
     end do
   end subroutine advance
+
+  !> Purpose: a converged increment's history becomes the state the next
+  !> increment starts from: the one place where state that depends on
+  !> the loading path is committed (today the contact layer's friction
+  !> anchors and slips; a material with history would commit here too).
+  !> An increment that does not converge commits nothing: its bisected
+  !> halves start again from the last committed state.
+  subroutine commit_increment(rs)
+    type(run_state_t), intent(inout) :: rs
+    call contact_commit(rs%cs)
+  end subroutine commit_increment
 
   !> UPDATE SEARCH: the contact layer pairs again on the deformed
   !> configuration; the equations are renumbered for the new couplings.
