@@ -8,7 +8,7 @@ submodule (deck_parser) deck_constraint_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param
   use deck_cursor, only: max_id, line_text, err, next_data, allow_params, required_param, name_param, get_real, &
-                         get_int, param_real, node_of, is_int, need_nset, warn_empty_set
+                         get_int, param_real, is_label, node_ref, need_nset, warn_empty_set
   use model, only: pretension_t, tie_t, equation_t, temp_t, surf_element, find_name, edge_nodes, elem_nodes
   use element_catalogue, only: catalogue
   use growable, only: grow
@@ -46,8 +46,8 @@ contains
     if (size(m%surfaces(pt%surface)%elem) == 0) call err(p, 'surface ' // trim(m%surfaces(pt%surface)%name) // &
       ' is empty: *PRE-TENSION SECTION has no faces to cut')
     v = required_param(p, kw, 'NODE')
-    if (is_int(v)) then
-      pt%ref_node = node_of(p, m, get_int(p, field_t(v), 'reference node'))
+    if (is_label(v)) then
+      pt%ref_node = node_ref(p, m, field_t(v), 'reference node')
     else
       associate(items => m%nsets(need_nset(p, m, v))%items)
         if (size(items) /= 1) call err(p, 'the node set of NODE= must hold exactly one node (it holds ' // &

@@ -4,8 +4,8 @@ submodule (deck_parser) deck_load_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param
-  use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, get_int, elem_of, &
-                         is_int, need_elset, warn_empty_set
+  use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, &
+                         is_label, elem_ref, need_elset, warn_empty_set
   use model, only: dload_t, surf_element, find_name, is_continuum, is_mass, axisymmetric_model, step_dloads, &
                    dload_p, dload_bx, dload_by, dload_grav, dload_centrif
   use element_catalogue, only: catalogue, state_axisymmetric, is_line
@@ -57,8 +57,8 @@ contains
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
       if (n < 3) call err(p, '*DLOAD data line needs: element or element set, load label, magnitude')
-      if (is_int(f(1)%s)) then
-        elems = [elem_of(p, m, get_int(p, f(1), 'element'))]
+      if (is_label(f(1)%s)) then
+        elems = [elem_ref(p, m, f(1), 'element')]
       else
         es = need_elset(p, m, f(1)%s)
         elems = m%elsets(es)%items
