@@ -321,8 +321,9 @@ contains
   ! ----------------------------------------------------------------- dispatch
 
   !> Purpose: hand the card starting at keyword kw to its reader, after
-  !> checking that it stands in the right part of the deck.
-  subroutine dispatch(p, m, card)
+  !> checking that it stands in the right part of the deck. Recursive:
+  !> *INSTANCE hands its part's cards here again (deck_part_cards).
+  recursive subroutine dispatch(p, m, card)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: card
