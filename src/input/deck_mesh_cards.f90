@@ -8,7 +8,7 @@ submodule (deck_parser) deck_mesh_cards
                          need_nset, need_elset, new_surface, warn_empty_set, &
                          is_label, node_ref, elem_ref, defined_name, new_node_id, new_elem_id, placed, &
                          instance_index, set_scope
-  use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name
+  use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name, elem_label
   use growable, only: append, grow
   use model_growth, only: grow
   use element_catalogue, only: catalogue, find_element_type, is_line, is_spring_shape, unsupported_reason
@@ -442,7 +442,7 @@ contains
     do k = 1, size(list)
       e = list(k)
       if (is_spring_shape(catalogue(m%etype(e))%shape)) then
-        call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a spring (' // trim(catalogue(m%etype(e))%name) // &
+        call err(p, 'element ' // elem_label(m, e) // ' is a spring (' // trim(catalogue(m%etype(e))%name) // &
                  '): a surface is made of solid element faces or of line elements on them')
       else if (is_line(catalogue(m%etype(e))%shape)) then
         if (len(face) > 0) call err(p, 'a face id is not allowed for line elements')
