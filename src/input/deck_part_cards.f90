@@ -15,7 +15,7 @@
 !> INSTANCE= list an instance's labels (deck_mesh_cards).
 submodule (deck_parser) deck_part_cards
   use kinds, only: dp
-  use strings, only: split_fields, to_upper, field_t, itoa, rtoa
+  use strings, only: split_fields, field_t, rtoa
   use deck_input, only: deck_warning
   use deck_cursor, only: part_t, line_text, err, next_data, allow_params, name_param, get_real, get_int, is_int, &
                          instance_index, set_scope, max_id
