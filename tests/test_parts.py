@@ -488,6 +488,45 @@ S
     assert sorted(set(labels)) == ["PLATE-1.1", "PLATE-1.2", "PLATE-1.3", "PLATE-1.5"], labels
 
 
+def test_assembly_level_nodes_keep_their_numbers():
+    """An assembly-level node (a reference point) keeps its number, 50; the
+    instance's ids start above it (offset 50); an assembly-level spring joins
+    Plate-1.12 to it, and a plain 50 in *BOUNDARY is that node."""
+    deck = PLATE_PART + """*Assembly, name=Assembly
+*Instance, name=Plate-1, part=Plate
+*End Instance
+*Node
+ 50, 1.5, 0.4
+*Element, type=SPRING2, elset=Pull
+ 7, Plate-1.12, 50
+*Spring, elset=Pull
+2, 2
+1000.
+*End Assembly
+""" + MATERIAL + """*Boundary
+Plate-1.Left, ENCASTRE
+50, 1, 1
+*Step
+*Static
+*Boundary
+50, 2, 2, -0.01
+*Node Print
+U
+*El Print, elset=Pull
+S
+*End Step
+"""
+    run = run_deck("parts_assembly_node", deck).ok()
+    inst = next(b for b in run.listing.header if b.name == "INSTANCES").rows
+    assert inst[0][:6] == ["PLATE-1", "PLATE", 12.0, 50.0, 6.0, 7.0], inst
+    inc = run.listing.increments[-1]
+    # (the listing reader reads the label 50 as a number)
+    u = {r[-1]: r for r in inc.block("NODE U").rows}
+    assert u[50.0][0] == 50 and u[50.0][2] == -0.01 and u["PLATE-1.12"][0] == 62, (u[50.0], u["PLATE-1.12"])
+    force = inc.block("ELEMENT S", set="PULL")["S11"][0]
+    assert abs(force - 1000.0 * (u["PLATE-1.12"][2] - u[50.0][2])) < 1e-9 * abs(force) and force > 1.0, force
+
+
 def test_debug_and_sanitizer_builds_on_these_decks():
     """The debug build (-fcheck=all) and the sanitizer build run the example
     and every deck above (good and broken) with the optimised build's exit
