@@ -86,7 +86,7 @@ contains
       call body_input(m, e, u0, ein, nodes)
       call element_routine(act_tangent, ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
-      if (.not. eout%detj_min > 0.0_dp) call fatal('element ' // itoa(m%elem_id(e)) // ' (' // &
+      if (.not. eout%detj_min > 0.0_dp) call fatal('element ' // elem_label(m, e) // ' (' // &
         trim(catalogue(m%etype(e))%name) // ') has a zero or negative Jacobian at an integration point: ' // &
         'a mid-side node far from the middle of its edge, an axisymmetric element reaching x < 0, or a ' // &
         'NODAL THICKNESS that the element interpolates to zero or less')

@@ -224,14 +224,14 @@ contains
     do a = 1, m%nn
       do d = 1, 2
         if (prescribed(d, a) .and. dm%mpc%dep(d, a) > 0) call fatal('dof ' // itoa(d) // ' of node ' // &
-          itoa(m%node_id(a)) // ' is both prescribed and the dependent dof of a linear constraint' // &
+          node_label(m, a) // ' is both prescribed and the dependent dof of a linear constraint' // &
           ' (' // constraint_label(m, dm%mpc%dep(d, a)) // ')')
         numbered(d, a) = .not. prescribed(d, a) .and. dm%mpc%dep(d, a) == 0
         dm%inactive(d, a) = numbered(d, a) .and. (.not. kept(a) .or. &
                             (.not. reached(a) .and. .not. named(d, a) .and. any(named(:, a))))
         if (dm%inactive(d, a)) numbered(d, a) = .false.
         if (numbered(d, a) .and. .not. reached(a) .and. .not. named(d, a)) call fatal('singular stiffness at ' // &
-          'node ' // itoa(m%node_id(a)) // ', dof ' // itoa(d) // ': no element with stiffness, coupling ' // &
+          'node ' // node_label(m, a) // ', dof ' // itoa(d) // ': no element with stiffness, coupling ' // &
           'element or *EQUATION reaches this dof and it has no *BOUNDARY (missing boundary condition?)')
       end do
     end do

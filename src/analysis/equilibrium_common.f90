@@ -8,7 +8,7 @@ module equilibrium_common
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use strings, only: itoa
-  use model, only: model_t
+  use model, only: model_t, node_label
   use contact, only: contact_set_t, contact_forces
   use contact_status, only: status_search_t, reject_pivot
   use assembly, only: element_counts_t, body_t, body_forces
@@ -137,7 +137,7 @@ contains
     integer :: a
     do a = 1, m%nn
       if (.not. all(ieee_is_finite(u(:, a)))) call fatal('step ' // itoa(is) // ', increment ' // &
-        itoa(inc) // ': the displacement at node ' // itoa(m%node_id(a)) // ' is not a finite number ' // &
+        itoa(inc) // ': the displacement at node ' // node_label(m, a) // ' is not a finite number ' // &
         '(overflow: loads, stiffness or displacements out of range?); results of this increment are not written')
     end do
   end subroutine check_finite
@@ -206,7 +206,7 @@ contains
     if (cs%n > 0) hint = '; a body held only by open contact has no stiffness: give it a support, ' // &
       'or a load or displacement that brings it into contact'
     if (bad > 0 .and. bad <= dm%neq) call fatal('singular stiffness at node ' // &
-      itoa(m%node_id(dm%node_of_eq(bad))) // ', dof ' // itoa(dm%dof_of_eq(bad)) // &
+      node_label(m, dm%node_of_eq(bad)) // ', dof ' // itoa(dm%dof_of_eq(bad)) // &
       ' (missing boundary condition?)' // hint)
     call fatal('singular stiffness (missing boundary condition?)' // hint)
   end subroutine singular

@@ -98,28 +98,27 @@ contains
     integer :: a, e, k
     where = 'step ' // itoa(res%step) // ', increment ' // itoa(res%increment) // ': '
     do a = 1, m%nn
-      if (.not. all(ieee_is_finite(res%u(:, a)))) call stop_at('displacement', 'node', m%node_id(a))
-      if (.not. all(ieee_is_finite(res%rf(:, a)))) call stop_at('reaction/internal force', 'node', m%node_id(a))
+      if (.not. all(ieee_is_finite(res%u(:, a)))) call stop_at('displacement', 'node', node_label(m, a))
+      if (.not. all(ieee_is_finite(res%rf(:, a)))) call stop_at('reaction/internal force', 'node', node_label(m, a))
     end do
     do a = 1, size(res%sig_node, 2)
-      if (.not. all(ieee_is_finite(res%sig_node(:, a)))) call stop_at('nodal stress', 'node', m%node_id(a))
+      if (.not. all(ieee_is_finite(res%sig_node(:, a)))) call stop_at('nodal stress', 'node', node_label(m, a))
     end do
     do e = 1, size(res%sig_ip, 3)
       if (.not. all(ieee_is_finite(res%sig_ip(:, :, e))) .or. .not. all(ieee_is_finite(res%eps_ip(:, :, e)))) &
-        call stop_at('stress or strain', 'element', m%elem_id(e))
+        call stop_at('stress or strain', 'element', elem_label(m, e))
     end do
     do k = 1, size(res%contact%pairs)
       associate(p => res%contact%pairs(k))
         if (.not. (all(ieee_is_finite(p%slave_force)) .and. all(ieee_is_finite(p%master_force)) .and. &
                    all(ieee_is_finite(p%slave_gap)) .and. ieee_is_finite(p%total))) &
-          call stop_at('contact force', 'pair', p%pair)
+          call stop_at('contact force', 'pair', itoa(p%pair))
       end associate
     end do
   contains
     subroutine stop_at(quantity, what, id)
-      character(len=*), intent(in) :: quantity, what
-      integer, intent(in) :: id
-      call fatal(where // 'the ' // quantity // ' at ' // what // ' ' // itoa(id) // &
+      character(len=*), intent(in) :: quantity, what, id
+      call fatal(where // 'the ' // quantity // ' at ' // what // ' ' // id // &
         ' is not a finite number (overflow: loads, stiffness or displacements out of range?); ' // &
         'results of this increment are not written')
     end subroutine stop_at

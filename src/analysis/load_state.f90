@@ -279,7 +279,7 @@ contains
     rho = m%materials(m%sections(sec)%material)%density
     if ((d%label == dload_grav .or. d%label == dload_centrif) .and. &
         .not. m%materials(m%sections(sec)%material)%has_density) &
-      call fatal('gravity or centrifugal load on element ' // itoa(m%elem_id(e)) // ' needs the density of ' // &
+      call fatal('gravity or centrifugal load on element ' // elem_label(m, e) // ' needs the density of ' // &
                  'material ' // trim(m%materials(m%sections(sec)%material)%name) // ' (*DENSITY)')
     associate(t => elem_thickness(m, e))
       select case (d%label)
@@ -446,7 +446,7 @@ contains
       do d = 1, 2
         if (.not. inactive(d, a)) cycle
         if (ls%ld_target(d, a) /= 0.0_dp .or. ls%ld_start(d, a) /= 0.0_dp) call fatal('a *CLOAD acts on dof ' // &
-          itoa(d) // ' of node ' // itoa(m%node_id(a)) // ', which belongs to no element and which no ' // &
+          itoa(d) // ' of node ' // node_label(m, a) // ', which belongs to no element and which no ' // &
           '*EQUATION names: nothing carries it')
       end do
     end do
@@ -456,7 +456,7 @@ contains
         a = ls%pat(j)%node(k)
         do d = 1, 2
           if (inactive(d, a) .and. ls%pat(j)%f(d, k) /= 0.0_dp) call fatal('a *DLOAD (a point mass''s ' // &
-            'load) acts on dof ' // itoa(d) // ' of node ' // itoa(m%node_id(a)) // ', which belongs to no ' // &
+            'load) acts on dof ' // itoa(d) // ' of node ' // node_label(m, a) // ', which belongs to no ' // &
             'element with stiffness and which no *EQUATION names: nothing carries it')
         end do
       end do

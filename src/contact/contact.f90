@@ -117,16 +117,16 @@ contains
     if (c%ns == 1) coupling_node = c%snode(1)
   end function coupling_node
 
-  !> Purpose: a CFE's name in messages: its slave node's id, or for a
-  !> Gauss point of a slave face `element:Sk:point`.
+  !> Purpose: a CFE's name in messages: its slave node as the deck names
+  !> it, or for a Gauss point of a slave face `element:Sk:point`.
   function cfe_label(m, c) result(s)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
     character(len=:), allocatable :: s
     if (c%ns == 1) then
-      s = itoa(m%node_id(c%snode(1)))
+      s = node_label(m, c%snode(1))
     else
-      s = itoa(m%elem_id(c%selem)) // ':S' // itoa(c%sedge) // ':' // itoa(c%sip)
+      s = elem_label(m, c%selem) // ':S' // itoa(c%sedge) // ':' // itoa(c%sip)
     end if
   end function cfe_label
 

@@ -19,7 +19,7 @@ module tie_constraints
   use kinds, only: dp
   use strings, only: itoa, rtoa
   use messages, only: warn
-  use model, only: model_t, tie_t, equation_t
+  use model, only: model_t, tie_t, equation_t, node_label
   use contact_geometry, only: edge_t, get_edge, project_to_edge, edge_at, edge_weights, edge_length
   implicit none
   private
@@ -260,7 +260,7 @@ contains
     integer :: k
     s = ''
     do k = 1, min(size(nodes), max_listed)
-      s = s // ' ' // itoa(m%node_id(nodes(k)))
+      s = s // ' ' // node_label(m, nodes(k))
     end do
     if (size(nodes) > max_listed) s = s // ' ...'
   end function id_list

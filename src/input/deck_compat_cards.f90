@@ -6,7 +6,7 @@
 submodule (deck_parser) deck_compat_cards
   use kinds, only: dp
   use strings, only: split_fields, field_t, itoa
-  use deck_cursor, only: line_text, err, next_data, allow_params, get_real, get_int, is_int, node_of, need_nset, &
+  use deck_cursor, only: line_text, err, next_data, allow_params, get_real, get_int, is_label, node_ref, need_nset, &
                          warn_empty_set
   use model, only: equation_t
   use model_growth, only: grow
@@ -55,8 +55,8 @@ contains
     integer, intent(out) :: iset
     integer, allocatable :: nodes(:)
     iset = 0
-    if (is_int(f%s)) then
-      nodes = [node_of(p, m, get_int(p, f, 'node'))]
+    if (is_label(f%s)) then
+      nodes = [node_ref(p, m, f, 'node')]
     else
       iset = need_nset(p, m, f%s)
       nodes = m%nsets(iset)%items

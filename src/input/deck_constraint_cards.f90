@@ -8,8 +8,9 @@ submodule (deck_parser) deck_constraint_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param
   use deck_cursor, only: max_id, line_text, err, next_data, allow_params, required_param, name_param, get_real, &
-                         get_int, param_real, node_of, is_int, need_nset, warn_empty_set
-  use model, only: pretension_t, tie_t, equation_t, temp_t, surf_element, find_name, edge_nodes, elem_nodes
+                         get_int, param_real, is_label, node_ref, need_nset, warn_empty_set
+  use model, only: pretension_t, tie_t, equation_t, temp_t, surf_element, find_name, edge_nodes, elem_nodes, &
+                   node_label, elem_label
   use element_catalogue, only: catalogue
   use growable, only: grow
   implicit none
@@ -46,8 +47,8 @@ contains
     if (size(m%surfaces(pt%surface)%elem) == 0) call err(p, 'surface ' // trim(m%surfaces(pt%surface)%name) // &
       ' is empty: *PRE-TENSION SECTION has no faces to cut')
     v = required_param(p, kw, 'NODE')
-    if (is_int(v)) then
-      pt%ref_node = node_of(p, m, get_int(p, field_t(v), 'reference node'))
+    if (is_label(v)) then
+      pt%ref_node = node_ref(p, m, field_t(v), 'reference node')
     else
       associate(items => m%nsets(need_nset(p, m, v))%items)
         if (size(items) /= 1) call err(p, 'the node set of NODE= must hold exactly one node (it holds ' // &
@@ -111,11 +112,11 @@ contains
     ref = m%pretensions(k)%ref_node
     do e = 1, m%ne
       if (any(m%conn(1:elem_nodes(m, e), e) == ref)) call err(p, 'the reference node ' // &
-        itoa(m%node_id(ref)) // ' belongs to element ' // itoa(m%elem_id(e)) // &
+        node_label(m, ref) // ' belongs to element ' // elem_label(m, e) // &
         ': it must be a node of its own, in no element')
     end do
     do j = 1, k - 1
-      if (m%pretensions(j)%ref_node == ref) call err(p, 'the reference node ' // itoa(m%node_id(ref)) // &
+      if (m%pretensions(j)%ref_node == ref) call err(p, 'the reference node ' // node_label(m, ref) // &
         ' already serves the pre-tension section of line ' // itoa(p%deck%lines(m%pretensions(j)%src%line)%line))
       if (m%pretensions(j)%surface == m%pretensions(k)%surface) call err(p, 'surface ' // &
         trim(m%surfaces(m%pretensions(k)%surface)%name) // ' is already cut by the pre-tension section of line ' // &

@@ -11,7 +11,7 @@ module deck_cursor
   use kinds, only: dp, name_len
   use strings, only: to_upper, parse_real, parse_int, field_t, itoa
   use deck_input, only: deck_t, keyword_t, deck_error, deck_warning, param_value, has_param, is_keyword
-  use model, only: model_t, find_name
+  use model, only: model_t, find_name, has_instances
   use model_growth, only: grow
   implicit none
   private
@@ -22,6 +22,9 @@ module deck_cursor
             name_param, check_name_length, get_real, get_int, param_real, param_int, &
             node_of, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
             new_surface, in_step, warn_empty_set
+  ! Abaqus/CAE decks: parts, instances and the names and numbers of their members.
+  public :: part_t, is_label, node_ref, elem_ref, defined_name, new_node_id, new_elem_id, placed, &
+            instance_index, set_scope
 
   !> Node and element ids are 1..max_id (an id indexes a lookup table).
   integer, parameter :: max_id = 100000000
@@ -59,6 +62,14 @@ module deck_cursor
     character(len=name_len) :: name = ''
   end type pair_interaction_t
 
+  !> A *PART as defined: its name and the lines of its *PART and *END
+  !> PART. Its cards are read once for every *INSTANCE of it.
+  type :: part_t
+    character(len=name_len) :: name = ''
+    integer :: first = 0, last = 0
+    integer :: instances = 0
+  end type part_t
+
   !> Parser state that only lives while reading.
   type :: parser_t
     type(deck_t) :: deck
@@ -81,6 +92,22 @@ module deck_cursor
     integer :: heading_line = 0                ! the *HEADING whose title is kept
     integer :: nequations = 0
     integer, allocatable :: node_line(:)       ! the data line of each node (internal index)
+    ! Abaqus/CAE decks (deck_part_cards). Inside an instance (while its
+    ! part's cards are read again, and up to its *END INSTANCE) `owner`
+    ! is the instance (index into model%instances): names defined take
+    ! its prefix INSTANCE., numbers its id offsets, nodes its placement.
+    ! `scope` is the instance whose node and element labels and set
+    ! names a card looks up: the owner, or INSTANCE= of an assembly-level
+    ! *NSET/*ELSET; 0 is the assembly (or a flat deck).
+    type(part_t), allocatable :: parts(:)
+    integer :: nparts = 0
+    logical :: part_based = .false.            ! the deck has a *PART or an *ASSEMBLY
+    integer :: assembly_line = 0               ! the *ASSEMBLY line, while inside it
+    logical :: assembly_done = .false.         ! *END ASSEMBLY was read
+    integer :: owner = 0, scope = 0
+    integer :: replaying = 0                   ! the part whose cards are being read for `owner`
+    integer :: asm_node_max = 0, asm_elem_max = 0  ! largest assembly-level labels: instance ids start above
+    character(len=:), allocatable :: scope_note    ! appended to errors: the instance being read
   end type parser_t
 
 contains
@@ -91,12 +118,18 @@ contains
     t = p%deck%lines(p%i)%text
   end function line_text
 
-  !> Stop with file:line: error: msg, quoting the current line.
+  !> Stop with file:line: error: msg, quoting the current line. Inside
+  !> an instance the message says which (a part's line is read once per
+  !> instance of it).
   subroutine err(p, msg)
     type(parser_t), intent(in) :: p
     character(len=*), intent(in) :: msg
     associate(l => p%deck%lines(p%i))
-      call deck_error(p%deck, l%file, l%line, msg, l%text)
+      if (allocated(p%scope_note)) then
+        call deck_error(p%deck, l%file, l%line, msg // p%scope_note, l%text)
+      else
+        call deck_error(p%deck, l%file, l%line, msg, l%text)
+      end if
     end associate
   end subroutine err
 
@@ -231,23 +264,78 @@ contains
       call err(p, name // ' must lie in ' // itoa(lo) // '..' // itoa(hi))
   end function param_int
 
+  !> The node with number `id` where the card stands (p%scope: an
+  !> instance's label, or the deck's number), 0 stops with 'undefined'.
   integer function node_of(p, m, id)
     type(parser_t), intent(in) :: p
     type(model_t), intent(in) :: m
     integer, intent(in) :: id
+    integer :: gid
     node_of = 0
-    if (id >= 1 .and. id <= size(m%node_index)) node_of = m%node_index(id)
-    if (node_of == 0) call err(p, 'undefined node ' // itoa(id))
+    gid = scoped_id(m, p%scope, id, .true.)
+    if (gid >= 1 .and. gid <= size(m%node_index)) node_of = m%node_index(gid)
+    if (node_of == 0) call err(p, 'undefined node ' // itoa(id) // assembly_hint(p, m, id))
   end function node_of
 
   integer function elem_of(p, m, id)
     type(parser_t), intent(in) :: p
     type(model_t), intent(in) :: m
     integer, intent(in) :: id
+    integer :: gid
     elem_of = 0
-    if (id >= 1 .and. id <= size(m%elem_index)) elem_of = m%elem_index(id)
-    if (elem_of == 0) call err(p, 'undefined element ' // itoa(id))
+    gid = scoped_id(m, p%scope, id, .false.)
+    if (gid >= 1 .and. gid <= size(m%elem_index)) elem_of = m%elem_index(gid)
+    if (elem_of == 0) call err(p, 'undefined element ' // itoa(id) // assembly_hint(p, m, id))
   end function elem_of
+
+  !> At the assembly level of a deck with instances a bare number is an
+  !> assembly-level node or element: say how an instance's is named.
+  function assembly_hint(p, m, id) result(s)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: id
+    character(len=:), allocatable :: s
+    s = ''
+    if (p%scope == 0 .and. has_instances(m)) s = ' at the assembly level (a member of an instance is named ' // &
+        'INSTANCE.NUMBER, e.g. ' // trim(m%instances(1)%name) // '.' // itoa(id) // ')'
+  end function assembly_hint
+
+  !> Purpose: the id (m%node_id, m%elem_id) of number `id` in scope k:
+  !> offset + label in instance k (0 beyond its largest label), the
+  !> number itself at the assembly level or in a flat deck (0 if an
+  !> instance's ids take it).
+  pure integer function scoped_id(m, k, id, nodes) result(gid)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: k, id
+    logical, intent(in) :: nodes
+    integer :: j, off, last
+    gid = 0
+    if (k > 0) then
+      call id_range(m, k, nodes, off, last)
+      if (id >= 1 .and. id <= last - off) gid = off + id
+      return
+    end if
+    gid = id
+    if (.not. has_instances(m)) return
+    do j = 1, size(m%instances)
+      call id_range(m, j, nodes, off, last)
+      if (gid > off .and. gid <= last) gid = 0
+    end do
+  end function scoped_id
+
+  pure subroutine id_range(m, k, nodes, off, last)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: k
+    logical, intent(in) :: nodes
+    integer, intent(out) :: off, last
+    if (nodes) then
+      off = m%instances(k)%node_offset
+      last = m%instances(k)%node_last
+    else
+      off = m%instances(k)%elem_offset
+      last = m%instances(k)%elem_last
+    end if
+  end subroutine id_range
 
   logical function is_int(s)
     character(len=*), intent(in) :: s
@@ -255,18 +343,222 @@ contains
     call parse_int(s, k, is_int)
   end function is_int
 
+  !> Is s a node or element label: a number, or INSTANCE.NUMBER (an
+  !> instance's member, `Part-1-1.17`)? A name begins with a letter, so
+  !> `1.5` is not one.
+  logical function is_label(s)
+    character(len=*), intent(in) :: s
+    integer :: j
+    is_label = is_int(s)
+    if (is_label) return
+    j = index(s, '.', back=.true.)
+    if (j <= 1 .or. j == len(s)) return
+    if (.not. is_int(s(j + 1:))) return
+    is_label = verify(s(1:1), '0123456789+-.') /= 0
+  end function is_label
+
+  !> Purpose: the node a label names (is_label): a number where the card
+  !> stands, or INSTANCE.NUMBER; stops if there is none.
+  integer function node_ref(p, m, f, what)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(field_t), intent(in) :: f
+    character(len=*), intent(in) :: what
+    integer :: k, id, gid
+    if (is_int(f%s)) then
+      node_ref = node_of(p, m, get_int(p, f, what))
+      return
+    end if
+    call qualified_label(p, m, f, what, k, id)
+    gid = scoped_id(m, k, id, .true.)
+    node_ref = 0
+    if (gid >= 1 .and. gid <= size(m%node_index)) node_ref = m%node_index(gid)
+    if (node_ref == 0) call err(p, 'undefined node ' // to_upper(f%s) // ' (instance ' // &
+                                   trim(m%instances(k)%name) // ' has no node ' // itoa(id) // ')')
+  end function node_ref
+
+  !> Purpose: the element a label names (see node_ref).
+  integer function elem_ref(p, m, f, what)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(field_t), intent(in) :: f
+    character(len=*), intent(in) :: what
+    integer :: k, id, gid
+    if (is_int(f%s)) then
+      elem_ref = elem_of(p, m, get_int(p, f, what))
+      return
+    end if
+    call qualified_label(p, m, f, what, k, id)
+    gid = scoped_id(m, k, id, .false.)
+    elem_ref = 0
+    if (gid >= 1 .and. gid <= size(m%elem_index)) elem_ref = m%elem_index(gid)
+    if (elem_ref == 0) call err(p, 'undefined element ' // to_upper(f%s) // ' (instance ' // &
+                                   trim(m%instances(k)%name) // ' has no element ' // itoa(id) // ')')
+  end function elem_ref
+
+  !> INSTANCE.NUMBER taken apart: the instance (which must exist) and
+  !> the number.
+  subroutine qualified_label(p, m, f, what, k, id)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(field_t), intent(in) :: f
+    character(len=*), intent(in) :: what
+    integer, intent(out) :: k, id
+    integer :: j
+    j = index(f%s, '.', back=.true.)
+    k = instance_index(m, to_upper(f%s(1:j - 1)))
+    if (k == 0) call err(p, 'undefined instance ' // to_upper(f%s(1:j - 1)) // ' in ' // to_upper(f%s) // &
+                            ' (' // what // ': a number, or INSTANCE.NUMBER)')
+    id = get_int(p, field_t(f%s(j + 1:)), what)
+  end subroutine qualified_label
+
+  !> Index of the instance of that name (upper case) in m%instances, 0 if none.
+  integer function instance_index(m, name)
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: name
+    instance_index = 0
+    if (has_instances(m)) instance_index = find_name(m%instances%name, name)
+  end function instance_index
+
+  !> Purpose: look labels and set names up in instance k from now on
+  !> (0: the assembly, or a flat deck); errors then say which instance.
+  subroutine set_scope(p, m, k)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: k
+    p%scope = k
+    if (allocated(p%scope_note)) deallocate(p%scope_note)
+    if (k == 0) return
+    if (p%replaying > 0) then
+      p%scope_note = ' (reading part ' // trim(m%instances(k)%part) // ' for its instance ' // &
+                     trim(m%instances(k)%name) // ')'
+    else
+      p%scope_note = ' (in instance ' // trim(m%instances(k)%name) // ')'
+    end if
+  end subroutine set_scope
+
+  !> A set name as looked up where the card stands: INSTANCE.NAME inside
+  !> an instance (its part's sets), else the name (upper case).
+  function scoped_name(p, m, k, name) result(s)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: k
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: s
+    s = to_upper(name)
+    if (k == 0) return
+    s = trim(m%instances(k)%name) // '.' // s
+    if (len(s) > name_len) call err(p, 'the name ' // s // ' is longer than ' // itoa(name_len) // ' characters')
+  end function scoped_name
+
+  !> Purpose: the name a set or surface defined here takes: INSTANCE.NAME
+  !> inside an instance (or its part), else the name; upper case.
+  function defined_name(p, m, name) result(s)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: s
+    s = scoped_name(p, m, p%owner, name)
+  end function defined_name
+
+  !> Purpose: the id (m%node_id) of a node defined here with number id:
+  !> offset + id in an instance (whose range it extends), else id.
+  integer function new_node_id(p, m, id) result(gid)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: id
+    gid = id
+    if (p%owner == 0) then
+      if (scoped_id(m, 0, id, .true.) == 0) call err(p, 'node ' // itoa(id) // ' of the assembly has the id ' // &
+          'of a node of an instance; define the assembly''s nodes inside *ASSEMBLY ... *END ASSEMBLY')
+      return
+    end if
+    associate(inst => m%instances(p%owner))
+      if (id > max_id - inst%node_offset) call err(p, 'node ' // itoa(id) // ' of instance ' // trim(inst%name) // &
+          ' would have the id ' // itoa(inst%node_offset) // ' + ' // itoa(id) // ', beyond ' // itoa(max_id) // &
+          ' (the ids of instances follow one another)')
+      gid = inst%node_offset + id
+      inst%node_last = max(inst%node_last, gid)
+      inst%nodes = inst%nodes + 1
+    end associate
+  end function new_node_id
+
+  !> Purpose: the id (m%elem_id) of an element defined here (see new_node_id).
+  integer function new_elem_id(p, m, id) result(gid)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: id
+    gid = id
+    if (p%owner == 0) then
+      if (scoped_id(m, 0, id, .false.) == 0) call err(p, 'element ' // itoa(id) // ' of the assembly has the ' // &
+          'id of an element of an instance; define the assembly''s elements inside *ASSEMBLY ... *END ASSEMBLY')
+      return
+    end if
+    associate(inst => m%instances(p%owner))
+      if (id > max_id - inst%elem_offset) call err(p, 'element ' // itoa(id) // ' of instance ' // &
+          trim(inst%name) // ' would have the id ' // itoa(inst%elem_offset) // ' + ' // itoa(id) // &
+          ', beyond ' // itoa(max_id) // ' (the ids of instances follow one another)')
+      gid = inst%elem_offset + id
+      inst%elem_last = max(inst%elem_last, gid)
+      inst%elements = inst%elements + 1
+    end associate
+  end function new_elem_id
+
+  !> Purpose: where a node defined here lies: inside an instance, its
+  !> part's coordinates x translated by the instance's shift, then turned
+  !> about the z axis through its centre; else x.
+  pure function placed(p, m, x) result(y)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(2)
+    real(dp) :: y(2), d(2), c, s
+    y = x
+    if (p%owner == 0) return
+    associate(inst => m%instances(p%owner))
+      y = x + inst%shift
+      if (inst%angle == 0.0_dp) return
+      call turn(inst%angle, c, s)
+      d = y - inst%centre
+      y = inst%centre + [c * d(1) - s * d(2), s * d(1) + c * d(2)]
+    end associate
+  end function placed
+
+  !> Cosine and sine of an angle in degrees, exact at multiples of 90
+  !> degrees (edges along the axes stay along them: no round-off in a
+  !> contact normal or a face's orientation).
+  pure subroutine turn(degrees, c, s)
+    real(dp), intent(in) :: degrees
+    real(dp), intent(out) :: c, s
+    real(dp), parameter :: pi = acos(-1.0_dp)
+    real(dp) :: q
+    q = modulo(degrees, 360.0_dp)
+    if (modulo(q, 90.0_dp) == 0.0_dp) then
+      select case (nint(q / 90.0_dp))
+      case (1); c = 0.0_dp; s = 1.0_dp
+      case (2); c = -1.0_dp; s = 0.0_dp
+      case (3); c = 0.0_dp; s = -1.0_dp
+      case default; c = 1.0_dp; s = 0.0_dp
+      end select
+    else
+      c = cos(q * pi / 180.0_dp)
+      s = sin(q * pi / 180.0_dp)
+    end if
+  end subroutine turn
+
+  !> A node set looked up where the card stands (p%scope: in an instance
+  !> its part's set INSTANCE.NAME), 0 if there is none.
   integer function nset_index(p, m, name)
     type(parser_t), intent(in) :: p
     type(model_t), intent(in) :: m
     character(len=*), intent(in) :: name
-    nset_index = find_name(m%nsets(1:p%nsets)%name, to_upper(name))
+    nset_index = find_name(m%nsets(1:p%nsets)%name, scoped_name(p, m, p%scope, name))
   end function nset_index
 
   integer function elset_index(p, m, name)
     type(parser_t), intent(in) :: p
     type(model_t), intent(in) :: m
     character(len=*), intent(in) :: name
-    elset_index = find_name(m%elsets(1:p%nelsets)%name, to_upper(name))
+    elset_index = find_name(m%elsets(1:p%nelsets)%name, scoped_name(p, m, p%scope, name))
   end function elset_index
 
   integer function need_nset(p, m, name)

@@ -4,10 +4,10 @@ submodule (deck_parser) deck_load_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param
-  use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, get_int, elem_of, &
-                         is_int, need_elset, warn_empty_set
+  use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, &
+                         is_label, elem_ref, need_elset, warn_empty_set
   use model, only: dload_t, surf_element, find_name, is_continuum, is_mass, axisymmetric_model, step_dloads, &
-                   dload_p, dload_bx, dload_by, dload_grav, dload_centrif
+                   dload_p, dload_bx, dload_by, dload_grav, dload_centrif, elem_label
   use element_catalogue, only: catalogue, state_axisymmetric, is_line
   implicit none
 
@@ -58,8 +58,8 @@ contains
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
       if (n < 3) call err(p, '*DLOAD data line needs: element or element set, load label, magnitude')
-      if (is_int(f(1)%s)) then
-        elems = [elem_of(p, m, get_int(p, f(1), 'element'))]
+      if (is_label(f(1)%s)) then
+        elems = [elem_ref(p, m, f(1), 'element')]
       else
         es = need_elset(p, m, f(1)%s)
         elems = m%elsets(es)%items
@@ -156,19 +156,19 @@ contains
     label = to_upper(f(2)%s)
     if (is_mass(m, e)) then
       ! A point mass takes the loads of its mass only, about the model's axis.
-      if (label /= 'GRAV' .and. label /= 'CENTRIF') call err(p, 'element ' // itoa(m%elem_id(e)) // &
+      if (label /= 'GRAV' .and. label /= 'CENTRIF') call err(p, 'element ' // elem_label(m, e) // &
           ' is a point mass (MASS): it takes GRAV and CENTRIF loads only')
       axi = axisymmetric_model(m)
     else if (is_line(catalogue(m%etype(e))%shape)) then
       ! A line element with a section is a truss: body forces over its length.
-      if (section_of(p, m, e) == 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+      if (section_of(p, m, e) == 0) call err(p, 'element ' // elem_label(m, e) // ' (' // &
           trim(catalogue(m%etype(e))%name) // ') has no *SOLID SECTION (yet): a line element takes a ' // &
           'distributed load as a truss, whose section must come before the step')
-      if (index(label, 'P') == 1) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a truss: it takes body ' // &
+      if (index(label, 'P') == 1) call err(p, 'element ' // elem_label(m, e) // ' is a truss: it takes body ' // &
           'forces (BX, BY, GRAV, CENTRIF), not pressures')
       axi = .false.
     else
-      if (.not. is_continuum(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+      if (.not. is_continuum(m, e)) call err(p, 'element ' // elem_label(m, e) // ' (' // &
           trim(catalogue(m%etype(e))%name) // ') is not a solid element: distributed loads act on solid ' // &
           'elements, trusses and point masses only (load a spring with *CLOAD)')
       axi = catalogue(m%etype(e))%state == state_axisymmetric
@@ -306,7 +306,7 @@ contains
     if (s == 0) return
     imat = find_name(m%materials(1:p%nmat)%name, m%sections(s)%material_name)
     if (imat == 0) return
-    if (.not. m%materials(imat)%has_density) call err(p, label // ' on element ' // itoa(m%elem_id(e)) // &
+    if (.not. m%materials(imat)%has_density) call err(p, label // ' on element ' // elem_label(m, e) // &
         ' needs the density of material ' // trim(m%materials(imat)%name) // ' (*DENSITY)')
   end subroutine need_density
 end submodule deck_load_cards

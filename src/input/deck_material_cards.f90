@@ -8,7 +8,7 @@ submodule (deck_parser) deck_material_cards
                          name_param, get_real, get_int, is_int, need_elset, param_real, warn_empty_set
   use element_catalogue, only: catalogue, state_plane_stress, state_plane_strain, state_axisymmetric, &
                                shape_spring1, shape_spring2, is_spring_shape, shape_mass
-  use model, only: material_t, section_t, find_name
+  use model, only: material_t, section_t, find_name, elem_label
   use model_growth, only: grow
   implicit none
 
@@ -189,7 +189,7 @@ contains
     do k = 1, size(m%elsets(es)%items)
       associate(e => m%elsets(es)%items(k))
         sk = catalogue(m%etype(e))%shape
-        if (.not. is_spring_shape(sk)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' of set ' // &
+        if (.not. is_spring_shape(sk)) call err(p, 'element ' // elem_label(m, e) // ' of set ' // &
             trim(m%elsets(es)%name) // ' is a ' // trim(catalogue(m%etype(e))%name) // &
             ', not a spring: *SPRING applies to SPRING1, SPRING2 and SPRINGA elements')
         if (shape /= 0 .and. sk /= shape) call err(p, 'set ' // trim(m%elsets(es)%name) // &
@@ -215,7 +215,7 @@ contains
     call warn_empty_set(p, size(m%elsets(es)%items), 'element set', m%elsets(es)%name, kw%name)
     do k = 1, size(m%elsets(es)%items)
       e = m%elsets(es)%items(k)
-      if (catalogue(m%etype(e))%shape /= shape_mass) call err(p, 'element ' // itoa(m%elem_id(e)) // &
+      if (catalogue(m%etype(e))%shape /= shape_mass) call err(p, 'element ' // elem_label(m, e) // &
           ' of set ' // trim(m%elsets(es)%name) // ' is a ' // trim(catalogue(m%etype(e))%name) // &
           ', not a point mass: *MASS applies to MASS elements')
     end do

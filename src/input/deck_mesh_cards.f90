@@ -4,9 +4,11 @@ submodule (deck_parser) deck_mesh_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_id, line_text, err, next_data, no_data, allow_params, required_param, &
-                         name_param, check_name_length, get_real, get_int, node_of, elem_of, is_int, &
-                         nset_index, elset_index, need_nset, need_elset, new_surface, warn_empty_set
-  use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name
+                         name_param, check_name_length, get_real, get_int, node_of, elem_of, &
+                         need_nset, need_elset, new_surface, warn_empty_set, &
+                         is_label, node_ref, elem_ref, defined_name, new_node_id, new_elem_id, placed, &
+                         instance_index, set_scope
+  use model, only: surf_element, surf_node, elem_nodes, edge_nodes, find_name, elem_label
   use growable, only: append, grow
   use model_growth, only: grow
   use element_catalogue, only: catalogue, find_element_type, is_line, is_spring_shape, unsupported_reason
@@ -22,12 +24,14 @@ contains
   !> A card without data lines defines nothing and warns (cgx writes one
   !> for a set that has no nodes of its own; CalculiX accepts it); its
   !> NSET= still exists, empty.
+  !> Inside an instance the number is the part's label and the node is
+  !> placed as the instance says (new_node_id, placed).
   module subroutine read_nodes(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
-    integer :: n, id, iset, nitems, k, card
+    integer :: n, id, gid, iset, nitems, k, card
     integer, allocatable :: items(:)
     real(dp) :: xyz(3)
     logical :: warned
@@ -53,14 +57,15 @@ contains
           warned = .true.
         end if
       end do
-      call grow(m%node_index, id, fill=0)
-      if (m%node_index(id) /= 0) call err(p, 'duplicate node id ' // f(1)%s)
+      gid = new_node_id(p, m, id)
+      call grow(m%node_index, gid, fill=0)
+      if (m%node_index(gid) /= 0) call err(p, 'duplicate node id ' // f(1)%s)
       call grow(m%node_id, m%nn + 1)
       call grow(m%x, m%nn + 1)
       m%nn = m%nn + 1
-      m%node_id(m%nn) = id
-      m%x(:, m%nn) = xyz(1:2)
-      m%node_index(id) = m%nn
+      m%node_id(m%nn) = gid
+      m%x(:, m%nn) = placed(p, m, xyz(1:2))
+      m%node_index(gid) = m%nn
       call grow(p%node_line, m%nn)
       p%node_line(m%nn) = p%i
       call append(items, nitems, m%nn)
@@ -86,13 +91,15 @@ contains
 
   !> Purpose: *ELEMENT, TYPE=: one element per data line, `id, n1, n2, ...`
   !> with the node count of the type; ELSET= collects them in a set.
+  !> A node may be INSTANCE.LABEL (an assembly-level spring between
+  !> instances).
   module subroutine read_elements(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     character(len=:), allocatable :: tname
-    integer :: et, nen, n, id, k, iset, nitems
+    integer :: et, nen, n, id, gid, k, iset, nitems
     integer, allocatable :: items(:)
     call allow_params(p, kw, 'TYPE,ELSET')
     tname = to_upper(required_param(p, kw, 'TYPE'))
@@ -108,24 +115,25 @@ contains
       if (n /= nen + 1) call err(p, 'element ' // tname // ' needs an id and ' // itoa(nen) // ' nodes')
       id = get_int(p, f(1), 'element id')
       if (id < 1 .or. id > max_id) call err(p, 'element id out of range 1..' // itoa(max_id))
-      call grow(m%elem_index, id, fill=0)
-      if (m%elem_index(id) /= 0) call err(p, 'duplicate element id ' // f(1)%s)
+      gid = new_elem_id(p, m, id)
+      call grow(m%elem_index, gid, fill=0)
+      if (m%elem_index(gid) /= 0) call err(p, 'duplicate element id ' // f(1)%s)
       call grow(m%elem_id, m%ne + 1)
       call grow(m%etype, m%ne + 1)
       call grow(m%conn, m%ne + 1)
       call grow(m%elem_src, m%ne + 1)
       m%ne = m%ne + 1
-      m%elem_id(m%ne) = id
+      m%elem_id(m%ne) = gid
       m%etype(m%ne) = et
       m%conn(:, m%ne) = 0
       do k = 1, nen
-        m%conn(k, m%ne) = node_of(p, m, get_int(p, f(k + 1), 'node of element'))
+        m%conn(k, m%ne) = node_ref(p, m, f(k + 1), 'node of element')
       end do
       do k = 2, nen
         if (any(m%conn(1:k - 1, m%ne) == m%conn(k, m%ne))) call err(p, 'element uses the same node twice')
       end do
       m%elem_src(m%ne)%line = p%i
-      m%elem_index(id) = m%ne
+      m%elem_index(gid) = m%ne
       call append(items, nitems, m%ne)
     end do
     if (nitems == 0) call err(p, 'missing data line (*ELEMENT without elements)')
@@ -169,7 +177,8 @@ contains
 
   !> Purpose: *NSET, NSET=: node ids and set names, first-last-increment
   !> triples with GENERATE, or (ELSET=) all nodes of an element set. A
-  !> repeated name extends the set.
+  !> repeated name extends the set. INSTANCE= (assembly level): the
+  !> numbers and set names are those of that instance's part.
   module subroutine read_nset(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -177,8 +186,9 @@ contains
     integer :: iset, nitems, es, k
     integer, allocatable :: items(:)
     character(len=:), allocatable :: name
-    call allow_params(p, kw, 'NSET,GENERATE,ELSET,UNSORTED,INTERNAL')
+    call allow_params(p, kw, 'NSET,GENERATE,ELSET,UNSORTED,INTERNAL,INSTANCE')
     name = required_param(p, kw, 'NSET')
+    call set_scope(p, m, instance_param(p, m, kw))
     nitems = 0
     allocate(items(0))
     if (has_param(kw, 'ELSET')) then
@@ -195,12 +205,14 @@ contains
         call read_id_list(p, m, has_param(kw, 'GENERATE'), .true., items, nitems)
       end do
     end if
+    call set_scope(p, m, p%owner)
     iset = add_nset(p, m, name)
     call extend_set(m%nsets(iset)%items, items(1:nitems))
   end subroutine read_nset
 
   !> Purpose: *ELSET, ELSET=: element ids and set names, or first-last-
   !> increment triples with GENERATE. A repeated name extends the set.
+  !> INSTANCE= as on *NSET.
   module subroutine read_elset(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -208,16 +220,33 @@ contains
     integer :: iset, nitems
     integer, allocatable :: items(:)
     character(len=:), allocatable :: name
-    call allow_params(p, kw, 'ELSET,GENERATE,UNSORTED,INTERNAL')
+    call allow_params(p, kw, 'ELSET,GENERATE,UNSORTED,INTERNAL,INSTANCE')
     name = required_param(p, kw, 'ELSET')
+    call set_scope(p, m, instance_param(p, m, kw))
     nitems = 0
     allocate(items(0))
     do while (next_data(p))
       call read_id_list(p, m, has_param(kw, 'GENERATE'), .false., items, nitems)
     end do
+    call set_scope(p, m, p%owner)
     iset = add_elset(p, m, name)
     call extend_set(m%elsets(iset)%items, items(1:nitems))
   end subroutine read_elset
+
+  !> INSTANCE= of an assembly-level *NSET or *ELSET: the instance whose
+  !> numbers and set names the data lines give (0 without it).
+  integer function instance_param(p, m, kw) result(k)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(keyword_t), intent(in) :: kw
+    k = p%owner
+    if (.not. has_param(kw, 'INSTANCE')) return
+    if (p%owner > 0) call err(p, 'INSTANCE= is for sets of the assembly; inside a part or an instance the ' // &
+                                 'numbers are already its own')
+    k = instance_index(m, to_upper(param_value(kw, 'INSTANCE')))
+    if (k == 0) call err(p, 'undefined instance ' // to_upper(param_value(kw, 'INSTANCE')) // &
+                            ' (an *INSTANCE of the *ASSEMBLY before this line)')
+  end function instance_param
 
   !> One data line of *NSET/*ELSET: ids and set names, or (GENERATE)
   !> first, last[, increment]; internal indices appended to items.
@@ -244,8 +273,10 @@ contains
     end if
     do k = 1, n
       if (len(f(k)%s) == 0) call err(p, 'empty entry in list')
-      if (is_int(f(k)%s)) then
-        call append(items, nitems, entity_of(p, m, nodes, get_int(p, f(k), 'id')))
+      if (is_label(f(k)%s) .and. nodes) then
+        call append(items, nitems, node_ref(p, m, f(k), 'id'))
+      else if (is_label(f(k)%s)) then
+        call append(items, nitems, elem_ref(p, m, f(k), 'id'))
       else if (nodes) then
         call append(items, nitems, m%nsets(need_nset(p, m, f(k)%s))%items)
       else
@@ -267,18 +298,21 @@ contains
     end if
   end function entity_of
 
-  !> Existing set of that name (a repeated *NSET extends it) or a new one.
+  !> Existing set of that name (a repeated *NSET extends it) or a new one;
+  !> inside an instance the name is INSTANCE.NAME.
   integer function add_nset(p, m, name) result(iset)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     character(len=*), intent(in) :: name
-    iset = nset_index(p, m, name)
+    character(len=:), allocatable :: dname
+    dname = defined_name(p, m, name)
+    iset = find_name(m%nsets(1:p%nsets)%name, dname)
     if (iset > 0) return
-    call check_name_length(p, name)
+    call check_name_length(p, dname)
     call grow(m%nsets, p%nsets + 1)
     p%nsets = p%nsets + 1
     iset = p%nsets
-    m%nsets(iset)%name = to_upper(name)
+    m%nsets(iset)%name = dname
     allocate(m%nsets(iset)%items(0))
   end function add_nset
 
@@ -286,13 +320,15 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     character(len=*), intent(in) :: name
-    iset = elset_index(p, m, name)
+    character(len=:), allocatable :: dname
+    dname = defined_name(p, m, name)
+    iset = find_name(m%elsets(1:p%nelsets)%name, dname)
     if (iset > 0) return
-    call check_name_length(p, name)
+    call check_name_length(p, dname)
     call grow(m%elsets, p%nelsets + 1)
     p%nelsets = p%nelsets + 1
     iset = p%nelsets
-    m%elsets(iset)%name = to_upper(name)
+    m%elsets(iset)%name = dname
     allocate(m%elsets(iset)%items(0))
   end function add_elset
 
@@ -331,7 +367,7 @@ contains
     integer :: k, ne, nn, isurf, nlines
     integer, allocatable :: elems(:), edges(:), nodes(:), ends(:)
     call allow_params(p, kw, 'NAME,TYPE,INTERNAL')
-    name = name_param(p, kw, 'NAME')
+    name = defined_name(p, m, name_param(p, kw, 'NAME'))
     stype = 'ELEMENT'
     if (has_param(kw, 'TYPE')) stype = to_upper(param_value(kw, 'TYPE'))
     if (stype /= 'ELEMENT' .and. stype /= 'NODE') call err(p, 'surface TYPE must be ELEMENT or NODE')
@@ -385,8 +421,8 @@ contains
     integer :: n, iset
     call split_fields(line_text(p), f, n)
     if (n > 2) call err(p, 'node surface data line needs: node or node set[, area]')
-    if (is_int(f(1)%s)) then
-      call append(nodes, nn, node_of(p, m, get_int(p, f(1), 'node')))
+    if (is_label(f(1)%s)) then
+      call append(nodes, nn, node_ref(p, m, f(1), 'node'))
     else
       iset = need_nset(p, m, f(1)%s)
       call warn_empty_set(p, size(m%nsets(iset)%items), 'node set', m%nsets(iset)%name, 'SURFACE')
@@ -408,8 +444,8 @@ contains
     integer :: n, k, e, edge, owner, nedge, iset
     call split_fields(line_text(p), f, n)
     if (n > 2) call err(p, 'element surface data line needs: element or element set[, face S1..S4]')
-    if (is_int(f(1)%s)) then
-      list = [elem_of(p, m, get_int(p, f(1), 'element'))]
+    if (is_label(f(1)%s)) then
+      list = [elem_ref(p, m, f(1), 'element')]
     else
       iset = need_elset(p, m, f(1)%s)
       list = m%elsets(iset)%items
@@ -421,7 +457,7 @@ contains
     do k = 1, size(list)
       e = list(k)
       if (is_spring_shape(catalogue(m%etype(e))%shape)) then
-        call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a spring (' // trim(catalogue(m%etype(e))%name) // &
+        call err(p, 'element ' // elem_label(m, e) // ' is a spring (' // trim(catalogue(m%etype(e))%name) // &
                  '): a surface is made of solid element faces or of line elements on them')
       else if (is_line(catalogue(m%etype(e))%shape)) then
         if (len(face) > 0) call err(p, 'a face id is not allowed for line elements')

@@ -8,7 +8,8 @@ submodule (deck_parser) deck_model_checks
   use strings, only: itoa, to_upper
   use deck_input, only: deck_warning
   use deck_cursor, only: err
-  use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t, kept_nodes
+  use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t, kept_nodes, &
+                   node_label, elem_label
   use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
                                state_axisymmetric, shape_springa
@@ -129,7 +130,7 @@ contains
     do j = 1, size(bcs)
       bad = mpc%dep(bcs(j)%dof, bcs(j)%node)
       if (bad == 0) cycle
-      msg = 'dof ' // itoa(bcs(j)%dof) // ' of node ' // itoa(m%node_id(bcs(j)%node)) // ' is the dependent ' // &
+      msg = 'dof ' // itoa(bcs(j)%dof) // ' of node ' // node_label(m, bcs(j)%node) // ' is the dependent ' // &
             'dof of this *EQUATION (its first term, eliminated) and also has a *BOUNDARY; put an independent ' // &
             'dof first, or prescribe another one'
       return
@@ -158,18 +159,18 @@ contains
       end if
       do k = 1, size(m%elsets(m%sections(s)%elset)%items)
         e = m%elsets(m%sections(s)%elset)%items(k)
-        if (is_spring(m, e) .and. .not. m%sections(s)%spring) call err(p, 'element ' // itoa(m%elem_id(e)) // &
+        if (is_spring(m, e) .and. .not. m%sections(s)%spring) call err(p, 'element ' // elem_label(m, e) // &
             ' is a spring (' // trim(catalogue(m%etype(e))%name) // '): its constant comes from *SPRING, not ' // &
             'from a *SOLID SECTION')
-        if (is_mass(m, e) .and. .not. m%sections(s)%point_mass) call err(p, 'element ' // itoa(m%elem_id(e)) // &
+        if (is_mass(m, e) .and. .not. m%sections(s)%point_mass) call err(p, 'element ' // elem_label(m, e) // &
             ' is a point mass (MASS): its mass comes from *MASS, not from a *SOLID SECTION')
-        if (m%elem_section(e) /= 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is in two sections')
+        if (m%elem_section(e) /= 0) call err(p, 'element ' // elem_label(m, e) // ' is in two sections')
         m%elem_section(e) = s
         if (.not. is_truss(m, e)) cycle
-        if (m%sections(s)%nodal_thickness) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a truss (' // &
+        if (m%sections(s)%nodal_thickness) call err(p, 'element ' // elem_label(m, e) // ' is a truss (' // &
             trim(catalogue(m%etype(e))%name) // ' with a section): its area comes from the data line of the ' // &
             'section, and NODAL THICKNESS is for plane elements')
-        if (.not. m%sections(s)%thickness_given) call err(p, 'element ' // itoa(m%elem_id(e)) // ' is a ' // &
+        if (.not. m%sections(s)%thickness_given) call err(p, 'element ' // elem_label(m, e) // ' is a ' // &
             'truss (' // trim(catalogue(m%etype(e))%name) // ' with a section): its cross-sectional area ' // &
             'is needed on the data line of the section')
       end do
@@ -220,7 +221,7 @@ contains
                            state_prefix(state_axisymmetric)])) it = find_element_type(new)
       if (it == 0) then
         p%i = m%sections(s)%src%line
-        call err(p, 'element type ' // old // ' (element ' // itoa(m%elem_id(e)) // ') has no ' // &
+        call err(p, 'element type ' // old // ' (element ' // elem_label(m, e) // ') has no ' // &
                  state_name(m%sections(s)%state) // ' counterpart in cfe2d''s catalogue')
       end if
       m%etype(e) = it
@@ -264,8 +265,8 @@ contains
       do k = 1, nen
         if (p%node_thickness(m%conn(k, e)) >= 0.0_dp) cycle
         p%i = m%sections(s)%src%line
-        call err(p, 'NODAL THICKNESS: node ' // itoa(m%node_id(m%conn(k, e))) // ' of element ' // &
-                 itoa(m%elem_id(e)) // ' has no *NODAL THICKNESS')
+        call err(p, 'NODAL THICKNESS: node ' // node_label(m, m%conn(k, e)) // ' of element ' // &
+                 elem_label(m, e) // ' has no *NODAL THICKNESS')
       end do
     end do
     m%node_thickness = p%node_thickness(1:m%nn)
@@ -310,30 +311,30 @@ contains
     axi = .false.
     do e = 1, m%ne
       p%i = m%elem_src(e)%line
-      if (is_spring(m, e) .and. m%elem_section(e) == 0) call err(p, 'spring element ' // itoa(m%elem_id(e)) // &
+      if (is_spring(m, e) .and. m%elem_section(e) == 0) call err(p, 'spring element ' // elem_label(m, e) // &
           ' has no *SPRING (its constant)')
-      if (is_mass(m, e) .and. m%elem_section(e) == 0) call err(p, 'point mass element ' // itoa(m%elem_id(e)) // &
+      if (is_mass(m, e) .and. m%elem_section(e) == 0) call err(p, 'point mass element ' // elem_label(m, e) // &
           ' has no *MASS (its mass)')
       if (is_truss(m, e) .or. catalogue(m%etype(e))%shape == shape_springa) then
-        if (end_distance(m, e) <= 0.0_dp) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+        if (end_distance(m, e) <= 0.0_dp) call err(p, 'element ' // elem_label(m, e) // ' (' // &
             trim(catalogue(m%etype(e))%name) // ') has both ends at the same point')
       end if
       if (is_truss(m, e) .and. catalogue(m%etype(e))%nodes == 3) then
-        if (truss_folds(m, e)) call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // &
+        if (truss_folds(m, e)) call err(p, 'element ' // elem_label(m, e) // ' (' // &
             trim(catalogue(m%etype(e))%name) // ') folds back on itself: its middle node (the second) must lie ' // &
             'between the points a quarter of the way from each end, along the line of its ends')
       end if
       if (.not. is_continuum(m, e)) cycle
       axi = axi .or. catalogue(m%etype(e))%state == state_axisymmetric
-      if (m%elem_section(e) == 0) call err(p, 'element ' // itoa(m%elem_id(e)) // ' has no *SOLID SECTION')
-      if (min_corner_jacobian(m, e) <= 0.0_dp) call err(p, 'element ' // itoa(m%elem_id(e)) // &
+      if (m%elem_section(e) == 0) call err(p, 'element ' // elem_label(m, e) // ' has no *SOLID SECTION')
+      if (min_corner_jacobian(m, e) <= 0.0_dp) call err(p, 'element ' // elem_label(m, e) // &
           ' has a zero or negative Jacobian (nodes clockwise or element inverted)')
     end do
     if (.not. axi) return
     do e = 1, m%ne
       if (.not. (is_truss(m, e) .or. is_spring(m, e))) cycle
       p%i = m%elem_src(e)%line
-      call err(p, 'element ' // itoa(m%elem_id(e)) // ' (' // trim(catalogue(m%etype(e))%name) // ') in an ' // &
+      call err(p, 'element ' // elem_label(m, e) // ' (' // trim(catalogue(m%etype(e))%name) // ') in an ' // &
           'axisymmetric model: whether it stands for a ring or for bars around the axis is not defined ' // &
           'here; trusses and springs are implemented for plane models only')
     end do

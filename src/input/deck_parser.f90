@@ -15,6 +15,8 @@
 !>   deck_load_cards      *DLOAD, *DSLOAD, *DENSITY
 !>   deck_constraint_cards  *PRE-TENSION SECTION (cut once the deck is read),
 !>                        *TIE (its equations: the contact layer's tie_constraints)
+!>   deck_part_cards      *PART, *ASSEMBLY, *INSTANCE and their ends (Abaqus/CAE
+!>                        decks: a part's cards are read for each instance)
 !>   deck_model_checks    checks that need the whole deck
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
@@ -26,6 +28,10 @@ module deck_parser
   implicit none
   private
   public :: read_model
+  ! For the submodule deck_part_cards, which reads a part's cards for
+  ! each of its instances (gfortran gives private module procedures local
+  ! linkage, so a submodule could not call them: see deck_cursor).
+  public :: dispatch, spaced_name
 
   ! The card readers, one per card, in the submodules named above. Each
   ! is entered on the keyword line (p%i) and leaves p%i on the last line
@@ -210,6 +216,43 @@ module deck_parser
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
     end subroutine check_model
+    ! Abaqus/CAE decks (deck_part_cards):
+    module subroutine read_part(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_part
+    module subroutine read_end_part(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_end_part
+    module subroutine read_assembly(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_assembly
+    module subroutine read_instance(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_instance
+    module subroutine read_end_instance(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_end_instance
+    module subroutine read_end_assembly(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_end_assembly
+    module subroutine check_part_context(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(in) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine check_part_context
+    module subroutine finish_parts(p)
+      type(parser_t), intent(inout) :: p
+    end subroutine finish_parts
   end interface
 
 contains
@@ -234,6 +277,7 @@ contains
     allocate(m%nsets(0), m%elsets(0), m%surfaces(0), m%materials(0), m%sections(0), &
              m%amplitudes(0), m%steps(0), m%pairs(0), m%model_bcs(0))
     allocate(m%equations(0), m%initial_temps(0), m%pretensions(0), m%ties(0))
+    allocate(m%instances(0))
 
     p%i = 1
     do while (p%i <= p%deck%n)
@@ -246,6 +290,7 @@ contains
       p%i = p%step_line
       call err(p, '*STEP without *END STEP')
     end if
+    call finish_parts(p)
     call trim_model(p, m)
     call cut_pretension_sections(p, m)
     call check_model(p, m)
@@ -276,8 +321,9 @@ contains
   ! ----------------------------------------------------------------- dispatch
 
   !> Purpose: hand the card starting at keyword kw to its reader, after
-  !> checking that it stands in the right part of the deck.
-  subroutine dispatch(p, m, card)
+  !> checking that it stands in the right part of the deck. Recursive:
+  !> *INSTANCE hands its part's cards here again (deck_part_cards).
+  recursive subroutine dispatch(p, m, card)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: card
@@ -286,6 +332,7 @@ contains
     kw%name = spaced_name(card%name)
     ! A *SURFACE INTERACTION block ends at the first card that does not describe it.
     if (kw%name /= 'SURFACE BEHAVIOR' .and. kw%name /= 'FRICTION') p%interaction = 0
+    call check_part_context(p, m, kw)
     select case (kw%name)
     case ('HEADING');       call read_heading(p, m, kw)
     case ('NODE');          call in_step(p, kw, .false.); call read_nodes(p, m, kw)
@@ -323,6 +370,12 @@ contains
     case ('EQUATION');      call in_step(p, kw, .false.); call read_equation(p, m, kw)
     case ('PRE-TENSION SECTION'); call in_step(p, kw, .false.); call read_pretension_section(p, m, kw)
     case ('TIE');           call in_step(p, kw, .false.); call read_tie(p, m, kw)
+    case ('PART');          call in_step(p, kw, .false.); call read_part(p, m, kw)
+    case ('END PART');      call read_end_part(p, kw)
+    case ('ASSEMBLY');      call in_step(p, kw, .false.); call read_assembly(p, m, kw)
+    case ('INSTANCE');      call in_step(p, kw, .false.); call read_instance(p, m, kw)
+    case ('END INSTANCE');  call read_end_instance(p, m, kw)
+    case ('END ASSEMBLY');  call read_end_assembly(p, kw)
     case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', &
           'CONTROLS')
       call skip_card(p, kw)
@@ -349,7 +402,7 @@ contains
       'CONTACT PAIR', 'CONTACT CONTROLS', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'NODAL THICKNESS', &
       'SPECIFIC HEAT', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', 'NODE OUTPUT', 'ELEMENT OUTPUT', &
       'CONTACT OUTPUT', 'CONTACT PRINT', 'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', &
-      'PRE-TENSION SECTION']
+      'PRE-TENSION SECTION', 'END PART', 'END INSTANCE', 'END ASSEMBLY']
     integer :: i
     s = name
     if (index(name, ' ') > 0) return

@@ -7,7 +7,7 @@ submodule (deck_parser) deck_step_cards
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
-                         name_param, check_name_length, get_real, get_int, param_int, node_of, is_int, &
+                         name_param, check_name_length, get_real, get_int, param_int, is_int, is_label, node_ref, &
                          need_nset, need_elset, required_param, warn_empty_set
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
                    find_name
@@ -91,9 +91,9 @@ contains
     integer, intent(out) :: iset
     type(field_t) :: f
     iset = 0
-    if (is_int(s)) then
+    if (is_label(s)) then
       f%s = s
-      nodes = [node_of(p, m, get_int(p, f, 'node'))]
+      nodes = [node_ref(p, m, f, 'node')]
     else
       if (len(s) == 0) call err(p, 'missing node or node set')
       iset = need_nset(p, m, s)

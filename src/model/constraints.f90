@@ -12,7 +12,7 @@ module constraints
   use kinds, only: dp
   use strings, only: itoa
   use growable, only: grow
-  use model, only: model_t, equation_t
+  use model, only: model_t, equation_t, node_label
   implicit none
   private
   public :: mpc_t, resolve_equations, constraint_label
@@ -94,7 +94,7 @@ contains
           end if
           if (eq%dof(k) < 1 .or. eq%dof(k) > 2) then
             bad = i
-            msg = 'dof ' // itoa(eq%dof(k)) // ' of node ' // itoa(m%node_id(eq%node(k))) // &
+            msg = 'dof ' // itoa(eq%dof(k)) // ' of node ' // node_label(m, eq%node(k)) // &
                   ': a 2D model has dofs 1 and 2 only'
             return
           end if
@@ -103,7 +103,7 @@ contains
         d = eq%dof(1)
         if (mpc%dep(d, a) > 0) then
           bad = i
-          msg = 'dof ' // itoa(d) // ' of node ' // itoa(m%node_id(a)) // ' is the dependent dof (the first ' // &
+          msg = 'dof ' // itoa(d) // ' of node ' // node_label(m, a) // ' is the dependent dof (the first ' // &
                 'term) of two *EQUATIONs: each dof can be eliminated once; put another term first'
           return
         end if
@@ -114,7 +114,7 @@ contains
         if (c1 == 0.0_dp) then
           bad = i
           msg = 'the coefficients of the dependent dof (dof ' // itoa(d) // ' of node ' // &
-                itoa(m%node_id(a)) // ', the first term) sum to zero: it cannot be eliminated'
+                node_label(m, a) // ', the first term) sum to zero: it cannot be eliminated'
           return
         end if
         nt = raw%xr(i) - 1
@@ -203,7 +203,7 @@ contains
     if (tail < n) then
       bad = on_cycle(raw, mpc, pending)
       msg = 'the *EQUATIONs form a cycle: dof ' // itoa(mpc%dof(bad)) // ' of node ' // &
-            itoa(m%node_id(mpc%node(bad))) // ' depends on itself through the dependent dofs (first terms) ' // &
+            node_label(m, mpc%node(bad)) // ' depends on itself through the dependent dofs (first terms) ' // &
             'of other equations'
       return
     end if

@@ -3,6 +3,7 @@
 !> stored with internal (1..n) indices; user ids are kept for output.
 module model
   use kinds, only: dp, name_len
+  use strings, only: itoa
   use solver_codes, only: solver_cholmod, order_amd
   use element_catalogue, only: catalogue, max_nodes, state_none, is_line, is_spring_shape, shape_mass, state_axisymmetric
   use mesh_topology, only: topology_t
@@ -10,7 +11,8 @@ module model
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
-            equation_t, temp_t, pretension_t, tie_t, &
+            equation_t, temp_t, pretension_t, tie_t, instance_t, &
+            node_label, elem_label, has_instances, &
             is_continuum, carries_stiffness, is_truss, is_spring, is_mass, is_drawn, axisymmetric_model, &
             elem_nodes, elem_thickness, &
             surf_element, surf_node, &
@@ -226,6 +228,23 @@ module model
     real(dp) :: largest_move = 0.0_dp
   end type tie_t
 
+  !> An *INSTANCE of a *PART (Abaqus/CAE decks): its own copy of the
+  !> part's nodes and elements, placed by `shift` and then turned by
+  !> `angle` (degrees, counter-clockwise) about the z axis through
+  !> `centre`. Node and element numbers are the part's labels, which the
+  !> instances of a part share; internally each copy gets the id offset +
+  !> label (the id of the result files), the offsets keeping instances
+  !> apart. Its sets and surfaces are named INSTANCE.NAME.
+  type :: instance_t
+    character(len=name_len) :: name = ''
+    character(len=name_len) :: part = ''
+    integer :: node_offset = 0, node_last = 0   ! ids node_offset + 1 .. node_last
+    integer :: elem_offset = 0, elem_last = 0
+    integer :: nodes = 0, elements = 0
+    real(dp) :: shift(2) = 0.0_dp, centre(2) = 0.0_dp, angle = 0.0_dp
+    type(src_t) :: src
+  end type instance_t
+
   type :: model_t
     character(len=:), allocatable :: heading, deck_name
     integer :: nn = 0, ne = 0
@@ -264,6 +283,9 @@ module model
     !> *NODAL THICKNESS by node (nn), for the sections with NODAL
     !> THICKNESS; allocated only when a section asks for it.
     real(dp), allocatable :: node_thickness(:)
+    !> *INSTANCE of a *PART (Abaqus/CAE decks); empty for a flat deck,
+    !> whose node and element ids are the deck's numbers.
+    type(instance_t), allocatable :: instances(:)
   end type model_t
 
 contains
@@ -408,6 +430,51 @@ contains
     step_dloads = 0
     if (allocated(st%dloads)) step_dloads = size(st%dloads)
   end function step_dloads
+
+  !> Has the model instances of parts (an Abaqus/CAE deck)?
+  pure logical function has_instances(m)
+    type(model_t), intent(in) :: m
+    has_instances = .false.
+    if (allocated(m%instances)) has_instances = size(m%instances) > 0
+  end function has_instances
+
+  !> Purpose: node a as the deck names it, for messages and the listing:
+  !> INSTANCE.LABEL for a node of an instance (`PART-1-1.17`), else its
+  !> number (a flat deck's, or an assembly-level node's).
+  pure function node_label(m, a) result(s)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: a
+    character(len=:), allocatable :: s
+    integer :: k
+    s = itoa(m%node_id(a))
+    if (.not. has_instances(m)) return
+    do k = 1, size(m%instances)
+      associate(inst => m%instances(k))
+        if (m%node_id(a) > inst%node_offset .and. m%node_id(a) <= inst%node_last) then
+          s = trim(inst%name) // '.' // itoa(m%node_id(a) - inst%node_offset)
+          return
+        end if
+      end associate
+    end do
+  end function node_label
+
+  !> Purpose: element e as the deck names it (see node_label).
+  pure function elem_label(m, e) result(s)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    character(len=:), allocatable :: s
+    integer :: k
+    s = itoa(m%elem_id(e))
+    if (.not. has_instances(m)) return
+    do k = 1, size(m%instances)
+      associate(inst => m%instances(k))
+        if (m%elem_id(e) > inst%elem_offset .and. m%elem_id(e) <= inst%elem_last) then
+          s = trim(inst%name) // '.' // itoa(m%elem_id(e) - inst%elem_offset)
+          return
+        end if
+      end associate
+    end do
+  end function elem_label
 
   !> Index of a name in a list of names (case already folded), 0 if absent.
   pure integer function find_name(names, name)

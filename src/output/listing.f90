@@ -115,8 +115,37 @@ contains
     write(u, '(a)') 'ordering ' // ordering_name(m%ordering)
     write(u, '(a)') 'blas ' // blas_description()
     call write_constraint_cards(u, m)
+    call write_instances(u, m)
     flush(u)
   end subroutine write_header
+
+  !> Purpose: the instances of an Abaqus/CAE deck: which part, how many
+  !> nodes and elements, the offsets that make their ids in the result
+  !> files and the `node`/`element` columns (offset + the part's number;
+  !> the `label` column gives INSTANCE.NUMBER), and the placement.
+  subroutine write_instances(u, m)
+    integer, intent(in) :: u
+    type(model_t), intent(in) :: m
+    integer :: k
+    if (.not. has_instances(m)) return
+    write(u, '(a)') '--- INSTANCES (id in the result files = offset + the number in the part)'
+    write(u, '(a)') 'instance part nodes node_offset elements element_offset dx dy angle'
+    do k = 1, size(m%instances)
+      associate(inst => m%instances(k))
+        write(u, '(2(a,1x),4(i0,1x),a,1x,a,1x,a)') trim(inst%name), trim(inst%part), inst%nodes, inst%node_offset, &
+          inst%elements, inst%elem_offset, rtoa(inst%shift(1), 8), rtoa(inst%shift(2), 8), rtoa(inst%angle, 8)
+      end associate
+    end do
+  end subroutine write_instances
+
+  !> ' label' after the column names of a block whose rows end with the
+  !> node or element as the deck names it (a deck with instances).
+  pure function label_column(m) result(s)
+    type(model_t), intent(in) :: m
+    character(len=:), allocatable :: s
+    s = ''
+    if (has_instances(m)) s = ' label'
+  end function label_column
 
   !> The cards that generated linear constraints: each pre-tension
   !> section (its normal, the nodes it duplicated and their new ids) and
@@ -165,9 +194,14 @@ contains
     write(u, '(a,i0)') 'coupling_elements ', info%coupling_elements
     if (size(info%uncoupled) > 0) then
       write(u, '(a)') '--- UNCOUPLED SLAVE NODES (no master segment under them)'
-      write(u, '(a)') 'pair node'
+      write(u, '(a)') 'pair node' // label_column(m)
       do k = 1, size(info%uncoupled)
-        write(u, '(i0,1x,i0)') info%uncoupled_pair(k), m%node_id(info%uncoupled(k))
+        if (has_instances(m)) then
+          write(u, '(i0,1x,i0,1x,a)') info%uncoupled_pair(k), m%node_id(info%uncoupled(k)), &
+            node_label(m, info%uncoupled(k))
+        else
+          write(u, '(i0,1x,i0)') info%uncoupled_pair(k), m%node_id(info%uncoupled(k))
+        end if
       end do
     end if
     flush(u)
@@ -306,6 +340,7 @@ contains
   end subroutine block_head
 
   !> *NODE PRINT: U, RF, S at the nodes of a set (all nodes when set = 0).
+  !> With instances each row ends with the node's label (INSTANCE.NUMBER).
   subroutine write_node_request(self, m, req, res)
     class(listing_t), intent(in) :: self
     type(model_t), intent(in) :: m
@@ -313,29 +348,47 @@ contains
     type(increment_results_t), intent(in) :: res
     integer, allocatable :: sel(:)
     integer :: k, un
+    logical :: lab
     un = self%unit
+    lab = has_instances(m)
     if (req%set > 0) then
       sel = m%nsets(req%set)%items
     else
       sel = [(k, k = 1, m%nn)]
     end if
     if (req%u) then
-      call block_head(self, m, 'NODE U', req%set, .true., 'node U1 U2')
+      call block_head(self, m, 'NODE U', req%set, .true., 'node U1 U2' // label_column(m))
       do k = 1, size(sel)
-        write(un, self%f_node2) m%node_id(sel(k)), res%u(:, sel(k))
+        if (lab) then
+          write(un, self%f_node2, advance='no') m%node_id(sel(k)), res%u(:, sel(k))
+          write(un, '(1x,a)') node_label(m, sel(k))
+        else
+          write(un, self%f_node2) m%node_id(sel(k)), res%u(:, sel(k))
+        end if
       end do
     end if
     if (req%rf) then
-      call block_head(self, m, 'NODE RF', req%set, .true., 'node RF1 RF2')
+      call block_head(self, m, 'NODE RF', req%set, .true., 'node RF1 RF2' // label_column(m))
       do k = 1, size(sel)
-        write(un, self%f_node2) m%node_id(sel(k)), res%rf(:, sel(k))
+        if (lab) then
+          write(un, self%f_node2, advance='no') m%node_id(sel(k)), res%rf(:, sel(k))
+          write(un, '(1x,a)') node_label(m, sel(k))
+        else
+          write(un, self%f_node2) m%node_id(sel(k)), res%rf(:, sel(k))
+        end if
       end do
     end if
     if (req%s) then
-      call block_head(self, m, 'NODE S', req%set, .true., 'node S11 S22 S33 S12 MISES')
+      call block_head(self, m, 'NODE S', req%set, .true., 'node S11 S22 S33 S12 MISES' // label_column(m))
       do k = 1, size(sel)
-        write(un, self%f_node5) m%node_id(sel(k)), res%sig_node(:, sel(k)), &
-          von_mises(res%sig_node(:, sel(k)))
+        if (lab) then
+          write(un, self%f_node5, advance='no') m%node_id(sel(k)), res%sig_node(:, sel(k)), &
+            von_mises(res%sig_node(:, sel(k)))
+          write(un, '(1x,a)') node_label(m, sel(k))
+        else
+          write(un, self%f_node5) m%node_id(sel(k)), res%sig_node(:, sel(k)), &
+            von_mises(res%sig_node(:, sel(k)))
+        end if
       end do
     end if
   end subroutine write_node_request
@@ -348,28 +401,42 @@ contains
     type(increment_results_t), intent(in) :: res
     integer, allocatable :: sel(:)
     integer :: k, e, ip, un
+    logical :: lab
     un = self%unit
+    lab = has_instances(m)
     if (req%set > 0) then
       sel = m%elsets(req%set)%items
     else
       sel = [(k, k = 1, m%ne)]
     end if
     if (req%s) then
-      call block_head(self, m, 'ELEMENT S', req%set, .false., 'element ip S11 S22 S33 S12 MISES')
+      call block_head(self, m, 'ELEMENT S', req%set, .false., 'element ip S11 S22 S33 S12 MISES' // &
+                      label_column(m))
       do k = 1, size(sel)
         e = sel(k)
         do ip = 1, res%nip(e)
-          write(un, self%f_ip5) m%elem_id(e), ip, res%sig_ip(:, ip, e), &
-            von_mises(res%sig_ip(:, ip, e))
+          if (lab) then
+            write(un, self%f_ip5, advance='no') m%elem_id(e), ip, res%sig_ip(:, ip, e), &
+              von_mises(res%sig_ip(:, ip, e))
+            write(un, '(1x,a)') elem_label(m, e)
+          else
+            write(un, self%f_ip5) m%elem_id(e), ip, res%sig_ip(:, ip, e), &
+              von_mises(res%sig_ip(:, ip, e))
+          end if
         end do
       end do
     end if
     if (req%e) then
-      call block_head(self, m, 'ELEMENT E', req%set, .false., 'element ip E11 E22 E12')
+      call block_head(self, m, 'ELEMENT E', req%set, .false., 'element ip E11 E22 E12' // label_column(m))
       do k = 1, size(sel)
         e = sel(k)
         do ip = 1, res%nip(e)
-          write(un, self%f_ip3) m%elem_id(e), ip, res%eps_ip(:, ip, e)
+          if (lab) then
+            write(un, self%f_ip3, advance='no') m%elem_id(e), ip, res%eps_ip(:, ip, e)
+            write(un, '(1x,a)') elem_label(m, e)
+          else
+            write(un, self%f_ip3) m%elem_id(e), ip, res%eps_ip(:, ip, e)
+          end if
         end do
       end do
     end if
@@ -388,27 +455,43 @@ contains
     un = self%unit
     write(un, '(a,i0,a)') '--- CONTACT SLAVE pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%slave_surface)%name)
-    write(un, '(a)') 'node x y gap state force area pressure'
+    write(un, '(a)') 'node x y gap state force area pressure' // label_column(m)
     do j = 1, size(r%slave_node)
       nid = 0
       if (r%slave_node(j) > 0) nid = m%node_id(r%slave_node(j))
       st = 'OPEN'
       if (r%slave_closed(j)) st = 'CLOSED'
-      write(un, self%f_slave) nid, r%slave_x(:, j), &
-        r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_force(j) / r%slave_area(j)
+      if (has_instances(m)) then
+        ! (a Gauss point of a slave face, node 0, has no label: '-')
+        write(un, self%f_slave, advance='no') nid, r%slave_x(:, j), &
+          r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_force(j) / r%slave_area(j)
+        if (r%slave_node(j) > 0) then
+          write(un, '(1x,a)') node_label(m, r%slave_node(j))
+        else
+          write(un, '(1x,a)') '-'
+        end if
+      else
+        write(un, self%f_slave) nid, r%slave_x(:, j), &
+          r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_force(j) / r%slave_area(j)
+      end if
       if (self%has_csv) write(self%csv, '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,",",es16.8e3,",",&
         &es16.8e3,",",a,",",es16.8e3,",",es16.8e3)') res%step, res%increment, res%total_time, r%pair, nid, &
         r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_force(j) / r%slave_area(j)
     end do
     write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%master_surface)%name)
-    write(un, '(a)') 'node x y force area pressure'
+    write(un, '(a)') 'node x y force area pressure' // label_column(m)
     do j = 1, size(r%master_node)
       nd = r%master_node(j)
       xs = m%x(:, nd) + res%u(:, nd)
       p = 0.0_dp
       if (r%master_area(j) > 0.0_dp) p = r%master_force(j) / r%master_area(j)
-      write(un, self%f_node5) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
+      if (has_instances(m)) then
+        write(un, self%f_node5, advance='no') m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
+        write(un, '(1x,a)') node_label(m, nd)
+      else
+        write(un, self%f_node5) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
+      end if
       if (self%has_csv) write(self%csv, '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",es16.8e3,&
         &",0,-,",es16.8e3,",",es16.8e3)') res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
         r%master_force(j), p
