@@ -549,3 +549,14 @@ def test_debug_and_sanitizer_builds_on_these_decks():
             rcs.add(r.returncode)
         assert len(rcs) == 1 and rcs <= {0, 1}, (deck, rcs)
     print(f"  {len(decks)} decks through {len(builds)} checked build(s)")
+
+
+def test_cae_interaction_thickness_line():
+    """Abaqus/CAE writes the out-of-plane thickness `1.,` under *Surface
+    Interaction for 2D models: accepted when it is the sections' thickness
+    (the example carries it), an error at its line when it is not."""
+    with open(os.path.join(ROOT, "input", "examples", "block_on_base.inp")) as f:
+        deck = f.read()
+    assert "*Surface Interaction, name=IntProp-1\n1.,\n" in deck
+    bad = deck.replace("*Surface Interaction, name=IntProp-1\n1.,\n", "*Surface Interaction, name=IntProp-1\n2.5,\n")
+    stops_at("cae_thickness_2_5", bad, "2.5,", "differs from the section thickness")

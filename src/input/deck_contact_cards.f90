@@ -6,9 +6,12 @@ submodule (deck_parser) deck_contact_cards
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_cutbacks, max_contact_iterations, line_text, err, next_data, no_data, &
                          allow_params, param_real, param_int, need_nset, new_surface, get_real, &
-                         behaviour_linear, add_pair_interaction, check_name_length, warn_empty_set
-  use model, only: contact_pair_t, surface_t, surf_element, surf_node, find_name, edge_nodes
+                         behaviour_linear, add_pair_interaction, check_name_length, warn_empty_set, &
+                         interaction_t
+  use model, only: contact_pair_t, surface_t, surf_element, surf_node, find_name, edge_nodes, elem_thickness, &
+                   elem_nodes, axisymmetric_model, is_continuum
   use model_growth, only: grow
+  use element_catalogue, only: max_nodes
   use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
                           order_amd, order_metis, contact_solve_auto, contact_solve_condensed, contact_solve_full
   implicit none
@@ -207,11 +210,41 @@ contains
           if (c%twin /= 0 .and. c%penalty > 0.0_dp) c%penalty = 0.5_dp * c%penalty
           c%mu = p%inter(it)%mu
           c%stick_slope = p%inter(it)%stick_slope
+          if (p%inter(it)%thickness > 0.0_dp) call check_thickness(p, m, p%inter(it), c)
           if (c%twin /= 0 .and. c%stick_slope > 0.0_dp) c%stick_slope = 0.5_dp * c%stick_slope
         end associate
       end associate
     end do
   end subroutine interaction_penalties
+
+  !> The out-of-plane thickness on a *SURFACE INTERACTION's data line
+  !> (Abaqus, 2D) must be the thickness of the sections of the pair's
+  !> element surfaces, which cfe2d's contact areas take; axisymmetric
+  !> models have none to compare.
+  subroutine check_thickness(p, m, it, c)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    type(interaction_t), intent(in) :: it
+    type(contact_pair_t), intent(in) :: c
+    integer :: s, k, e, surf(2)
+    real(dp) :: t(max_nodes)
+    if (axisymmetric_model(m)) return
+    surf = [c%slave_surface, c%master_surface]
+    do s = 1, 2
+      if (m%surfaces(surf(s))%kind /= surf_element) cycle
+      do k = 1, size(m%surfaces(surf(s))%elem)
+        e = m%surfaces(surf(s))%elem(k)
+        if (.not. is_continuum(m, e) .or. m%elem_section(e) == 0) cycle
+        t = elem_thickness(m, e)
+        if (any(abs(t(1:elem_nodes(m, e)) - it%thickness) > 1.0e-9_dp * it%thickness)) then
+          p%i = it%line + 1
+          call err(p, 'the out-of-plane thickness ' // rtoa(it%thickness, 6) // ' differs from the section ' // &
+                   'thickness ' // rtoa(maxval(t(1:elem_nodes(m, e))), 6) // ' of surface ' // &
+                   trim(m%surfaces(surf(s))%name) // ': cfe2d''s contact area takes the section''s')
+        end if
+      end do
+    end do
+  end subroutine check_thickness
 
   !> Purpose: ADJUST= of *CONTACT PAIR (CalculiX): before the analysis,
   !> slave nodes are moved onto the master surface along its normal. With

@@ -49,6 +49,7 @@ module deck_cursor
     character(len=name_len) :: name = ''
     integer :: behaviour = behaviour_none
     real(dp) :: slope = -1.0_dp     ! K of LINEAR (pressure per overclosure); < 0: automatic penalty
+    real(dp) :: thickness = -1.0_dp ! its data line: Abaqus' out-of-plane thickness of 2D contact
     real(dp) :: mu = 0.0_dp         ! *FRICTION: coefficient (0: frictionless)
     real(dp) :: stick_slope = -1.0_dp   ! *FRICTION: shear stress per unit slip; < 0: automatic
     integer :: line = 0             ! the *SURFACE INTERACTION line

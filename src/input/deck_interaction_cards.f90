@@ -22,7 +22,8 @@ contains
     type(parser_t), intent(inout) :: p
     type(keyword_t), intent(in) :: kw
     character(len=:), allocatable :: name
-    integer :: k
+    type(field_t), allocatable :: f(:)
+    integer :: k, n
     call allow_params(p, kw, 'NAME')
     name = name_param(p, kw, 'NAME')
     do k = 1, p%ninter
@@ -32,9 +33,15 @@ contains
     p%inter(k)%name = name
     p%inter(k)%line = p%i
     ! Abaqus' optional data line is the out-of-plane thickness of a 2D
-    ! contact; cfe2d's contact areas use the section thickness.
-    if (next_data(p)) call err(p, 'a data line (the out-of-plane thickness) on *SURFACE INTERACTION is ' // &
-        'not implemented: the contact area takes the thickness of the *SOLID SECTION')
+    ! contact (Abaqus/CAE writes 1. for every 2D model); cfe2d's contact
+    ! areas take the section thickness, which it must equal (checked with
+    ! the pairs, interaction_penalties).
+    if (next_data(p)) then
+      call split_fields(line_text(p), f, n)
+      if (n /= 1) call err(p, '*SURFACE INTERACTION data line needs: out-of-plane thickness')
+      p%inter(k)%thickness = get_real(p, f(1), 'out-of-plane thickness')
+      if (p%inter(k)%thickness <= 0.0_dp) call err(p, 'the out-of-plane thickness must be positive')
+    end if
   end subroutine read_surface_interaction
 
   !> Purpose: *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=: the normal law of

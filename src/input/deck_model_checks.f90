@@ -25,10 +25,11 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     integer :: s
-    call interaction_penalties(p, m)
     call check_sections(p, m)
     call apply_section_states(p, m)
     call apply_nodal_thickness(p, m)
+    ! (after the sections: an interaction's out-of-plane thickness is checked against theirs)
+    call interaction_penalties(p, m)
     call warn_plane_stress(p, m)
     call check_elements(p, m)
     call check_equations(p, m)
