@@ -28,6 +28,21 @@ a time and a memory limit and classifies each run:
               stopped before the end of its time period, or a model with
               no element
 
+The two builds (optimised and debug) must also agree, on more than the
+class: on every contact status (the state column of <job>_contact.csv and
+the closed count of each CONTACT SUMMARY), the increments and their times,
+the bisection notes, the coupling elements and contact equations, and the
+error message of a run that stops (numbers with a fraction or an exponent
+are masked: a last digit is no disagreement). These are defects; the
+search path (each contact iteration's status changes, pivots and
+factorisations), the other notes and warnings, and the nodes an error
+names as examples of a round-off decision may differ and are only
+reported ("search", "notes", "detail"; see AGREEMENT). A disagreement is
+logged with the first item that differs, saved to
+--out/failures/<mutant>-disagree-<kind>/ (up to --keep per kind), and
+--minimise shrinks the first of each defect kind and seed deck, while both
+builds still disagree on that kind, into --out/distinct/.
+
 Failures are told apart by their class and a signature (the runtime error
 and its source line, the signal, where a hang was: blocked in the kernel or
 busy, and in which routines, from gdb on the debug build). Every failing
@@ -37,7 +52,8 @@ case.txt) and runs.txt (each build's class and stderr). --minimise shrinks
 the first mutant of each distinct failure by delta debugging on its lines
 while the same class and signature persist, into --out/distinct/. The
 summary goes to stdout and --out/summary.txt; the exit status is 1 when any
-crash, hang or silent-bad run was seen (or a seed deck misbehaved).
+crash, hang or silent-bad run or a defect disagreement of the builds was
+seen (or a seed deck misbehaved).
 
   python3 scripts/fuzz.py --seed 1 --count 500 --out results/fuzz
   python3 scripts/fuzz.py --count 200 --minimise --time-limit 5
@@ -860,6 +876,7 @@ class Result:
     rc: int
     seconds: float
     stderr: bytes           # head and tail of stderr
+    record: dict = field(default_factory=dict)   # contact_record of the run (ok-run, ok-error)
 
 
 @dataclass
@@ -889,6 +906,142 @@ def _preexec(limits):
     return setup
 
 
+# ------------------------------------------------------------------- the builds must agree
+
+# What two builds (optimised and debug) must agree on, most serious first.
+# A run's record holds, for each kind, a list of items read from its
+# listing, <job>_contact.csv and stderr; numbers with a fraction or an
+# exponent are rounded or masked, so that round-off in the last printed
+# digits is no disagreement, while every decision (a contact status, an
+# increment, a bisection, a pivot, an error) is compared exactly.
+#   class       one build errors, hangs or crashes while the other runs
+#   status      the state column of <job>_contact.csv (CLOSED/OPEN per step,
+#               increment, pair, side and node), the closed count of each
+#               CONTACT SUMMARY
+#   increments  the increments (step, increment, time to 6 digits) and the
+#               bisection notes
+#   layer       coupling elements, contact equations, uncoupled slave nodes
+#   error       the error message of a run that stops (floats masked, and
+#               the nodes a message names as examples of a round-off
+#               decision: the node and dof of "singular stiffness at node
+#               N, dof D", where any dof of a free body is right and the
+#               first zero pivot is found by round-off, and the nodes
+#               "still switching" when a search gives up)
+#   notes       the other notes of the contact search (stabilised open
+#               penalty, pivot taken back, matrix not positive definite)
+#               and warnings on stderr (floats masked)
+#   search      the search path: each contact iteration's status changes,
+#               closed count and switching nodes, the iterations of each
+#               increment; the step summaries' contact_iterations, pivots
+#               and factorisations
+#   detail      the error messages and notes with the nodes they name
+# The first five are defects; the builds may take different paths to the
+# same statuses, increments and errors (notes, search, detail), and that
+# is counted and reported but is none.
+AGREEMENT = ("class", "status", "increments", "layer", "error", "notes", "search", "detail")
+AGREEMENT_DEFECTS = ("class", "status", "increments", "layer", "error")
+
+_FLOAT = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+)(?:[eE][-+]?\d+)?|[-+]?\d+[eE][-+]?\d+")
+_INCREMENT = re.compile(r"^=== INCREMENT step=(\d+) increment=(\d+) time=(\S+) .*?iterations=(\d+)")
+_ITERATION = re.compile(r"^contact iteration (\d+): status changes (\d+), closed (\d+), out-of-balance +\S+"
+                        r"(?: \(nodes(.*)\))?\s*$")
+_NOTE = re.compile(r"^(?:contact status |singular stiffness|the contact status |\S+: the matrix is not positive)")
+_SEARCH_KEYS = ("contact_iterations", "contact_block_pivots", "contact_single_pivots", "numeric_factorisations",
+                "condensed_factorisations")
+_EXAMPLE_NODES = [re.compile(r"(singular stiffness at node )\d+(, dof )\d"),
+                  re.compile(r"(still switching:)(?: \S+)+")]
+
+
+def _mask(text):
+    return _FLOAT.sub("#", text.strip())
+
+
+def _mask_examples(text):
+    """text without the nodes it names as examples of a round-off decision."""
+    for pattern in _EXAMPLE_NODES:
+        text = pattern.sub(lambda m: "".join(g + "N" for g in m.groups()), text)
+    return text
+
+
+def _round6(text):
+    try:
+        return f"{float(text):.6g}"
+    except ValueError:
+        return text
+
+
+def contact_record(out_dir, job, stderr):
+    """Purpose: what two builds must agree on in one run (see AGREEMENT).
+    Arguments: out_dir and job, where the run wrote; stderr bytes.
+    Returns {kind: [items]} (no entry for the kind "class")."""
+    rec = {k: [] for k in AGREEMENT[1:]}
+    text = ""
+    listing = os.path.join(out_dir, job + ".out")
+    if os.path.exists(listing):
+        with open(listing, "rb") as f:
+            text = f.read().decode(errors="replace")
+    step, block, inc, pair = "?", "", "-", "?"
+    for line in text.splitlines():
+        words = line.split()
+        if line.startswith("--- "):
+            block = " ".join(w for w in words[1:] if "=" not in w)
+            m = re.match(r"--- (?:STEP|SOLVER|STEP SUMMARY|CONTACT SUMMARY) (?:step|pair)=(\d+)", line)
+            if m and block != "CONTACT SUMMARY":
+                step = m.group(1)
+            elif m:
+                pair = m.group(1)
+            continue
+        if line.startswith("=== INCREMENT"):
+            m = _INCREMENT.match(line)
+            if m:
+                inc = f"step {m.group(1)} increment {m.group(2)}"
+                rec["increments"].append(f"{inc} time {_round6(m.group(3))}")
+                rec["search"].append(f"{inc}: iterations {m.group(4)}")
+            block = "INCREMENT"
+            continue
+        if line.startswith("=== END INCREMENT"):
+            block = ""
+            continue
+        m = _ITERATION.match(line)
+        if m:
+            rec["search"].append(f"step {step} after {inc}: contact iteration {m.group(1)}: status changes "
+                                 f"{m.group(2)}, closed {m.group(3)}, nodes{m.group(4) or ''}")
+            continue
+        if _NOTE.match(line):
+            kind = "increments" if "bisected" in line or "did not settle" in line else "notes"
+            rec[kind].append(f"step {step} after {inc}: {_mask_examples(_mask(line))}")
+            rec["detail"].append(f"step {step} after {inc}: {_mask(line)}")
+            continue
+        if block == "STEP" and words[:1] == ["coupling_elements"]:
+            rec["layer"].append(f"step {step}: {line.strip()}")
+        elif block == "SOLVER" and words[:1] in (["contact_equations"], ["contact_solve"]):
+            rec["layer"].append(f"step {step}: {line.strip()}")
+        elif block.startswith("UNCOUPLED") and len(words) == 2 and all(w.isdigit() for w in words):
+            rec["layer"].append(f"step {step}: uncoupled slave node: pair {words[0]} node {words[1]}")
+        elif block == "CONTACT SUMMARY" and words[:1] and words[0].isdigit():
+            rec["status"].append(f"{inc} pair {pair}: closed {words[0]}")
+        elif block == "STEP SUMMARY" and len(words) == 2 and words[0] in _SEARCH_KEYS:
+            rec["search"].append(f"step {step} summary: {words[0]} {words[1]}")
+    csv = os.path.join(out_dir, job + "_contact.csv")
+    if os.path.exists(csv):
+        with open(csv, "rb") as f:
+            rows = f.read().decode(errors="replace").splitlines()
+        for row in rows[1:]:
+            cols = row.split(",")
+            if len(cols) >= 10:
+                rec["status"].append(f"step {cols[0]} increment {cols[1]} pair {cols[3]} {cols[4]} node {cols[5]}: "
+                                     f"{cols[9].strip()}")
+    err = stderr.decode(errors="replace")
+    for line in err.splitlines():
+        if re.match(r"^(?:.+:\d+: error: |cfe2d: error: )", line):
+            rec["error"].append(_mask_examples(_mask(line)))
+            rec["detail"].append(_mask(line))
+        elif re.match(r"^(?:.+:\d+: warning: |cfe2d: warning: )", line):
+            rec["notes"].append(_mask_examples(_mask(line)))
+            rec["detail"].append(_mask(line))
+    return rec
+
+
 def run_build(exe, deck_dir, deck, out_dir, limits):
     """Purpose: run one build on a laid-out deck and classify the run.
     Arguments: exe, the cfe2d executable; deck_dir, where deck.write put the deck;
@@ -910,7 +1063,9 @@ def run_build(exe, deck_dir, deck, out_dir, limits):
     seconds = time.time() - t0
     stderr = _head_tail(err_path)
     cls, sig = classify(rc, timed_out, stderr, out_dir, deck.job)
-    return Result(os.path.relpath(exe, ROOT) if exe.startswith(ROOT) else exe, cls, sig, rc, seconds, stderr)
+    record = contact_record(out_dir, deck.job, stderr) if cls in ("ok-run", "ok-error") else {}
+    return Result(os.path.relpath(exe, ROOT) if exe.startswith(ROOT) else exe, cls, sig, rc, seconds, stderr,
+                  record)
 
 
 def hang_probe(pid):
@@ -1107,13 +1262,40 @@ def verdict(results):
     return worst, best.sig, best
 
 
+def disagreement(results):
+    """Purpose: where the builds disagree on one deck (see AGREEMENT).
+    Returns a list of (kind, detail), most serious kind first; [] when they agree."""
+    if len(results) < 2:
+        return []
+    if len({r.cls for r in results}) > 1:
+        return [("class", ", ".join(f"{r.build} {r.cls}" for r in results))]
+    if results[0].cls not in ("ok-run", "ok-error"):
+        return []
+    found = []
+    first = results[0]
+    for kind in AGREEMENT[1:]:
+        a = first.record.get(kind, [])
+        for other in results[1:]:
+            b = other.record.get(kind, [])
+            if a != b:
+                k = next((i for i, (x, y) in enumerate(zip(a, b)) if x != y), min(len(a), len(b)))
+                x = a[k] if k < len(a) else "(nothing)"
+                y = b[k] if k < len(b) else "(nothing)"
+                found.append((kind, f"{first.build}: {x} | {other.build}: {y}"))
+                break
+    return found
+
+
 # ---------------------------------------------------------------------------------- minimise
 
-def minimise(deck, target, exe, limits, work, budget, seconds=300.0):
+def minimise(deck, target, exe, limits, work, budget, seconds=300.0, still=None):
     """Purpose: shrink deck by deleting files and lines while exe still fails with target.
     Arguments: target, the (class, signature) to keep; budget, the most runs to spend;
-    seconds, the most time to spend. Returns (smaller Deck, runs used)."""
+    seconds, the most time to spend; still (optional), a test on the list of
+    Results of the builds exe (then a list) that replaces target.
+    Returns (smaller Deck, runs used)."""
     runs, seen, t_end = [0], {}, time.time() + seconds
+    exes = exe if isinstance(exe, (list, tuple)) else [exe]
 
     def fails(candidate):
         key = (tuple(sorted(candidate.files.items())), tuple(candidate.fifos), tuple(candidate.dirs))
@@ -1121,8 +1303,8 @@ def minimise(deck, target, exe, limits, work, budget, seconds=300.0):
             if runs[0] >= budget or time.time() > t_end:
                 return False
             runs[0] += 1
-            r = run_deck(candidate, [exe], limits, work)[0]
-            seen[key] = (r.cls, r.sig) == target
+            rs = run_deck(candidate, exes, limits, work)
+            seen[key] = still(rs) if still else (rs[0].cls, rs[0].sig) == target
         return seen[key]
 
     deck = deck.copy()
@@ -1189,6 +1371,8 @@ class Report:
     seconds: float = 0.0
     counts: dict = field(default_factory=lambda: {c: 0 for c in SEVERITY})
     disagree: int = 0
+    disagree_kinds: dict = field(default_factory=lambda: {k: [] for k in AGREEMENT})  # kind -> [indexes]
+    disagree_distinct: dict = field(default_factory=dict)  # (kind, seed deck) -> [(index, detail)]
     failures: list = field(default_factory=list)     # (index, class, signature, folder)
     distinct: dict = field(default_factory=dict)     # (class, signature) -> [indexes]
     seed_failures: list = field(default_factory=list)
@@ -1197,13 +1381,22 @@ class Report:
         c = self.counts
         return (f"fuzz: {self.decks} decks, {c['crash']} crashed, {c['hang']} hung, {c['silent-bad']} silent-bad, "
                 f"{c['ok-error']} ok-error, {c['ok-run']} ok-run ({self.runs} runs in {self.seconds:.0f} s; "
-                f"builds disagree on {self.disagree}; {len(self.distinct)} distinct failures)")
+                f"builds disagree on {self.disagree}; {len(self.distinct)} distinct failures)\n"
+                f"fuzz: builds disagree on {self.disagree} decks: " +
+                ", ".join(f"{k} {len(v)}" for k, v in self.disagree_kinds.items()) +
+                f" (defects: {self.disagree_defects})")
+
+    @property
+    def disagree_defects(self):
+        return sum(len(self.disagree_kinds[k]) for k in AGREEMENT_DEFECTS)
 
 
-def save_failure(out, index, deck, results, cls, sig):
+def save_failure(out, index, deck, results, cls, sig, disagree=()):
     folder = os.path.join(out, "failures", f"{index:05d}-{cls}")
     deck.write(os.path.join(folder, "deck"), {"found": cls, "signature": sig})
     with open(os.path.join(folder, "runs.txt"), "wb") as f:
+        for kind, detail in disagree:
+            f.write(f"=== the builds disagree on {kind}: {detail}\n".encode())
         for r in results:
             f.write(f"=== {r.build}: {r.cls} {r.sig} (exit {r.rc}, {r.seconds:.1f} s)\n".encode())
             f.write(r.stderr[-3000:] + b"\n")
@@ -1238,6 +1431,10 @@ def check_seeds(seeds, opts, work, report, log):
         results = run_deck(seed, opts.builds, opts.limits, work)
         report.runs += len(results)
         bad = [r for r in results if r.cls != seed.expect]
+        for kind, detail in disagreement(results):
+            if kind in AGREEMENT_DEFECTS:
+                report.seed_failures.append((seed.name, f"disagree-{kind}", detail))
+            log(f"fuzz: seed {seed.name}: the builds disagree on {kind}: {detail}")
         if bad:
             report.seed_failures.append((seed.name, bad[0].cls, bad[0].sig))
             log(f"fuzz: seed {seed.name} is not {seed.expect} on {bad[0].build}: {bad[0].cls} {bad[0].sig} "
@@ -1251,12 +1448,9 @@ def one_mutant(deck, k, opts, work, report, log):
     report.runs += len(results)
     cls, sig, primary = verdict(results)
     report.counts[cls] += 1
-    if len({r.cls for r in results}) > 1:
-        report.disagree += 1
-        log(f"fuzz: mutant {k}: the builds disagree: " +
-            ", ".join(f"{r.build} {r.cls} {r.sig}" for r in results))
-        if report.disagree <= opts.keep:
-            save_failure(opts.out, k, deck, results, "disagree", "")
+    disagree = disagreement(results)
+    if disagree:
+        note_disagreement(deck, k, results, disagree, opts, work, report, log)
     if cls not in FAILURES:
         return
     key = (cls, sig)
@@ -1276,6 +1470,30 @@ def one_mutant(deck, k, opts, work, report, log):
         log(f"fuzz:    minimised to {nlines} line(s) in {used} runs: {dest}")
 
 
+def note_disagreement(deck, k, results, disagree, opts, work, report, log):
+    """Count, log, save (up to --keep per kind) and, with --minimise, shrink
+    the first disagreement of each kind and seed deck."""
+    report.disagree += 1
+    kind, detail = disagree[0]
+    report.disagree_kinds[kind].append(k)
+    key = (kind, deck.name)
+    first = key not in report.disagree_distinct
+    report.disagree_distinct.setdefault(key, []).append((k, detail))
+    log(f"fuzz: mutant {k}: the builds disagree on {', '.join(d for d, _ in disagree)}: {detail} "
+        f"[{deck.name}: {'; '.join(deck.notes)[:200]}]")
+    if len(report.disagree_kinds[kind]) <= opts.keep:
+        save_failure(opts.out, k, deck, results, f"disagree-{kind}", detail, disagree)
+    if first and opts.minimise and kind in AGREEMENT_DEFECTS:
+        def still(rs):
+            return [d for d, _ in disagreement(rs)][:1] == [kind]
+        small, used = minimise(deck, None, opts.builds, opts.min_limits, work, opts.min_budget,
+                               opts.minimise_seconds, still=still)
+        dest = os.path.join(opts.out, "distinct", f"disagree-{kind}-{k:05d}")
+        small.write(dest, {"found": f"disagree-{kind}", "signature": detail})
+        nlines = sum(len(_lines(small, r)) for r in small.files)
+        log(f"fuzz:    minimised to {nlines} line(s) in {used} runs: {dest}")
+
+
 def replay(folder, opts, log=print):
     """Run the builds on one saved deck folder; print and return the Results."""
     deck, meta = load_case(folder)
@@ -1287,6 +1505,8 @@ def replay(folder, opts, log=print):
     for r in results:
         log(f"{folder}: {r.build}: {r.cls} {r.sig} (exit {r.rc}, {r.seconds:.1f} s)"
             + (f", expected {meta['expect']}" if "expect" in meta else ""))
+    for kind, detail in disagreement(results):
+        log(f"{folder}: the builds disagree on {kind}: {detail}")
     return results, meta
 
 
@@ -1331,18 +1551,22 @@ def main(argv=None):
             results, meta = replay(folder, opts)
             want = meta.get("expect")
             bad += any(r.cls in FAILURES or (want and r.cls not in want.split(",")) for r in results)
+            bad += any(kind in AGREEMENT_DEFECTS for kind, _ in disagreement(results))
         return 1 if bad else 0
     report = fuzz(opts)
     lines = [report.summary()]
     for (cls, sig), ks in sorted(report.distinct.items(), key=lambda kv: kv[1][0]):
         lines.append(f"  {cls:10s} x{len(ks):<4d} {sig}  (first: mutant {ks[0]})")
+    for (kind, name), items in sorted(report.disagree_distinct.items(), key=lambda kv: kv[1][0][0]):
+        lines.append(f"  disagree {kind:10s} x{len(items):<4d} {name}: {items[0][1][:300]}  "
+                     f"(first: mutant {items[0][0]})")
     for name, cls, sig in report.seed_failures:
         lines.append(f"  seed {name}: {cls} {sig}")
     print("\n".join(lines))
     with open(os.path.join(opts.out, "summary.txt"), "w") as f:
         f.write(f"python3 scripts/fuzz.py {' '.join(sys.argv[1:] if argv is None else argv)}\n")
         f.write("\n".join(lines) + "\n")
-    return 1 if report.failures or report.seed_failures else 0
+    return 1 if report.failures or report.seed_failures or report.disagree_defects else 0
 
 
 if __name__ == "__main__":

@@ -40,6 +40,10 @@ def test_fuzz_short_slice():
     problems = [f"seed {n}: {c} {s}" for n, c, s in report.seed_failures]
     problems += [f"mutant {k} (python3 scripts/fuzz.py --seed {SLICE_SEED} --index {k} --time-limit "
                  f"{SLICE_TIME_LIMIT}): {c}: {s}" for k, c, s, _ in report.failures]
+    # the builds must agree on contact statuses, increments, bisections, errors
+    problems += [f"mutant {k} (python3 scripts/fuzz.py --seed {SLICE_SEED} --index {k}): the builds disagree "
+                 f"on {kind}: {detail}" for (kind, _), items in report.disagree_distinct.items()
+                 if kind in fuzz.AGREEMENT_DEFECTS for k, detail in items]
     assert not problems, report.summary() + "\n" + "\n".join(problems)
 
 
@@ -105,6 +109,63 @@ def test_classifier_exit_and_stderr():
     assert fuzz.classify(-9, "busy", b"", tempfile.gettempdir(), "no-such-job")[0] == "hang"
 
 
+CONTACT_LISTING = """--- STEP step=1 name=
+item value
+time_period  1.00000E+000
+increments 1
+coupling_elements 2
+--- SOLVER step=1
+item value
+contact_equations 4
+contact iteration 1: status changes 2, closed 2, out-of-balance  5.244E-001 (nodes 11 12)
+contact iteration 2: status changes 0, closed 2, out-of-balance  {residual}
+{note}
+=== INCREMENT step=1 increment=1 time=1.00000000E+00 total_time=1.00000000E+00 iterations=2 ===
+--- CONTACT SUMMARY pair=1
+closed total_force resultant_x resultant_y max_penetration
+         {closed}   9.999500E+000   0.000000E+000  -9.999500E+000   9.999500E-007
+=== END INCREMENT
+"""
+CONTACT_CSV = """step,increment,time,pair,side,node,x,y,gap,state,force,pressure
+1,1, 1.00000000E+000,1,slave,11, 0.0E+000, 1.0E+000,-2.49987501E-007,CLOSED, 1.24993750E-001, 2.4E+000
+1,1, 1.00000000E+000,1,slave,12, 1.0E-001, 1.0E+000,{gap},{state}, 1.24993750E-001, 2.4E+000
+"""
+
+
+def contact_result(build, cls="ok-run", stderr=b"", residual="3.573E-012", note="", closed="2", gap="-2.4E-007",
+                   state="CLOSED"):
+    out = tempfile.mkdtemp(prefix="cfe2d-fuzz-record-")
+    try:
+        with open(os.path.join(out, "job.out"), "w") as f:
+            f.write(CONTACT_LISTING.format(residual=residual, note=note, closed=closed))
+        with open(os.path.join(out, "job_contact.csv"), "w") as f:
+            f.write(CONTACT_CSV.format(gap=gap, state=state))
+        record = fuzz.contact_record(out, "job", stderr)
+    finally:
+        shutil.rmtree(out, ignore_errors=True)
+    return fuzz.Result(build, cls, "", 0 if cls == "ok-run" else 1, 0.0, stderr, record)
+
+
+def test_builds_compared_on_contact_statuses():
+    """The fuzzer compares the builds' contact statuses, increments,
+    bisections and errors, not only their classes; round-off in printed
+    numbers, and which node an error names as an example, is no defect."""
+    kinds = lambda *rs: [k for k, _ in fuzz.disagreement(list(rs))]
+    a = contact_result("opt")
+    assert kinds(a, contact_result("dbg", residual="4.340E-012", gap="-2.5E-007")) == []
+    assert kinds(a, contact_result("dbg", state="OPEN")) == ["status"]
+    assert kinds(a, contact_result("dbg", state="OPEN", closed="1")) == ["status"]
+    assert kinds(a, contact_result("dbg", cls="ok-error")) == ["class"]
+    bisected = "contact status did not settle: increment bisected"
+    assert kinds(a, contact_result("dbg", note=bisected)) == ["increments", "detail"]
+    err = b"cfe2d: error: singular stiffness at node %d, dof 1 (missing boundary condition?)\n"
+    assert kinds(contact_result("opt", "ok-error", err % 58),
+                 contact_result("dbg", "ok-error", err % 843)) == ["detail"]
+    err2 = b"cfe2d: error: contact status did not settle in step 1 at time 1.00000E+00 after 5 bisections\n"
+    assert kinds(contact_result("opt", "ok-error", err % 58), contact_result("dbg", "ok-error", err2)) == \
+        ["error", "detail"]
+
+
 def test_mutants_reproducible_and_varied():
     seeds = [fuzz.Deck("a", "a.inp", {"a.inp": b"*HEADING\nx\n*NODE\n1, 0, 0\n2, 1.5, 0\n*STEP\n*STATIC\n"
                                                   b"0.5, 1.0\n*END STEP\n"})]
@@ -143,7 +204,9 @@ def check_regression(folder):
         f"{folder}/case.txt: expect= must be ok-error, ok-run or ok-error,ok-run"
     wrong = [f"{r.build}: {r.cls} {r.sig} (exit {r.rc}); stderr: "
              f"{r.stderr[:200].decode(errors='replace').strip()!r}" for r in results if r.cls not in want]
-    assert not wrong, f"expected {' or '.join(want)}:\n" + "\n".join(wrong)
+    wrong += [f"the builds disagree on {kind}: {detail}" for kind, detail in fuzz.disagreement(results)
+              if kind in fuzz.AGREEMENT_DEFECTS]
+    assert not wrong, f"expected {' or '.join(want)} from both builds alike:\n" + "\n".join(wrong)
 
 
 def test_fuzz_regressions_present():
