@@ -33,7 +33,8 @@ import re
 
 import numpy as np
 
-__all__ = ["read_dat_displacements", "read_dat_stresses", "read_dat_contact_stresses", "read_frd_displacements",
+__all__ = ["read_dat_displacements", "read_dat_stresses", "read_dat_contact_stresses", "read_dat_slave_node_contact",
+           "read_dat_set_forces", "read_frd_displacements",
            "read_frd_mesh", "frd_by_time", "read_deck_mesh", "map_expanded_nodes", "expanded_displacements",
            "stress_layers", "deck_face_polyline", "nearest_face"]
 
@@ -93,6 +94,39 @@ def read_dat_contact_stresses(path):
     expanded 3D element's)."""
     return {t: [(int(r[0]), int(r[1]), r[2]) for r in rows if len(r) == 5]
             for t, rows in _dat_blocks(path, "contact stress (slave element+face,").items()}
+
+
+def read_dat_slave_node_contact(path):
+    """{time: {slave node: (pressure, tang1, tang2)}} of the node-to-surface
+    'contact stress (slave node,press,tang1,tang2)' blocks of a .dat file
+    (*CONTACT PRINT CSTR of a NODE TO SURFACE pair: one line per slave node
+    in contact; for 2D elements the nodes are the expanded ones, which
+    map_expanded_nodes brings back)."""
+    return {t: {int(r[0]): (r[1], r[2], r[3]) for r in rows if len(r) == 4}
+            for t, rows in _dat_blocks(path, "contact stress (slave node,").items()}
+
+
+def read_dat_set_forces(path):
+    """{set: {time: {node: (fx, fy)}}} of the 'forces (fx,fy,fz) for set
+    NAME and time T' blocks of a .dat file (*NODE PRINT RF, one block per
+    set and time; for 2D elements CalculiX prints the deck's nodes, each
+    with the sum of its expanded nodes' forces)."""
+    title = re.compile(r"\s*forces \(fx,fy,fz\) for set (\S+) and time\s+(\S+)")
+    out, block = {}, None
+    with open(path, errors="replace") as f:
+        for line in f:
+            m = title.match(line)
+            if m:
+                block = out.setdefault(m.group(1).upper(), {}).setdefault(float(m.group(2)), {})
+                continue
+            parts = line.split()
+            if block is None or not parts:
+                continue
+            if not parts[0].isdigit():
+                block = None
+                continue
+            block[int(parts[0])] = (float(parts[1]), float(parts[2]))
+    return out
 
 
 # --- .frd ------------------------------------------------------------------
