@@ -48,6 +48,11 @@ module contact
   !> A projection this far outside [0, 1] along an edge still counts: it
   !> catches slave nodes exactly above a master vertex.
   real(dp), parameter :: edge_tol = 1.0e-6_dp
+  !> The round-off of a gap relative to the size of the coordinates that
+  !> enter it (64 machine epsilons): a point this close to its master edge
+  !> touches it, whatever the build or BLAS kernel rounds (the initial
+  !> status, and the status search's tolerance, contact_status).
+  real(dp), parameter :: gap_round_off = 64.0_dp * epsilon(1.0_dp)
   !> Open penalty (fraction of the closed one) while a body that only open
   !> contact holds is being brought into contact; see contact_set_t.
   real(dp), parameter :: stabilised_open_ratio = 1.0e-6_dp
@@ -68,6 +73,9 @@ module contact
     real(dp) :: gap0(2) = 0.0_dp     ! [[U]]_0 = X_slave - X_C
     real(dp) :: area = 0.0_dp        ! tributary area of the coupling point
     real(dp) :: h = 0.0_dp           ! mesh length at the coupling point (slave or master edge)
+    !> The round-off of its gap: coordinates of the size of the point's
+    !> (and an edge) enter the gap, so a gap this small is zero.
+    real(dp) :: gap_round = 0.0_dp
     real(dp) :: k_closed = 0.0_dp    ! normal penalty of the CFE (force/length)
     real(dp) :: k_open = 0.0_dp
     logical :: closed = .false.
@@ -424,6 +432,7 @@ contains
       hm = len / (ed%nn - 1)
     end if
     c%h = hm
+    c%gap_round = gap_round_off * (norm2(xs) + hm)
     c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, hm, c%ns > 1)
     c%k_open = m%pairs(ip)%open_ratio * c%k_closed
     c%mu = m%pairs(ip)%mu
@@ -436,13 +445,13 @@ contains
       tvec = ab / norm2(ab)
       c%normal = [tvec(2), -tvec(1)]
       c%gap0 = xs_ref - (m%x(:, ed%node(1)) + t * (m%x(:, ed%node(2)) - m%x(:, ed%node(1))))
-      c%closed = dot_product(c%normal, xs - (x(:, ed%node(1)) + t * ab)) <= 0.0_dp
+      c%closed = dot_product(c%normal, xs - (x(:, ed%node(1)) + t * ab)) <= c%gap_round
     else
       call edge_at(ed, t, p, dpdt)
       c%normal = [dpdt(2), -dpdt(1)] / norm2(dpdt)
       w = edge_weights(ref, t)
       c%gap0 = xs_ref - matmul(ref%x, w)
-      c%closed = dot_product(c%normal, xs - p) <= 0.0_dp
+      c%closed = dot_product(c%normal, xs - p) <= c%gap_round
     end if
     ! At a corner of the master surface the normal of whichever edge the
     ! search met first would lean by half the corner's angle: a polygonal

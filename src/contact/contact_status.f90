@@ -46,7 +46,9 @@
 !> problem is settled in either state: it is not counted as violated when
 !> |gh| <= round_off * min(h, F / d), h the mesh length at the point and
 !> F the force scale of the increment (loads, contact forces, forces
-!> carried so far). Its force either way is then below round_off * F,
+!> carried so far), or when |gh| is below the round-off of the gap itself
+!> (64 epsilons of the coordinates: contact's gap_round; without any load
+!> F is round-off too). Its force either way is then below round_off * F,
 !> and its gap below round_off * h: either status gives the same answer to
 !> the round-off of the problem, and a decision there no longer depends on
 !> the BLAS kernel. The tolerance changes no answer beyond that.
@@ -288,6 +290,8 @@ contains
     associate(c => cs%c(j))
       gh = shifted_gap(cs, j)
       tol = round_off * min(c%h, force_scale / max(c%k_closed - open_penalty(c, cs%stabilised), tiny(1.0_dp)))
+      ! never below the gap's own round-off (without loads F is round-off too)
+      tol = max(tol, c%gap_round)
       if (c%closed) then
         is_violated = gh > tol
       else
