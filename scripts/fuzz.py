@@ -220,7 +220,9 @@ def test_seeds(log):
     seeds = []
     makers = [("tests/bad_decks_good", _good_deck), ("tests/contact_push", _contact_push),
               ("tests/contact_force", _contact_force), ("tests/contact_unsettled", _contact_unsettled),
-              ("tests/features_include", _features), ("tests/patch_tri", _patch_tri)] + CARD_MAKERS
+              ("tests/features_include", _features), ("tests/patch_tri", _patch_tri),
+              ("tests/contact_friction", _contact_friction), ("tests/calculix_friction", _calculix_friction)] \
+        + CARD_MAKERS
     for name, make in makers:
         try:
             main, files, *expect = make()
@@ -239,6 +241,22 @@ def _good_deck():
 def _contact_push():
     import test_contact as tc
     return "push.inp", {"push.inp": tc.blocks_deck([tc.push_step(3 * tc.G0, 2)])}
+
+
+def _contact_friction():
+    """The pressed blocks of test_contact with Coulomb friction (cfe2d's own
+    FRICTION= and STICK SLOPE=), pushed on after they touch."""
+    import test_contact as tc
+    deck = tc.blocks_deck([tc.push_step(3 * tc.G0, 2)])
+    assert "*CONTACT PAIR" in deck
+    return "friction.inp", {"friction.inp": deck.replace("*CONTACT PAIR", "*CONTACT PAIR, FRICTION=0.3, STICK SLOPE=1e5", 1)}
+
+
+def _calculix_friction():
+    """CalculiX's frictional blocks (tests/calculix): *SURFACE INTERACTION
+    with *FRICTION (mu, stick slope), pressed, then pushed until they slide."""
+    with open(os.path.join(ROOT, "tests", "calculix", "friction_blocks.inp")) as f:
+        return "friction_blocks.inp", {"friction_blocks.inp": f.read()}
 
 
 def _contact_force():
