@@ -2,7 +2,7 @@
 
 cfe2d links OpenBLAS; Debian's DYNAMIC_ARCH build picks its kernels for
 the CPU it runs on, and OPENBLAS_CORETYPE forces one (Prescott: SSE3,
-runs on any x86-64; Sandybridge: AVX; Haswell: AVX2; SkylakeX: AVX-512).
+runs on any x86-64; Sandybridge: AVX; Haswell and Zen: AVX2; SkylakeX: AVX-512).
 Kernels sum in different orders, so one deck gives numbers that differ in
 the last bits from one machine to the next. That is allowed; a contact
 decision that follows those bits is not: a deck must open and close the
@@ -29,7 +29,7 @@ compares each run with the reference, bin/cfe2d on Prescott:
   table's 9 printed digits get one unit of their last digit more).
 
 Kernels: Prescott always, Sandybridge if /proc/cpuinfo lists avx, Haswell
-with avx2, SkylakeX with avx512f, and the one OpenBLAS detects by itself
+and Zen with avx2, SkylakeX with avx512f, and the one OpenBLAS detects by itself
 if it is none of these; the listing's `blas` line must name each. The
 runs' environment loses any inherited OPENBLAS_CORETYPE and
 OPENBLAS_VERBOSE. On a machine that is not x86, or whose OpenBLAS ignores
@@ -152,6 +152,7 @@ def probe():
                 variants.append(Variant("Sandybridge", CFE2D, "Sandybridge"))
             if "avx2" in flags:
                 variants.append(Variant("Haswell", CFE2D, "Haswell"))
+                variants.append(Variant("Zen", CFE2D, "Zen"))
             if "avx512f" in flags:
                 variants.append(Variant("SkylakeX", CFE2D, "SkylakeX"))
             detected = core_name(lines["detected"])
