@@ -119,7 +119,7 @@ def test_friction_calculix_contact_pressure():
         s = inc.block("CONTACT SLAVE", pair=1)
         cfe = dict(zip((int(n) for n in s["node"]), s["pressure"]))
         ccx = ref[round(inc.time, 6)]
-        assert sorted(cfe) == sorted(ccx) and all(st == "CLOSED" for st in s["state"]), (inc.time, s["state"])
+        assert sorted(cfe) == sorted(ccx) and all(st in ("STICK", "SLIP") for st in s["state"]), (inc.time, s["state"])
         mean = np.mean(list(ccx.values()))
         worst = max(worst, max(abs(cfe[n] - ccx[n]) for n in ccx) / mean)
     assert worst < 0.01, worst
