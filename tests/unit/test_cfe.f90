@@ -12,6 +12,9 @@ program test_cfe
   call check('CFE on Q4 master', kind_quad4, 4, [0.3_dp, 1.0_dp])
   call check('CFE on T3 master', kind_tri3, 3, [0.35_dp, 0.65_dp])
   call check_slave_point()
+  call check_friction(.false., 0.0_dp, 'sticking')
+  call check_friction(.true., 1.0_dp, 'sliding along +t')
+  call check_friction(.true., -1.0_dp, 'sliding along -t')
   if (failures() > 0) stop 1
 
 contains
@@ -102,6 +105,78 @@ contains
     write(msg, '(a,es9.2)') 'relative force change ', err
     call report(name // ': frictionless (tangential slide changes no force)', err < 1.0e-9_dp, msg)
   end subroutine check
+
+  !> Coulomb friction on a closed, penetrating CFE over a Q4 master edge
+  !> tilted by 30 degrees: K_e is dF_int/dD_e by central differences
+  !> (sticking: symmetric; sliding: unsymmetric, the tangential force
+  !> following the normal gap); the tangential force is k_t (t.[[U]] -
+  !> anchor) sticking and slip_sign mu times the normal force's magnitude
+  !> sliding, along t = (-n_y, n_x).
+  subroutine check_friction(sliding, sgn, what)
+    logical, intent(in) :: sliding
+    real(dp), intent(in) :: sgn
+    character(len=*), intent(in) :: what
+    type(elem_in_t) :: ein, ep, em
+    type(elem_out_t) :: eout, op, om
+    real(dp) :: kfd(10, 10), err, h, theta, t(2), expect, asym
+    character(len=120) :: msg
+    integer :: i, j, nd
+    ein%kind = kind_cfe
+    ein%master_kind = kind_quad4
+    ein%nen = 5
+    ein%xi = [0.3_dp, 1.0_dp]
+    theta = 0.5235987755982988_dp
+    ein%normal = [sin(theta), -cos(theta)]
+    ein%penalty = 3.7e9_dp
+    ein%closed = .true.
+    ein%mu = 0.3_dp
+    ein%k_tan = 1.9e9_dp
+    ein%sliding = sliding
+    ein%slip_sign = sgn
+    ein%anchor = 2.0e-5_dp
+    ein%xy(:, 2:5) = reshape([0.0_dp, 0.0_dp, 1.1_dp, 0.1_dp, 1.0_dp, 0.9_dp, -0.1_dp, 1.0_dp], [2, 4])
+    ein%xy(:, 1) = [0.5_dp, -0.3_dp]
+    ein%gap0 = -3.0e-5_dp * ein%normal
+    nd = 10
+    do i = 1, nd
+      ein%ue(i) = 1.0e-5_dp * sin(1.7_dp * i)
+    end do
+    call element_routine(ior(act_tangent, act_residual), ein, eout)
+    call report('friction, ' // what // ': closed and penetrating', eout%gap < 0.0_dp, 'the test setup opened')
+    h = 1.0e-8_dp
+    do j = 1, nd
+      ep = ein
+      em = ein
+      ep%ue(j) = ep%ue(j) + h
+      em%ue(j) = em%ue(j) - h
+      call element_routine(act_residual, ep, op)
+      call element_routine(act_residual, em, om)
+      kfd(1:nd, j) = (op%fe(1:nd) - om%fe(1:nd)) / (2.0_dp * h)
+    end do
+    err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / maxval(abs(eout%ke))
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report('friction, ' // what // ': K_e equals dF_int/dD_e by finite differences', err < 1.0e-6_dp, msg)
+    asym = maxval(abs(eout%ke(1:nd, 1:nd) - transpose(eout%ke(1:nd, 1:nd)))) / maxval(abs(eout%ke))
+    write(msg, '(a,es9.2)') 'relative asymmetry ', asym
+    if (sliding) then
+      call report('friction, ' // what // ': K_e unsymmetric', asym > 1.0e-3_dp, msg)
+    else
+      call report('friction, ' // what // ': K_e symmetric', asym < 1.0e-15_dp, msg)
+    end if
+    t = [-ein%normal(2), ein%normal(1)]
+    if (sliding) then
+      expect = sgn * ein%mu * abs(eout%normal_force)
+    else
+      expect = ein%k_tan * (dot_product(t, eout%jump) - ein%anchor)
+    end if
+    err = abs(eout%tangential_force - expect) / abs(expect)
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report('friction, ' // what // ': tangential force (Coulomb, return mapping)', err < 1.0e-13_dp, msg)
+    ! the internal force is B_e^T (normal force n + tangential force t)
+    err = abs(dot_product(t, eout%fe(1:2)) - eout%tangential_force) / abs(eout%tangential_force)
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report('friction, ' // what // ': the slave node carries the tangential force along t', err < 1.0e-12_dp, msg)
+  end subroutine check_friction
 
   !> A coupling point between two slave nodes (weights 0.3, 0.7), as the
   !> paper's section 5 allows: the element behaves as a one-node CFE whose
