@@ -683,9 +683,9 @@ contains
     do k = 1, p%nequations
       if (len_trim(m%equations(k)%origin) == 0) call mark(m%equations(k)%node)
     end do
-    allocate(m%local_node(nn0))
+    allocate(m%local_node(nn0), eqs(2 * count(named)))
     m%local_node = 0
-    allocate(eqs(0))
+    k = 0
     do a = 1, nn0
       if (.not. named(a)) cycle
       xa = m%x(:, a)
@@ -694,10 +694,11 @@ contains
       m%local_node(a) = loc
       r = node_axes(m, a)
       do d = 1, 2
-        eqs = [eqs, without_zero_terms(equation_t(node=[a, loc, loc], dof=[d, 1, 2], coef=[1.0_dp, -r(d, :)], &
-                                                   src=m%transforms(m%node_transform(a))%src, &
-                                                   origin='*TRANSFORM on ' // &
-                                                   trim(m%nsets(m%transforms(m%node_transform(a))%nset)%name)))]
+        k = k + 1
+        eqs(k) = without_zero_terms(equation_t(node=[a, loc, loc], dof=[d, 1, 2], coef=[1.0_dp, -r(d, :)], &
+                                               src=m%transforms(m%node_transform(a))%src, &
+                                               origin='*TRANSFORM on ' // &
+                                               trim(m%nsets(m%transforms(m%node_transform(a))%nset)%name)))
       end do
     end do
     call redirect(m%model_bcs%node)
