@@ -97,3 +97,25 @@ def test_sanitizer_constraints_trusses_springs_masses():
         r = run(path, out)
         clean(r, name)
         assert r.returncode == 0, (name, r.stderr[-2000:])
+
+
+def test_sanitizer_rigid_couplings_transforms():
+    """The decks of *RIGID BODY, *COUPLING (*KINEMATIC, *DISTRIBUTING) and
+    *TRANSFORM (nodes made while the deck is read, equations appended,
+    cards redirected to the nodes of local displacements) run clean, the
+    good ones to the end and the bad ones to their error at a line."""
+    need_build()
+    import test_rigid as tr
+    for good, decks in ((True, tr.decks()), (False, tr.bad_decks())):
+        for name, text in decks.items():
+            out = os.path.join(WORK, "asan_" + name)
+            os.makedirs(out, exist_ok=True)
+            path = os.path.join(out, name + ".inp")
+            with open(path, "w") as f:
+                f.write(text)
+            r = run(path, out)
+            clean(r, name)
+            if good:
+                assert r.returncode == 0, (name, r.stderr[-2000:])
+            else:
+                assert r.returncode == 1 and ": error:" in r.stderr, (name, r.returncode, r.stderr[-2000:])

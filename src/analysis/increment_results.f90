@@ -51,7 +51,7 @@ contains
     type(increment_results_t), intent(out) :: res
     type(element_counts_t), intent(inout) :: counts
     real(dp), intent(in), optional :: dtemp(:)
-    integer :: s, q, e
+    integer :: s, q, e, a
     res%step = is
     res%increment = inc
     res%iterations = iters
@@ -59,12 +59,21 @@ contains
     res%total_time = total_time
     res%u = u
     res%rf = rf
+    ! A node with *TRANSFORM whose dofs cards named depends on the node
+    ! carrying its local displacements, where its supports act: its own
+    ! reaction is theirs, turned to global axes (the sums of the prescribed
+    ! sets, which hold the node, are global, as CalculiX prints them).
+    if (allocated(m%local_node)) then
+      do a = 1, size(m%local_node)
+        if (m%local_node(a) > 0) res%rf(:, a) = matmul(node_axes(m, a), rf(:, m%local_node(a)))
+      end do
+    end if
     res%set_ids = set_ids
     allocate(res%set_sums(2, size(set_ids)))
     do s = 1, size(set_ids)
       res%set_sums(:, s) = 0.0_dp
       do q = 1, size(m%nsets(set_ids(s))%items)
-        res%set_sums(:, s) = res%set_sums(:, s) + rf(:, m%nsets(set_ids(s))%items(q))
+        res%set_sums(:, s) = res%set_sums(:, s) + res%rf(:, m%nsets(set_ids(s))%items(q))
       end do
     end do
     res%has_stresses = any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e)

@@ -7,7 +7,7 @@ submodule (deck_parser) deck_compat_cards
   use kinds, only: dp
   use strings, only: split_fields, field_t, itoa
   use deck_cursor, only: line_text, err, next_data, allow_params, get_real, get_int, is_label, node_ref, need_nset, &
-                         warn_empty_set
+                         warn_empty_set, deck_dof, dof_moves, note_named, rotation_hint
   use model, only: equation_t
   use model_growth, only: grow
   use growable, only: grow
@@ -89,20 +89,24 @@ contains
 
   !> The `node, dof, coefficient` triples of one *EQUATION constraint,
   !> appended to m%equations (one constraint per node of its node sets)
-  !> with the line of its first term as its source. A term on another dof
-  !> than 1 or 2 is dropped if its coefficient is zero (CalculiX decks of
-  !> plane models may name dof 3) and an error otherwise.
+  !> with the line of its first term as its source. Each term's dof is
+  !> what deck_dof makes of it at each node (dof 6 of a reference node of
+  !> *RIGID BODY or *COUPLING, dof 3 of a ROT NODE: the rotation); a term
+  !> on a dof a 2D model does not have is dropped if its coefficient is
+  !> zero (CalculiX decks of plane models may name dof 3) and an error
+  !> otherwise.
   subroutine read_equation_terms(p, m, nterms)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     integer, intent(in) :: nterms
     type(field_t), allocatable :: f(:)
     type(equation_t) :: eq
-    integer, allocatable :: first(:), count(:), all_nodes(:)
-    integer :: n, k, j, nread, nkept, ncopies, iset, nempty
+    integer, allocatable :: first(:), count(:), all_nodes(:), all_dofs(:), named(:)
+    logical, allocatable :: all_kept(:)
+    real(dp) :: coef(nterms)
+    integer :: n, k, j, q, nread, nkept, ncopies, iset, nempty, d, kind, ra, rd, i0
     integer :: empty_named(nterms)
-    logical :: kept(nterms)
-    allocate(eq%node(nterms), eq%dof(nterms), eq%coef(nterms), first(nterms), count(nterms), all_nodes(0))
+    allocate(first(nterms), count(nterms), all_nodes(0), all_dofs(0), all_kept(0))
     nread = 0
     do while (nread < nterms)
       if (.not. next_data(p)) call err(p, '*EQUATION: fewer terms than announced (' // itoa(nterms) // ')')
@@ -114,7 +118,7 @@ contains
       do k = 1, n, 3
         nread = nread + 1
         first(nread) = size(all_nodes) + 1
-        all_nodes = [all_nodes, target_of(p, m, f(k), iset)]
+        named = target_of(p, m, f(k), iset)
         ! an empty set named by several terms of a line: one warning
         if (iset > 0 .and. .not. any(empty_named(1:nempty) == iset)) then
           call warn_empty_set(p, size(m%nsets(iset)%items), 'node set', m%nsets(iset)%name, 'EQUATION')
@@ -123,40 +127,45 @@ contains
             empty_named(nempty) = iset
           end if
         end if
-        count(nread) = size(all_nodes) - first(nread) + 1
-        eq%dof(nread) = get_int(p, f(k + 1), 'dof')
-        eq%coef(nread) = get_real(p, f(k + 2), 'coefficient')
-        if (nread == 1 .and. eq%coef(1) == 0.0_dp) &
+        count(nread) = size(named)
+        d = get_int(p, f(k + 1), 'dof')
+        coef(nread) = get_real(p, f(k + 2), 'coefficient')
+        if (nread == 1 .and. coef(1) == 0.0_dp) &
           call err(p, 'the first coefficient (of the dependent dof) must not be zero')
-        kept(nread) = eq%dof(nread) == 1 .or. eq%dof(nread) == 2
-        if (.not. kept(nread) .and. eq%coef(nread) /= 0.0_dp) call err(p, 'dof ' // itoa(eq%dof(nread)) // &
-          ' with a non-zero coefficient: a 2D model has dofs 1 and 2 only (CalculiX expands plane elements ' // &
-          'to 3D; here a dof 3 term has no meaning)')
+        i0 = size(all_nodes)
+        all_nodes = [all_nodes, named]
+        call grow(all_dofs, i0 + size(named))
+        all_kept = [all_kept, spread(.true., 1, size(named))]
+        do q = 1, size(named)
+          call note_named(p, named(q))
+          call deck_dof(p, named(q), d, kind, ra, rd)
+          all_nodes(i0 + q) = ra
+          all_dofs(i0 + q) = rd
+          all_kept(i0 + q) = kind == dof_moves
+          if (kind /= dof_moves .and. coef(nread) /= 0.0_dp) call err(p, 'dof ' // itoa(d) // &
+            ' with a non-zero coefficient: a 2D model has dofs 1 and 2 only (CalculiX expands plane elements ' // &
+            'to 3D; here a dof 3 term has no meaning)' // rotation_hint(d))
+        end do
       end do
     end do
     ncopies = maxval(count)
     if (any(count /= 1 .and. count /= ncopies)) &
       call err(p, '*EQUATION: the node sets of one constraint must have the same number of nodes')
-    nkept = 0
-    do k = 1, nterms
-      if (.not. kept(k)) cycle
-      nkept = nkept + 1
-      eq%dof(nkept) = eq%dof(k)
-      eq%coef(nkept) = eq%coef(k)
-      first(nkept) = first(k)
-      count(nkept) = count(k)
-    end do
-    eq%dof = eq%dof(1:nkept)
-    eq%coef = eq%coef(1:nkept)
-    deallocate(eq%node)
-    allocate(eq%node(nkept))
+    allocate(eq%node(nterms), eq%dof(nterms), eq%coef(nterms))
     do j = 1, ncopies
-      do k = 1, nkept
-        eq%node(k) = all_nodes(first(k) + min(j, count(k)) - 1)
+      nkept = 0
+      do k = 1, nterms
+        q = first(k) + min(j, count(k)) - 1
+        if (.not. all_kept(q)) cycle
+        nkept = nkept + 1
+        eq%node(nkept) = all_nodes(q)
+        eq%dof(nkept) = all_dofs(q)
+        eq%coef(nkept) = coef(k)
       end do
       call grow(m%equations, p%nequations + 1)
       p%nequations = p%nequations + 1
-      m%equations(p%nequations) = eq
+      m%equations(p%nequations) = equation_t(node=eq%node(1:nkept), dof=eq%dof(1:nkept), coef=eq%coef(1:nkept), &
+                                              src=eq%src)
     end do
   end subroutine read_equation_terms
 

@@ -11,8 +11,9 @@ module deck_cursor
   use kinds, only: dp, name_len
   use strings, only: to_upper, parse_real, parse_int, field_t, itoa
   use deck_input, only: deck_t, keyword_t, deck_error, deck_warning, param_value, has_param, is_keyword
-  use model, only: model_t, find_name, has_instances
+  use model, only: model_t, find_name, has_instances, rigid_t
   use model_growth, only: grow
+  use growable, only: grow
   implicit none
   private
   public :: parser_t, max_id, max_increments, max_cutbacks, max_contact_iterations
@@ -25,6 +26,13 @@ module deck_cursor
   ! Abaqus/CAE decks: parts, instances and the names and numbers of their members.
   public :: part_t, is_label, node_ref, elem_ref, defined_name, new_node_id, new_elem_id, placed, &
             instance_index, set_scope
+  ! Rotations of reference nodes (*RIGID BODY, *COUPLING): what a deck's dof is.
+  public :: deck_dof, dof_moves, dof_zero, dof_none, note_named, rotation_hint
+
+  !> What a dof of the deck is at a node (deck_dof): one of the two dofs
+  !> of a node of the model, a dof that is always zero in 2D (out of the
+  !> plane, or a rotation about an in-plane axis), or no dof of that node.
+  integer, parameter :: dof_moves = 1, dof_zero = 2, dof_none = 3
 
   !> Node and element ids are 1..max_id (an id indexes a lookup table).
   integer, parameter :: max_id = 100000000
@@ -109,6 +117,19 @@ module deck_cursor
     integer :: replaying = 0                   ! the part whose cards are being read for `owner`
     integer :: asm_node_max = 0, asm_elem_max = 0  ! largest assembly-level labels: instance ids start above
     character(len=:), allocatable :: scope_note    ! appended to errors: the instance being read
+    ! *RIGID BODY and *COUPLING (deck_rigid_cards), by internal node: the
+    ! node whose dof 1 is a reference node's rotation (its dof 6; 0 none),
+    ! the user's ROT NODEs (their dofs 1..3 are rotations, dof 3 in the
+    ! plane), and the first *BOUNDARY, *CLOAD or *EQUATION line naming a
+    ! node (a ROT NODE must not have been named as a plain node before).
+    integer, allocatable :: ref_rotation(:)
+    logical, allocatable :: is_rot_node(:)
+    integer, allocatable :: named_line(:)
+    ! The *COUPLING waiting for its *KINEMATIC or *DISTRIBUTING (its line,
+    ! 0 none), its surface and INFLUENCE RADIUS (< 0: every node).
+    type(rigid_t) :: coupling
+    integer :: coupling_line = 0, coupling_surface = 0
+    real(dp) :: coupling_radius = -1.0_dp
   end type parser_t
 
 contains
@@ -654,4 +675,74 @@ contains
     if (inside .and. p%step == 0) call err(p, '*' // kw%name // ' must be inside *STEP ... *END STEP')
     if (.not. inside .and. p%step /= 0) call err(p, '*' // kw%name // ' is model data and cannot be inside *STEP')
   end subroutine in_step
+
+  !> Purpose: what dof d of node a, as a deck names it on *BOUNDARY,
+  !> *CLOAD or *EQUATION, is in the model: kind dof_moves with the model's
+  !> node ra and dof rd (1 or 2) holding it, dof_zero for a dof that a 2D
+  !> model does not have and that is therefore zero (dof 3, out of the
+  !> plane; at a reference node also the rotations 4 and 5 about in-plane
+  !> axes; at a ROT NODE its dofs 1 and 2, the rotations about x and y),
+  !> or dof_none. The in-plane rotation of a reference node of *RIGID BODY
+  !> or *COUPLING (dof 6, Abaqus) and of a ROT NODE (dof 3, CalculiX) is
+  !> dof 1 of its rotation node.
+  pure subroutine deck_dof(p, a, d, kind, ra, rd)
+    type(parser_t), intent(in) :: p
+    integer, intent(in) :: a, d
+    integer, intent(out) :: kind, ra, rd
+    integer :: rot
+    logical :: is_rot
+    ra = a
+    rd = d
+    rot = 0
+    if (allocated(p%ref_rotation)) then
+      if (a <= size(p%ref_rotation)) rot = p%ref_rotation(a)
+    end if
+    is_rot = .false.
+    if (allocated(p%is_rot_node)) then
+      if (a <= size(p%is_rot_node)) is_rot = p%is_rot_node(a)
+    end if
+    if (is_rot) then
+      select case (d)
+      case (1, 2); kind = dof_zero
+      case (3); kind = dof_moves; rd = 1
+      case default; kind = dof_none
+      end select
+    else
+      select case (d)
+      case (1, 2); kind = dof_moves
+      case (3); kind = dof_zero
+      case (4, 5)
+        kind = dof_none
+        if (rot > 0) kind = dof_zero
+      case (6)
+        kind = dof_none
+        if (rot > 0) then
+          kind = dof_moves
+          ra = rot
+          rd = 1
+        end if
+      case default; kind = dof_none
+      end select
+    end if
+  end subroutine deck_dof
+
+  !> Purpose: remembers the current line as the first naming node a on a
+  !> *BOUNDARY, *CLOAD or *EQUATION (a later *RIGID BODY may not make such
+  !> a node its ROT NODE: its dofs would change meaning).
+  subroutine note_named(p, a)
+    type(parser_t), intent(inout) :: p
+    integer, intent(in) :: a
+    call grow(p%named_line, a, fill=0)
+    if (p%named_line(a) == 0) p%named_line(a) = p%i
+  end subroutine note_named
+
+  !> Purpose: the hint added to a message about dof d (4..6) of a node
+  !> that has no rotation: where rotations come from.
+  pure function rotation_hint(d) result(s)
+    integer, intent(in) :: d
+    character(len=:), allocatable :: s
+    s = ''
+    if (d >= 4 .and. d <= 6) s = '; rotations (dof 6 in the plane) exist only at the reference node of a ' // &
+      '*RIGID BODY or *COUPLING defined before this line (at a ROT NODE: dof 3)'
+  end function rotation_hint
 end module deck_cursor

@@ -131,9 +131,16 @@ contains
     do j = 1, size(bcs)
       bad = mpc%dep(bcs(j)%dof, bcs(j)%node)
       if (bad == 0) cycle
-      msg = 'dof ' // itoa(bcs(j)%dof) // ' of node ' // node_label(m, bcs(j)%node) // ' is the dependent ' // &
-            'dof of this *EQUATION (its first term, eliminated) and also has a *BOUNDARY; put an independent ' // &
-            'dof first, or prescribe another one'
+      if (len_trim(m%equations(bad)%origin) > 0) then
+        ! a generated constraint: the card's node follows others
+        msg = 'dof ' // itoa(bcs(j)%dof) // ' of node ' // node_label(m, bcs(j)%node) // ' follows other ' // &
+              'dofs through the constraint made by ' // trim(m%equations(bad)%origin) // ' and also has a ' // &
+              '*BOUNDARY; prescribe the dofs it follows (a reference node) instead'
+      else
+        msg = 'dof ' // itoa(bcs(j)%dof) // ' of node ' // node_label(m, bcs(j)%node) // ' is the dependent ' // &
+              'dof of this *EQUATION (its first term, eliminated) and also has a *BOUNDARY; put an independent ' // &
+              'dof first, or prescribe another one'
+      end if
       return
     end do
   end subroutine bc_on_dependent

@@ -15,6 +15,9 @@
 !>   deck_load_cards      *DLOAD, *DSLOAD, *DENSITY
 !>   deck_constraint_cards  *PRE-TENSION SECTION (cut once the deck is read),
 !>                        *TIE (its equations: the contact layer's tie_constraints)
+!>   deck_rigid_cards     *RIGID BODY, *COUPLING with *KINEMATIC or *DISTRIBUTING,
+!>                        *TRANSFORM (linear constraints; transforms applied
+!>                        once the deck is read)
 !>   deck_part_cards      *PART, *ASSEMBLY, *INSTANCE and their ends (Abaqus/CAE
 !>                        decks: a part's cards are read for each instance)
 !>   deck_model_checks    checks that need the whole deck
@@ -212,6 +215,36 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_tie
+    ! Rigid bodies, couplings and local axes (deck_rigid_cards):
+    module subroutine read_rigid_body(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_rigid_body
+    module subroutine read_coupling(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_coupling
+    module subroutine read_kinematic(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_kinematic
+    module subroutine read_distributing(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_distributing
+    module subroutine read_transform(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_transform
+    module subroutine finish_kinematic_cards(p, m)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+    end subroutine finish_kinematic_cards
     module subroutine check_model(p, m)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -277,7 +310,7 @@ contains
     allocate(m%nsets(0), m%elsets(0), m%surfaces(0), m%materials(0), m%sections(0), &
              m%amplitudes(0), m%steps(0), m%pairs(0), m%model_bcs(0))
     allocate(m%equations(0), m%initial_temps(0), m%pretensions(0), m%ties(0))
-    allocate(m%instances(0))
+    allocate(m%instances(0), m%rigids(0), m%transforms(0))
 
     p%i = 1
     do while (p%i <= p%deck%n)
@@ -291,7 +324,12 @@ contains
       call err(p, '*STEP without *END STEP')
     end if
     call finish_parts(p)
+    if (p%coupling_line > 0) then
+      p%i = p%coupling_line
+      call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
+    end if
     call trim_model(p, m)
+    call finish_kinematic_cards(p, m)
     call cut_pretension_sections(p, m)
     call check_model(p, m)
   end subroutine read_model
@@ -332,6 +370,11 @@ contains
     kw%name = spaced_name(card%name)
     ! A *SURFACE INTERACTION block ends at the first card that does not describe it.
     if (kw%name /= 'SURFACE BEHAVIOR' .and. kw%name /= 'FRICTION') p%interaction = 0
+    ! *COUPLING says what it is on the next card.
+    if (p%coupling_line > 0 .and. kw%name /= 'KINEMATIC' .and. kw%name /= 'DISTRIBUTING') then
+      p%i = p%coupling_line
+      call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
+    end if
     call check_part_context(p, m, kw)
     select case (kw%name)
     case ('HEADING');       call read_heading(p, m, kw)
@@ -370,6 +413,11 @@ contains
     case ('EQUATION');      call in_step(p, kw, .false.); call read_equation(p, m, kw)
     case ('PRE-TENSION SECTION'); call in_step(p, kw, .false.); call read_pretension_section(p, m, kw)
     case ('TIE');           call in_step(p, kw, .false.); call read_tie(p, m, kw)
+    case ('RIGID BODY');    call in_step(p, kw, .false.); call read_rigid_body(p, m, kw)
+    case ('COUPLING');      call in_step(p, kw, .false.); call read_coupling(p, m, kw)
+    case ('KINEMATIC');     call in_step(p, kw, .false.); call read_kinematic(p, m, kw)
+    case ('DISTRIBUTING');  call in_step(p, kw, .false.); call read_distributing(p, m, kw)
+    case ('TRANSFORM');     call in_step(p, kw, .false.); call read_transform(p, m, kw)
     case ('PART');          call in_step(p, kw, .false.); call read_part(p, m, kw)
     case ('END PART');      call read_end_part(p, kw)
     case ('ASSEMBLY');      call in_step(p, kw, .false.); call read_assembly(p, m, kw)
@@ -402,7 +450,7 @@ contains
       'CONTACT PAIR', 'CONTACT CONTROLS', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'NODAL THICKNESS', &
       'SPECIFIC HEAT', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', 'NODE OUTPUT', 'ELEMENT OUTPUT', &
       'CONTACT OUTPUT', 'CONTACT PRINT', 'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', &
-      'PRE-TENSION SECTION', 'END PART', 'END INSTANCE', 'END ASSEMBLY']
+      'PRE-TENSION SECTION', 'END PART', 'END INSTANCE', 'END ASSEMBLY', 'RIGID BODY']
     integer :: i
     s = name
     if (index(name, ' ') > 0) return

@@ -8,15 +8,18 @@ submodule (deck_parser) deck_step_cards
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, is_int, is_label, node_ref, &
-                         need_nset, need_elset, required_param, warn_empty_set
+                         need_nset, need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
+                         note_named, rotation_hint
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
-                   find_name
+                   find_name, node_label
   use growable, only: append
   use model_growth, only: grow
   implicit none
 
   !> CalculiX's dof of the temperature (heat transfer and coupled analyses).
   integer, parameter :: dof_temperature = 11
+  character(len=*), parameter :: dof_range_message = 'dofs must satisfy 1 <= first <= last <= 2 in 2D ' // &
+    '(dof 3, out of the plane, may only be held at zero)'
 
 contains
 
@@ -104,15 +107,19 @@ contains
 
   !> Purpose: *BOUNDARY: prescribed displacements, `node or nset, first
   !> dof[, last dof[, value]]` or a named condition (ENCASTRE, PINNED,
-  !> XSYMM, YSYMM). Model data outside *STEP, history data inside.
+  !> XSYMM, YSYMM). Model data outside *STEP, history data inside. Each
+  !> dof is what deck_dof makes of it at each node: dof 6 of a reference
+  !> node of *RIGID BODY or *COUPLING (or dof 3 of a ROT NODE) is its
+  !> rotation; a dof a 2D model does not have may only be held at zero.
   module subroutine read_boundary(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
-    integer, allocatable :: nodes(:)
-    integer :: n, k, d, d1, d2, iset, amp, nnew
+    integer, allocatable :: nodes(:), dofs(:)
+    integer :: n, k, j, iset, amp, nnew, kind, ra, rd
     real(dp) :: v
+    logical :: named
     character(len=:), allocatable :: op
     call allow_params(p, kw, 'OP,AMPLITUDE,TYPE')
     if (has_param(kw, 'TYPE')) then
@@ -128,10 +135,23 @@ contains
       call split_fields(line_text(p), f, n)
       if (n > 4) call err(p, '*BOUNDARY data line needs: node or set, first dof[, last dof[, value]]')
       call target_nodes(p, m, f(1)%s, kw%name, nodes, iset)
-      call boundary_dofs(p, f, n, d1, d2, v)
+      call boundary_dofs(p, f, n, dofs, named, v)
       do k = 1, size(nodes)
-        do d = d1, d2
-          call add_bc(p, m, bc_t(node=nodes(k), dof=d, set=iset, amp=amp, value=v))
+        call note_named(p, nodes(k))
+        do j = 1, size(dofs)
+          call deck_dof(p, nodes(k), dofs(j), kind, ra, rd)
+          select case (kind)
+          case (dof_moves)
+            call add_bc(p, m, bc_t(node=ra, dof=rd, set=iset, amp=amp, value=v))
+          case (dof_zero)
+            ! a 2D model has no such displacement: holding it at zero (as
+            ! CalculiX decks do for their 3D springs and expanded
+            ! elements) changes nothing
+            if (v /= 0.0_dp) call err(p, zero_dof_message(p, m, nodes(k), dofs(j), 'held at zero'))
+          case default
+            ! a named condition holds the dofs the node has
+            if (.not. named) call err(p, dof_range_message // rotation_hint(dofs(j)))
+          end select
         end do
       end do
       nnew = nnew + 1
@@ -139,44 +159,71 @@ contains
     if (nnew == 0) call err(p, 'missing data line (node or set, first dof[, last dof[, value]])')
   end subroutine read_boundary
 
-  !> The dof range and value of a *BOUNDARY data line (fields f(2:n)).
-  subroutine boundary_dofs(p, f, n, d1, d2, v)
+  !> The dofs and value of a *BOUNDARY data line (fields f(2:n)): a range
+  !> of dofs 1..6, or the dofs of a named condition (named), which Abaqus
+  !> gives with the rotations a node may have: ENCASTRE all, PINNED the
+  !> translations, XSYMM u1 and the rotations about y and z, YSYMM u2 and
+  !> those about x and z.
+  subroutine boundary_dofs(p, f, n, dofs, named, v)
     type(parser_t), intent(in) :: p
     type(field_t), intent(in) :: f(:)
     integer, intent(in) :: n
-    integer, intent(out) :: d1, d2
+    integer, allocatable, intent(out) :: dofs(:)
+    logical, intent(out) :: named
     real(dp), intent(out) :: v
+    integer :: d1, d2, d
     v = 0.0_dp
-    if (n >= 2 .and. .not. is_int(f(min(n, 2))%s)) then
+    named = n >= 2 .and. .not. is_int(f(min(n, 2))%s)
+    if (named) then
       ! Abaqus named conditions.
       if (n > 2) call err(p, 'a named boundary condition takes no further fields')
       select case (to_upper(f(2)%s))
-      case ('ENCASTRE', 'PINNED'); d1 = 1; d2 = 2
-      case ('XSYMM'); d1 = 1; d2 = 1
-      case ('YSYMM'); d1 = 2; d2 = 2
+      case ('ENCASTRE'); dofs = [1, 2, 3, 4, 5, 6]
+      case ('PINNED'); dofs = [1, 2, 3]
+      case ('XSYMM'); dofs = [1, 5, 6]
+      case ('YSYMM'); dofs = [2, 4, 6]
       case default; call err(p, '"' // f(2)%s // '" is not a dof number or a known condition')
       end select
-    else
-      if (n < 2) call err(p, 'missing first dof')
-      d1 = get_int(p, f(2), 'first dof')
-      d2 = d1
-      if (n >= 3) then
-        if (len(f(3)%s) > 0) d2 = get_int(p, f(3), 'last dof')
-      end if
-      if (n == 4) v = get_real(p, f(4), 'prescribed value')
-    end if
-    ! A 2D model has no out-of-plane displacement: holding it at zero (as
-    ! CalculiX decks do for their 3D springs and expanded elements) changes
-    ! nothing; the range then ends at 2 (and is empty for dof 3 alone).
-    if (d1 >= 1 .and. d1 <= 3 .and. d2 == 3 .and. v == 0.0_dp) then
-      d2 = 2
       return
     end if
+    if (n < 2) call err(p, 'missing first dof')
+    d1 = get_int(p, f(2), 'first dof')
+    d2 = d1
+    if (n >= 3) then
+      if (len(f(3)%s) > 0) d2 = get_int(p, f(3), 'last dof')
+    end if
+    if (n == 4) v = get_real(p, f(4), 'prescribed value')
     if (d1 <= dof_temperature .and. dof_temperature <= d2) call err(p, heat_transfer_dof('*BOUNDARY', &
         'a prescribed temperature'))
-    if (d1 < 1 .or. d2 > 2 .or. d2 < d1) call err(p, 'dofs must satisfy 1 <= first <= last <= 2 in 2D ' // &
-        '(dof 3, out of the plane, may only be held at zero)')
+    if (d1 < 1 .or. d2 > 6 .or. d2 < d1) call err(p, dof_range_message // rotation_hint(d2))
+    dofs = [(d, d = d1, d2)]
   end subroutine boundary_dofs
+
+  !> Purpose: the message for a non-zero value (`what`: held at, loaded)
+  !> on dof d of node a, which a 2D model does not have (dof_zero).
+  function zero_dof_message(p, m, a, d, what) result(msg)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: a, d
+    character(len=*), intent(in) :: what
+    character(len=:), allocatable :: msg
+    logical :: rot
+    rot = .false.
+    if (allocated(p%is_rot_node)) then
+      if (a <= size(p%is_rot_node)) rot = p%is_rot_node(a)
+    end if
+    if (rot) then
+      msg = 'dof ' // itoa(d) // ' of ROT NODE ' // node_label(m, a) // ' is its rotation about the ' // &
+            merge('x', 'y', d == 1) // ' axis, out of the plane of a 2D model: it may only be ' // what // &
+            ' (dof 3 is the rotation in the plane)'
+    else if (d == 3) then
+      msg = dof_range_message
+    else
+      msg = 'dof ' // itoa(d) // ' of node ' // node_label(m, a) // ' is a rotation about the ' // &
+            merge('x', 'y', d == 4) // ' axis, out of the plane of a 2D model: it may only be ' // what // &
+            ' (dof 6 is the rotation in the plane)'
+    end if
+  end function zero_dof_message
 
   !> Purpose: the message for dof 11 (CalculiX's temperature dof) on `card`,
   !> which would be `what` in a heat transfer analysis: that is another
@@ -217,13 +264,15 @@ contains
 
   !> Purpose: *CLOAD: concentrated forces, `node or nset, dof, value`.
   !> Any finite value is accepted (huge loads are the analysis' concern).
+  !> Dof 6 of a reference node of *RIGID BODY or *COUPLING (dof 3 of a
+  !> ROT NODE) is a moment about z (deck_dof).
   module subroutine read_cload(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     integer, allocatable :: nodes(:)
-    integer :: n, k, d, iset, amp, nnew
+    integer :: n, k, d, iset, amp, nnew, kind, ra, rd
     real(dp) :: v
     call allow_params(p, kw, 'OP,AMPLITUDE')
     if (op_param(p, kw) == 'NEW') m%steps(p%step)%new_loads = .true.
@@ -235,11 +284,16 @@ contains
       call target_nodes(p, m, f(1)%s, kw%name, nodes, iset)
       d = get_int(p, f(2), 'dof')
       if (d == dof_temperature) call err(p, heat_transfer_dof('*CLOAD', 'a concentrated heat flux'))
-      if (d < 1 .or. d > 2) call err(p, 'dof must be 1 or 2 in 2D')
+      if (d < 1 .or. d > 6) call err(p, 'dof must be 1 or 2 in 2D' // rotation_hint(d))
       v = get_real(p, f(3), 'load value')
       call grow(m%steps(p%step)%loads, p%nload + size(nodes))
       do k = 1, size(nodes)
-        m%steps(p%step)%loads(p%nload + k) = cload_t(node=nodes(k), dof=d, amp=amp, value=v, src=src_t(p%i))
+        call note_named(p, nodes(k))
+        call deck_dof(p, nodes(k), d, kind, ra, rd)
+        if (kind == dof_zero .and. d /= 3) &
+          call err(p, zero_dof_message(p, m, nodes(k), d, 'zero; nothing carries a load on it'))
+        if (kind /= dof_moves) call err(p, 'dof must be 1 or 2 in 2D' // rotation_hint(d))
+        m%steps(p%step)%loads(p%nload + k) = cload_t(node=ra, dof=rd, amp=amp, value=v, src=src_t(p%i))
       end do
       p%nload = p%nload + size(nodes)
       nnew = nnew + 1
@@ -407,6 +461,7 @@ contains
     if (r%to_file) call file_format(p, m, kw)
     if (r%nodal) then
       call allow_params(p, kw, 'NSET,FREQUENCY,TOTALS,GLOBAL,SUMMARY,OUTPUT,FORMAT')
+      call global_param(p, kw, r)
       if (has_param(kw, 'NSET')) then
         r%set = need_nset(p, m, param_value(kw, 'NSET'))
         ! (the result files hold every node whatever the set)
@@ -444,6 +499,28 @@ contains
     p%nreq = p%nreq + 1
     m%steps(p%step)%requests(p%nreq) = r
   end subroutine read_request
+
+  !> GLOBAL= of *NODE PRINT and *NODE FILE: whether U and RF of a node
+  !> with *TRANSFORM are given in global axes. CalculiX's defaults: NO for
+  !> *NODE PRINT (the listing then gives them in the node's local axes),
+  !> YES for *NODE FILE; the result files always hold global components,
+  !> so GLOBAL=NO there is a warning.
+  subroutine global_param(p, kw, r)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    type(request_t), intent(inout) :: r
+    character(len=:), allocatable :: v
+    r%global = r%to_file
+    if (.not. has_param(kw, 'GLOBAL')) return
+    v = to_upper(param_value(kw, 'GLOBAL'))
+    if (v /= 'YES' .and. v /= 'NO') call err(p, 'GLOBAL must be YES or NO')
+    r%global = v == 'YES'
+    if (r%to_file .and. .not. r%global) then
+      call deck_warning(p%deck, p%i, 'GLOBAL=NO on *' // kw%name // ' is ignored: the result files hold ' // &
+                        'global components (the listing, *NODE PRINT, gives local ones)')
+      r%global = .true.
+    end if
+  end subroutine global_param
 
   !> FORMAT= of *NODE FILE and *EL FILE: MSH (default: the gmsh file only)
   !> or VTU (the ParaView files too; the gmsh file is written anyway).

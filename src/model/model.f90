@@ -11,7 +11,9 @@ module model
   private
   public :: model_t, node_set_t, elem_set_t, surface_t, material_t, section_t, &
             bc_t, cload_t, dload_t, amplitude_t, request_t, step_t, contact_pair_t, src_t, &
-            equation_t, temp_t, pretension_t, tie_t, instance_t, &
+            equation_t, temp_t, pretension_t, tie_t, instance_t, rigid_t, transform_t, &
+            rigid_body, rigid_kinematic, rigid_distributing, transform_rectangular, transform_cylindrical, &
+            node_axes, has_transform, local_node_of, &
             node_label, elem_label, has_instances, &
             is_continuum, carries_stiffness, is_truss, is_spring, is_mass, is_drawn, axisymmetric_model, &
             elem_nodes, elem_thickness, &
@@ -22,6 +24,11 @@ module model
 
   integer, parameter :: surf_element = 1, surf_node = 2
   integer, parameter :: amp_step_time = 1, amp_total_time = 2
+  !> What made a rigid_t: *RIGID BODY, *COUPLING with *KINEMATIC or with
+  !> *DISTRIBUTING.
+  integer, parameter :: rigid_body = 1, rigid_kinematic = 2, rigid_distributing = 3
+  !> TYPE= of *TRANSFORM: rectangular (R) or cylindrical (C).
+  integer, parameter :: transform_rectangular = 1, transform_cylindrical = 2
   !> Labels of distributed loads (dload_t).
   integer, parameter :: dload_p = 1, dload_bx = 2, dload_by = 3, dload_grav = 4, dload_centrif = 5
 
@@ -144,6 +151,9 @@ module model
     logical :: to_file = .false.
     integer :: set = 0
     logical :: u = .false., rf = .false., s = .false., e = .false., cstress = .false.
+    !> GLOBAL= of *NODE PRINT: U and RF of a node with *TRANSFORM in global
+    !> axes (YES) or in its local ones (NO, CalculiX's default).
+    logical :: global = .false.
   end type request_t
 
   type :: step_t
@@ -228,6 +238,41 @@ module model
     real(dp) :: largest_move = 0.0_dp
   end type tie_t
 
+  !> *RIGID BODY, or *COUPLING with *KINEMATIC or *DISTRIBUTING: nodes
+  !> tied to a reference node by linear constraints (small rotations),
+  !> generated when the card is read (equation_t with this card as src).
+  !> The in-plane rotation theta is dof 1 of rot_node: the user's ROT NODE
+  !> (CalculiX: its dof 3 in the deck) or a node made for it, which the
+  !> deck reaches as dof 6 of the reference node (Abaqus). Rigid body and
+  !> kinematic coupling: each node j follows u_j = u_ref + theta x (x_j -
+  !> x_ref) in the dofs that follow. Distributing coupling: the reverse,
+  !> the reference node and theta are the nodes' weighted average (weight
+  !> = the area each node stands for), no stiffness added: a load on the
+  !> reference node is spread over the nodes.
+  type :: rigid_t
+    integer :: kind = rigid_body
+    character(len=name_len) :: name = ''   ! the node set, element set or surface; the constraint name
+    integer :: ref_node = 0, rot_node = 0  ! rot_node 0: no rotation (every node at the reference point)
+    logical :: rot_given = .false.         ! rot_node is the user's ROT NODE
+    logical :: ref_made = .false.          ! the reference node was made (no REF NODE: the origin)
+    integer, allocatable :: nodes(:)       ! the nodes that follow (or are averaged)
+    logical :: follows(2) = .true.         ! the translations that follow (*KINEMATIC's dofs)
+    logical :: moment = .false.            ! *DISTRIBUTING: dof 6 named, a moment on it is spread
+    type(src_t) :: src
+  end type rigid_t
+
+  !> *TRANSFORM: the local axes of the nodes of a set, in which their
+  !> *BOUNDARY, *CLOAD and *EQUATION dofs are given. Rectangular: x' along
+  !> a, y' in the plane of a and b (towards b); cylindrical (the axis along
+  !> z through a, from a to b): x' radial, y' tangential, z' x x' = y'.
+  type :: transform_t
+    integer :: nset = 0
+    integer :: kind = transform_rectangular
+    real(dp) :: a(3) = 0.0_dp, b(3) = 0.0_dp
+    real(dp) :: axes(2, 2) = 0.0_dp        ! rectangular: the columns x', y' in global components
+    type(src_t) :: src
+  end type transform_t
+
   !> An *INSTANCE of a *PART (Abaqus/CAE decks): its own copy of the
   !> part's nodes and elements, placed by `shift` and then turned by
   !> `angle` (degrees, counter-clockwise) about the z axis through
@@ -286,6 +331,14 @@ module model
     !> *INSTANCE of a *PART (Abaqus/CAE decks); empty for a flat deck,
     !> whose node and element ids are the deck's numbers.
     type(instance_t), allocatable :: instances(:)
+    !> *RIGID BODY and *COUPLING (their equations are in `equations`).
+    type(rigid_t), allocatable :: rigids(:)
+    !> *TRANSFORM; per node the transform that applies (the last naming
+    !> it, 0 none) and the node made to carry its local displacements
+    !> (0 none: made only for a node whose dofs a card names), of which
+    !> its own are dependent: u = axes u(local node).
+    type(transform_t), allocatable :: transforms(:)
+    integer, allocatable :: node_transform(:), local_node(:)
   end type model_t
 
 contains
@@ -351,6 +404,50 @@ contains
       end do
     end if
   end function kept_nodes
+
+  !> Purpose: does a *TRANSFORM apply to node a?
+  pure logical function has_transform(m, a)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: a
+    has_transform = .false.
+    if (.not. allocated(m%node_transform)) return
+    if (a > size(m%node_transform)) return
+    has_transform = m%node_transform(a) > 0
+  end function has_transform
+
+  !> Purpose: the node carrying node a's local displacements (its
+  !> *TRANSFORM's), 0 if none.
+  pure integer function local_node_of(m, a)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: a
+    local_node_of = 0
+    if (.not. allocated(m%local_node)) return
+    if (a > size(m%local_node)) return
+    local_node_of = m%local_node(a)
+  end function local_node_of
+
+  !> Purpose: the local axes of node a (columns x', y' in global
+  !> components: u_global = r u_local), the identity without *TRANSFORM.
+  !> Cylindrical: x' from the axis to the node, y' = z' x x' (z' from a
+  !> to b); the reader refused nodes on the axis.
+  pure function node_axes(m, a) result(r)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: a
+    real(dp) :: r(2, 2), d(2), s
+    r = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
+    if (.not. has_transform(m, a)) return
+    associate(t => m%transforms(m%node_transform(a)))
+      if (t%kind == transform_rectangular) then
+        r = t%axes
+      else
+        d = m%x(:, a) - t%a(1:2)
+        d = d / norm2(d)
+        s = sign(1.0_dp, t%b(3) - t%a(3))
+        r(:, 1) = d
+        r(:, 2) = s * [-d(2), d(1)]
+      end if
+    end associate
+  end function node_axes
 
   !> Has the model axisymmetric elements (so its point loads and masses
   !> are whole rings about the y axis)?

@@ -190,7 +190,62 @@ contains
         end associate
       end do
     end if
+    call write_rigid_cards(u, m)
   end subroutine write_constraint_cards
+
+  !> The rigid bodies and couplings (card, its set, surface or name, the
+  !> reference node, the node whose dof 1 is the rotation, listed as its
+  !> U1 and RF1: '-' when nothing turns, the nodes tied or averaged) and
+  !> the *TRANSFORMs (set, type, the nodes made to carry the local
+  !> displacements of the transformed nodes that cards name).
+  subroutine write_rigid_cards(u, m)
+    integer, intent(in) :: u
+    type(model_t), intent(in) :: m
+    integer :: k, nloc
+    character(len=:), allocatable :: card, rot
+    if (size(m%rigids) > 0) then
+      write(u, '(a)') '--- RIGID BODIES'
+      write(u, '(a)') 'card name ref_node rot_node nodes dofs'
+      do k = 1, size(m%rigids)
+        associate(r => m%rigids(k))
+          select case (r%kind)
+          case (rigid_body); card = 'RIGID_BODY'
+          case (rigid_kinematic); card = 'KINEMATIC'
+          case default; card = 'DISTRIBUTING'
+          end select
+          rot = '-'
+          if (r%rot_node > 0) rot = node_label(m, r%rot_node)
+          write(u, '(a,1x,a,1x,a,1x,a,1x,i0,1x,a)') card, trim(r%name), node_label(m, r%ref_node), rot, &
+            size(r%nodes), trim(dof_list(r))
+        end associate
+      end do
+    end if
+    if (size(m%transforms) > 0) then
+      write(u, '(a)') '--- TRANSFORMS'
+      write(u, '(a)') 'set type nodes local_nodes'
+      do k = 1, size(m%transforms)
+        associate(t => m%transforms(k))
+          nloc = 0
+          if (allocated(m%local_node)) nloc = count(m%local_node > 0 .and. m%node_transform(1:size(m%local_node)) == k)
+          write(u, '(a,1x,a,1x,i0,1x,i0)') trim(m%nsets(t%nset)%name), merge('R', 'C', t%kind == transform_rectangular), &
+            count(m%node_transform == k), nloc
+        end associate
+      end do
+    end if
+  end subroutine write_rigid_cards
+
+  !> The dofs a rigid body or coupling ties: 1,2 (and 6 where a moment
+  !> is spread or the body turns).
+  pure function dof_list(r) result(s)
+    type(rigid_t), intent(in) :: r
+    character(len=:), allocatable :: s
+    s = ''
+    if (r%follows(1)) s = '1'
+    if (r%follows(2)) s = s // merge(',2', '2 ', len(s) > 0)
+    s = trim(s)
+    if (r%rot_node > 0 .and. (r%kind /= rigid_distributing .or. r%moment)) s = s // ',6'
+    if (len(s) == 0) s = '-'
+  end function dof_list
 
   subroutine write_step_header(self, m, info)
     class(listing_t), intent(inout) :: self
@@ -355,6 +410,9 @@ contains
 
   !> *NODE PRINT: U, RF, S at the nodes of a set (all nodes when set = 0).
   !> With instances each row ends with the node's label (INSTANCE.NUMBER).
+  !> In a model with *TRANSFORM, U and RF of a transformed node are in its
+  !> local axes unless GLOBAL=YES (CalculiX's *NODE PRINT, which marks
+  !> such rows with L): a column `system` says L (local) or G (global).
   subroutine write_node_request(self, m, req, res)
     class(listing_t), intent(in) :: self
     type(model_t), intent(in) :: m
@@ -362,34 +420,26 @@ contains
     type(increment_results_t), intent(in) :: res
     integer, allocatable :: sel(:)
     integer :: k, un
-    logical :: lab
+    logical :: lab, local
     un = self%unit
     lab = has_instances(m)
+    local = .not. req%global .and. size(m%transforms) > 0
     if (req%set > 0) then
       sel = m%nsets(req%set)%items
     else
       sel = [(k, k = 1, m%nn)]
     end if
     if (req%u) then
-      call block_head(self, m, 'NODE U', req%set, .true., 'node U1 U2' // label_column(m))
+      call block_head(self, m, 'NODE U', req%set, .true., 'node U1 U2' // system_column(local) // label_column(m))
       do k = 1, size(sel)
-        if (lab) then
-          write(un, self%f_node2, advance='no') m%node_id(sel(k)), res%u(:, sel(k))
-          write(un, '(1x,a)') node_label(m, sel(k))
-        else
-          write(un, self%f_node2) m%node_id(sel(k)), res%u(:, sel(k))
-        end if
+        call vector_row(res%u(:, sel(k)), sel(k))
       end do
     end if
     if (req%rf) then
-      call block_head(self, m, 'NODE RF', req%set, .true., 'node RF1 RF2' // label_column(m))
+      call block_head(self, m, 'NODE RF', req%set, .true., 'node RF1 RF2' // system_column(local) // &
+                      label_column(m))
       do k = 1, size(sel)
-        if (lab) then
-          write(un, self%f_node2, advance='no') m%node_id(sel(k)), res%rf(:, sel(k))
-          write(un, '(1x,a)') node_label(m, sel(k))
-        else
-          write(un, self%f_node2) m%node_id(sel(k)), res%rf(:, sel(k))
-        end if
+        call vector_row(res%rf(:, sel(k)), sel(k))
       end do
     end if
     if (req%s) then
@@ -405,7 +455,43 @@ contains
         end if
       end do
     end if
+  contains
+    !> A row of a nodal vector: global, or in node a's local axes.
+    subroutine vector_row(v, a)
+      real(dp), intent(in) :: v(2)
+      integer, intent(in) :: a
+      real(dp) :: w(2)
+      character(len=2) :: sys
+      w = v
+      sys = ''
+      if (local) then
+        sys = ' G'
+        if (has_transform(m, a)) then
+          w = matmul(transpose(node_axes(m, a)), v)
+          sys = ' L'
+        end if
+      end if
+      if (lab .or. local) then
+        write(un, self%f_node2, advance='no') m%node_id(a), w
+        if (lab) then
+          write(un, '(a,1x,a)') trim(sys), node_label(m, a)
+        else
+          write(un, '(a)') trim(sys)
+        end if
+      else
+        write(un, self%f_node2) m%node_id(a), w
+      end if
+    end subroutine vector_row
   end subroutine write_node_request
+
+  !> ' system' after the column names of U and RF when rows may be in a
+  !> node's local axes (L) or global (G).
+  pure function system_column(local) result(s)
+    logical, intent(in) :: local
+    character(len=:), allocatable :: s
+    s = ''
+    if (local) s = ' system'
+  end function system_column
 
   !> *EL PRINT: S and E at the integration points of an element set.
   subroutine write_element_request(self, m, req, res)
