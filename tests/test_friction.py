@@ -331,3 +331,94 @@ def test_block_sliding_on_block():
     assert linear < 1e-9 and normal < 1e-9
     assert np.all(above > 0)
     assert diff < 1e-9
+
+
+# ---------------------------------------------------------------------------
+# 3. Shrink-fit push-out
+# ---------------------------------------------------------------------------
+
+def push_out_deck(solve, push=0.05, incs=10):
+    """input/examples/shrink_fit.inp's fit (tests/test_shrink_fit.py: CAX8,
+    a steel shaft a < r < b heated by 100 K in an aluminium ring b < r < c,
+    a slice of height H) with friction, then the shaft pushed out axially.
+
+    The slice stands for a long fit: instead of holding its ends axially,
+    the ring's top and bottom nodes are tied (*EQUATION, u_r and u_z:
+    periodic) and its outer surface r = c is held axially; every shaft node
+    is prescribed axially (0 while heating, then `push`: the shaft moves
+    as a rigid plug, so its strain stays the plane-strain one). While
+    heating u_z = 0 everywhere: the plane-strain Lame state of
+    fit_closed_form, unchanged. Pushed, the ring takes the shear in an
+    antiplane field u_z = f(r), tau_rz = G f'(r) = -tau b / r, which moves
+    no radial stress: the pressure stays the Lame p, and at full slip
+    tau = mu p and the axial force is mu p 2 pi b H, the ring's bore
+    moving by f(b) = mu p b ln(c / b) / G_ring."""
+    import test_shrink_fit as sf
+    text, shaft, ring = sf.shrink_deck("Q8", "AX", 100.0, 0.0)
+    outer = ring.side("right")
+    eqs = []
+    for t, b in zip(ring.side("top"), ring.side("bottom")):
+        assert ring.nodes[t][0] == ring.nodes[b][0]
+        eqs += [f"2\n{t}, {d}, 1.0, {b}, {d}, -1.0\n" for d in (1, 2) if not (d == 2 and t in outer)]
+    for old, new in (("*CONTACT PAIR\n", f"*CONTACT PAIR, FRICTION={MU}\n"),
+                     ("*NSET, NSET=ENDS\n", f"*NSET, NSET=OUTER\n{ids(outer)}*NSET, NSET=ENDS\n"),
+                     ("*BOUNDARY\nENDS, 2, 2\n", f"*EQUATION\n{''.join(eqs)}*SOLVER, CONTACT SOLVE={solve}\n"
+                                                 "*BOUNDARY\nOUTER, 2, 2\n"),
+                     ("*STATIC\n*TEMPERATURE", "*STATIC\n*BOUNDARY\nSHAFTN, 2, 2, 0.0\n*TEMPERATURE")):
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    text += f"""*STEP
+*STATIC
+{1.0 / incs}, 1.0
+*BOUNDARY
+SHAFTN, 2, 2, {push}
+*NODE PRINT, NSET=SEAT
+U
+*END STEP
+"""
+    return text, sf
+
+
+def test_shrink_fit_push_out():
+    """The shrink fit pushed out (push_out_deck), CONDENSED and FULL:
+    at full slip (every increment after the first: two increments of
+    0.005 mm exceed the ring's elastic travel f(b) = 0.0075 mm) the axial
+    force (the shaft's reaction, the whole ring's)
+    is mu p 2 pi b H with p the Lame pressure within 1 % (measured
+    0.06 %: the discretisation of the fit itself, the contact force being
+    0.06 % below p 2 pi b H, as tests/test_shrink_fit.py measures), and it
+    is mu times the contact force of the same increment within 1e-9
+    (round-off: every point slides; measured 5e-12). The push moves no
+    pressure: the contact force stays that of the heated fit within 1e-9
+    (measured 3e-13). The ring's bore moves by f(b) within 1 % (measured
+    0.06 %). In the first increment the fit holds part of the push
+    (partial slip: 0.67 of mu p 2 pi b H). The two solves agree within
+    1e-9 of the force (measured 4e-12)."""
+    forces = {}
+    for solve in ("CONDENSED", "FULL"):
+        text, sf = push_out_deck(solve)
+        run = run_deck(f"friction_push_out_{solve.lower()}", text).ok()
+        ref = sf.fit_closed_form(100.0, 0.0)
+        p = ref["p"]
+        f_closed = MU * p * 2 * math.pi * sf.B * sf.H
+        incs = run.listing.increments
+        heated = incs[0].block("CONTACT SUMMARY")["total_force"][0]
+        rf = reactions(run, "SHAFTN")[1:, 1]
+        normal = np.array([inc.block("CONTACT SUMMARY")["total_force"][0] for inc in incs[1:]])
+        err_force = np.max(np.abs(rf[1:] - f_closed)) / f_closed
+        err_mu = np.max(np.abs(rf[1:] / normal[1:] - MU)) / MU
+        err_p = np.max(np.abs(normal - heated)) / heated
+        g = sf.RING["e"] / (2 * (1 + sf.RING["nu"]))
+        f_b = MU * p * sf.B * math.log(sf.C / sf.B) / g
+        uz = incs[-1].block("NODE U", set="SEAT")["U2"]
+        err_f = np.max(np.abs(uz - f_b)) / f_b
+        print(f"  {solve}: axial force {rf[-1]:.3f} N against mu p 2 pi b H = {f_closed:.3f} N: {err_force:.2e}; "
+              f"force / (mu contact force) - 1: {err_mu:.1e}; contact force moved by {err_p:.1e}; "
+              f"bore u_z {uz.mean():.6f} mm against f(b) = {f_b:.6f}: {err_f:.1e}; first increment "
+              f"{rf[0] / f_closed:.3f} of the limit")
+        assert err_force < 1e-2 and err_mu < 1e-9 and err_p < 1e-9 and err_f < 1e-2, solve
+        assert rf[0] < 0.9 * f_closed
+        forces[solve] = rf
+    diff = np.max(np.abs(forces["CONDENSED"] - forces["FULL"])) / forces["FULL"][-1]
+    print(f"  CONDENSED - FULL: {diff:.1e} of the force")
+    assert diff < 1e-9
