@@ -422,3 +422,129 @@ def test_shrink_fit_push_out():
     diff = np.max(np.abs(forces["CONDENSED"] - forces["FULL"])) / forces["FULL"][-1]
     print(f"  CONDENSED - FULL: {diff:.1e} of the force")
     assert diff < 1e-9
+
+
+# ---------------------------------------------------------------------------
+# 4. The frictional contact patch test
+# ---------------------------------------------------------------------------
+
+PATCH_P = 1.0                       # pressure
+PATCH_S = 0.5 * MU * PATCH_P        # shear, half the friction limit
+
+
+def patch_deck(nx_upper, pair, solve="CONDENSED"):
+    """Two unit blocks, plane strain (lower: 5 x 4 elements, master; upper:
+    nx_upper x 4, its bottom the slave), loaded on every outer edge by the
+    tractions of the uniform stress sigma_xx = 0, sigma_yy = -p,
+    sigma_xy = s (consistent nodal forces: half an edge's force to each
+    end): top (s, -p), bottom (-s, p), right sides (0, s), left sides
+    (0, -s). The load is self-equilibrated; the lower block is held by a
+    pin and a roller on its bottom (no reaction), the upper one by the
+    contact alone (normal penalty and friction, starting open: the
+    stabilised search). pair: 'single' (the upper block's bottom nodes as
+    slave) or 'symmetric' (two passes, element faces)."""
+    from collections import defaultdict
+    n1, i1, q1 = grid(5, 4, 0.0, 1.0, 0.0, 1.0)
+    n2, i2, q2 = grid(nx_upper, 4, 0.0, 1.0, 1.0, 2.0, first_node=1001)
+    nodes = {**n1, **n2}
+    force = defaultdict(lambda: [0.0, 0.0])
+
+    def edge(a, b, t):
+        length = math.dist(nodes[a], nodes[b])
+        for n in (a, b):
+            force[n][0] += 0.5 * t[0] * length
+            force[n][1] += 0.5 * t[1] * length
+    p, s = PATCH_P, PATCH_S
+    for i in range(nx_upper):
+        edge(i2[i, 4], i2[i + 1, 4], (s, -p))
+    for i in range(5):
+        edge(i1[i, 0], i1[i + 1, 0], (-s, p))
+    for ij, nx in ((i1, 5), (i2, nx_upper)):
+        for j in range(4):
+            edge(ij[nx, j], ij[nx, j + 1], (0.0, s))
+            edge(ij[0, j], ij[0, j + 1], (0.0, -s))
+    cload = "".join(f"{n}, {d + 1}, {f[d]!r}\n" for n, f in sorted(force.items()) for d in (0, 1) if f[d] != 0.0)
+    contact = {"single": f"*CONTACT PAIR, FRICTION={MU}\nSLV, MASTER\n",
+               "symmetric": f"*CONTACT PAIR, FRICTION={MU}, SYMMETRIC\nUPPERFACE, MASTER\n"}[pair]
+    return f"""*HEADING
+frictional contact patch test, {nx_upper} over 5, {pair}
+*NODE
+{node_lines(nodes)}*ELEMENT, TYPE=CPE4, ELSET=LOWER
+{quad_lines(q1, 1)}*ELEMENT, TYPE=CPE4, ELSET=UPPER
+{quad_lines(q2, 1001)}*NSET, NSET=SLV
+{ids([i2[i, 0] for i in range(nx_upper + 1)])}*NSET, NSET=PIN
+{i1[0, 0]}
+*NSET, NSET=ROLLER
+{i1[5, 0]}
+*ELSET, ELSET=LOWERTOP
+{ids([16 + i for i in range(5)])}*ELSET, ELSET=UPPERBOTTOM
+{ids([1001 + i for i in range(nx_upper)])}*SURFACE, NAME=MASTER
+LOWERTOP, S3
+*SURFACE, NAME=UPPERFACE
+UPPERBOTTOM, S1
+*MATERIAL, NAME=M
+*ELASTIC
+1000., 0.3
+*SOLID SECTION, ELSET=LOWER, MATERIAL=M
+*SOLID SECTION, ELSET=UPPER, MATERIAL=M
+{contact}*SOLVER, CONTACT SOLVE={solve}
+*BOUNDARY
+PIN, 1, 2
+ROLLER, 2, 2
+*STEP
+*STATIC
+*CLOAD
+{cload}*EL PRINT
+S
+*END STEP
+"""
+
+
+def patch_errors(run):
+    """Worst deviation from the uniform state: of the integration-point
+    stresses (S11 from 0, S22 from -p, S12 from s) and of the slave
+    pressures, relative to p; the reactions relative to p times the width;
+    the slave states."""
+    inc = run.listing.increments[-1]
+    st = inc.block("ELEMENT S")
+    slave = inc.block("CONTACT SLAVE", pair=1)
+    r = inc.block("REACTIONS")
+    return {"S11": np.max(np.abs(st["S11"])) / PATCH_P,
+            "S22": np.max(np.abs(st["S22"] + PATCH_P)) / PATCH_P,
+            "S12": np.max(np.abs(st["S12"] - PATCH_S)) / PATCH_P,
+            "pressure": np.max(np.abs(slave["pressure"] - PATCH_P)) / PATCH_P,
+            "reactions": max(np.max(np.abs(r["RF1"])), np.max(np.abs(r["RF2"]))) / PATCH_P}, set(slave["state"])
+
+
+def test_frictional_patch_test():
+    """A uniform pressure p and a uniform shear s = mu p / 2 through the
+    interface of two blocks (patch_deck): every point sticks, the stress is
+    uniform in both blocks and the contact pressure is p. As for the
+    frictionless patch test (docs/contact.md, tests/test_contact.py),
+    single-pass node-to-segment contact passes it only on nested meshes
+    (10 slave over 5 master elements): there the stresses, pressures and
+    reactions are exact to round-off, within 1e-9 of p (measured 5e-12),
+    CONDENSED and FULL. On meshes with no common refinement (7 over 5) the
+    two-pass SYMMETRIC contact passes it to the accuracy of the
+    frictionless two-pass test, 0.5 % of p, for the normal and the shear
+    stress and the pressure (measured: S22 0.17 %, S12 0.09 % of p = 0.6 %
+    of s, slave pressure 0.25 %, S11 0.1 %); single-pass on 7 over 5 does
+    not pass (measured S12 off by 3.8 % of p = 25 % of s, the pressure by
+    9.4 %, as the frictionless pressure's 9.5 %): guarded here so that a
+    change shows."""
+    for solve in ("CONDENSED", "FULL"):
+        run = run_deck(f"friction_patch_nested_{solve.lower()}", patch_deck(10, "single", solve)).ok()
+        err, states = patch_errors(run)
+        print(f"  nested 10 over 5, single pass, {solve}: " + ", ".join(f"{k} {v:.1e}" for k, v in err.items()))
+        assert states == {"CLOSED"}, states
+        assert max(err.values()) < 1e-9, err
+    run = run_deck("friction_patch_symmetric", patch_deck(7, "symmetric")).ok()
+    err, states = patch_errors(run)
+    print("  7 over 5, SYMMETRIC: " + ", ".join(f"{k} {v:.2%}" for k, v in err.items()))
+    assert states == {"CLOSED"}, states
+    assert max(err.values()) < 5e-3, err
+    run = run_deck("friction_patch_single", patch_deck(7, "single")).ok()
+    err, states = patch_errors(run)
+    print("  7 over 5, single pass: " + ", ".join(f"{k} {v:.2%}" for k, v in err.items()))
+    assert states == {"CLOSED"}, states
+    assert 0.02 < err["S12"] / (PATCH_S / PATCH_P) < 0.4 and 0.03 < err["pressure"] < 0.15, err
