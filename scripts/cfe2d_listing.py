@@ -8,6 +8,12 @@ rows; increments are framed by ``=== INCREMENT key=value ... ===`` and
     >>> lst = read_listing("job.out")
     >>> inc = lst.increments[-1]
     >>> inc.block("NODE U", set="TOP")["U2"]
+
+Contact tables: the state of a coupling point is OPEN, or when closed
+CLOSED (frictionless pair) or STICK / SLIP (frictional pair, whose tables
+also have the columns shear_force, shear, slip, slip_inc, and on the master
+side shear_force, shear; its summary shear_total). ``is_closed(state)`` and
+``closed_mask(block)`` say which rows are closed whatever the pair.
 """
 from __future__ import annotations
 
@@ -16,7 +22,21 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Block", "Increment", "Listing", "read_listing", "parse_listing"]
+__all__ = ["Block", "Increment", "Listing", "read_listing", "parse_listing", "CLOSED_STATES", "is_closed",
+           "closed_mask"]
+
+# the states of a closed coupling point: frictionless, frictional sticking, sliding
+CLOSED_STATES = ("CLOSED", "STICK", "SLIP")
+
+
+def is_closed(state):
+    """Is a contact row with this state (listing or contact table) closed?"""
+    return state.strip() in CLOSED_STATES
+
+
+def closed_mask(block):
+    """Boolean array: the closed rows of a CONTACT SLAVE block."""
+    return np.array([is_closed(s) for s in block["state"]], dtype=bool)
 
 
 def _keyvals(words):

@@ -38,25 +38,36 @@ from collections import defaultdict
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cfe2d_listing import read_listing  # noqa: E402
+from cfe2d_listing import is_closed, read_listing  # noqa: E402
 from hertz import HertzLine, HertzPoint, effective_modulus, point_modulus  # noqa: E402
 
 __all__ = ["read_contact_table", "compare", "compare_point", "format_table", "read_deck_cards", "deck_materials",
            "deck_stress_state", "line_contact_modulus", "top_displacement"]
 
 
+# the contact table's columns of a model with friction
+FRICTION_COLUMNS = ("shear_force", "shear", "slip", "slip_increment")
+
+
 def read_contact_table(path):
-    """{(step, increment): {"time":..., "slave": arrays, "master": arrays}}"""
+    """{(step, increment): {"time":..., "slave": arrays, "master": arrays}}.
+    Arrays per side: node, x, y, gap, force, pressure, closed (CLOSED, STICK
+    or SLIP), state; and, when the model has friction, shear_force, shear,
+    slip, slip_increment (zeros on master rows' slip)."""
     incs = defaultdict(lambda: {"slave": defaultdict(list), "master": defaultdict(list)})
     with open(path) as f:
-        for r in csv.DictReader(f):
+        rd = csv.DictReader(f)
+        numeric = ["node", "x", "y", "gap", "force", "pressure"]
+        numeric += [k for k in FRICTION_COLUMNS if k in (rd.fieldnames or [])]
+        for r in rd:
             key = (int(r["step"]), int(r["increment"]))
             inc = incs[key]
             inc["time"] = float(r["time"])
             side = inc[r["side"]]
-            for k in ("node", "x", "y", "gap", "force", "pressure"):
+            for k in numeric:
                 side[k].append(float(r[k]))
-            side["closed"].append(r["state"] == "CLOSED")
+            side["closed"].append(is_closed(r["state"]))
+            side["state"].append(r["state"])
     out = {}
     for key, inc in incs.items():
         out[key] = {"time": inc["time"]}

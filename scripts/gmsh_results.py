@@ -1,5 +1,10 @@
 """Read the MSH 2.2 result files that cfe2d writes (<job>.msh): binary, as
-cfe2d writes them, or ASCII (older files, or a file gmsh saved again)."""
+cfe2d writes them, or ASCII (older files, or a file gmsh saved again).
+
+Views are kept by name, whatever they are: "Displacement", "Reaction
+force", "S11" ... "Mises", "Contact pressure" and, when the model has
+friction, "CSHEAR" (the contact shear traction at the same nodes), and the
+element views. ``node_view("CSHEAR", k)`` reads the shear of time step k."""
 import numpy as np
 
 __all__ = ["read_msh"]

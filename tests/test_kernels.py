@@ -22,9 +22,10 @@ compares each run with the reference, bin/cfe2d on Prescott:
   the out-of-balance values, wall times, the deck path, the BLAS line and
   UMFPACK's fill (it pivots on values) are masked; every increment header
   (step, increment, time, total time, iterations); the identity and state
-  (OPEN/CLOSED) of every row of <job>_contact.csv;
+  (OPEN/CLOSED, STICK/SLIP with friction) of every row of <job>_contact.csv;
 * numbers, to round-off: every number of the increments' result blocks
-  and of the contact table (x, y, gap, force, pressure) within RTOL (below)
+  and of the contact table (x, y, gap, force, pressure, and with friction
+  shear_force, shear, slip, slip_increment) within RTOL (below)
   of the largest magnitude of its quantity over the reference run (the
   table's 9 printed digits get one unit of their last digit more).
 
@@ -461,6 +462,8 @@ def read_csv(path):
 
 CSV_KEYS = ("step", "increment", "time", "pair", "side", "node", "state")
 CSV_NUMBERS = ("x", "y", "gap", "force", "pressure")
+# and those of a model with friction
+CSV_FRICTION = ("shear_force", "shear", "slip", "slip_increment")
 
 
 def state_difference(a_rows, b_rows):
@@ -506,7 +509,8 @@ FAMILY = {"U1": "displacement", "U2": "displacement", "gap": "displacement", "ma
           "RF1": "force", "RF2": "force", "force": "force", "total_force": "force", "resultant_x": "force",
           "resultant_y": "force",
           "S11": "stress", "S22": "stress", "S33": "stress", "S12": "stress", "MISES": "stress",
-          "pressure": "stress",
+          "pressure": "stress", "shear_force": "force", "shear_total": "force", "shear": "stress",
+          "slip": "displacement", "slip_inc": "displacement", "slip_increment": "displacement",
           "E11": "strain", "E22": "strain", "E33": "strain", "E12": "strain",
           "x": "coordinate", "y": "coordinate", "area": "area"}
 
@@ -528,7 +532,7 @@ def quantities(text, csv_path):
                     cells.append((f"{at} {b.name} {c} (row {row[0]})", FAMILY.get(c, c), v, 0.0))
     for r in read_csv(csv_path):
         at = f"contact table step {r['step']} increment {r['increment']} {r['side']} {r['node']}"
-        for c in CSV_NUMBERS:
+        for c in CSV_NUMBERS + tuple(c for c in CSV_FRICTION if c in r):
             unit = 10.0 ** decimal.Decimal(r[c].strip()).as_tuple().exponent
             cells.append((f"{at} {c}", FAMILY[c], float(r[c]), unit))
     return cells, shape

@@ -111,7 +111,9 @@ contains
     do k = 1, size(res%contact%pairs)
       associate(p => res%contact%pairs(k))
         if (.not. (all(ieee_is_finite(p%slave_force)) .and. all(ieee_is_finite(p%master_force)) .and. &
-                   all(ieee_is_finite(p%slave_gap)) .and. ieee_is_finite(p%total))) &
+                   all(ieee_is_finite(p%slave_gap)) .and. ieee_is_finite(p%total) .and. &
+                   all(ieee_is_finite(p%slave_shear)) .and. all(ieee_is_finite(p%master_shear)) .and. &
+                   all(ieee_is_finite(p%slave_slip)) .and. all(ieee_is_finite(p%slave_slip_inc)))) &
           call stop_at('contact force', 'pair', p%pair)
       end associate
     end do

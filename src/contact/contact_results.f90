@@ -6,6 +6,17 @@
 !> the pair's totals; and the nodal contact pressure field of the whole
 !> model (slave nodes: their CFE's, or for Gauss points of slave faces the
 !> nodal forces over consistent areas; master nodes).
+!>
+!> Friction adds the tangential side of the same quantities: per slave
+!> row the shear force (the master's tangential force on the point along
+!> the master edge's tangent t = (-n_y, n_x), that is -tforce of the CFE),
+!> the accumulated and the increment's slip and the stick/slip state; per
+!> master row the shear forces taken to the nodes with the same weights
+!> N_i(X_C) (the same sign convention: along t, as the slave sees it, as a
+!> pressure is compressive on both sides); the tangential total; and the
+!> nodal shear traction field beside the pressure field, made the same
+!> way. A frictionless CFE carries exactly zero tangential force, so its
+!> shear columns are zeros and nothing else it reports changes.
 module contact_results
   use kinds, only: dp
   use model
@@ -13,7 +24,7 @@ module contact_results
   use contact_geometry, only: edge_t, get_edge, edge_areas, edge_weights
   implicit none
   private
-  public :: pair_results_t, contact_results_t, compute_contact_results
+  public :: pair_results_t, contact_results_t, compute_contact_results, model_has_friction, slave_state
 
   type :: pair_results_t
     integer :: pair = 0
@@ -24,11 +35,21 @@ module contact_results
     logical, allocatable :: slave_closed(:)
     real(dp), allocatable :: slave_force(:)      ! compressive positive
     real(dp), allocatable :: slave_area(:)
+    ! friction: shear force along t (the master's on the point), slip
+    ! accumulated (sum of |slip| per increment) and of this increment
+    ! (signed along t: the slave point's motion relative to the master)
+    logical :: frictional = .false.              ! the pair has a friction coefficient
+    logical, allocatable :: slave_sliding(:)
+    real(dp), allocatable :: slave_shear(:), slave_slip(:), slave_slip_inc(:)
     ! master rows
     integer, allocatable :: master_node(:)
     real(dp), allocatable :: master_force(:), master_area(:)
-    ! totals: normal-force sum, resultant vector on the slave side
-    real(dp) :: total = 0.0_dp, resultant(2) = 0.0_dp, max_pen = 0.0_dp
+    real(dp), allocatable :: master_shear(:)     ! N_i(X_C) times the slave points' shear forces
+    ! totals: normal-force sum; resultant: the sum of the CFEs' internal
+    ! forces at their slave points, force n + tforce t (the contact force
+    ! on the master side, the reaction the slave body's supports give);
+    ! shear_total: the sum of the slave points' shear forces
+    real(dp) :: total = 0.0_dp, resultant(2) = 0.0_dp, max_pen = 0.0_dp, shear_total = 0.0_dp
     integer :: nclosed = 0
   end type pair_results_t
 
@@ -36,10 +57,37 @@ module contact_results
     type(pair_results_t), allocatable :: pairs(:)   ! one per reported pair
     real(dp) :: total_force = 0.0_dp                ! sum over the reported pairs
     real(dp), allocatable :: pressure(:)            ! (nn) nodal contact pressure
-    logical, allocatable :: has_pressure(:)
+    real(dp), allocatable :: shear(:)               ! (nn) nodal contact shear traction
+    logical, allocatable :: has_pressure(:)         ! nodes that carry both
+    logical :: frictional = .false.                 ! some pair of the model has friction
   end type contact_results_t
 
 contains
+
+  !> Purpose: does any contact pair of the model have friction? (Its
+  !> results then carry the shear columns and fields.)
+  pure logical function model_has_friction(m)
+    type(model_t), intent(in) :: m
+    model_has_friction = .false.
+    if (allocated(m%pairs)) model_has_friction = any(m%pairs%mu > 0.0_dp)
+  end function model_has_friction
+
+  !> Purpose: the state word of slave row j: OPEN, or for a closed point
+  !> CLOSED (frictionless pair), STICK or SLIP (frictional pair).
+  pure function slave_state(r, j) result(st)
+    type(pair_results_t), intent(in) :: r
+    integer, intent(in) :: j
+    character(len=6) :: st
+    if (.not. r%slave_closed(j)) then
+      st = 'OPEN'
+    else if (.not. r%frictional) then
+      st = 'CLOSED'
+    else if (r%slave_sliding(j)) then
+      st = 'SLIP'
+    else
+      st = 'STICK'
+    end if
+  end function slave_state
 
   !> Purpose: the contact results at displacements u from the CFE gaps and
   !> forces of the last evaluation. The second pass of a SYMMETRIC pair is
@@ -50,55 +98,63 @@ contains
     real(dp), intent(in) :: u(:, :)
     type(contact_results_t), intent(out) :: r
     integer :: ip, np, j
-    real(dp), allocatable :: twin_force(:)
+    real(dp), allocatable :: twin_force(:), twin_shear(:)
     np = 0
     do ip = 1, size(m%pairs)
       if (.not. (m%pairs(ip)%twin > 0 .and. m%pairs(ip)%twin < ip)) np = np + 1
     end do
-    allocate(r%pairs(np), r%pressure(m%nn), r%has_pressure(m%nn))
+    allocate(r%pairs(np), r%pressure(m%nn), r%shear(m%nn), r%has_pressure(m%nn))
     r%pressure = 0.0_dp
+    r%shear = 0.0_dp
     r%has_pressure = .false.
+    r%frictional = model_has_friction(m)
     np = 0
     do ip = 1, size(m%pairs)
       if (m%pairs(ip)%twin > 0 .and. m%pairs(ip)%twin < ip) cycle
       np = np + 1
-      call pair_results(m, cs, u, ip, r%pairs(np), twin_force)
+      call pair_results(m, cs, u, ip, r%pairs(np), twin_force, twin_shear)
       associate(pr => r%pairs(np))
         r%total_force = r%total_force + pr%total
         do j = 1, size(pr%slave_node)
           if (pr%slave_node(j) == 0) cycle
           r%pressure(pr%slave_node(j)) = pr%slave_force(j) / pr%slave_area(j)
+          r%shear(pr%slave_node(j)) = pr%slave_shear(j) / pr%slave_area(j)
           r%has_pressure(pr%slave_node(j)) = .true.
         end do
         do j = 1, size(pr%master_node)
-          if (pr%master_area(j) > 0.0_dp) r%pressure(pr%master_node(j)) = pr%master_force(j) / pr%master_area(j)
+          if (pr%master_area(j) > 0.0_dp) then
+            r%pressure(pr%master_node(j)) = pr%master_force(j) / pr%master_area(j)
+            r%shear(pr%master_node(j)) = pr%master_shear(j) / pr%master_area(j)
+          end if
           r%has_pressure(pr%master_node(j)) = .true.
         end do
       end associate
-      call face_point_pressures(m, cs, ip, twin_force, r%pressure, r%has_pressure)
+      call face_point_pressures(m, cs, ip, twin_force, twin_shear, r%pressure, r%shear, r%has_pressure)
     end do
   end subroutine compute_contact_results
 
-  !> Nodal pressures of the slave nodes of pair ip whose CFEs are Gauss
-  !> points of 3-node faces: the force the points put on each node
-  !> (weights N_j) over the node's consistent area. Unlike the point
-  !> pressures this does not see the points' alternating mode (forces that
-  !> cancel at the nodes, see contact). twin_force(nn): the forces the
-  !> second pass of a SYMMETRIC pair puts on these nodes as its master.
-  subroutine face_point_pressures(m, cs, ip, twin_force, pressure, has_pressure)
+  !> Nodal pressures and shear tractions of the slave nodes of pair ip
+  !> whose CFEs are Gauss points of 3-node faces: the normal and the
+  !> tangential force the points put on each node (weights N_j) over the
+  !> node's consistent area. Unlike the point pressures this does not see
+  !> the points' alternating mode (forces that cancel at the nodes, see
+  !> contact). twin_force(nn), twin_shear(nn): the normal and shear forces
+  !> the second pass of a SYMMETRIC pair puts on these nodes as its master.
+  subroutine face_point_pressures(m, cs, ip, twin_force, twin_shear, pressure, shear, has_pressure)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: ip
-    real(dp), intent(in) :: twin_force(:)
-    real(dp), intent(inout) :: pressure(:)
+    real(dp), intent(in) :: twin_force(:), twin_shear(:)
+    real(dp), intent(inout) :: pressure(:), shear(:)
     logical, intent(inout) :: has_pressure(:)
-    real(dp), allocatable :: f(:), a(:)
+    real(dp), allocatable :: f(:), fs(:), a(:)
     real(dp) :: ae(3)
     type(edge_t) :: ed
     integer :: j, q
     if (.not. any(cs%c(1:cs%n)%pair == ip .and. cs%c(1:cs%n)%ns > 1)) return
     allocate(a(m%nn))
     f = twin_force
+    fs = twin_shear
     a = 0.0_dp
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
       do j = 1, size(sl%elem)
@@ -113,12 +169,14 @@ contains
         if (c%pair /= ip .or. c%ns == 1 .or. .not. c%closed) cycle
         do q = 1, c%ns
           f(c%snode(q)) = f(c%snode(q)) - c%sw(q) * c%force
+          fs(c%snode(q)) = fs(c%snode(q)) - c%sw(q) * c%tforce
         end do
       end associate
     end do
     do j = 1, m%nn
       if (a(j) > 0.0_dp) then
         pressure(j) = f(j) / a(j)
+        shear(j) = fs(j) / a(j)
         has_pressure(j) = .true.
       end if
     end do
@@ -130,35 +188,47 @@ contains
   !> force there; at a Gauss point of a 3-node face that pass's master
   !> pressure, interpolated with the face's weights, times the point's
   !> area); each master node gets the other pass's CFE forces with their
-  !> slave weights. twin_force(nn) returns the other pass's master forces
-  !> at the nodes (zero without one).
-  subroutine pair_results(m, cs, u, ip, r, twin_force)
+  !> slave weights. twin_force(nn) and twin_shear(nn) return the other
+  !> pass's master forces and shear forces at the nodes (zero without
+  !> one). The shear adds as the normal force does: the other pass's
+  !> tangent is opposite to this one's (its master normal is this one's
+  !> reversed), and a shear row is the force on the other body, so the two
+  !> reversals cancel. Its resultant, a force on this pass's slave side, is
+  !> subtracted.
+  subroutine pair_results(m, cs, u, ip, r, twin_force, twin_shear)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     real(dp), intent(in) :: u(:, :)
     integer, intent(in) :: ip
     type(pair_results_t), intent(out) :: r
-    real(dp), allocatable, intent(out) :: twin_force(:)
+    real(dp), allocatable, intent(out) :: twin_force(:), twin_shear(:)
     type(pair_results_t) :: rt
-    real(dp), allocatable :: twin_p(:)
+    real(dp), allocatable :: twin_p(:), twin_tau(:)
     integer, allocatable :: pos(:), sel(:)
     integer :: j, k, q, it
-    allocate(twin_force(m%nn), twin_p(m%nn), pos(m%nn))
+    allocate(twin_force(m%nn), twin_shear(m%nn), twin_p(m%nn), twin_tau(m%nn), pos(m%nn))
     twin_force = 0.0_dp
+    twin_shear = 0.0_dp
     twin_p = 0.0_dp
+    twin_tau = 0.0_dp
     call pass_results(m, cs, u, ip, r)
     it = m%pairs(ip)%twin
     if (it == 0) return
     call pass_results(m, cs, u, it, rt)
     twin_force(rt%master_node) = rt%master_force
+    twin_shear(rt%master_node) = rt%master_shear
     where (rt%master_area > 0.0_dp) twin_p(rt%master_node) = rt%master_force / rt%master_area
+    where (rt%master_area > 0.0_dp) twin_tau(rt%master_node) = rt%master_shear / rt%master_area
     sel = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == ip)
     do j = 1, size(sel)
       associate(c => cs%c(sel(j)))
         if (c%ns == 1) then
           r%slave_force(j) = r%slave_force(j) + twin_force(c%snode(1))
+          if (r%frictional) r%slave_shear(j) = r%slave_shear(j) + twin_shear(c%snode(1))
         else
           r%slave_force(j) = r%slave_force(j) + c%area * sum(c%sw(1:c%ns) * twin_p(c%snode(1:c%ns)))
+          if (r%frictional) r%slave_shear(j) = r%slave_shear(j) + &
+                                               c%area * sum(c%sw(1:c%ns) * twin_tau(c%snode(1:c%ns)))
         end if
       end associate
     end do
@@ -170,18 +240,23 @@ contains
         do q = 1, c%ns
           if (pos(c%snode(q)) > 0) r%master_force(pos(c%snode(q))) = r%master_force(pos(c%snode(q))) - &
                                                                     c%sw(q) * c%force
+          ! (an open CFE's tangential force is zero: no closed-test needed)
+          if (pos(c%snode(q)) > 0 .and. r%frictional) &
+            r%master_shear(pos(c%snode(q))) = r%master_shear(pos(c%snode(q))) - c%sw(q) * c%tforce
         end do
       end associate
     end do
     r%total = r%total + rt%total
+    r%shear_total = r%shear_total + rt%shear_total
     r%resultant = r%resultant - rt%resultant
     r%nclosed = r%nclosed + rt%nclosed
     r%max_pen = max(r%max_pen, rt%max_pen)
   end subroutine pair_results
 
   !> Purpose: one pass: slave rows and the master-side forces its CFEs
-  !> produce (each CFE force goes to the master edge nodes with the
-  !> weights N_i(X_C)). Only closed CFEs report a force.
+  !> produce (each CFE force, normal and tangential, goes to the master
+  !> edge nodes with the weights N_i(X_C)). Only closed CFEs report a
+  !> force.
   subroutine pass_results(m, cs, u, ip, r)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
@@ -190,22 +265,28 @@ contains
     type(pair_results_t), intent(out) :: r
     integer :: k, j, nm, ns, n, q
     integer, allocatable :: pos(:), sel(:)
-    real(dp) :: a(3), w(3)
+    real(dp) :: a(3), w(3), shear
     type(edge_t) :: ed
     r%pair = ip
+    r%frictional = m%pairs(ip)%mu > 0.0_dp
     sel = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == ip)
     n = size(sel)
     allocate(r%slave_node(n), r%slave_x(2, n), r%slave_gap(n), r%slave_closed(n), r%slave_force(n), &
-             r%slave_area(n))
+             r%slave_area(n), r%slave_sliding(n), r%slave_shear(n), r%slave_slip(n), r%slave_slip_inc(n))
+    r%slave_sliding = .false.
+    r%slave_shear = 0.0_dp
+    r%slave_slip = 0.0_dp
+    r%slave_slip_inc = 0.0_dp
     associate(ms => m%surfaces(m%pairs(ip)%master_surface))
       r%master_node = ms%nodes
       nm = size(ms%nodes)
-      allocate(r%master_force(nm), r%master_area(nm), pos(m%nn))
+      allocate(r%master_force(nm), r%master_area(nm), r%master_shear(nm), pos(m%nn))
       pos = 0
       do k = 1, nm
         pos(ms%nodes(k)) = k
       end do
       r%master_force = 0.0_dp
+      r%master_shear = 0.0_dp
       r%master_area = 0.0_dp
       ! consistent areas: the integral of N_i over the master faces
       do j = 1, size(ms%elem)
@@ -224,6 +305,11 @@ contains
         r%slave_gap(j) = c%gap
         r%slave_closed(j) = c%closed
         r%slave_area(j) = c%area
+        ! the slip is history: an open point keeps what it slid before
+        if (r%frictional) then
+          r%slave_slip(j) = c%slip_total
+          r%slave_slip_inc(j) = c%slip_inc
+        end if
         ! An open CFE still carries its open penalty times the relative
         ! motion (1e-12 of the closed penalty, more while stabilised): a
         ! force that keeps the equations regular, not contact pressure. Its
@@ -234,18 +320,30 @@ contains
         end if
         ! compressive force counted positive
         r%slave_force(j) = -c%force
+        ! the master's tangential force on the point along t
+        shear = -c%tforce
         ed = get_edge(m, m%x, c%elem, c%edge)
         if (ed%nn == 2) then
-          r%master_force(pos(ed%node(1))) = r%master_force(pos(ed%node(1))) - (1.0_dp - c%t) * c%force
-          r%master_force(pos(ed%node(2))) = r%master_force(pos(ed%node(2))) - c%t * c%force
+          w(1:2) = [1.0_dp - c%t, c%t]
         else
           w = edge_weights(ed, c%t)
-          do q = 1, 3
-            r%master_force(pos(ed%node(q))) = r%master_force(pos(ed%node(q))) - w(q) * c%force
-          end do
         end if
+        do q = 1, ed%nn
+          r%master_force(pos(ed%node(q))) = r%master_force(pos(ed%node(q))) - w(q) * c%force
+        end do
         r%total = r%total - c%force
         r%resultant = r%resultant + c%force * c%normal
+        ! Only for a frictional pair: adding a zero tangential force would
+        ! still turn a resultant of -0 into +0 and change frictionless output.
+        if (r%frictional) then
+          r%slave_sliding(j) = c%sliding
+          r%slave_shear(j) = shear
+          do q = 1, ed%nn
+            r%master_shear(pos(ed%node(q))) = r%master_shear(pos(ed%node(q))) + w(q) * shear
+          end do
+          r%shear_total = r%shear_total + shear
+          r%resultant = r%resultant + c%tforce * [-c%normal(2), c%normal(1)]
+        end if
         r%nclosed = r%nclosed + 1
         r%max_pen = max(r%max_pen, -c%gap)
       end associate

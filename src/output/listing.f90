@@ -15,7 +15,7 @@ module listing
   use analysis_events, only: analysis_observer_t, step_info_t, iteration_info_t, step_summary_t, solver_info_t, &
                              run_timing_t
   use increment_results, only: increment_results_t
-  use contact_results, only: pair_results_t
+  use contact_results, only: pair_results_t, model_has_friction, slave_state
   implicit none
   private
   public :: listing_t, open_listing, write_header
@@ -26,9 +26,10 @@ module listing
     logical :: has_csv = .false.
     integer :: digits = 7      ! significant digits of listed reals
     !> Row formats, made once for the digits asked for (not per row):
-    !> set + 2 reals, node + 2, 4 or 5 reals, element + point + 3 or 5
-    !> reals, and a slave contact row.
-    character(len=:), allocatable :: f_set2, f_node2, f_node4, f_node5, f_ip3, f_ip5, f_slave
+    !> set + 2 reals, node + 2, 4, 5 or 7 reals, element + point + 3 or 5
+    !> reals, and a slave contact row without and with friction.
+    character(len=:), allocatable :: f_set2, f_node2, f_node4, f_node5, f_node7, f_ip3, f_ip5, f_slave, &
+                                     f_slave_fric
   contains
     procedure :: step_started => write_step_header
     procedure :: solver_ready => write_solver
@@ -51,9 +52,11 @@ contains
     lst%f_node2 = rowfmt(lst, 'i10', 2)
     lst%f_node4 = rowfmt(lst, 'i10', 4)
     lst%f_node5 = rowfmt(lst, 'i10', 5)
+    lst%f_node7 = rowfmt(lst, 'i10', 7)
     lst%f_ip3 = rowfmt(lst, 'i10,i4', 3)
     lst%f_ip5 = rowfmt(lst, 'i10,i4', 5)
     lst%f_slave = '(i10,3' // efmt(lst) // ',1x,a6,3' // efmt(lst) // ')'
+    lst%f_slave_fric = '(i10,3' // efmt(lst) // ',1x,a6,7' // efmt(lst) // ')'
     open(newunit=lst%unit, file=path, status='replace', action='write', iostat=ios)
     if (ios /= 0) call fatal('cannot write the listing "' // path // '"')
     call register_unit_to_close(lst%unit)
@@ -62,7 +65,6 @@ contains
       if (ios /= 0) call fatal('cannot write the contact table "' // csv_path // '"')
       call register_unit_to_close(lst%csv)
       lst%has_csv = .true.
-      write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure'
     end if
   end subroutine open_listing
 
@@ -93,10 +95,22 @@ contains
     f = '(' // lead // ',' // trim(buf) // efmt(lst) // ')'
   end function rowfmt
 
+  !> Purpose: the listing's header and the contact table's column names
+  !> (the table has the friction columns when some pair has friction,
+  !> which only the model tells).
   subroutine write_header(lst, m)
     class(listing_t), intent(in) :: lst
     type(model_t), intent(in) :: m
     integer :: nsolid, u, e
+    if (lst%has_csv) then
+      if (model_has_friction(m)) then
+        write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure,' // &
+                              'shear_force,shear,slip,slip_increment'
+      else
+        write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure'
+      end if
+      flush(lst%csv)
+    end if
     u = lst%unit
     nsolid = count([(is_continuum(m, e), e = 1, m%ne)])
     write(u, '(a)') 'cfe2d ' // program_version // ' - 2D contact with coupling finite elements'
@@ -376,45 +390,94 @@ contains
   end subroutine write_element_request
 
   !> Slave rows, master rows and the summary of one contact pair, and the
-  !> same rows in the contact table.
+  !> same rows in the contact table. A frictional pair's tables have the
+  !> shear columns (and its slave rows say STICK or SLIP for CLOSED); the
+  !> contact table has them on every row when some pair has friction
+  !> (zeros for a frictionless pair, and for the slip of master rows), so
+  !> that its columns are the same throughout the file.
   subroutine write_contact(self, m, res, r)
     class(listing_t), intent(in) :: self
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
     type(pair_results_t), intent(in) :: r
     integer :: j, nd, un, nid
-    real(dp) :: xs(2), p
+    real(dp) :: xs(2), p, tau
     character(len=6) :: st
+    character(len=*), parameter :: csv_slave = '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,",",' // &
+      'es16.8e3,",",es16.8e3,",",a,",",es16.8e3,",",es16.8e3)'
+    character(len=*), parameter :: csv_slave_fric = '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,' // &
+      '",",es16.8e3,",",es16.8e3,",",a,6(",",es16.8e3))'
+    character(len=*), parameter :: csv_master = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",' // &
+      'es16.8e3,",0,-,",es16.8e3,",",es16.8e3)'
+    character(len=*), parameter :: csv_master_fric = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,' // &
+      '",",es16.8e3,",0,-,",es16.8e3,",",es16.8e3,",",es16.8e3,",",es16.8e3,",0,0")'
     un = self%unit
     write(un, '(a,i0,a)') '--- CONTACT SLAVE pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%slave_surface)%name)
-    write(un, '(a)') 'node x y gap state force area pressure'
+    if (r%frictional) then
+      write(un, '(a)') 'node x y gap state force area pressure shear_force shear slip slip_inc'
+    else
+      write(un, '(a)') 'node x y gap state force area pressure'
+    end if
     do j = 1, size(r%slave_node)
       nid = 0
       if (r%slave_node(j) > 0) nid = m%node_id(r%slave_node(j))
-      st = 'OPEN'
-      if (r%slave_closed(j)) st = 'CLOSED'
-      write(un, self%f_slave) nid, r%slave_x(:, j), &
-        r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_force(j) / r%slave_area(j)
-      if (self%has_csv) write(self%csv, '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,",",es16.8e3,",",&
-        &es16.8e3,",",a,",",es16.8e3,",",es16.8e3)') res%step, res%increment, res%total_time, r%pair, nid, &
-        r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_force(j) / r%slave_area(j)
+      st = slave_state(r, j)
+      if (r%frictional) then
+        write(un, self%f_slave_fric) nid, r%slave_x(:, j), r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), &
+          r%slave_force(j) / r%slave_area(j), r%slave_shear(j), r%slave_shear(j) / r%slave_area(j), &
+          r%slave_slip(j), r%slave_slip_inc(j)
+      else
+        write(un, self%f_slave) nid, r%slave_x(:, j), &
+          r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_force(j) / r%slave_area(j)
+      end if
+      if (.not. self%has_csv) cycle
+      if (res%contact%frictional) then
+        write(self%csv, csv_slave_fric) res%step, res%increment, res%total_time, r%pair, nid, r%slave_x(:, j), &
+          r%slave_gap(j), trim(st), r%slave_force(j), r%slave_force(j) / r%slave_area(j), r%slave_shear(j), &
+          r%slave_shear(j) / r%slave_area(j), r%slave_slip(j), r%slave_slip_inc(j)
+      else
+        write(self%csv, csv_slave) res%step, res%increment, res%total_time, r%pair, nid, &
+          r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_force(j) / r%slave_area(j)
+      end if
     end do
     write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%master_surface)%name)
-    write(un, '(a)') 'node x y force area pressure'
+    if (r%frictional) then
+      write(un, '(a)') 'node x y force area pressure shear_force shear'
+    else
+      write(un, '(a)') 'node x y force area pressure'
+    end if
     do j = 1, size(r%master_node)
       nd = r%master_node(j)
       xs = m%x(:, nd) + res%u(:, nd)
       p = 0.0_dp
-      if (r%master_area(j) > 0.0_dp) p = r%master_force(j) / r%master_area(j)
-      write(un, self%f_node5) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
-      if (self%has_csv) write(self%csv, '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",es16.8e3,&
-        &",0,-,",es16.8e3,",",es16.8e3)') res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
-        r%master_force(j), p
+      tau = 0.0_dp
+      if (r%master_area(j) > 0.0_dp) then
+        p = r%master_force(j) / r%master_area(j)
+        tau = r%master_shear(j) / r%master_area(j)
+      end if
+      if (r%frictional) then
+        write(un, self%f_node7) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p, r%master_shear(j), tau
+      else
+        write(un, self%f_node5) m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
+      end if
+      if (.not. self%has_csv) cycle
+      if (res%contact%frictional) then
+        write(self%csv, csv_master_fric) res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
+          r%master_force(j), p, r%master_shear(j), tau
+      else
+        write(self%csv, csv_master) res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
+          r%master_force(j), p
+      end if
     end do
     write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', r%pair
-    write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
-    write(un, self%f_node4) r%nclosed, r%total, r%resultant, r%max_pen
+    if (r%frictional) then
+      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration shear_total'
+      write(un, self%f_node5) r%nclosed, r%total, r%resultant, r%max_pen, r%shear_total
+    else
+      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
+      write(un, self%f_node4) r%nclosed, r%total, r%resultant, r%max_pen
+    end if
   end subroutine write_contact
 end module listing

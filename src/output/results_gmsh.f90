@@ -55,7 +55,8 @@ contains
     if (.not. self%open) return
     if (.not. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s)) return
     call write_result_views(self, m, fnode, felem, res%total_time, res%u, res%rf, res%sig_node, res%sig_elem, &
-                            res%contact%pressure, res%contact%has_pressure)
+                            res%contact%pressure, res%contact%has_pressure, res%contact%frictional, &
+                            res%contact%shear)
   end subroutine write_increment_views
 
   !> One text line of the file.
@@ -149,15 +150,18 @@ contains
 
   !> The views of one increment. sig_node/sig_elem may be absent when no
   !> stress was requested; pressure(nn) holds contact pressures (slave and
-  !> master nodes) and has_pressure marks the nodes that carry one.
+  !> master nodes) and has_pressure marks the nodes that carry one;
+  !> shear(nn) the contact shear tractions at the same nodes, a view of
+  !> its own (CSHEAR) only when the model has friction (frictionless
+  !> files stay as they were).
   subroutine write_result_views(rf, m, req_nodal, req_elem, time, u, reac, sig_node, sig_elem, &
-                                pressure, has_pressure)
+                                pressure, has_pressure, frictional, shear)
     type(result_file_t), intent(inout) :: rf
     type(model_t), intent(in) :: m
     type(request_t), intent(in) :: req_nodal, req_elem
     real(dp), intent(in) :: time
-    real(dp), intent(in) :: u(:, :), reac(:, :), sig_node(:, :), sig_elem(:, :), pressure(:)
-    logical, intent(in) :: has_pressure(:)
+    real(dp), intent(in) :: u(:, :), reac(:, :), sig_node(:, :), sig_elem(:, :), pressure(:), shear(:)
+    logical, intent(in) :: has_pressure(:), frictional
     integer :: k
     logical :: all_nodes(m%nn), solid(m%ne)
     character(len=5), parameter :: names(4) = ['S11  ', 'S22  ', 'S33  ', 'S12  ']
@@ -177,6 +181,8 @@ contains
     end if
     if (req_nodal%cstress) call write_view(rf, 'NodeData', 'Contact pressure', time, m%node_id, has_pressure, &
                                            reshape(pressure, [1, m%nn]))
+    if (req_nodal%cstress .and. frictional) call write_view(rf, 'NodeData', 'CSHEAR', time, m%node_id, &
+                                                            has_pressure, reshape(shear, [1, m%nn]))
     if (req_elem%s) then
       do k = 1, 4
         call write_view(rf, 'ElementData', trim(names(k)) // ' (element)', time, m%elem_id, solid, sig_elem(k:k, :))

@@ -104,6 +104,8 @@ contains
     if (s_node .and. res%has_stresses) arrays = [arrays, tensor_array('S', point_data, res%sig_node), &
         real_array('Mises', point_data, [(von_mises(res%sig_node(:, k)), k = 1, m%nn)])]
     if (cstress) arrays = [arrays, real_array('CSTRESS', point_data, res%contact%pressure)]
+    ! the contact shear traction beside it, only with friction (frictionless files stay as they were)
+    if (cstress .and. res%contact%frictional) arrays = [arrays, real_array('CSHEAR', point_data, res%contact%shear)]
     if (s_elem .and. res%has_stresses) arrays = [arrays, &
         tensor_array('S (element)', cell_data, res%sig_elem(:, cells)), &
         real_array('Mises (element)', cell_data, [(von_mises(res%sig_elem(:, cells(k))), k = 1, size(cells))])]
