@@ -875,3 +875,82 @@ def test_frictional_patch_test():
           + f"; shear/pressure at most {ratio:.4f}")
     assert states == {"STICK"}, states
     assert 0.02 < err["S12"] / (PATCH_S / PATCH_P) < 0.4 and 0.03 < err["pressure"] < 0.15, err
+
+
+INCLINED = """*NODE
+1, 0.087155742747658166, -0.99619469809174555
+2, 2.0795451389311492, -0.82188321259642927
+3, 1.9923893961834911, 0.17431148549531633
+4, 0, 0
+5, 0.49809734904587277, 0.043577871373829083
+6, 1.4942920471376184, 0.13073361412148726
+7, 1.4071363043899603, 1.1269283122132328
+8, 0.41094160629821463, 1.0397725694655746
+*ELEMENT, TYPE=CPE4, ELSET=LOW
+1, 1, 2, 3, 4
+*ELEMENT, TYPE=CPE4, ELSET=UP
+2, 5, 6, 7, 8
+*NSET, NSET=BOT
+1, 2
+*NSET, NSET=TOP
+7, 8
+*NSET, NSET=SLV
+5, 6
+*SURFACE, NAME=MS
+LOW, S3
+*SURFACE, NAME=SS, TYPE=NODE
+SLV
+*MATERIAL, NAME=ST
+*ELASTIC
+210000., 0.3
+*SOLID SECTION, ELSET=LOW, MATERIAL=ST
+*SOLID SECTION, ELSET=UP, MATERIAL=ST
+*CONTACT PAIR, FRICTION=0.3
+SS, MS
+*SOLVER, CONTACT SOLVE=CONDENSED
+*BOUNDARY
+BOT, 1, 2
+*STEP
+*STATIC
+*BOUNDARY
+TOP, 1, 1, 8.7155742747658166e-05
+TOP, 2, 2, -0.00099619469809174559
+*NODE PRINT, NSET=TOP, TOTALS=ONLY
+RF
+*END STEP
+*STEP
+*STATIC
+*BOUNDARY
+TOP, 1, 1, -0.0019052336534358331
+TOP, 2, 2, -0.001170506183587062
+*NODE PRINT, NSET=TOP, TOTALS=ONLY
+RF
+*END STEP
+"""
+
+
+def test_sliding_on_an_inclined_edge_condensed_and_full():
+    """A block pressed on a base whose contact edge is tilted by 5 degrees,
+    then pushed until it slides: a sliding point's tangent puts
+    -mu c_n t_i n_i on the diagonal, negative where the edge is tilted, and
+    the condensed solve's singularity check (the LU pivot against that
+    diagonal entry) took it for a singular stiffness. Now both solves run
+    and agree to round-off, and the block slides with the tangential
+    reaction mu times the normal one in the edge's frame."""
+    import math
+    runs = {}
+    for solve in ("CONDENSED", "FULL"):
+        runs[solve] = run_deck("friction_inclined_" + solve.lower(),
+                               INCLINED.replace("CONTACT SOLVE=CONDENSED", "CONTACT SOLVE=" + solve)).ok()
+    tops = {}
+    for k, r in runs.items():
+        text = open(r.listing_path).read()
+        tops[k] = [tuple(float(v) for v in line.split()[1:3]) for line in text.splitlines() if line.startswith("TOP ")]
+        assert len(tops[k]) == 2, tops[k]
+    for a, b in zip(tops["CONDENSED"], tops["FULL"]):
+        assert max(abs(x - y) for x, y in zip(a, b)) <= 1e-9 * max(abs(v) for v in b), (a, b)
+    th = math.radians(5.0)
+    t, n = (math.cos(th), math.sin(th)), (-math.sin(th), math.cos(th))
+    fx, fy = tops["FULL"][-1]
+    ft, fn = fx * t[0] + fy * t[1], fx * n[0] + fy * n[1]
+    assert abs(abs(ft) / abs(fn) - 0.3) < 1e-9, (ft, fn)
