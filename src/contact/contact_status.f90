@@ -62,8 +62,8 @@ module contact_status
 
   !> Relative round-off under which gap and force count as zero.
   real(dp), parameter :: round_off = 1.0e-10_dp
-  !> Block pivots allowed without a new fewest number of violated CFEs
-  !> before single pivots take over (Judice & Pires' p).
+  !> Block pivots allowed without a new lowest potential energy before
+  !> single pivots take over (Judice & Pires' p).
   integer, parameter :: max_block_tries = 3
   !> Status changes named in a message.
   integer, parameter :: max_named = 20
