@@ -17,7 +17,7 @@ import os
 import numpy as np
 
 from decks import grid, node_lines, quad_lines
-from helpers import run_deck
+from helpers import ROOT, run_deck
 
 MU = 0.3
 
@@ -954,3 +954,42 @@ def test_sliding_on_an_inclined_edge_condensed_and_full():
     fx, fy = tops["FULL"][-1]
     ft, fn = fx * t[0] + fy * t[1], fx * n[0] + fy * n[1]
     assert abs(abs(ft) / abs(fn) - 0.3) < 1e-9, (ft, fn)
+
+
+def test_bisected_increments_with_update_search_keep_the_history():
+    """The sliding-block example with its push in one increment and
+    MAXIT=2, so that the increment is bisected (six times): with UPDATE
+    SEARCH the halves are paired again on the last converged configuration
+    (they were paired on the failed attempt's displacements, and each
+    sticking point started the retry with the failed attempt's slide as a
+    spurious elastic offset: the run stopped, 'did not settle after 5
+    bisections'). Both runs end sliding with the same tangential reaction
+    (to 1e-4: the re-paired normals follow the deformed edge)."""
+    with open(os.path.join(ROOT, "input", "examples", "sliding_block.inp")) as f:
+        deck = f.read()
+    first, rest = deck.split("*STATIC\n0.1, 1.0\n")
+    deck = (first + "*STATIC\n1.0, 1.0\n" + rest).replace("*STEP\n", "*CONTACT CONTROLS, MAXIT=2\n*STEP\n", 1)
+    tops = {}
+    for tag, pair in (("small", "*CONTACT PAIR, FRICTION=0.3"), ("update", "*CONTACT PAIR, FRICTION=0.3, UPDATE SEARCH")):
+        run = run_deck("friction_bisected_" + tag, deck.replace("*CONTACT PAIR, FRICTION=0.3", pair)).ok()
+        text = open(run.listing_path).read()
+        assert text.count("increment bisected") >= 1, tag
+        tops[tag] = [float(v) for v in [l for l in text.splitlines() if l.startswith("TOP ")][-1].split()[1:3]]
+    for tag, (rf1, rf2) in tops.items():
+        assert abs(abs(rf1 / rf2) - 0.3) < 1e-6, (tag, rf1, rf2)
+    assert abs(tops["update"][0] - tops["small"][0]) < 1e-4 * abs(tops["small"][0]), tops
+
+
+def test_load_beyond_friction_says_so():
+    """The sliding block pushed by a sideways force of 100 N, beyond what
+    friction holds (0.3 x 277 N = 83 N): no equilibrium exists, the run
+    stops with a singular stiffness, and the message says that the points
+    in contact slide (it said the body was held by open contact only)."""
+    with open(os.path.join(ROOT, "input", "examples", "sliding_block.inp")) as f:
+        deck = f.read()
+    first, rest = deck.split("*STATIC\n0.1, 1.0\n")
+    rest = rest.replace("TOP, 1, 1, 2e-3\n", "", 1).replace(
+        "*NODE PRINT", "*CLOAD\n" + "".join(f"{n}, 1, 12.5\n" for n in range(69, 77)) + "*NODE PRINT", 1)
+    run = run_deck("friction_beyond_mu", first + "*STATIC\n1.0, 1.0\n" + rest)
+    assert run.rc == 1, run.stderr
+    assert "singular stiffness" in run.stderr and "points in contact slide" in run.stderr, run.stderr

@@ -185,6 +185,7 @@ contains
     type(interval_t), allocatable :: stack(:)
     type(interval_t) :: iv
     type(cfe_t), allocatable :: saved(:)
+    real(dp), allocatable :: u_saved(:, :)
     logical :: ok
     integer :: top, iters
     real(dp) :: mid
@@ -196,6 +197,7 @@ contains
       top = top - 1
       if (rs%update_search .and. rs%inc + iv%level > 0) call research(m, rs)
       saved = rs%cs%c(1:rs%cs%n)
+      u_saved = rs%u
       call values_at(m, rs%ls, iv%t1, rs%u, rs%fext)
       call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, ok, iters)
       if (ok) then
@@ -204,9 +206,11 @@ contains
         call report(m, is, rs, obs, iv%t1, iters)
         cycle
       end if
-      ! the statuses the increment started with (the friction history is
-      ! committed only by converged increments)
+      ! the statuses and displacements the increment started with (the
+      ! friction history is committed only by converged increments; a
+      ! re-search of the halves pairs on the converged configuration)
       rs%cs%c(1:rs%cs%n) = saved
+      rs%u = u_saved
       mid = 0.5_dp * (iv%t0 + iv%t1)
       if (iv%level >= m%max_cutbacks .or. mid <= iv%t0 .or. mid >= iv%t1) then
         call tell_note(obs, 'contact status did not settle; nodes still switching:' // rs%eq%changed)

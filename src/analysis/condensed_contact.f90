@@ -64,7 +64,7 @@ module condensed_contact
     logical :: lu = .false.
     integer, allocatable :: ipiv(:)
     real(dp), allocatable :: diag22(:)  ! K0's diagonal on the contact equations
-    real(dp), allocatable :: kdiag(:)   ! the diagonal of the current status (LU: each column's largest entry)
+    real(dp), allocatable :: kdiag(:)   ! the diagonal of the current status (LU: each column's scale)
     real(dp), allocatable :: z(:)       ! (n) forward-solved right-hand side of the increment
     real(dp), allocatable :: q0(:), x2(:)       ! (m) condensed right-hand side, solution
     real(dp), allocatable :: gap_start(:)       ! (ncfe) every CFE's gap at the increment's start
@@ -380,9 +380,10 @@ contains
         allocate(cd%ipiv(cd%m))
       end if
       ! (a sliding CFE's diagonal entry may be negative: the pivots are
-      ! judged against each column's largest entry instead)
+      ! judged against the larger of each column's largest entry and the
+      ! magnitude of the full matrix's diagonal entry)
       do a = 1, cd%m
-        cd%kdiag(a) = maxval(abs(cd%s(:, a)))
+        cd%kdiag(a) = max(maxval(abs(cd%s(:, a))), abs(cd%kdiag(a)))
       end do
       call lu_factor(cd%s, cd%ipiv, info)
     else
@@ -397,7 +398,7 @@ contains
       ratio = 0.0_dp
       ! the pivot relative to the diagonal entry (Cholesky: its square);
       ! LU with partial pivoting: U(a, a), the pivot of column a, relative
-      ! to that column's largest entry before the factorisation
+      ! to that column's scale before the factorisation
       if (cd%kdiag(a) > 0.0_dp) then
         if (cd%lu) then
           ratio = abs(cd%s(a, a)) / cd%kdiag(a)

@@ -263,16 +263,20 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: usable
     integer :: status, bad
+    logical :: pivoted
     usable = .true.
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states == status_codes(cs))) return
     end if
     call dense_status(eq, m, cs, dm, body, status, bad)
     if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
-      ! a new problem (the open penalty changed): a new search
+      ! a new problem (the open penalty changed): a new search, which may
+      ! still take back the pivot that led here
       cs%stabilised = .true.
       eq%stabilisation_used = .true.
+      pivoted = eq%search%pivoted
       call begin_status_search(eq%search)
+      eq%search%pivoted = pivoted
       call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                           'until the status settles')
       call dense_status(eq, m, cs, dm, body, status, bad)

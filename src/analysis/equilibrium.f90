@@ -160,6 +160,7 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: restabilised, usable
     integer :: status, bad
+    logical :: pivoted
     restabilised = .false.
     usable = .true.
     ! (with every CFE closed, stabilising changes no penalty)
@@ -168,10 +169,13 @@ contains
     end if
     call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
     if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
-      ! a new problem (the open penalty changed): a new search
+      ! a new problem (the open penalty changed): a new search, which may
+      ! still take back the pivot that led here
       cs%stabilised = .true.
       eq%stabilisation_used = .true.
+      pivoted = eq%search%pivoted
       call begin_status_search(eq%search)
+      eq%search%pivoted = pivoted
       restabilised = .true.
       call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                           'until the status settles')

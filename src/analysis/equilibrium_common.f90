@@ -205,6 +205,9 @@ contains
     hint = ''
     if (cs%n > 0) hint = '; a body held only by open contact has no stiffness: give it a support, ' // &
       'or a load or displacement that brings it into contact'
+    if (any(cs%c(1:cs%n)%closed .and. cs%c(1:cs%n)%sliding)) hint = '; points in contact slide: a body ' // &
+      'held sideways only by sliding friction cannot take more than mu times its normal force (a load ' // &
+      'beyond it has no equilibrium), or it is held by open contact only'
     if (bad > 0 .and. bad <= dm%neq) call fatal('singular stiffness at node ' // &
       node_label(m, dm%node_of_eq(bad)) // ', dof ' // itoa(dm%dof_of_eq(bad)) // &
       ' (missing boundary condition?)' // hint)

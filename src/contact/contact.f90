@@ -506,17 +506,32 @@ contains
             old%c(q)%selem == cs%c(j)%selem .and. old%c(q)%sedge == cs%c(j)%sedge .and. &
             old%c(q)%sip == cs%c(j)%sip) then
           cs%c(j)%closed = old%c(q)%closed
-          ! friction: the new coupling is made where the point is now
-          ! (t.[[U]] = 0 there); its elastic tangential offset carries over
+          ! friction: the elastic tangential offset carries over to the
+          ! new coupling, whose t.[[U]] is evaluated where the point is now
+          ! (zero on a straight edge; not at a blended corner normal)
           cs%c(j)%sliding = old%c(q)%sliding
           cs%c(j)%slip_sign = old%c(q)%slip_sign
           cs%c(j)%slip_total = old%c(q)%slip_total
-          cs%c(j)%anchor = old%c(q)%anchor - old%c(q)%slide
+          if (cs%c(j)%mu > 0.0_dp) cs%c(j)%anchor = current_slide(m, cs%c(j), x - m%x) - &
+                                                    (old%c(q)%slide - old%c(q)%anchor)
           exit
         end if
       end do
     end do
   end subroutine contact_research
+
+  !> t.[[U]] of CFE c at displacements u.
+  real(dp) function current_slide(m, c, u) result(slide)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(in) :: c
+    real(dp), intent(in) :: u(:, :)
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: nodes(max_en)
+    call cfe_input(m, c, u, .false., ein, nodes)
+    call element_routine(act_residual, ein, eout)
+    slide = eout%slide
+  end function current_slide
 
   !> Normal penalty of one CFE (force per unit normal relative displacement):
   !> per node as given (NODAL), per area times the tributary area, or the

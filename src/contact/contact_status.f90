@@ -136,13 +136,13 @@ contains
     nviol = count(violated)
     nchanged = 0
     changed = ''
+    ! the status before this pivot, to take it back (reject_pivot)
+    ss%before = cs%c(1:cs%n)%closed
+    ss%before_sliding = cs%c(1:cs%n)%sliding
+    ss%before_sign = cs%c(1:cs%n)%slip_sign
+    ss%violated = violated
+    ss%single = 0
     if (nviol > 0) then
-      ss%pivoted = .true.
-      ss%before = cs%c(1:cs%n)%closed
-      ss%before_sliding = cs%c(1:cs%n)%sliding
-      ss%before_sign = cs%c(1:cs%n)%slip_sign
-      ss%violated = violated
-      ss%single = 0
       if (energy < ss%best .or. frictional) then
         ! (Coulomb friction has no potential: block pivots only)
         ss%best = energy
@@ -169,6 +169,7 @@ contains
       call return_mapping(m, cs, force_scale, nchanged, changed)
       if (nviol == 0 .and. nchanged > 0) ss%block_pivots = ss%block_pivots + 1
     end if
+    ss%pivoted = nchanged > 0
     if (nchanged > max_named) changed = changed // ' ...'
   end subroutine contact_switch
 
