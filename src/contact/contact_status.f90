@@ -191,7 +191,7 @@ contains
   !> force N = -k_closed g, and slides along its sign otherwise (the
   !> sliding force is then mu N). A sliding CFE keeps sliding while its
   !> trial force exceeds mu N in its direction, to round-off. Open CFEs
-  !> neither stick nor slide.
+  !> neither stick nor slide. Round-off as in is_violated.
   subroutine return_mapping(m, cs, force_scale, nchanged, changed)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(inout) :: cs
@@ -201,10 +201,13 @@ contains
     real(dp) :: trial, limit, tol, sgn
     logical :: slide
     integer :: j
-    tol = round_off * force_scale
     do j = 1, cs%n
       associate(c => cs%c(j))
         if (c%mu <= 0.0_dp) cycle
+        ! forces to the round-off of the problem, and never below the force
+        ! of a tangential offset at the gap's own round-off (without loads
+        ! the force scale is round-off too)
+        tol = max(round_off * force_scale, c%k_tan * c%gap_round)
         slide = .false.
         sgn = 0.0_dp
         if (c%closed) then
