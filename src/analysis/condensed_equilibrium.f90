@@ -20,7 +20,7 @@ module condensed_equilibrium
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, report_iteration, describe, singular, &
-                                contact_force_scale, take_back
+                                contact_force_scale, take_back, stabilise_open, set_aside_or_stop
   use analysis_events, only: observer_ref_t, tell_note, wall_time
   implicit none
   private
@@ -263,31 +263,18 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: usable
     integer :: status, bad
-    logical :: pivoted
     usable = .true.
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states == status_codes(cs))) return
     end if
     call dense_status(eq, m, cs, dm, body, status, bad)
-    if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
-      ! a new problem (the open penalty changed): a new search, which may
-      ! still take back the pivot that led here
-      cs%stabilised = .true.
-      eq%stabilisation_used = .true.
-      pivoted = eq%search%pivoted
-      call begin_status_search(eq%search)
-      eq%search%pivoted = pivoted
-      call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
-                          'until the status settles')
-      call dense_status(eq, m, cs, dm, body, status, bad)
+    if (status == factor_singular) then
+      if (stabilise_open(eq, cs, obs)) call dense_status(eq, m, cs, dm, body, status, bad)
     end if
-    if (status == factor_singular .and. eq%search%pivoted) then
-      usable = .false.
-      eq%factor_valid = .false.
-      eq%bad = bad
+    if (status == factor_singular) then
+      call set_aside_or_stop(eq, m, cs, dm, bad, usable)
       return
     end if
-    if (status == factor_singular) call singular(m, cs, dm, bad)
     eq%kmax = eq%cd%kmax
     eq%factor_states = status_codes(cs)
     eq%factor_stabilised = cs%stabilised

@@ -18,7 +18,8 @@ module equilibrium
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
-                                report_iteration, describe, singular, contact_force_scale, take_back
+                                report_iteration, describe, singular, contact_force_scale, take_back, &
+                                stabilise_open, set_aside_or_stop
   use condensed_equilibrium, only: solve_condensed
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
   use messages, only: warn
@@ -160,7 +161,6 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: restabilised, usable
     integer :: status, bad
-    logical :: pivoted
     restabilised = .false.
     usable = .true.
     ! (with every CFE closed, stabilising changes no penalty)
@@ -168,26 +168,14 @@ contains
       if (all(eq%factor_states == status_codes(cs))) return
     end if
     call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
-    if (status == factor_singular .and. .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)) then
-      ! a new problem (the open penalty changed): a new search, which may
-      ! still take back the pivot that led here
-      cs%stabilised = .true.
-      eq%stabilisation_used = .true.
-      pivoted = eq%search%pivoted
-      call begin_status_search(eq%search)
-      eq%search%pivoted = pivoted
-      restabilised = .true.
-      call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
-                          'until the status settles')
-      call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+    if (status == factor_singular) then
+      restabilised = stabilise_open(eq, cs, obs)
+      if (restabilised) call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
     end if
-    if (status == factor_singular .and. eq%search%pivoted) then
-      usable = .false.
-      eq%factor_valid = .false.
-      eq%bad = bad
+    if (status == factor_singular) then
+      call set_aside_or_stop(eq, m, cs, dm, bad, usable)
       return
     end if
-    if (status == factor_singular) call singular(m, cs, dm, bad)
     if (status == factor_fallback) then
       call tell_note(obs, sys%note)
       call warn(sys%note)

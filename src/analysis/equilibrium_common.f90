@@ -10,7 +10,7 @@ module equilibrium_common
   use strings, only: itoa
   use model, only: model_t, node_label
   use contact, only: contact_set_t, contact_forces
-  use contact_status, only: status_search_t, reject_pivot
+  use contact_status, only: status_search_t, reject_pivot, begin_status_search
   use assembly, only: element_counts_t, body_t, body_forces
   use dof_numbering, only: dofmap_t
   use linear_solver, only: linear_system_t, sys_describe
@@ -21,7 +21,7 @@ module equilibrium_common
   implicit none
   private
   public :: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, report_iteration, &
-            describe, singular, contact_force_scale, take_back
+            describe, singular, contact_force_scale, take_back, stabilise_open, set_aside_or_stop
 
   type :: equilibrium_t
     ! factor reuse policy: the factor is valid for the statuses it was made for
@@ -193,6 +193,44 @@ contains
     call tell_note(obs, 'the contact status of the last pivot has a singular stiffness: pivot taken back, ' // &
                         'single pivot on' // eq%changed)
   end subroutine take_back
+
+  !> Purpose: a singular stiffness with open CFEs (a body held only by
+  !> open contact) and the stabilisation not yet used in this increment:
+  !> the open CFEs are stabilised (contact_set_t), a new search begins
+  !> (the open penalty changed), which may still take back the pivot that
+  !> led here; true if so.
+  logical function stabilise_open(eq, cs, obs) result(done)
+    type(equilibrium_t), intent(inout) :: eq
+    type(contact_set_t), intent(inout) :: cs
+    type(observer_ref_t), intent(in) :: obs(:)
+    logical :: pivoted
+    done = .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)
+    if (.not. done) return
+    cs%stabilised = .true.
+    eq%stabilisation_used = .true.
+    pivoted = eq%search%pivoted
+    call begin_status_search(eq%search)
+    eq%search%pivoted = pivoted
+    call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
+                        'until the status settles')
+  end function stabilise_open
+
+  !> Purpose: a singular stiffness that stabilising cannot mend: where the
+  !> status comes from a pivot of the search, the factor is set aside
+  !> (usable false: the pivot is to be taken back, take_back); otherwise
+  !> the run stops naming node and dof (bad).
+  subroutine set_aside_or_stop(eq, m, cs, dm, bad, usable)
+    type(equilibrium_t), intent(inout) :: eq
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    integer, intent(in) :: bad
+    logical, intent(out) :: usable
+    if (.not. eq%search%pivoted) call singular(m, cs, dm, bad)
+    usable = .false.
+    eq%factor_valid = .false.
+    eq%bad = bad
+  end subroutine set_aside_or_stop
 
   !> Stops on a singular stiffness, naming the node and dof where the
   !> factorisation found it.
