@@ -386,17 +386,11 @@ contains
     type(model_t), intent(in) :: m
     type(field_t), intent(in) :: f
     character(len=*), intent(in) :: what
-    integer :: k, id, gid
     if (is_int(f%s)) then
       node_ref = node_of(p, m, get_int(p, f, what))
-      return
+    else
+      node_ref = qualified_member(p, m, f, what, .true.)
     end if
-    call qualified_label(p, m, f, what, k, id)
-    gid = scoped_id(m, k, id, .true.)
-    node_ref = 0
-    if (gid >= 1 .and. gid <= size(m%node_index)) node_ref = m%node_index(gid)
-    if (node_ref == 0) call err(p, 'undefined node ' // to_upper(f%s) // ' (instance ' // &
-                                   trim(m%instances(k)%name) // ' has no node ' // itoa(id) // ')')
   end function node_ref
 
   !> Purpose: the element a label names (see node_ref).
@@ -405,18 +399,36 @@ contains
     type(model_t), intent(in) :: m
     type(field_t), intent(in) :: f
     character(len=*), intent(in) :: what
-    integer :: k, id, gid
     if (is_int(f%s)) then
       elem_ref = elem_of(p, m, get_int(p, f, what))
-      return
+    else
+      elem_ref = qualified_member(p, m, f, what, .false.)
     end if
-    call qualified_label(p, m, f, what, k, id)
-    gid = scoped_id(m, k, id, .false.)
-    elem_ref = 0
-    if (gid >= 1 .and. gid <= size(m%elem_index)) elem_ref = m%elem_index(gid)
-    if (elem_ref == 0) call err(p, 'undefined element ' // to_upper(f%s) // ' (instance ' // &
-                                   trim(m%instances(k)%name) // ' has no element ' // itoa(id) // ')')
   end function elem_ref
+
+  !> The internal index of the node (is_node) or element INSTANCE.NUMBER
+  !> names; stops if the instance has none.
+  integer function qualified_member(p, m, f, what, is_node) result(idx)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(field_t), intent(in) :: f
+    character(len=*), intent(in) :: what
+    logical, intent(in) :: is_node
+    character(len=:), allocatable :: kind
+    integer :: k, id, gid
+    call qualified_label(p, m, f, what, k, id)
+    gid = scoped_id(m, k, id, is_node)
+    idx = 0
+    if (is_node) then
+      kind = 'node'
+      if (gid >= 1 .and. gid <= size(m%node_index)) idx = m%node_index(gid)
+    else
+      kind = 'element'
+      if (gid >= 1 .and. gid <= size(m%elem_index)) idx = m%elem_index(gid)
+    end if
+    if (idx == 0) call err(p, 'undefined ' // kind // ' ' // to_upper(f%s) // ' (instance ' // &
+                              trim(m%instances(k)%name) // ' has no ' // kind // ' ' // itoa(id) // ')')
+  end function qualified_member
 
   !> INSTANCE.NUMBER taken apart: the instance (which must exist) and
   !> the number.
