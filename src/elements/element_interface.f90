@@ -4,6 +4,7 @@
 !> catalogue.
 module element_interface
   use kinds, only: dp
+  use model, only: law_elastic, max_yield
   use element_catalogue, only: max_nodes, max_ip, shape_tri3, shape_quad4, shape_tri6, shape_quad8, state_none, &
                                shape_line2, shape_line3, shape_spring1, shape_spring2, shape_springa
   implicit none
@@ -11,7 +12,7 @@ module element_interface
   public :: elem_in_t, elem_out_t, max_en, max_edof, max_ip, max_slave, &
             kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, kind_truss2, kind_truss3, kind_spring1, &
             kind_spring2, kind_springa, act_tangent, act_residual, act_stresses, &
-            act_thermal, wants
+            act_thermal, wants, max_hist
 
   !> Routine selectors: a continuum element is its catalogue shape (one
   !> routine serves them all), so are a truss (a line) and a spring; the
@@ -30,6 +31,9 @@ module element_interface
   !> equivalent nodal load of the thermal strain (continuum elements: fe =
   !> integral of B^T D eps0, eps0 = alpha * (T - T_initial)).
   integer, parameter :: act_tangent = 1, act_residual = 2, act_stresses = 4, act_thermal = 8
+  !> History variables per integration point of a material with state
+  !> (plasticity); their layout is the material law's.
+  integer, parameter :: max_hist = 8
 
   type :: elem_in_t
     integer :: kind = 0
@@ -74,6 +78,16 @@ module element_interface
     real(dp) :: mu = 0.0_dp, k_tan = 0.0_dp
     logical :: sliding = .false.
     real(dp) :: slip_sign = 0.0_dp, anchor = 0.0_dp
+    !> Nonlinear bodies: large deformation (NLGEOM), the elastic law and
+    !> its constants (model's law_*; law_elastic uses e and nu), the
+    !> *PLASTIC table (nyield = 0: elastic), and the history at the
+    !> integration points committed by the last converged increment.
+    logical :: nlgeom = .false.
+    integer :: law = law_elastic
+    real(dp) :: c10 = 0.0_dp, c01 = 0.0_dp, d1 = 0.0_dp
+    integer :: nyield = 0
+    real(dp) :: yield(2, max_yield) = 0.0_dp
+    real(dp) :: hist(max_hist, max_ip) = 0.0_dp
   end type elem_in_t
 
   type :: elem_out_t
@@ -95,6 +109,11 @@ module element_interface
     !> continuum element: the smallest det J (times r in axisymmetry) at
     !> its integration points; not positive means an invalid element
     real(dp) :: detj_min = 0.0_dp
+    !> Nonlinear bodies: the history at the integration points at ue (from
+    !> ein%hist; the driver commits it when the increment converges) and
+    !> the equivalent plastic strain (PEEQ) there.
+    real(dp) :: hist(max_hist, max_ip) = 0.0_dp
+    real(dp) :: peeq_ip(max_ip) = 0.0_dp
   end type elem_out_t
 
 contains

@@ -4,7 +4,7 @@ MODULES += cfe_element continuum_element distributed_loads element_interface ele
 $(OBJDIR)/cfe_element.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/continuum_element.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/materials.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/distributed_loads.o: $(OBJDIR)/continuum_element.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o
-$(OBJDIR)/element_interface.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o
+$(OBJDIR)/element_interface.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
 $(OBJDIR)/element_library.o: $(OBJDIR)/cfe_element.o $(OBJDIR)/continuum_element.o $(OBJDIR)/element_interface.o \
                              $(OBJDIR)/spring_element.o $(OBJDIR)/truss_element.o
 $(OBJDIR)/materials.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o

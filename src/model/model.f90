@@ -19,7 +19,8 @@ module model
             elem_nodes, elem_thickness, &
             surf_element, surf_node, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
-            dload_p, dload_bx, dload_by, dload_grav, dload_centrif
+            dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
+            law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield
   public :: kept_nodes
 
   integer, parameter :: surf_element = 1, surf_node = 2
@@ -31,6 +32,12 @@ module model
   integer, parameter :: transform_rectangular = 1, transform_cylindrical = 2
   !> Labels of distributed loads (dload_t).
   integer, parameter :: dload_p = 1, dload_bx = 2, dload_by = 3, dload_grav = 4, dload_centrif = 5
+  !> Elastic laws of a material (material_t%law): *ELASTIC (linear; St
+  !> Venant-Kirchhoff under NLGEOM, as CalculiX), *HYPERELASTIC NEO HOOKE
+  !> and MOONEY-RIVLIN (CalculiX's strain energy and constants).
+  integer, parameter :: law_elastic = 0, law_neo_hooke = 1, law_mooney_rivlin = 2
+  !> Points of a *PLASTIC hardening table.
+  integer, parameter :: max_yield = 64
 
   !> Where something was defined in the deck: for errors found after reading.
   type :: src_t
@@ -68,6 +75,15 @@ module model
     !> T_initial) does not depend on it.
     logical :: has_expansion = .false.
     real(dp) :: alpha = 0.0_dp, alpha_zero = 0.0_dp
+    !> The elastic law and the *HYPERELASTIC constants (C10, C01, D1 as
+    !> CalculiX and Abaqus define them).
+    integer :: law = law_elastic
+    real(dp) :: c10 = 0.0_dp, c01 = 0.0_dp, d1 = 0.0_dp
+    !> *PLASTIC: von Mises with isotropic hardening, the yield stress
+    !> yield(1, k) at the equivalent plastic strain yield(2, k); nyield = 0:
+    !> no plasticity.
+    integer :: nyield = 0
+    real(dp) :: yield(2, max_yield) = 0.0_dp
   end type material_t
 
   !> A *SOLID SECTION (continuum elements and trusses) or a *SPRING
@@ -172,6 +188,11 @@ module model
     !> OP=NEW on it (temperatures not given go back to the initial ones).
     type(temp_t), allocatable :: temps(:)
     logical :: new_temps = .false.
+    !> NLGEOM (large deformation; once on, on in the later steps, as
+    !> CalculiX), *STATIC's DIRECT (fixed increments) and its minimum and
+    !> maximum increments (0: CalculiX's defaults).
+    logical :: nlgeom = .false., direct = .false.
+    real(dp) :: dt_min = 0.0_dp, dt_max = 0.0_dp
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.
