@@ -12,6 +12,21 @@ FFLAGS   ?= $(OPTFLAGS)
 LIBS     ?= -lcholmod -lumfpack -lamd -lcolamd -lsuitesparseconfig -lmetis -llapack -lopenblas
 PYTHON   ?= python3
 
+# MUMPS over MPI (Debian: libmumps-dev with Open MPI), the solver of
+# *SOLVER, TYPE=MUMPS and of `mpirun -np N bin/cfe2d`. Found (its header and
+# mpicc): the backend is real and the program links MUMPS and MPI. Not found,
+# or MUMPS=no: the same program without it (stubs in mumps_shim.c), where
+# TYPE=MUMPS is an error at its card. A stamp file rebuilds the two objects
+# that depend on the choice when it changes.
+MUMPS    ?= $(shell test -f /usr/include/dmumps_c.h && command -v mpicc >/dev/null 2>&1 && echo yes || echo no)
+ifeq ($(MUMPS),yes)
+MPI_CFLAGS ?= $(shell mpicc --showme:compile 2>/dev/null || mpicc -compile_info 2>/dev/null | cut -d' ' -f2-)
+MPI_LIBS   ?= $(shell mpicc --showme:link 2>/dev/null || echo -lmpi)
+MUMPS_LIBS ?= -ldmumps -lmumps_common
+LIBS       += $(MUMPS_LIBS) $(MPI_LIBS)
+MUMPS_DEFS := -DCFE_HAVE_MUMPS $(MPI_CFLAGS)
+endif
+
 OBJDIR := $(BUILD)/obj
 MODDIR := $(BUILD)/mod
 
@@ -27,13 +42,14 @@ OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
 TESTS := test_elements test_skyline test_cfe test_solvers test_numbering test_constraints test_strings test_contact_status
 
-.PHONY: all debug sanitize run check bench deps clean help fuzz kernels
+.PHONY: all debug sanitize nompi run check bench deps clean help fuzz kernels
 all: bin/cfe2d
 
 help:
 	@echo "make            build bin/cfe2d (optimised)"
 	@echo "make debug      build build-debug/cfe2d with -std=f2008 -Wall -fcheck=all -g -fbacktrace"
 	@echo "make sanitize   build build-asan/cfe2d with -fsanitize=address,undefined"
+	@echo "make nompi      build build-nompi/cfe2d without MPI and MUMPS (MUMPS=no), as where they are absent"
 	@echo "make run        install what is missing, then run the main example"
 	@echo "make check      install what is missing, build, run every test"
 	@echo "make bench      contact history against one factorisation (flagship meshes, 1e6-dof square);"
@@ -51,6 +67,13 @@ debug:
 	$(MAKE) BUILD=build-debug FFLAGS="$(DBGFLAGS)" build-debug/cfe2d
 
 build-debug/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
+	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
+
+# The build of a machine without MPI or MUMPS (MUMPS=no), apart in build-nompi/.
+nompi:
+	$(MAKE) BUILD=build-nompi MUMPS=no build-nompi/cfe2d
+
+build-nompi/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
 
 # The sanitizer build: address and undefined-behaviour checks, apart in build-asan/.
@@ -73,6 +96,11 @@ CFLAGS  ?= -O2
 CINC    := -I/usr/include/suitesparse
 $(OBJDIR)/%.o: %.c | $(OBJDIR)
 	$(CC) $(CFLAGS) $(CINC) -c $< -o $@
+$(OBJDIR)/mumps_shim.o $(OBJDIR)/build_features.o: CINC += $(MUMPS_DEFS)
+$(OBJDIR)/mumps_shim.o $(OBJDIR)/build_features.o: $(OBJDIR)/mumps-$(MUMPS).stamp
+$(OBJDIR)/mumps-$(MUMPS).stamp: | $(OBJDIR)
+	rm -f $(OBJDIR)/mumps-*.stamp
+	touch $@
 
 $(BUILD)/tests/test_report.o: tests/unit/test_report.f90 | $(BUILD)/tests $(MODDIR)
 	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
@@ -101,6 +129,7 @@ check: deps
 	$(MAKE) bin/cfe2d $(TESTS:%=$(BUILD)/tests/%)
 	$(MAKE) debug
 	$(MAKE) sanitize
+	$(MAKE) nompi
 	$(PYTHON) tests/run_tests.py --build $(BUILD)
 
 # Contact decisions independent of the BLAS kernel and of the build (tests/test_kernels.py,
@@ -116,4 +145,4 @@ fuzz: bin/cfe2d
 	$(PYTHON) scripts/fuzz.py $(FUZZ_ARGS)
 
 clean:
-	rm -rf build build-debug build-asan bin
+	rm -rf build build-debug build-asan build-nompi bin

@@ -12,6 +12,10 @@ program cfe2d
   use progress, only: progress_t
   use messages, only: fatal, terminate
   use directories, only: make_directories
+  use solver_codes, only: solver_code, solver_in_build, solver_skyline, solver_mumps, order_rcm, order_amd, &
+                          contact_solve_condensed, solver_cholmod
+  use strings, only: to_upper
+  use mpi_session, only: session_start, session_serve
   implicit none
   character(len=4096) :: arg
   character(len=:), allocatable :: deck, outdir, job, base, why
@@ -22,10 +26,18 @@ program cfe2d
   type(vtu_series_t), target :: vtu
   type(observer_ref_t), allocatable :: observers(:)
   type(run_timing_t) :: timing
-  logical :: quiet, want_vtu, made
-  integer :: i, k, ios, digits, nobs
+  logical :: quiet, want_vtu, made, worker
+  integer :: i, k, ios, digits, nobs, solver, ranks
 
+  ! Under mpirun the ranks other than 0 only join the solver's jobs.
+  call session_start(worker, ranks)
+  if (ranks == 0) call fatal('MPI could not be started (MPI_Init failed)')
+  if (worker) then
+    call session_serve()
+    call terminate(0)
+  end if
   timing%started = wall_time()
+  solver = 0
   deck = ''
   outdir = ''
   quiet = .false.
@@ -51,6 +63,14 @@ program cfe2d
       call get_command_argument(i, arg)
       read(arg, *, iostat=ios) digits
       if (ios /= 0 .or. digits < 3 .or. digits > 17) call fatal('--digits needs a number from 3 to 17')
+    case ('-s', '--solver')
+      i = i + 1
+      if (i > command_argument_count()) call fatal('--solver needs a name (CHOLMOD, UMFPACK, SKYLINE, MUMPS)')
+      call get_command_argument(i, arg)
+      solver = solver_code(to_upper(trim(arg)))
+      if (solver == 0) call fatal('--solver ' // trim(arg) // ': not a solver (CHOLMOD, UMFPACK, SKYLINE, MUMPS)')
+      if (.not. solver_in_build(solver)) call fatal('--solver MUMPS: this cfe2d was built without MUMPS ' // &
+                                                    '(no MPI or libmumps-dev where it was built; see README)')
     case ('-o', '--output-dir')
       i = i + 1
       if (i > command_argument_count()) call fatal('--output-dir needs a directory')
@@ -81,6 +101,7 @@ program cfe2d
   end if
 
   call read_model(deck, m)
+  if (solver /= 0) call choose_solver(m, solver)
   ! *TIE needs the projection onto faces, which the contact layer owns.
   call tie_surfaces(m)
   timing%read = wall_time() - timing%started
@@ -120,6 +141,18 @@ program cfe2d
 
 contains
 
+  !> The solver of --solver in place of the deck's (its ordering kept
+  !> where the new solver has it, otherwise that solver's default).
+  subroutine choose_solver(m, solver)
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: solver
+    if ((solver == solver_skyline) .neqv. (m%solver == solver_skyline)) &
+      m%ordering = merge(order_rcm, order_amd, solver == solver_skyline)
+    m%solver = solver
+    if (m%contact_solve == contact_solve_condensed .and. solver /= solver_cholmod .and. solver /= solver_mumps) &
+      call fatal('--solver: the deck asks for CONTACT SOLVE=CONDENSED, which needs CHOLMOD or MUMPS')
+  end subroutine choose_solver
+
   logical function any_file_request(m)
     type(model_t), intent(in) :: m
     integer :: s
@@ -141,6 +174,8 @@ contains
     print '(a)', '  -o, --output-dir DIR   write the results into DIR (made, with its parents, if missing)'
     print '(a)', '  -d, --digits N         significant digits of reals in the listing (default 7)'
     print '(a)', '  -q, --quiet            no progress lines'
+    print '(a)', '  -s, --solver NAME      CHOLMOD, UMFPACK, SKYLINE or MUMPS, in place of the deck''s *SOLVER'
+    print '(a)', '                         (MUMPS over MPI: mpirun -np N cfe2d --solver mumps deck.inp)'
     print '(a)', '      --vtu              also write ParaView files (<job>_NNNN.vtu, <job>.pvd)'
     print '(a)', '  -h, --help             this text'
     print '(a)', '  -v, --version          program version'

@@ -22,7 +22,7 @@ module condensed_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use model, only: model_t, carries_stiffness, elem_nodes
-  use solver_codes, only: solver_cholmod, solver_umfpack, contact_solve_full, contact_solve_condensed
+  use solver_codes, only: solver_cholmod, solver_umfpack, solver_mumps, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set
   use element_interface, only: elem_in_t, elem_out_t, max_en, max_edof, act_tangent
   use element_library, only: element_routine
@@ -107,7 +107,8 @@ contains
     t_analyse = 0.0_dp
     cd%active = .false.
     cd%m = 0
-    if (m%contact_solve /= contact_solve_full .and. m%solver == solver_cholmod .and. cs%n > 0) then
+    if (m%contact_solve /= contact_solve_full .and. (m%solver == solver_cholmod .or. m%solver == solver_mumps) &
+        .and. cs%n > 0) then
       call contact_dof_mask(m, cs, prescribed, mpc, mask)
       mc = count(mask)
       if (mc > 0) then
@@ -131,7 +132,7 @@ contains
     ! symmetric backends (CHOLMOD, skyline) keep one triangle, so the full
     ! solve of a frictional model takes UMFPACK, which keeps both.
     solver = m%solver
-    if (frictional_set(cs)) solver = solver_umfpack
+    if (frictional_set(cs) .and. solver /= solver_mumps) solver = solver_umfpack
     call number_dofs(m, cs, prescribed, solver, m%ordering, dm, sys, constraints=mpc)
   end subroutine number_equations
 

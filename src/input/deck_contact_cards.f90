@@ -12,8 +12,9 @@ submodule (deck_parser) deck_contact_cards
                    elem_nodes, axisymmetric_model, is_continuum
   use model_growth, only: grow
   use element_catalogue, only: max_nodes
-  use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, &
-                          order_amd, order_metis, contact_solve_auto, contact_solve_condensed, contact_solve_full
+  use solver_codes, only: solver_skyline, solver_cholmod, solver_mumps, solver_code, solver_in_build, &
+                          order_natural, order_rcm, order_amd, order_metis, contact_solve_auto, &
+                          contact_solve_condensed, contact_solve_full
   implicit none
 
 contains
@@ -373,9 +374,10 @@ contains
     call no_data(p, kw)
   end subroutine read_contact_controls
 
-  !> Purpose: *SOLVER: TYPE= (CHOLMOD, UMFPACK, SKYLINE), ORDERING= (AMD
-  !> or METIS for the sparse solvers, RCM or NONE for the skyline) and
-  !> CONTACT SOLVE= (AUTO, CONDENSED: CHOLMOD only, FULL).
+  !> Purpose: *SOLVER: TYPE= (CHOLMOD, UMFPACK, SKYLINE, MUMPS: the last
+  !> only in a build with MPI and MUMPS), ORDERING= (AMD or METIS for the
+  !> sparse solvers, RCM or NONE for the skyline) and CONTACT SOLVE=
+  !> (AUTO, CONDENSED: CHOLMOD and MUMPS only, FULL).
   module subroutine read_solver(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -384,12 +386,10 @@ contains
     call allow_params(p, kw, 'TYPE,ORDERING,CONTACT SOLVE')
     if (has_param(kw, 'TYPE')) then
       v = to_upper(param_value(kw, 'TYPE'))
-      select case (v)
-      case ('SKYLINE'); m%solver = solver_skyline
-      case ('CHOLMOD'); m%solver = solver_cholmod
-      case ('UMFPACK'); m%solver = solver_umfpack
-      case default; call err(p, 'solver ' // v // ' is not available (SKYLINE, CHOLMOD, UMFPACK)')
-      end select
+      if (solver_code(v) == 0) call err(p, 'solver ' // v // ' is not available (SKYLINE, CHOLMOD, UMFPACK, MUMPS)')
+      m%solver = solver_code(v)
+      if (.not. solver_in_build(m%solver)) call err(p, 'TYPE=MUMPS: this cfe2d was built without MUMPS (no MPI ' // &
+        'or libmumps-dev where it was built: install them, scripts/install-deps.sh, and make clean all)')
     end if
     ! default ordering of each solver
     if (m%solver == solver_skyline) then
@@ -409,7 +409,7 @@ contains
         select case (v)
         case ('AMD'); m%ordering = order_amd
         case ('METIS'); m%ordering = order_metis
-        case default; call err(p, 'ordering ' // v // ' is not available for CHOLMOD and UMFPACK (AMD, METIS)')
+        case default; call err(p, 'ordering ' // v // ' is not available for CHOLMOD, UMFPACK and MUMPS (AMD, METIS)')
         end select
       end if
     end if
@@ -422,8 +422,8 @@ contains
       case default; call err(p, 'CONTACT SOLVE=' // v // ' is not available (AUTO, CONDENSED, FULL)')
       end select
     end if
-    if (m%contact_solve == contact_solve_condensed .and. m%solver /= solver_cholmod) &
-      call err(p, 'CONTACT SOLVE=CONDENSED needs TYPE=CHOLMOD (the other solvers factor the full system)')
+    if (m%contact_solve == contact_solve_condensed .and. m%solver /= solver_cholmod .and. m%solver /= solver_mumps) &
+      call err(p, 'CONTACT SOLVE=CONDENSED needs TYPE=CHOLMOD or MUMPS (the other solvers factor the full system)')
     call no_data(p, kw)
   end subroutine read_solver
 end submodule deck_contact_cards

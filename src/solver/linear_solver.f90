@@ -1,29 +1,31 @@
 !> One interface over the direct solvers of the global equations, each a
 !> backend (module solver_backend): the skyline LDL^T written here,
 !> CHOLMOD (default; the penalty-contact stiffness is symmetric positive
-!> definite) and UMFPACK. Symbolic analysis is done once per pattern and
+!> definite), UMFPACK and MUMPS (over the MPI ranks of the run). Symbolic analysis is done once per pattern and
 !> reused; only numeric factorisations repeat. If CHOLMOD finds the matrix
 !> not positive definite the system falls back to UMFPACK and says so.
 !> Adding a backend: a module extending solver_backend_t and one case in
 !> new_backend.
 !> A condensed solve (sys_condensed_factor, sys_forward, sys_backward,
 !> sys_trailing_order) needs a backend that keeps a trailing block of
-!> equations last and hands out that block of its factor: CHOLMOD
-!> (sys_can_condense says whether the system's backend can).
+!> equations last and hands out that block of its factor: CHOLMOD, and
+!> MUMPS through its Schur complement (sys_can_condense says whether the
+!> system's backend can).
 module linear_solver
   use kinds, only: dp
   use strings, only: itoa
   use messages, only: fatal
-  use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, order_natural, order_rcm, order_amd, &
+  use solver_codes, only: solver_skyline, solver_cholmod, solver_umfpack, solver_mumps, order_natural, order_rcm, order_amd, &
                           order_metis, solver_name, ordering_name
   use solver_backend, only: solver_backend_t, factor_ok, factor_singular, factor_fallback, factor_not_posdef, &
                             pivot_ratio_min
   use skyline_backend, only: skyline_backend_t
   use cholmod_backend, only: cholmod_backend_t
   use umfpack_backend, only: umfpack_backend_t
+  use mumps_backend, only: mumps_backend_t
   implicit none
   private
-  public :: linear_system_t, solver_skyline, solver_cholmod, solver_umfpack, order_natural, &
+  public :: linear_system_t, solver_skyline, solver_cholmod, solver_umfpack, solver_mumps, order_natural, &
             order_rcm, order_amd, order_metis, sys_setup, sys_zero, sys_add, sys_analyse, &
             sys_factor, sys_solve, sys_matvec, sys_free, sys_describe, sys_neq, sys_stored_entries, &
             solver_name, ordering_name, factor_ok, factor_singular, factor_fallback, &
@@ -53,6 +55,7 @@ contains
     select case (kind)
     case (solver_skyline); allocate(skyline_backend_t :: b)
     case (solver_umfpack); allocate(umfpack_backend_t :: b)
+    case (solver_mumps); allocate(mumps_backend_t :: b)
     case default; allocate(cholmod_backend_t :: b)
     end select
   end subroutine new_backend
@@ -62,7 +65,7 @@ contains
   !> kind: solver_skyline|cholmod|umfpack; ordering: order_* (the
   !> skyline takes the equations in the order given); nlast (optional):
   !> the last nlast equations are to stay last in the factor (a condensed
-  !> solve; only CHOLMOD keeps them last).
+  !> solve; CHOLMOD keeps them last, MUMPS makes them its Schur block).
   subroutine sys_setup(s, kind, ordering, n, xeq, eqs, nlast)
     type(linear_system_t), intent(inout) :: s
     integer, intent(in) :: kind, ordering, n, xeq(:), eqs(:)
@@ -175,7 +178,9 @@ contains
     character(len=:), allocatable :: d
     d = solver_name(s%kind) // ', ordering ' // ordering_name(s%ordering)
     if (sys_nlast(s) > 0 .and. sys_can_condense(s)) then
-      if (s%ordering == order_metis) then
+      if (s%kind == solver_mumps) then
+        d = d // ' (Schur complement on the last ' // itoa(sys_nlast(s)) // ' equations)'
+      else if (s%ordering == order_metis) then
         d = d // ' (the last ' // itoa(sys_nlast(s)) // ' equations kept last)'
       else
         d = d // ' (CAMD: the last ' // itoa(sys_nlast(s)) // ' equations kept last)'
@@ -198,6 +203,8 @@ contains
     if (.not. allocated(s%b)) return
     select type (b => s%b)
     type is (cholmod_backend_t)
+      sys_can_condense = .true.
+    type is (mumps_backend_t)
       sys_can_condense = .true.
     end select
   end function sys_can_condense
@@ -230,6 +237,8 @@ contains
     select type (b => s%b)
     type is (cholmod_backend_t)
       call b%condensed_factor(status, bad, l22, diag22)
+    type is (mumps_backend_t)
+      call b%condensed_factor(status, bad, l22, diag22)
     class default
       call fatal(solver_name(s%kind) // ' cannot condense a block of equations')
     end select
@@ -243,6 +252,8 @@ contains
     integer, intent(out) :: tperm(:)
     select type (b => s%b)
     type is (cholmod_backend_t)
+      call b%trailing_order(tperm)
+    type is (mumps_backend_t)
       call b%trailing_order(tperm)
     class default
       call fatal(solver_name(s%kind) // ' has no trailing block')
@@ -258,6 +269,8 @@ contains
     select type (bk => s%b)
     type is (cholmod_backend_t)
       call bk%forward(b)
+    type is (mumps_backend_t)
+      call bk%forward(b)
     class default
       call fatal(solver_name(s%kind) // ' has no forward solve')
     end select
@@ -269,6 +282,8 @@ contains
     real(dp), intent(inout) :: b(:)
     select type (bk => s%b)
     type is (cholmod_backend_t)
+      call bk%backward(b)
+    type is (mumps_backend_t)
       call bk%backward(b)
     class default
       call fatal(solver_name(s%kind) // ' has no backward solve')

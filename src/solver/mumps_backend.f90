@@ -1,0 +1,478 @@
+!> MUMPS (multifrontal, distributed over the MPI ranks of the run) as a
+!> solver backend. Rank 0 assembles the matrix (both triangles, compressed
+!> columns) and hands MUMPS its coordinates: the upper triangle as a
+!> symmetric matrix (SYM=2: LDL^T with pivoting, so that a matrix that is
+!> not positive definite is factored too), or every entry once the matrix
+!> has been found unsymmetric (a sliding frictional contact; SYM=0, LU),
+!> after which the backend stays unsymmetric for this structure. The
+!> other ranks join every analysis, factorisation and solve
+!> (mumps_shim.c). Ordering: METIS or AMD, by MUMPS (ICNTL(7)).
+!> A singular matrix is recognised by MUMPS' null-pivot detection
+!> (ICNTL(24)=1, threshold CNTL(3) = pivot_ratio_min of the scaled matrix):
+!> the first null pivot's equation is reported. Workspace too small
+!> (INFOG(1) = -8, -9, -14, -15, ...) is retried with twice the
+!> workspace margin ICNTL(14); an allocation that fails (-13) or a
+!> problem past MUMPS' integer range is a clear fatal error.
+!> With a trailing block (nlast > 0) MUMPS returns the Schur complement
+!> S0 of the leading equations on it (ICNTL(19)=1, centralised on rank 0);
+!> the backend offers the same as CHOLMOD's trailing block: L22 = chol(S0
+!> + diag(K22)) (so that S0 = L22 L22^T - diag(K22), as in
+!> cholmod_backend) and the forward and backward halves of a solve,
+!> written with solves of the leading block only (ICNTL(26)=0):
+!>   forward:  [b1; b2] -> [b1; L22^-1 (b2 - K21 K11^-1 b1)]
+!>   backward: [b1; w2] -> [K11^-1 (b1 - K12 x2); x2], x2 = L22^-T w2,
+!> which compose to K^-1 with K22 = S0's share as the condensed solve
+!> uses them (analysis/condensed_contact).
+module mumps_backend
+  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_long_long
+  use kinds, only: dp
+  use strings, only: itoa, rtoa
+  use messages, only: fatal
+  use solver_codes, only: order_metis, solver_mumps, solver_in_build
+  use sparse_matrix, only: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec
+  use dense_cholesky, only: dense_factor
+  use mumps_binding, only: cfe_mpi_start, cfe_mumps_new, cfe_mumps_free, &
+                           cfe_mumps_get_control, cfe_mumps_set_control, cfe_mumps_job, cfe_mumps_null_pivots, &
+                           mumps_job_analyse, mumps_job_factor, mumps_job_solve
+  use solver_backend, only: solver_backend_t, factor_ok, factor_singular, pivot_ratio_min
+  implicit none
+  private
+  public :: mumps_backend_t
+
+  !> MUMPS' SYM: symmetric (LDL^T with pivoting) and unsymmetric (LU).
+  integer, parameter :: sym_symmetric = 2, sym_general = 0
+  !> Workspace retries: ICNTL(14) (percent over the analysis' estimate)
+  !> doubled up to this many times.
+  integer, parameter :: max_retries = 4
+
+  interface
+    subroutine dtrsv(uplo, trans, diag, n, a, lda, x, incx)
+      import :: dp
+      character, intent(in) :: uplo, trans, diag
+      integer, intent(in) :: n, lda, incx
+      real(dp), intent(in) :: a(lda, *)
+      real(dp), intent(inout) :: x(*)
+    end subroutine dtrsv
+  end interface
+
+  type, extends(solver_backend_t) :: mumps_backend_t
+    type(csc_t) :: a                          ! both triangles
+    integer(c_int) :: h = -1                  ! MUMPS instance (mumps_shim), -1 none
+    integer :: sym = sym_symmetric
+    integer :: ranks = 1
+    integer :: margin = 35                    ! ICNTL(14)
+    logical :: analysed = .false.
+    integer, allocatable :: pick(:)           ! entries of a%val handed to MUMPS
+    integer(c_int), allocatable :: irn(:), jcn(:), schur_list(:)
+    real(c_double), allocatable :: av(:)
+    real(dp), allocatable :: l22(:, :)        ! chol(S0 + diag(K22)), lower
+    real(dp) :: mem_rank_mb = 0.0_dp, mem_total_mb = 0.0_dp   ! INFOG(21), INFOG(22)
+    integer(c_int) :: infog(80) = 0, info(80) = 0
+    real(c_double) :: rinfog(40) = 0.0_c_double
+  contains
+    procedure :: setup, zero, add, analyse, factor, solve, matvec, describe, stored_entries, free
+    procedure :: condensed_factor, forward, backward, trailing_order
+    procedure, private :: run, interior_solve, numeric
+  end type mumps_backend_t
+
+contains
+
+  subroutine setup(self, n, ordering, xeq, eqs)
+    class(mumps_backend_t), intent(inout) :: self
+    integer, intent(in) :: n, ordering, xeq(:), eqs(:)
+    call self%free()
+    if (.not. solver_in_build(solver_mumps)) call fatal('MUMPS is not in this build of cfe2d (built without MPI or ' // &
+                                           'libmumps-dev; see README, "Several machines")')
+    call self%keep_structure(n, ordering, xeq, eqs)
+    call csc_build(self%a, n, xeq, eqs, upper=.false.)
+    self%sym = sym_symmetric
+  end subroutine setup
+
+  subroutine zero(self)
+    class(mumps_backend_t), intent(inout) :: self
+    call csc_zero(self%a)
+  end subroutine zero
+
+  subroutine add(self, e, ke)
+    class(mumps_backend_t), intent(inout) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: ke(:, :)
+    call csc_add_element(self%a, e, self%eqs(self%xeq(e):self%xeq(e + 1) - 1), ke)
+  end subroutine add
+
+  !> Purpose: a MUMPS instance for the current symmetry, its controls, the
+  !> coordinates handed to it, and MUMPS' analysis (ordering, symbolic
+  !> factorisation, mapping onto the ranks), once per pattern and symmetry.
+  subroutine analyse(self)
+    class(mumps_backend_t), intent(inout) :: self
+    integer(c_int) :: icntl(60)
+    real(c_double) :: cntl(15)
+    integer :: col, k, cnt, nlead
+    if (self%analysed) return
+    self%analysed = .true.
+    self%factor_entries = 0.0_dp
+    if (self%n == 0) return
+    if (self%h < 0) then
+      self%ranks = int(cfe_mpi_start(1_c_int))
+      if (self%ranks < 1) call fatal('MUMPS: MPI could not be started (MPI_Init failed)')
+      self%h = cfe_mumps_new(int(self%sym, c_int))
+      if (self%h < 0) call fatal('MUMPS: no instance could be made (MPI_Init failed, or too many systems)')
+    end if
+    call cfe_mumps_get_control(self%h, icntl, cntl)
+    icntl(1:3) = -1                       ! no messages: cfe2d reports
+    icntl(4) = 0
+    icntl(5) = 0                          ! assembled matrix
+    icntl(18) = 0                         ! centralised on rank 0
+    icntl(7) = merge(5, 0, self%ordering == order_metis)   ! METIS or AMD
+    icntl(14) = self%margin
+    icntl(24) = 1                         ! null pivots detected and listed
+    cntl(3) = pivot_ratio_min
+    icntl(19) = merge(1, 0, self%nlast > 0)   ! Schur complement, centralised by rows
+    icntl(26) = 0                         ! with a Schur block: solves of the leading block
+    call cfe_mumps_set_control(self%h, icntl, cntl)
+    ! the entries MUMPS gets: the upper triangle, or all of them
+    cnt = 0
+    do col = 1, self%n
+      do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
+        if (self%sym == sym_general .or. self%a%rowind(k) <= col) cnt = cnt + 1
+      end do
+    end do
+    if (allocated(self%pick)) deallocate(self%pick, self%irn, self%jcn, self%av)
+    allocate(self%pick(cnt), self%irn(cnt), self%jcn(cnt), self%av(cnt))
+    cnt = 0
+    do col = 1, self%n
+      do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
+        if (self%sym == sym_general .or. self%a%rowind(k) <= col) then
+          cnt = cnt + 1
+          self%pick(cnt) = k
+          self%irn(cnt) = int(self%a%rowind(k), c_int)
+          self%jcn(cnt) = int(col, c_int)
+        end if
+      end do
+    end do
+    nlead = self%n - self%nlast
+    self%schur_list = [(int(k, c_int), k = nlead + 1, self%n)]
+    self%av = 0.0_c_double
+    call self%run(mumps_job_analyse, 'analysis')
+    self%factor_entries = mumps_count(self%infog(20))
+    self%factor_flops = self%rinfog(1)
+  end subroutine analyse
+
+  !> Purpose: one MUMPS job with the current matrix; a workspace too small
+  !> is retried with a larger margin (the factorisation), any other error
+  !> of MUMPS stops the run with its meaning. Null pivots are no error.
+  !> Arguments: job (mumps_job_*), what names it in messages; rhs(n,
+  !> nrhs) for a solve.
+  subroutine run(self, job, what, rhs)
+    class(mumps_backend_t), intent(inout) :: self
+    integer(c_int), intent(in) :: job
+    character(len=*), intent(in) :: what
+    real(dp), intent(inout), optional, target :: rhs(:, :)
+    real(c_double) :: none(1), sdum(1)
+    integer(c_int) :: st, nrhs, icntl(60)
+    real(c_double) :: cntl(15)
+    integer :: attempt
+    none = 0.0_c_double
+    sdum = 0.0_c_double
+    nrhs = 0
+    if (present(rhs)) nrhs = int(size(rhs, 2), c_int)
+    do attempt = 0, max_retries
+      if (present(rhs)) then
+        if (self%nlast > 0 .and. job == mumps_job_factor) then
+          st = cfe_mumps_job(self%h, job, int(self%n, c_int), int(size(self%irn), c_long_long), self%irn, self%jcn, &
+                             self%av, int(self%nlast, c_int), self%schur_list, self%l22, nrhs, rhs, self%infog, &
+                             self%info, self%rinfog)
+        else
+          st = cfe_mumps_job(self%h, job, int(self%n, c_int), int(size(self%irn), c_long_long), self%irn, self%jcn, &
+                             self%av, int(self%nlast, c_int), self%schur_list, sdum, nrhs, rhs, self%infog, &
+                             self%info, self%rinfog)
+        end if
+      else if (self%nlast > 0 .and. job == mumps_job_factor) then
+        st = cfe_mumps_job(self%h, job, int(self%n, c_int), int(size(self%irn), c_long_long), self%irn, self%jcn, &
+                           self%av, int(self%nlast, c_int), self%schur_list, self%l22, 0_c_int, none, self%infog, &
+                           self%info, self%rinfog)
+      else
+        st = cfe_mumps_job(self%h, job, int(self%n, c_int), int(size(self%irn), c_long_long), self%irn, self%jcn, &
+                           self%av, int(self%nlast, c_int), self%schur_list, sdum, 0_c_int, none, self%infog, &
+                           self%info, self%rinfog)
+      end if
+      if (st >= 0) return
+      select case (st)
+      case (-8, -9, -11, -12, -14, -15, -17, -20)
+        if (job /= mumps_job_factor .or. attempt == max_retries) exit
+        ! the workspace estimated by the analysis was too small
+        self%margin = 2 * self%margin
+        call cfe_mumps_get_control(self%h, icntl, cntl)
+        icntl(14) = self%margin
+        call cfe_mumps_set_control(self%h, icntl, cntl)
+      case default
+        exit
+      end select
+    end do
+    call fatal('MUMPS ' // what // ' failed: ' // mumps_error(st, self%infog(2)) // ' (INFOG(1) = ' // &
+               itoa(int(st)) // ', INFOG(2) = ' // itoa(int(self%infog(2))) // ')')
+  end subroutine run
+
+  !> Purpose: what an INFOG(1) < 0 of MUMPS means, in words.
+  function mumps_error(st, info2) result(s)
+    integer(c_int), intent(in) :: st, info2
+    character(len=:), allocatable :: s
+    select case (st)
+    case (-10)
+      s = 'the matrix is numerically singular'
+    case (-13)
+      s = 'memory could not be allocated (' // itoa(int(info2)) // ' more words on some rank): run on more ' // &
+          'ranks or machines with more memory'
+    case (-8, -9, -11, -12, -14, -15, -17, -20)
+      s = 'its workspace stayed too small after ' // itoa(max_retries) // ' enlargements (ICNTL(14))'
+    case (-19)
+      s = 'the memory per rank it may use (ICNTL(23)) is too small'
+    case (-16)
+      s = 'the matrix has no equations, or too many'
+    case (-51, -52)
+      s = 'the problem is too large for 32-bit integers'
+    case (-999)
+      s = 'MUMPS is not in this build'
+    case default
+      s = 'see the MUMPS users'' guide for this error'
+    end select
+  end function mumps_error
+
+  !> An INFOG count of MUMPS: negative means millions.
+  pure real(dp) function mumps_count(v)
+    integer(c_int), intent(in) :: v
+    if (v < 0) then
+      mumps_count = -1.0e6_dp * real(v, dp)
+    else
+      mumps_count = real(v, dp)
+    end if
+  end function mumps_count
+
+  !> Purpose: is the assembled matrix symmetric? Both triangles are
+  !> summed from the element matrices in the same order, so a symmetric
+  !> matrix is so to the last bit; a sliding frictional tangent is not.
+  logical function is_symmetric(a)
+    type(csc_t), intent(in) :: a
+    integer :: col, k, r, lo, hi, mid
+    real(dp) :: t
+    is_symmetric = .true.
+    do col = 1, a%n
+      do k = a%colptr(col), a%colptr(col + 1) - 1
+        r = a%rowind(k)
+        if (r >= col) cycle
+        ! the entry (col, r): column r, sorted rows
+        lo = a%colptr(r)
+        hi = a%colptr(r + 1) - 1
+        do while (lo < hi)
+          mid = (lo + hi) / 2
+          if (a%rowind(mid) < col) then
+            lo = mid + 1
+          else
+            hi = mid
+          end if
+        end do
+        t = 0.0_dp
+        if (lo <= a%colptr(r + 1) - 1) then
+          if (a%rowind(lo) == col) t = a%val(lo)
+        end if
+        if (t /= a%val(k)) then
+          is_symmetric = .false.
+          return
+        end if
+      end do
+    end do
+  end function is_symmetric
+
+  subroutine factor(self, status, bad)
+    class(mumps_backend_t), intent(inout) :: self
+    integer, intent(out) :: status, bad
+    call self%numeric(status, bad)
+  end subroutine factor
+
+  !> Purpose: numeric factorisation (analysis first where needed); an
+  !> unsymmetric matrix turns the backend to LU for good (a new instance,
+  !> a new analysis). status factor_singular with bad the first null
+  !> pivot's equation (0 if MUMPS does not name it).
+  subroutine numeric(self, status, bad)
+    class(mumps_backend_t), intent(inout) :: self
+    integer, intent(out) :: status, bad
+    integer(c_int) :: piv(1), cnt
+    status = factor_ok
+    bad = 0
+    if (self%n == 0) return
+    if (self%sym == sym_symmetric .and. self%nlast == 0) then
+      if (.not. is_symmetric(self%a)) then
+        if (self%h >= 0) call cfe_mumps_free(self%h)
+        self%h = -1
+        self%sym = sym_general
+        self%analysed = .false.
+      end if
+    end if
+    call self%analyse()
+    self%av = self%a%val(self%pick)
+    if (self%nlast > 0) then
+      if (allocated(self%l22)) then
+        if (size(self%l22, 1) /= self%nlast) deallocate(self%l22)
+      end if
+      if (.not. allocated(self%l22)) allocate(self%l22(self%nlast, self%nlast))
+      self%l22 = 0.0_dp
+    end if
+    call self%run(mumps_job_factor, 'factorisation')
+    self%factor_entries = mumps_count(self%infog(29))
+    self%mem_rank_mb = real(self%infog(21), dp)
+    self%mem_total_mb = real(self%infog(22), dp)
+    cnt = cfe_mumps_null_pivots(self%h, piv, 1_c_int)
+    if (cnt > 0) then
+      status = factor_singular
+      bad = int(piv(1))
+    end if
+  end subroutine numeric
+
+  !> Purpose: b(n, nrhs) := K^-1 b (without a trailing block).
+  subroutine solve(self, b)
+    class(mumps_backend_t), intent(inout) :: self
+    real(dp), intent(inout) :: b(:, :)
+    if (self%n == 0 .or. size(b, 2) == 0) return
+    if (self%nlast > 0) call fatal('MUMPS: a whole solve was asked of a factor with a Schur block')
+    call self%run(mumps_job_solve, 'solve', b)
+  end subroutine solve
+
+  !> Purpose: x(1:n-nlast) := K11^-1 x(1:n-nlast), the Schur block's
+  !> entries 0 (MUMPS' solve of the leading block, ICNTL(26)=0).
+  subroutine interior_solve(self, x)
+    class(mumps_backend_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    real(dp), allocatable :: b2(:, :)
+    b2 = reshape(x, [self%n, 1])
+    b2(self%n - self%nlast + 1:, 1) = 0.0_dp
+    call self%run(mumps_job_solve, 'solve', b2)
+    x = b2(:, 1)
+    x(self%n - self%nlast + 1:) = 0.0_dp
+  end subroutine interior_solve
+
+  !> Purpose: factorisation with a trailing block of m = nlast equations
+  !> for a condensed solve: MUMPS eliminates the leading equations and
+  !> returns S0 (Schur complement); L22 = chol(S0 + diag(K22)).
+  !> Arguments: status, bad as factor (leading pivots only); l22(m, m)
+  !> returns L22 (lower triangle), diag22(m) K's trailing diagonal, both in
+  !> equation order (trailing_order is the identity), so that S0 = l22
+  !> l22^T - diag(diag22) as with cholmod_backend.
+  subroutine condensed_factor(self, status, bad, l22, diag22)
+    class(mumps_backend_t), intent(inout) :: self
+    integer, intent(out) :: status, bad
+    real(dp), intent(out) :: l22(:, :), diag22(:)
+    integer :: i, j, k, nlead, info
+    nlead = self%n - self%nlast
+    call self%numeric(status, bad)
+    if (status /= factor_ok) return
+    ! MUMPS returns the lower triangle by rows: the upper one here
+    do j = 1, self%nlast
+      do i = j + 1, self%nlast
+        self%l22(i, j) = self%l22(j, i)
+        self%l22(j, i) = 0.0_dp
+      end do
+    end do
+    do k = 1, self%nlast
+      diag22(k) = diagonal_entry(self%a, nlead + k)
+      self%l22(k, k) = self%l22(k, k) + diag22(k)
+    end do
+    call dense_factor(self%l22, info)
+    if (info /= 0) then
+      status = factor_singular
+      bad = nlead + info
+      return
+    end if
+    l22 = self%l22
+  end subroutine condensed_factor
+
+  pure real(dp) function diagonal_entry(a, j)
+    type(csc_t), intent(in) :: a
+    integer, intent(in) :: j
+    integer :: k
+    diagonal_entry = 0.0_dp
+    do k = a%colptr(j), a%colptr(j + 1) - 1
+      if (a%rowind(k) == j) diagonal_entry = a%val(k)
+    end do
+  end function diagonal_entry
+
+  !> Purpose: tperm(k) = k: MUMPS keeps the Schur block in the order given.
+  subroutine trailing_order(self, tperm)
+    class(mumps_backend_t), intent(in) :: self
+    integer, intent(out) :: tperm(:)
+    integer :: k
+    tperm = [(k, k = 1, self%nlast)]
+  end subroutine trailing_order
+
+  !> Purpose: b := [b1; L22^-1 (b2 - K21 K11^-1 b1)], the forward half.
+  subroutine forward(self, b)
+    class(mumps_backend_t), intent(inout) :: self
+    real(dp), intent(inout) :: b(:)
+    real(dp), allocatable :: x(:)
+    integer :: col, k, nlead, r
+    if (self%n == 0) return
+    nlead = self%n - self%nlast
+    x = b
+    call self%interior_solve(x)
+    do col = 1, nlead
+      do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
+        r = self%a%rowind(k)
+        if (r > nlead) b(r) = b(r) - self%a%val(k) * x(col)
+      end do
+    end do
+    if (self%nlast > 0) call dtrsv('L', 'N', 'N', self%nlast, self%l22, self%nlast, b(nlead + 1:), 1)
+  end subroutine forward
+
+  !> Purpose: b := [K11^-1 (b1 - K12 x2); x2] with x2 = L22^-T b2, the
+  !> backward half.
+  subroutine backward(self, b)
+    class(mumps_backend_t), intent(inout) :: self
+    real(dp), intent(inout) :: b(:)
+    real(dp), allocatable :: x2(:)
+    integer :: col, k, nlead, r
+    if (self%n == 0) return
+    nlead = self%n - self%nlast
+    x2 = b(nlead + 1:)
+    if (self%nlast > 0) call dtrsv('L', 'T', 'N', self%nlast, self%l22, self%nlast, x2, 1)
+    do col = nlead + 1, self%n
+      do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
+        r = self%a%rowind(k)
+        if (r <= nlead) b(r) = b(r) - self%a%val(k) * x2(col - nlead)
+      end do
+    end do
+    call self%interior_solve(b)
+    b(nlead + 1:) = x2
+  end subroutine backward
+
+  pure subroutine matvec(self, x, y)
+    class(mumps_backend_t), intent(in) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: y(:)
+    call csc_matvec(self%a, x, y)
+  end subroutine matvec
+
+  function describe(self) result(d)
+    class(mumps_backend_t), intent(in) :: self
+    character(len=:), allocatable :: d
+    d = 'factor entries ' // rtoa(self%factor_entries, 6) // ', ' // itoa(self%ranks) // ' MPI rank'
+    if (self%ranks /= 1) d = d // 's'
+    if (self%sym == sym_general) d = d // ', LU (unsymmetric)'
+  end function describe
+
+  integer(8) function stored_entries(self)
+    class(mumps_backend_t), intent(in) :: self
+    stored_entries = size(self%a%val, kind=8)
+  end function stored_entries
+
+  subroutine free(self)
+    class(mumps_backend_t), intent(inout) :: self
+    type(csc_t) :: empty
+    if (self%h >= 0) call cfe_mumps_free(self%h)
+    self%h = -1
+    self%analysed = .false.
+    self%a = empty
+    self%n = 0
+    if (allocated(self%pick)) deallocate(self%pick, self%irn, self%jcn, self%av)
+    if (allocated(self%l22)) deallocate(self%l22)
+    if (allocated(self%xeq)) deallocate(self%xeq, self%eqs)
+  end subroutine free
+end module mumps_backend
