@@ -16,7 +16,15 @@
    tangential reaction reaches mu P, mu = 0.3), against the same two-step
    history without friction: wall times, their ratio (target <= 2), the
    sparse factorisations per step (target 1) and the contact iterations.
-3. With --solvers: the solvers on a structured plane-stress square (Q4) at
+3. MUMPS (issue 22; where bin/cfe2d has it and mpirun starts): the 1e6-dof
+   square with CHOLMOD, MUMPS on 1 rank and MUMPS on 2 ranks
+   (mpirun -np 2) in the same run: wall time, solve part, peak memory of
+   the largest process (a rank), the ratios to CHOLMOD.
+4. With --surfaces N,N,...: contact surfaces of N contact points
+   (scripts/contact_decks.py: two long strips, a rough surface on a flat;
+   two steps of 4 increments) on the condensed and the full path, with
+   CHOLMOD and with MUMPS over 2 ranks, and which path AUTO takes.
+5. With --solvers: the solvers on a structured plane-stress square (Q4) at
    about 1e4, 1e5 and 1e6 dofs (tests/bench/bench.f90, one process per
    case): dofs, stored nonzeros, factor size, wall times of structure,
    assembly, ordering+symbolic analysis, numeric factorisation and solve,
@@ -242,6 +250,100 @@ def contact_table(meshes, repeats, square):
           "with sys < 20% of user; hertz_default peak <= 105 MiB")
 
 
+def mpirun(np_):
+    """The launcher for np_ ranks (Open MPI: as root too, oversubscribed on
+    a machine with fewer cores), or None where there is none."""
+    exe = shutil.which("mpirun")
+    if exe is None:
+        return None
+    os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+    os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+    version = subprocess.run([exe, "--version"], capture_output=True, text=True).stdout
+    return [exe] + (["--oversubscribe"] if "Open MPI" in version else []) + ["-np", str(np_)]
+
+
+def mumps_runs():
+    """(label, command prefix) of the MUMPS runs this machine can do."""
+    probe = subprocess.run([CFE2D, "--solver", "MUMPS", "--version"], capture_output=True, text=True)
+    if probe.returncode != 0:
+        print(f"\nno MUMPS rows: {probe.stderr.strip()}")
+        return []
+    runs = [("mumps_1", [CFE2D, "--solver", "MUMPS"])]
+    two = mpirun(2)
+    if two:
+        runs.append(("mumps_2", two + [CFE2D, "--solver", "MUMPS"]))
+    return runs
+
+
+def measured(cmd, deck, repeats, timeout=None):
+    """Best wall time of repeated runs, the listing's timing, the largest peak."""
+    best, peak = None, 0.0
+    for _ in range(repeats):
+        wall, user, syst, mib, rc = run_measured(cmd + ["-q", deck])
+        if rc != 0:
+            raise RuntimeError(f"{' '.join(cmd)} failed on {deck}")
+        peak = max(peak, mib)
+        t = timing_block(os.path.splitext(deck)[0] + ".out")
+        if best is None or wall < best[0]:
+            best = (wall, t)
+    return best[0], best[1], peak
+
+
+def mumps_square_table(repeats):
+    runs = mumps_runs()
+    if not runs:
+        return
+    path = square_deck()
+    print(f"\nthe 1e6-dof square: CHOLMOD and MUMPS in the same run, best of {repeats}; "
+          f"load average before: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
+    cols = ["solver", "equations", "wall_s", "solve_s", "factor_s", "peak_MiB", "wall/cholmod", "solve/cholmod"]
+    print(" ".join(f"{c:>13}" for c in cols), flush=True)
+    ref = None
+    for label, cmd in [("cholmod", [CFE2D])] + runs:
+        wall, t, peak = measured(cmd, path, repeats)
+        solve = solve_part(t)
+        if ref is None:
+            ref = (wall, solve)
+        row = [label, t["equations"], f"{wall:.2f}", f"{solve:.2f}", f"{t['factor']:.2f}", f"{peak:.0f}",
+               f"{wall / ref[0]:.2f}", f"{solve / ref[1]:.2f}"]
+        print(" ".join(f"{c:>13}" for c in row), flush=True)
+    print(f"load average after: {' '.join(f'{v:.2f}' for v in os.getloadavg())}; peak: the largest process (a rank)")
+
+
+def surface_table(points, repeats, condensed_max=4000):
+    """Contact surfaces of many points: condensed and full, CHOLMOD and MUMPS (2 ranks)."""
+    import contact_decks
+    runs = [("cholmod", [CFE2D])] + [r for r in mumps_runs() if r[0] == "mumps_2"]
+    print(f"\ncontact surfaces (scripts/contact_decks.py), best of {repeats}; load average before: "
+          f"{' '.join(f'{v:.2f}' for v in os.getloadavg())}")
+    cols = ["case", "points", "equations", "contact_eqs", "solver", "path", "wall_s", "peak_MiB", "auto_takes"]
+    print(" ".join(f"{c:>11}" for c in cols), flush=True)
+    d = os.path.join(WORK, "surfaces")
+    os.makedirs(d, exist_ok=True)
+    for kind in ("strips", "rough"):
+        for n in points:
+            for label, cmd in runs:
+                solver = "MUMPS" if label.startswith("mumps") else "CHOLMOD"
+                deck = os.path.join(d, f"{kind}{n}_{label}_auto.inp")
+                with open(deck, "w") as f:
+                    f.write(contact_decks.deck(kind, n, 4, 0.8, 0.02, 1, 3.0, 4, solver, "AUTO"))
+                subprocess.run(cmd + ["-q", deck], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                with open(os.path.splitext(deck)[0] + ".out") as f:
+                    m = re.search(r"^contact_solve (\w+)$", f.read(), re.M)
+                auto = m.group(1) if m else "?"
+                for path in ("condensed", "full"):
+                    if path == "condensed" and n > condensed_max:
+                        continue
+                    deck = os.path.join(d, f"{kind}{n}_{label}_{path}.inp")
+                    with open(deck, "w") as f:
+                        f.write(contact_decks.deck(kind, n, 4, 0.8, 0.02, 1, 3.0, 4, solver, path.upper()))
+                    wall, t, peak = measured(cmd, deck, repeats)
+                    row = [kind, n, t["equations"], t["contact_equations"], label, path, f"{wall:.2f}",
+                           f"{peak:.0f}", auto]
+                    print(" ".join(f"{c:>11}" for c in row), flush=True)
+    print(f"load average after: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
+
+
 def solver_table(exe, sizes):
     print(f"\nsolvers on the structured square (tests/bench/bench.f90, {exe})")
     cols = ["size", "solver", "ordering", "dofs", "nnz", "factor", "t_structure", "t_assembly", "t_analysis",
@@ -278,6 +380,9 @@ def main(argv=None):
     ap.add_argument("--no-square", action="store_true", help="leave out the 1e6-dof square")
     ap.add_argument("--solvers", action="store_true", help="also the solver table on the structured square")
     ap.add_argument("--sizes", default="1e4,1e5,1e6", help="sizes of the solver table")
+    ap.add_argument("--no-mumps", action="store_true", help="leave out the MUMPS rows of the 1e6-dof square")
+    ap.add_argument("--surfaces", default="", help="contact points of the surface table, e.g. 1000,2000,4000")
+    ap.add_argument("--condensed-max", type=int, default=4000, help="largest surface run on the condensed path")
     args = ap.parse_args(argv)
     if shutil.which("gmsh") is None:
         print("gmsh is not installed: no flagship meshes (scripts/install-deps.sh installs it)")
@@ -286,6 +391,10 @@ def main(argv=None):
         meshes = [m for m in args.meshes.split(",") if m]
     contact_table(meshes, args.repeats, not args.no_square)
     friction_table([m for m in meshes if m != "fine"], args.repeats)
+    if not args.no_mumps and not args.no_square:
+        mumps_square_table(args.repeats)
+    if args.surfaces:
+        surface_table([int(v) for v in args.surfaces.split(",")], 1, args.condensed_max)
     failed = solver_table(args.exe, args.sizes.split(",")) if args.solvers else False
     return 1 if failed else 0
 
