@@ -13,8 +13,8 @@ $(OBJDIR)/dense_cholesky.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/dense_lu.o: $(OBJDIR)/kinds.o
 $(OBJDIR)/linear_solver.o: $(OBJDIR)/cholmod_backend.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/mumps_backend.o $(OBJDIR)/skyline_backend.o $(OBJDIR)/solver_backend.o $(OBJDIR)/solver_codes.o $(OBJDIR)/strings.o $(OBJDIR)/umfpack_backend.o
 $(OBJDIR)/metis_binding.o:
-$(OBJDIR)/mpi_session.o: $(OBJDIR)/mumps_binding.o
-$(OBJDIR)/mumps_backend.o: $(OBJDIR)/dense_cholesky.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/mumps_binding.o $(OBJDIR)/solver_backend.o $(OBJDIR)/solver_codes.o $(OBJDIR)/sparse_matrix.o $(OBJDIR)/strings.o
+$(OBJDIR)/mpi_session.o: $(OBJDIR)/blas_info.o $(OBJDIR)/mumps_binding.o
+$(OBJDIR)/mumps_backend.o: $(OBJDIR)/blas_info.o $(OBJDIR)/dense_cholesky.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/mumps_binding.o $(OBJDIR)/solver_backend.o $(OBJDIR)/solver_codes.o $(OBJDIR)/sparse_matrix.o $(OBJDIR)/strings.o
 $(OBJDIR)/mumps_binding.o:
 $(OBJDIR)/mumps_shim.o:
 $(OBJDIR)/ordering.o: $(OBJDIR)/messages.o $(OBJDIR)/metis_binding.o $(OBJDIR)/strings.o

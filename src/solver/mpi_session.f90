@@ -7,6 +7,7 @@
 module mpi_session
   use, intrinsic :: iso_c_binding, only: c_int
   use mumps_binding, only: cfe_mpi_start, cfe_mpi_rank, cfe_mpi_worker_loop
+  use blas_info, only: set_solver_threads
   implicit none
   private
   public :: session_start, session_serve
@@ -25,8 +26,10 @@ contains
   end subroutine session_start
 
   !> Purpose: a worker rank's whole life: join rank 0's MUMPS jobs until
-  !> rank 0 ends the session.
+  !> rank 0 ends the session. The thread policy is rank 0's (one BLAS
+  !> thread per rank unless the environment asks for more).
   subroutine session_serve()
+    call set_solver_threads()
     call cfe_mpi_worker_loop()
   end subroutine session_serve
 end module mpi_session

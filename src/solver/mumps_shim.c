@@ -17,6 +17,7 @@
  * entry points exist: one rank, and cfe_mumps_available() says 0. */
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define CFE_MAX_INSTANCES 8
 
@@ -40,10 +41,14 @@ static int launched_by_mpi(void)
   return 0;
 }
 
+/* Rank 0's side of wait_command (a non-blocking broadcast must meet a
+ * non-blocking one). */
 static void broadcast(int cmd, int h, int arg)
 {
   int msg[3] = {cmd, h, arg};
-  MPI_Bcast(msg, 3, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Request req;
+  MPI_Ibcast(msg, 3, MPI_INT, 0, MPI_COMM_WORLD, &req);
+  MPI_Wait(&req, MPI_STATUS_IGNORE);
 }
 
 /* The job on instance h, every rank together; icntl and cntl are rank 0's. */
@@ -109,13 +114,33 @@ int cfe_mpi_start(int force)
 
 int cfe_mpi_rank(void) { return rank; }
 
+/* The next command from rank 0. A blocking MPI_Bcast would spin (Open MPI
+ * polls) for the whole time rank 0 reads, assembles and writes, taking a
+ * core from it on a machine with as many ranks as cores; the worker polls
+ * a non-blocking broadcast instead and sleeps between polls (50 us, up to
+ * 2 ms while nothing comes). */
+static void wait_command(int *msg)
+{
+  MPI_Request req;
+  int done = 0;
+  long ns = 50000;
+  MPI_Ibcast(msg, 3, MPI_INT, 0, MPI_COMM_WORLD, &req);
+  for (;;) {
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    struct timespec ts = {0, ns};
+    nanosleep(&ts, 0);
+    if (ns < 2000000) ns *= 2;
+  }
+}
+
 /* A worker rank: obeys rank 0 until it says quit, then leaves MPI. */
 void cfe_mpi_worker_loop(void)
 {
   int msg[3];
   if (!started || rank == 0) return;
   for (;;) {
-    MPI_Bcast(msg, 3, MPI_INT, 0, MPI_COMM_WORLD);
+    wait_command(msg);
     if (msg[0] == CMD_QUIT) break;
     switch (msg[0]) {
     case CMD_NEW: new_instance(msg[1], msg[2]); break;
