@@ -249,3 +249,28 @@ def test_build_without_mpi():
     p = subprocess.run([NOMPI, "-q", "--solver", "mumps", "-o", d, path.replace("nompi.inp", "x.inp")],
                        capture_output=True, text=True)
     assert p.returncode != 0 and "built without MUMPS" in p.stderr, p.stderr
+
+
+def test_auto_decides_as_with_cholmod():
+    """CONTACT SOLVE=AUTO takes the same path with MUMPS as with CHOLMOD
+    (MUMPS' flop count of a factor with a Schur block includes the
+    block's dense Cholesky, as CHOLMOD's count does; before it did, AUTO
+    took the full path with MUMPS on the 100-point strips): condensed on
+    the two blocks and on two strips of 100 contact points four elements
+    thick (scripts/contact_decks.py), full on two strips one element thick."""
+    mpirun_prefix(1)
+    saved = tc.NX1, tc.NY1, tc.NX2, tc.NY2
+    tc.NX1, tc.NY1, tc.NX2, tc.NY2 = 20, 1, 40, 1
+    try:
+        strips = tc.blocks_deck([tc.push_step(3 * tc.G0)])
+    finally:
+        tc.NX1, tc.NY1, tc.NX2, tc.NY2 = saved
+    import contact_decks
+    for name, deck, path in (("blocks", tc.blocks_deck([tc.push_step(3 * tc.G0)]), "condensed"),
+                             ("strips100", contact_decks.deck("strips", 100, 4, 0.8, 0.02, 1, 3.0, 2, "", "AUTO"),
+                              "condensed"),
+                             ("strips", strips, "full")):
+        ref = run_deck(f"mumps_auto_{name}_cholmod", deck).ok()
+        run = run_deck(f"mumps_auto_{name}", deck, args=("--solver", "MUMPS")).ok()
+        assert tcd.contact_solve(ref) == tcd.contact_solve(run) == [path] * len(tcd.contact_solve(ref)), \
+            (name, tcd.contact_solve(run))
