@@ -3,7 +3,8 @@
 !> columns) and hands MUMPS its coordinates: the upper triangle as a
 !> symmetric matrix (SYM=2: LDL^T with pivoting, so that a matrix that is
 !> not positive definite is factored too), or every entry once the matrix
-!> has been found unsymmetric (a sliding frictional contact; SYM=0, LU),
+!> has been found unsymmetric beyond round-off (a sliding frictional
+!> contact; SYM=0, LU; is_symmetric says where the line is),
 !> after which the backend stays unsymmetric for this structure. The
 !> other ranks join every analysis, factorisation and solve
 !> (mumps_shim.c). Ordering: METIS or AMD, by MUMPS (ICNTL(7)).
@@ -254,14 +255,25 @@ contains
     end if
   end function mumps_count
 
-  !> Purpose: is the assembled matrix symmetric? Both triangles are
-  !> summed from the element matrices in the same order, so a symmetric
-  !> matrix is so to the last bit; a sliding frictional tangent is not.
+  !> Purpose: is the assembled matrix symmetric? An entry pair differing
+  !> by more than sym_tol of the geometric mean of its two diagonal
+  !> entries makes it unsymmetric (sliding friction: a share mu of the
+  !> normal stiffness); less is the round-off of a coupling element's
+  !> tangent, which CHOLMOD ignores too (it reads the upper triangle).
   logical function is_symmetric(a)
     type(csc_t), intent(in) :: a
+    real(dp), parameter :: sym_tol = 1.0e-12_dp
+    real(dp), allocatable :: d(:)
     integer :: col, k, r, lo, hi, mid
     real(dp) :: t
     is_symmetric = .true.
+    allocate(d(a%n))
+    d = 0.0_dp
+    do col = 1, a%n
+      do k = a%colptr(col), a%colptr(col + 1) - 1
+        if (a%rowind(k) == col) d(col) = abs(a%val(k))
+      end do
+    end do
     do col = 1, a%n
       do k = a%colptr(col), a%colptr(col + 1) - 1
         r = a%rowind(k)
@@ -281,7 +293,7 @@ contains
         if (lo <= a%colptr(r + 1) - 1) then
           if (a%rowind(lo) == col) t = a%val(lo)
         end if
-        if (t /= a%val(k)) then
+        if (abs(t - a%val(k)) > sym_tol * sqrt(d(r) * d(col))) then
           is_symmetric = .false.
           return
         end if
