@@ -129,6 +129,7 @@ contains
     icntl(7) = merge(5, 0, self%ordering == order_metis)   ! METIS or AMD
     icntl(14) = self%margin
     icntl(24) = 1                         ! null pivots detected and listed
+    icntl(28) = 1                         ! sequential analysis: the matrix is on rank 0
     cntl(3) = pivot_ratio_min
     icntl(19) = merge(1, 0, self%nlast > 0)   ! Schur complement, centralised by rows
     icntl(26) = 0                         ! with a Schur block: solves of the leading block
