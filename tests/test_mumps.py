@@ -246,26 +246,21 @@ def test_build_without_mpi():
     assert p.returncode != 0 and "built without MUMPS" in p.stderr, p.stderr
 
 
-def test_auto_decides_as_with_cholmod():
-    """CONTACT SOLVE=AUTO takes the same path with MUMPS as with CHOLMOD
-    (MUMPS' flop count of a factor with a Schur block includes the
-    block's dense Cholesky, as CHOLMOD's count does; before it did, AUTO
-    took the full path with MUMPS on the 100-point strips): condensed on
-    the two blocks and on two strips of 100 contact points four elements
-    thick (scripts/contact_decks.py), full on two strips one element thick."""
+def test_auto_follows_the_measurements():
+    """CONTACT SOLVE=AUTO with MUMPS (its flop count of a factor with a
+    Schur block includes the block's dense Cholesky, as CHOLMOD's does;
+    the condensed solve is taken up to 0.8 of a sparse factorisation
+    instead of CHOLMOD's 0.5, as measured in docs/benchmark.md): condensed
+    on the two blocks and on the 500-point rough surface of
+    scripts/contact_decks.py, where CHOLMOD takes full; full at 1000 points
+    with both."""
     mpirun_prefix(1)
-    saved = tc.NX1, tc.NY1, tc.NX2, tc.NY2
-    tc.NX1, tc.NY1, tc.NX2, tc.NY2 = 20, 1, 40, 1
-    try:
-        strips = tc.blocks_deck([tc.push_step(3 * tc.G0)])
-    finally:
-        tc.NX1, tc.NY1, tc.NX2, tc.NY2 = saved
     import contact_decks
-    for name, deck, path in (("blocks", tc.blocks_deck([tc.push_step(3 * tc.G0)]), "condensed"),
-                             ("strips100", contact_decks.deck("strips", 100, 4, 0.8, 0.02, 1, 3.0, 2, "", "AUTO"),
-                              "condensed"),
-                             ("strips", strips, "full")):
+    for name, deck, cholmod, mumps in (
+            ("blocks", tc.blocks_deck([tc.push_step(3 * tc.G0)]), "condensed", "condensed"),
+            ("rough500", contact_decks.deck("rough", 500, 4, 0.8, 0.02, 1, 3.0, 1, "", "AUTO"), "full", "condensed"),
+            ("rough1000", contact_decks.deck("rough", 1000, 4, 0.8, 0.02, 1, 3.0, 1, "", "AUTO"), "full", "full")):
         ref = run_deck(f"mumps_auto_{name}_cholmod", deck).ok()
         run = run_deck(f"mumps_auto_{name}", deck, args=("--solver", "MUMPS")).ok()
-        assert tcd.contact_solve(ref) == tcd.contact_solve(run) == [path] * len(tcd.contact_solve(ref)), \
-            (name, tcd.contact_solve(run))
+        assert set(tcd.contact_solve(ref)) == {cholmod}, (name, "CHOLMOD", tcd.contact_solve(ref))
+        assert set(tcd.contact_solve(run)) == {mumps}, (name, "MUMPS", tcd.contact_solve(run))

@@ -42,8 +42,12 @@ module condensed_contact
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
   !> sparse factorisation of the whole system, and m is at most
-  !> auto_max_m (two m x m matrices are kept).
-  real(dp), parameter :: auto_flop_share = 0.5_dp
+  !> auto_max_m (two m x m matrices are kept). MUMPS pays more per sparse
+  !> factorisation and solve than its flop count says (the ranks' messages),
+  !> so the condensed solve pays for a larger m: measured on contact
+  !> surfaces of 250 to 2000 points over 2 ranks (docs/benchmark.md),
+  !> condensed faster up to a share 0.72 (500 points), full from 0.85.
+  real(dp), parameter :: auto_flop_share = 0.5_dp, auto_flop_share_mumps = 0.8_dp
   integer, parameter :: auto_max_m = 6000
 
   type :: condensed_t
@@ -119,7 +123,8 @@ contains
           flops = sys_factor_flops(sys)
           call system_clock(c1)
           t_analyse = real(c1 - c0, dp) / real(rate, dp)
-          cd%active = real(mc, dp)**3 / 3.0_dp <= auto_flop_share * flops
+          cd%active = real(mc, dp)**3 / 3.0_dp <= &
+                      merge(auto_flop_share_mumps, auto_flop_share, m%solver == solver_mumps) * flops
         end if
         if (cd%active) then
           cd%n = dm%neq
