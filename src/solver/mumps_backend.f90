@@ -68,7 +68,10 @@ module mumps_backend
     integer(c_int), allocatable :: irn(:), jcn(:), schur_list(:)
     real(c_double), allocatable :: av(:)
     real(dp), allocatable :: l22(:, :)        ! chol(S0 + diag(K22)), lower
-    real(dp) :: mem_rank_mb = 0.0_dp, mem_total_mb = 0.0_dp   ! INFOG(21), INFOG(22)
+    !> MUMPS' memory in MB, the largest rank and all ranks: estimated by
+    !> the analysis (INFOG(16), INFOG(17)), then used by the last
+    !> factorisation (INFOG(21), INFOG(22))
+    real(dp) :: mem_rank_mb = 0.0_dp, mem_total_mb = 0.0_dp
     integer(c_int) :: infog(80) = 0, info(80) = 0
     real(c_double) :: rinfog(40) = 0.0_c_double
   contains
@@ -159,6 +162,8 @@ contains
     self%av = 0.0_c_double
     call self%run(mumps_job_analyse, 'analysis')
     self%factor_entries = mumps_count(self%infog(20))
+    self%mem_rank_mb = real(self%infog(16), dp)
+    self%mem_total_mb = real(self%infog(17), dp)
     ! MUMPS counts the leading equations only; with a Schur block the
     ! whole factorisation adds the block's dense Cholesky (m^3/3), as
     ! CHOLMOD's count of a factor with the block last does (the AUTO
@@ -474,6 +479,8 @@ contains
     character(len=:), allocatable :: d
     d = 'factor entries ' // rtoa(self%factor_entries, 6) // ', ' // itoa(self%ranks) // ' MPI rank'
     if (self%ranks /= 1) d = d // 's'
+    if (self%mem_total_mb > 0.0_dp) d = d // ', MUMPS memory ' // itoa(nint(self%mem_rank_mb)) // &
+      ' MB on the largest rank, ' // itoa(nint(self%mem_total_mb)) // ' MB in all'
     if (self%sym == sym_general) d = d // ', LU (unsymmetric)'
   end function describe
 
