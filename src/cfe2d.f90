@@ -10,11 +10,11 @@ program cfe2d
   use results_gmsh, only: result_file_t, open_result_file
   use results_vtu, only: vtu_series_t, open_vtu_series
   use progress, only: progress_t
-  use messages, only: fatal, terminate
+  use messages, only: fatal, terminate, warn
   use directories, only: make_directories
   use solver_codes, only: solver_code, solver_in_build, solver_skyline, solver_mumps, order_rcm, order_amd, &
                           contact_solve_condensed, solver_cholmod
-  use strings, only: to_upper
+  use strings, only: to_upper, itoa
   use mpi_session, only: session_start, session_serve
   implicit none
   character(len=4096) :: arg
@@ -102,6 +102,8 @@ program cfe2d
 
   call read_model(deck, m)
   if (solver /= 0) call choose_solver(m, solver)
+  if (ranks > 1 .and. m%solver /= solver_mumps) call warn(itoa(ranks) // ' MPI ranks, but the solver is not MUMPS: ' // &
+    'rank 0 runs alone and the others wait (--solver MUMPS or *SOLVER, TYPE=MUMPS to share the work)')
   ! *TIE needs the projection onto faces, which the contact layer owns.
   call tie_surfaces(m)
   timing%read = wall_time() - timing%started

@@ -212,6 +212,24 @@ def test_plain_run_is_one_rank():
     same_answers(ref, run, "plain run, one rank")
 
 
+def test_ranks_without_mumps_warn_and_run_on_rank_0():
+    """mpirun -np 2 on a CHOLMOD deck: a warning that the other rank only
+    waits, CHOLMOD's answer, written once, exit 0."""
+    deck = all_nodes(tc.blocks_deck([tc.push_step(3 * tc.G0)]))
+    ref = run_deck("mumps_cholmod_ranks_ref", deck)
+    d = workdir("mumps_cholmod_ranks")
+    path = os.path.join(d, "ranks.inp")
+    with open(path, "w") as f:
+        f.write(deck)
+    p = subprocess.run(mpirun_prefix(2) + [CFE2D, "-q", "-d", "16", "-o", d, path], capture_output=True, text=True,
+                       env=mpi_env(), timeout=300)
+    assert "2 MPI ranks, but the solver is not MUMPS" in p.stderr, p.stderr
+    run = Run(path, p, os.path.join(d, "ranks.out"))
+    assert "CHOLMOD" in factor_line(run)
+    same_answers(ref, run, "CHOLMOD under mpirun")
+    assert open(run.listing_path).read().count("=== INCREMENT") == len(ref.listing.increments)
+
+
 def test_singular_names_node_and_dof():
     """A body without supports: MUMPS' null pivot becomes cfe2d's
     'singular stiffness at node N, dof D' on 2 ranks."""
