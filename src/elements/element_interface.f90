@@ -63,6 +63,9 @@ module element_interface
     real(dp) :: ws(max_slave) = [1.0_dp, 0.0_dp, 0.0_dp]
     integer :: master_kind = 0
     real(dp) :: xi(2) = 0.0_dp
+    !> master_kind 0 (a segment-to-segment CFE): the master nodes' weights
+    !> are given, not shape functions at xi
+    real(dp) :: wm(max_en) = 0.0_dp
     real(dp) :: normal(2) = 0.0_dp
     real(dp) :: penalty = 0.0_dp
     real(dp) :: gap0(2) = 0.0_dp

@@ -1,0 +1,111 @@
+"""Segment-to-segment (dual mortar) contact and exact enforcement against
+closed-form answers: the contact patch test on non-matching meshes in one
+pass (linear and quadratic faces, either side coarser, plane and
+axisymmetric), exact enforcement independent of the penalty, the penalty
+converging to it, friction with the new coupling.
+
+The two blocks of test_contact_quadratic.two_blocks: a lower (master) block
+[0, 1] x [0, 1] on the ground, an upper (slave) block of height 1 a gap
+g0 = 0.01 above it, its top pushed down by d = 0.03. Both are free to
+expand sideways (one x support each), so the stress is uniaxial and the
+interface pressure is exactly p = E (d - g0) / 2 with exact
+non-penetration (plane stress, and the axisymmetric column alike)."""
+import numpy as np
+
+from helpers import run_deck
+from test_contact_quadratic import E, two_blocks, contact_rows
+
+STS = ", TYPE=SURFACE TO SURFACE"
+P_EXACT = E * (0.03 - 0.01) / 2.0
+
+
+def patch_errors(run):
+    """Largest slave and master pressure errors relative to P_EXACT, the
+    total force's, and the rows."""
+    s, mst, inc = contact_rows(run)
+    ps, pm = np.array(s["pressure"]), np.array(mst["pressure"])
+    assert all(st == "CLOSED" for st in s["state"]), s["state"]
+    total = inc.block("CONTACT SUMMARY")["total_force"][0]
+    return np.max(np.abs(ps - P_EXACT)) / P_EXACT, np.max(np.abs(pm - P_EXACT)) / P_EXACT, total, s, mst
+
+
+def test_mortar_patch_test_exact_one_pass():
+    """TYPE=SURFACE TO SURFACE with EXACT on meshes with no common
+    refinement, either side coarser, 4- and 8-node elements, a triangle
+    slave: every slave node's and master node's pressure is p to 1e-8,
+    the total force p times the width (plane stress: unit thickness)."""
+    cases = (("Q4", "Q4", 5, 7), ("Q4", "Q4", 5, 3), ("Q4", "Q4", 5, 13), ("Q4", "Q4", 7, 2),
+             ("Q8", "Q8", 5, 7), ("Q8", "Q8", 4, 3), ("Q8", "T6", 5, 7), ("Q4", "Q8", 5, 7), ("Q8", "Q4", 3, 7))
+    for lower, upper, n1, n2 in cases:
+        run = run_deck(f"mortar_patch_{lower}_{upper}_{n1}_{n2}",
+                       two_blocks(lower, upper, n1, n2, pair=STS + ", EXACT")).ok()
+        es, em, total, s, _ = patch_errors(run)
+        print(f"  {upper} slave on {lower} master, {n2} over {n1}: slave {es:.1e}, master {em:.1e}")
+        assert es < 1e-8 and em < 1e-8, (lower, upper, n1, n2, es, em)
+        assert abs(total - P_EXACT) < 1e-8 * P_EXACT, total
+        # one coupling element per slave node, all of them
+        assert len(s["node"]) == (n2 + 1 if upper == "Q4" else 2 * n2 + 1) and all(n > 0 for n in s["node"])
+
+
+def test_mortar_patch_test_axisymmetric():
+    """CAX4 and CAX8 columns (r from 0.5 to 1.5) pressed the same way, free
+    to expand radially (no radial support: in axisymmetry a radial shift is
+    no rigid motion): the ring's pressure is p at every node to 1e-8 (the
+    r weight in the dual functions and the mortar integrals)."""
+    for shape, n1, n2 in (("Q4", 5, 7), ("Q8", 5, 7), ("Q4", 7, 3)):
+        deck = two_blocks(shape, shape, n1, n2, state="AX", x0=0.5, pair=STS + ", EXACT")
+        deck = deck.replace("ANCHOR, 1, 1\nTOPLEFT, 1, 1\n", "")
+        run = run_deck(f"mortar_patch_ax_{shape}_{n1}_{n2}", deck).ok()
+        es, em, total, _, _ = patch_errors(run)
+        print(f"  CAX {shape} {n2} over {n1}: slave {es:.1e}, master {em:.1e}")
+        assert es < 1e-8 and em < 1e-8, (shape, es, em)
+        # the whole ring: p times the annulus' area pi (1.5^2 - 0.5^2)
+        assert abs(total - P_EXACT * np.pi * 2.0) < 1e-8 * total, total
+
+
+def test_mortar_penalty_uniform_and_converging_to_exact():
+    """The mortar coupling with a penalty alone (no EXACT) still transmits
+    a uniform pressure (its compliance is uniform: the spread of the
+    pressures is round-off), lower than p by the penalty's compliance;
+    the error falls in proportion to the penalty (three decades)."""
+    errs = []
+    for k in (1e5, 1e6, 1e7):
+        run = run_deck(f"mortar_penalty_{k:g}", two_blocks("Q4", "Q4", 5, 7, pair=STS + f", PENALTY={k}")).ok()
+        s, mst, _ = contact_rows(run)
+        ps, pm = np.array(s["pressure"]), np.array(mst["pressure"])
+        spread = (max(ps.max(), pm.max()) - min(ps.min(), pm.min())) / P_EXACT
+        # series springs: the two blocks (2 / E per unit pressure) and 1 / k
+        p_series = (0.03 - 0.01) / (2.0 / E + 1.0 / k)
+        assert spread < 1e-9, (k, spread)
+        assert abs(ps.mean() - p_series) < 1e-9 * p_series, (k, ps.mean(), p_series)
+        errs.append(abs(ps.mean() - P_EXACT) / P_EXACT)
+    print(f"  penalty 1e5, 1e6, 1e7: error {errs[0]:.1e}, {errs[1]:.1e}, {errs[2]:.1e}")
+    assert errs[0] > errs[1] > errs[2] and errs[2] < 1e-4
+
+
+def test_exact_independent_of_penalty():
+    """EXACT with three penalties four decades apart (the penalty only sets
+    the pace of the multiplier updates): the same pressures to 1e-9, and
+    node-to-segment with EXACT is independent of its penalty too."""
+    for pair, tag in ((STS, "sts"), ("", "nts")):
+        ref = None
+        for k in (1e4, 1e6, 1e8):
+            run = run_deck(f"exact_penalty_{tag}_{k:g}", two_blocks("Q4", "Q4", 5, 7,
+                                                                    pair=pair + f", EXACT, PENALTY={k}")).ok()
+            s, _, _ = contact_rows(run)
+            ps = np.array(s["pressure"])
+            if ref is None:
+                ref = ps
+            assert np.max(np.abs(ps - ref)) < 1e-9 * P_EXACT, (tag, k, np.max(np.abs(ps - ref)))
+
+
+def test_mortar_exact_gap_opens_and_closes():
+    """Pushed by less than the gap, nothing touches (every node OPEN, no
+    force); pushed by 0.999 of it still open, by 1.001 of it every node
+    closed with the exact pressure E (d - g0) / 2."""
+    for d, closed in ((0.005, False), (0.00999, False), (0.01001, True)):
+        run = run_deck("mortar_gap", two_blocks("Q4", "Q4", 5, 7, d=d, pair=STS + ", EXACT")).ok()
+        s, _, inc = contact_rows(run)
+        assert set(s["state"]) == {"CLOSED" if closed else "OPEN"}, (d, set(s["state"]))
+        p = E * max(d - 0.01, 0.0) / 2.0
+        assert np.max(np.abs(np.array(s["pressure"]) - p)) < 1e-8 * E * 0.01, (d, s["pressure"])
