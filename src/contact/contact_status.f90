@@ -196,7 +196,8 @@ contains
   !> the last increment, sticks while it lies within mu times the normal
   !> force N = -k_closed g, and slides along its sign otherwise (the
   !> sliding force is then mu N). A sliding CFE keeps sliding while its
-  !> trial force exceeds mu N in its direction, to round-off. Open CFEs
+  !> trial force exceeds mu N in its direction, to round-off (N = -(lambda +
+  !> k_closed g) under exact enforcement). Open CFEs
   !> neither stick nor slide. Round-off as in is_violated.
   subroutine return_mapping(m, cs, force_scale, nchanged, changed)
     type(model_t), intent(in) :: m
@@ -218,7 +219,8 @@ contains
         sgn = 0.0_dp
         if (c%closed) then
           trial = c%k_tan * (c%slide - c%anchor)
-          limit = c%mu * max(-c%k_closed * c%gap, 0.0_dp)
+          ! (exact enforcement: the normal force is lambda + k_closed g)
+          limit = c%mu * max(-(c%k_closed * c%gap + c%lambda), 0.0_dp)
           if (c%sliding) then
             ! slides on while the trial force exceeds the limit its way;
             ! otherwise it sticks first (never reverses in one pivot,
