@@ -4,5 +4,5 @@ $(OBJDIR)/contact.o: $(OBJDIR)/contact_geometry.o $(OBJDIR)/contact_mortar.o $(O
 $(OBJDIR)/contact_mortar.o: $(OBJDIR)/contact_geometry.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/contact_geometry.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/contact_results.o: $(OBJDIR)/contact.o $(OBJDIR)/contact_geometry.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
-$(OBJDIR)/tie_constraints.o: $(OBJDIR)/contact_geometry.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
+$(OBJDIR)/tie_constraints.o: $(OBJDIR)/contact_geometry.o $(OBJDIR)/contact_mortar.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/contact_status.o: $(OBJDIR)/contact.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o

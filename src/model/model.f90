@@ -262,6 +262,9 @@ module model
     integer :: slave_surface = 0, master_surface = 0
     real(dp) :: tolerance = -1.0_dp       ! <= 0: 2.5 % of the master's mean face length
     logical :: adjust = .true.            ! move tied slave nodes onto the master
+    !> TYPE=SURFACE TO SURFACE: a mortar tie (dual mortar weights,
+    !> tie_constraints), not node to face
+    logical :: mortar = .false.
     type(src_t) :: src
     !> Once generated: slave nodes tied, and not tied (no master face
     !> within the tolerance, or a node of the master surface itself);
