@@ -336,10 +336,10 @@ contains
         c%gap0 = m%x(:, s) - xm_ref
         c%gap_round = gap_round_off * (norm2(x(:, s)) + c%h)
         c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
-        c%k_open = m%pairs(ip)%open_ratio * c%k_closed
+        c%exact = m%pairs(ip)%exact
+        c%k_open = open_stiffness(m%pairs(ip), c%area, em, c%h, .false., c%k_closed)
         c%mu = m%pairs(ip)%mu
         if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
-        c%exact = m%pairs(ip)%exact
         c%closed = dot_product(c%normal, x(:, s) - xm) <= c%gap_round
         call add_cfe(cs, c)
       end do
@@ -439,10 +439,10 @@ contains
     c%h = hm
     c%gap_round = gap_round_off * (norm2(xs) + hm)
     c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, hm, c%ns > 1)
-    c%k_open = m%pairs(ip)%open_ratio * c%k_closed
+    c%exact = m%pairs(ip)%exact
+    c%k_open = open_stiffness(m%pairs(ip), c%area, em, hm, c%ns > 1, c%k_closed)
     c%mu = m%pairs(ip)%mu
     if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
-    c%exact = m%pairs(ip)%exact
     ! [[U]]_0 between the reference positions of the slave point and of
     ! X_C: with a search on the deformed configuration, [[U]] of eq. (8)
     ! is then the current slave-to-X_C vector.
@@ -557,6 +557,26 @@ contains
       cfe_penalty = auto_penalty_factor * e / h * area
     end if
   end function cfe_penalty
+
+  !> The open penalty of one CFE: OPEN PENALTY (a ratio) times the closed
+  !> penalty; under exact enforcement times the automatic penalty instead,
+  !> whatever PENALTY= says (the penalty then only sets the pace of the
+  !> multiplier updates, and the open state's small force, which the open
+  !> points' relative motion makes, would otherwise follow it: 6.5e-6 of
+  !> P on the flagship between PENALTY=1e8 and 1e11). Never above half
+  !> the closed penalty.
+  pure real(dp) function open_stiffness(pr, area, e, h, face_point, k_closed) result(k)
+    type(contact_pair_t), intent(in) :: pr
+    real(dp), intent(in) :: area, e, h, k_closed
+    logical, intent(in) :: face_point
+    type(contact_pair_t) :: auto
+    k = pr%open_ratio * k_closed
+    if (.not. pr%exact) return
+    auto = pr
+    auto%penalty = -1.0_dp
+    auto%nodal = .false.
+    k = min(pr%open_ratio * cfe_penalty(auto, area, e, h, face_point), 0.5_dp * k_closed)
+  end function open_stiffness
 
   !> Tangential (stick) penalty of one CFE: the pair's stick slope per
   !> unit area times the CFE's area, or (no slope given) the normal

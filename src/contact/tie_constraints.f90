@@ -167,10 +167,11 @@ contains
             cycle
           end if
           neq = neq + 1
-          if (t%mortar .and. mortar_covered(mo, k)) then
-            eqs(neq) = mortar_equation(mo, k, s, j, t)
-          else
-            eqs(neq) = tie_equation(faces(lands(k)%face), lands(k)%t, s, j, t)
+          eqs(neq) = tie_equation(faces(lands(k)%face), lands(k)%t, s, j, t)
+          ! (two tests: Fortran does not skip the second, and mo is only
+          ! made for a mortar tie)
+          if (t%mortar) then
+            if (mortar_covered(mo, k)) eqs(neq) = mortar_equation(mo, k, s, j, t)
           end if
           dependent(j, s) = .true.
         end do
