@@ -304,7 +304,7 @@ contains
           call append(uncp, nunc_p, ip)
           cycle
         end if
-        if (mo%nm(k) > max_cfe_master .or. mo%overflow) call fatal('segment-to-segment contact: slave node ' // &
+        if (mo%nm(k) > max_cfe_master) call fatal('segment-to-segment contact: slave node ' // &
           node_label(m, s) // ' of ' // trim(sl%name) // ' faces more than ' // itoa(max_cfe_master) // &
           ' master nodes; make the finer surface the slave (or refine the slave side)')
         c = cfe_t()

@@ -61,7 +61,9 @@ module contact_mortar
     real(dp), allocatable :: mval(:, :)      ! M_jm
     integer, allocatable :: melem(:), medge(:)   ! a master face under the node (its last point)
     real(dp), allocatable :: mt(:)           ! and the position there
-    logical :: overflow = .false.            ! a node reached more than max_mortar_nodes
+    !> A node reached more than max_mortar_nodes (its list is then full:
+    !> nm = max_mortar_nodes, and its integrals incomplete).
+    logical :: overflow = .false.
   end type mortar_t
 
 contains
