@@ -22,9 +22,10 @@ contains
   !> Purpose: *CONTACT PAIR: `slave, master` per data line, the slave a
   !> surface or a node set, the master an element surface; the parameters
   !> (penalty, search) apply to every pair of the card. SYMMETRIC adds the
-  !> pair with the roles swapped (two-pass contact). The CalculiX/Abaqus
-  !> form names a *SURFACE INTERACTION (INTERACTION=) for the penalty;
-  !> TYPE=SURFACE TO SURFACE is two-pass, SMALL SLIDING keeps the first
+  !> pair with the roles swapped (two-pass contact); TYPE=SURFACE TO
+  !> SURFACE is the segment-to-segment coupling, EXACT exact enforcement.
+  !> The CalculiX/Abaqus form names a *SURFACE INTERACTION (INTERACTION=)
+  !> for the penalty (HARD: exact enforcement); SMALL SLIDING keeps the first
   !> pairing (without it, CalculiX's large sliding, the pairing is searched
   !> again every increment), ADJUST= moves slave nodes onto the master.
   module subroutine read_contact_pair(p, m, kw)
