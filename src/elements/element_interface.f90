@@ -64,8 +64,9 @@ module element_interface
     integer :: master_kind = 0
     real(dp) :: xi(2) = 0.0_dp
     !> master_kind 0 (a segment-to-segment CFE): the master nodes' weights
-    !> are given, not shape functions at xi
-    real(dp) :: wm(max_en) = 0.0_dp
+    !> are given, not shape functions at xi (no default: set and read only
+    !> there, so that no other element's input is made larger to initialise)
+    real(dp) :: wm(max_en)
     real(dp) :: normal(2) = 0.0_dp
     real(dp) :: penalty = 0.0_dp
     real(dp) :: gap0(2) = 0.0_dp
