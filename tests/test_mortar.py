@@ -185,3 +185,17 @@ def test_mortar_curved_interface_shrink_fit():
         et = abs(total / (ps * (RB + DELTA) * math.pi / 2) - 1)
         print(f"  shrink fit {n_inner} over 14, mortar EXACT: slave {es:.1e}, master {em:.1e}, total {et:.1e}")
         assert et < 1e-4 and em < 2e-3 and es < 1e-2, (n_inner, es, em, et)
+
+
+def test_mortar_cards_refused_at_their_line():
+    """SYMMETRIC with TYPE=SURFACE TO SURFACE, EXACT with INTERACTION= and a
+    node-set slave for segment-to-segment contact stop at the card's line,
+    saying why."""
+    from test_decks_contact import blocks, error_at, interaction
+    error_at("mortar_symmetric", blocks("*CONTACT PAIR, SYMMETRIC, TYPE=SURFACE TO SURFACE\nUPPERFACE, MASTER\n"),
+             "*CONTACT PAIR, SYMMETRIC, TYPE=SURFACE TO SURFACE", "exclude each other")
+    error_at("mortar_exact_interaction", blocks(interaction() + "*CONTACT PAIR, INTERACTION=SI1, EXACT\n"
+                                                "SLAVE, MASTER\n"),
+             "*CONTACT PAIR, INTERACTION=SI1, EXACT", "PRESSURE-OVERCLOSURE=HARD")
+    error_at("mortar_node_slave", blocks("*CONTACT PAIR, TYPE=SURFACE TO SURFACE\nSLAVE, MASTER\n"),
+             "SLAVE, MASTER", "element-based slave surface")

@@ -44,3 +44,15 @@ def test_mortar_tie_cantilever_coarser_slave():
               f"mortar {abs(mortar - ref) / abs(ref):.1e}")
         assert abs(mortar - ref) < 1e-3 * abs(ref), (ny, mortar, ref)
         assert abs(mortar - ref) <= abs(ntf - ref) * 1.01, (ny, mortar, ntf, ref)
+
+
+def test_mortar_tie_cards_refused_at_their_line():
+    """An unknown TYPE= stops at the *TIE line, a node-surface slave of a
+    mortar tie at its data line, saying why."""
+    from test_decks_contact import error_at
+    deck = tie_patch_deck(False, 3, 0.0, "TOP, P, -3.\n")
+    error_at("mtie_type", deck.replace("*TIE, NAME=GLUE", "*TIE, NAME=GLUE, TYPE=MORTAR"),
+             "*TIE, NAME=GLUE, TYPE=MORTAR", "TYPE must be NODE TO SURFACE or SURFACE TO SURFACE")
+    nodes = deck.replace("*TIE, NAME=GLUE", "*NSET, NSET=UB\n1001, 1002\n*SURFACE, NAME=UBN, TYPE=NODE\nUB\n"
+                         "*TIE, NAME=GLUE, TYPE=SURFACE TO SURFACE").replace("UPPER_BOTTOM, LOWER_TOP", "UBN, LOWER_TOP")
+    error_at("mtie_nodes", nodes, "UBN, LOWER_TOP", "needs a slave surface of element faces")
