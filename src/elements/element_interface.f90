@@ -63,6 +63,10 @@ module element_interface
     real(dp) :: ws(max_slave) = [1.0_dp, 0.0_dp, 0.0_dp]
     integer :: master_kind = 0
     real(dp) :: xi(2) = 0.0_dp
+    !> master_kind 0 (a segment-to-segment CFE): the master nodes' weights
+    !> are given, not shape functions at xi (no default: set and read only
+    !> there, so that no other element's input is made larger to initialise)
+    real(dp) :: wm(max_en)
     real(dp) :: normal(2) = 0.0_dp
     real(dp) :: penalty = 0.0_dp
     real(dp) :: gap0(2) = 0.0_dp
