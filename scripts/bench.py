@@ -16,15 +16,21 @@
    tangential reaction reaches mu P, mu = 0.3), against the same two-step
    history without friction: wall times, their ratio (target <= 2), the
    sparse factorisations per step (target 1) and the contact iterations.
-3. MUMPS (issue 22; where bin/cfe2d has it and mpirun starts): the 1e6-dof
+3. The couplings (scripts/contact_accuracy.py): node-to-segment against
+   segment-to-segment with exact enforcement on the flagship history
+   (default CPS4 mesh, CPS8, a coarse 5 300-node mesh): the pressures'
+   oscillation about the fitted Hertz ellipse, the largest nodal pressure,
+   the slave-master difference, the wall times and their ratio (target
+   <= 1.5), and the exact answer with PENALTY= over three decades.
+4. MUMPS (issue 22; where bin/cfe2d has it and mpirun starts): the 1e6-dof
    square with CHOLMOD, MUMPS on 1 rank and MUMPS on 2 ranks
    (mpirun -np 2) in the same run: wall time, solve part, peak memory of
    the largest process (a rank), the ratios to CHOLMOD.
-4. With --surfaces N,N,...: contact surfaces of N contact points
+5. With --surfaces N,N,...: contact surfaces of N contact points
    (scripts/contact_decks.py: two long strips, a rough surface on a flat;
    two steps of 4 increments) on the condensed and the full path, with
    CHOLMOD and with MUMPS over 2 ranks, and which path AUTO takes.
-5. With --solvers: the solvers on a structured plane-stress square (Q4) at
+6. With --solvers: the solvers on a structured plane-stress square (Q4) at
    about 1e4, 1e5 and 1e6 dofs (tests/bench/bench.f90, one process per
    case): dofs, stored nonzeros, factor size, wall times of structure,
    assembly, ordering+symbolic analysis, numeric factorisation and solve,
@@ -379,6 +385,7 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--no-square", action="store_true", help="leave out the 1e6-dof square")
     ap.add_argument("--solvers", action="store_true", help="also the solver table on the structured square")
+    ap.add_argument("--no-couplings", action="store_true", help="leave out the table of the two couplings")
     ap.add_argument("--sizes", default="1e4,1e5,1e6", help="sizes of the solver table")
     ap.add_argument("--no-mumps", action="store_true", help="leave out the MUMPS rows of the 1e6-dof square")
     ap.add_argument("--surfaces", default="", help="contact points of the surface table, e.g. 1000,2000,4000")
@@ -391,6 +398,10 @@ def main(argv=None):
         meshes = [m for m in args.meshes.split(",") if m]
     contact_table(meshes, args.repeats, not args.no_square)
     friction_table([m for m in meshes if m != "fine"], args.repeats)
+    if meshes and not args.no_couplings:
+        import contact_accuracy
+        print("\ncouplings: node-to-segment (nts) against segment-to-segment with exact enforcement (sts)")
+        contact_accuracy.table(["default", "q8", "ccx"], os.path.join(WORK, "accuracy"), args.repeats, penalties=True)
     if not args.no_mumps and not args.no_square:
         mumps_square_table(args.repeats)
     if args.surfaces:

@@ -13,7 +13,7 @@ module equilibrium
   use kinds, only: dp
   use model, only: model_t
   use contact, only: contact_set_t, status_codes
-  use contact_status, only: contact_switch, begin_status_search, contact_energy
+  use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
   use assembly, only: body_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
@@ -82,7 +82,7 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), allocatable :: fint(:, :)
-    integer :: it, a, d, nchanged
+    integer :: it, a, d, nchanged, naug
     logical :: restabilised, usable
     real(dp) :: scale, energy
     allocate(fint(2, m%nn))
@@ -93,6 +93,7 @@ contains
     call internal_forces(m, body, cs, u, fint, eq%counts)
     call begin_status_search(eq%search)
     it = 0
+    naug = 0
     ! MAXIT counts the iterations of each status search
     do while (eq%search%iterations < m%contact_max_iter)
       it = it + 1
@@ -131,6 +132,15 @@ contains
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
                             'iterating on with the nominal one')
         cycle
+      end if
+      if (nchanged == 0 .and. eq%residual < m%contact_tolerance .and. naug < max_augmentations) then
+        ! exact enforcement: the multipliers updated, the search again
+        if (augment_multipliers(cs, contact_force_scale(eq, cs, norm2(fext)))) then
+          naug = naug + 1
+          call internal_forces(m, body, cs, u, fint, eq%counts)
+          call begin_status_search(eq%search)
+          cycle
+        end if
       end if
       if (nchanged == 0 .and. eq%residual < m%contact_tolerance) then
         ok = .true.
