@@ -239,6 +239,25 @@ def test_singular_names_node_and_dof():
     assert "=== INCREMENT" not in open(run.listing_path).read()
 
 
+def test_memory_limit_is_a_clear_error():
+    """MUMPS' out-of-memory errors become cfe2d's: a limit of 1 MB per rank
+    (CFE2D_MUMPS_MEMORY_MB, MUMPS' ICNTL(23)) on the 100 x 100 square stops
+    with the error and exit status 1, no crash, no increment written."""
+    prefix = mpirun_prefix(2)
+    d = workdir("mumps_memory")
+    path = os.path.join(d, "memory.inp")
+    with open(path, "w") as f:
+        f.write(square_deck(100))
+    env = mpi_env()
+    env["CFE2D_MUMPS_MEMORY_MB"] = "1"
+    p = subprocess.run(prefix + [CFE2D, "-q", "--solver", "MUMPS", "-o", d, path], capture_output=True, text=True,
+                       env=env, timeout=300)
+    assert p.returncode == 1, (p.returncode, p.stderr)
+    assert "cfe2d: error: MUMPS factorisation failed: the memory per rank it may use (CFE2D_MUMPS_MEMORY_MB" \
+        in p.stderr, p.stderr
+    assert "=== INCREMENT" not in open(os.path.join(d, "memory.out")).read()
+
+
 def test_build_without_mpi():
     """build-nompi/cfe2d (make nompi: MUMPS=no) runs a CHOLMOD deck as
     bin/cfe2d does and rejects TYPE=MUMPS at the card's line."""

@@ -12,7 +12,8 @@
 !> (ICNTL(24)=1, threshold CNTL(3) = pivot_ratio_min of the scaled matrix):
 !> the first null pivot's equation is reported. Workspace too small
 !> (INFOG(1) = -8, -9, -14, -15, ...) is retried with twice the
-!> workspace margin ICNTL(14); an allocation that fails (-13) or a
+!> workspace margin ICNTL(14); an allocation that fails (-13), the
+!> memory limit per rank of CFE2D_MUMPS_MEMORY_MB (ICNTL(23), -19) or a
 !> problem past MUMPS' integer range is a clear fatal error.
 !> With a trailing block (nlast > 0) MUMPS returns the Schur complement
 !> S0 of the leading equations on it (ICNTL(19)=1, centralised on rank 0);
@@ -133,6 +134,7 @@ contains
     icntl(14) = self%margin
     icntl(24) = 1                         ! null pivots detected and listed
     icntl(28) = 1                         ! sequential analysis: the matrix is on rank 0
+    icntl(23) = memory_limit_mb()         ! 0: no limit
     cntl(3) = pivot_ratio_min
     icntl(19) = merge(1, 0, self%nlast > 0)   ! Schur complement, centralised by rows
     icntl(26) = 0                         ! with a Schur block: solves of the leading block
@@ -239,7 +241,8 @@ contains
     case (-8, -9, -11, -12, -14, -15, -17, -20)
       s = 'its workspace stayed too small after ' // itoa(max_retries) // ' enlargements (ICNTL(14))'
     case (-19)
-      s = 'the memory per rank it may use (ICNTL(23)) is too small'
+      s = 'the memory per rank it may use (CFE2D_MUMPS_MEMORY_MB, ICNTL(23)) is too small: raise it, or run on ' // &
+          'more ranks'
     case (-16)
       s = 'the matrix has no equations, or too many'
     case (-51, -52)
@@ -250,6 +253,19 @@ contains
       s = 'see the MUMPS users'' guide for this error'
     end select
   end function mumps_error
+
+  !> Purpose: the most memory (MB) MUMPS may take on a rank (ICNTL(23)),
+  !> from the environment's CFE2D_MUMPS_MEMORY_MB (as a batch system's
+  !> memory per process; 0 or unset: MUMPS' own estimate, no limit).
+  integer(c_int) function memory_limit_mb()
+    character(len=32) :: v
+    integer :: st, mb
+    memory_limit_mb = 0
+    call get_environment_variable('CFE2D_MUMPS_MEMORY_MB', v, status=st)
+    if (st /= 0) return
+    read(v, *, iostat=st) mb
+    if (st == 0 .and. mb > 0) memory_limit_mb = int(mb, c_int)
+  end function memory_limit_mb
 
   !> An INFOG count of MUMPS: negative means millions.
   pure real(dp) function mumps_count(v)
