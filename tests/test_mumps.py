@@ -61,8 +61,10 @@ def mpirun_prefix(np_):
                     if p.returncode == 0 and "cfe2d" in p.stdout:
                         _MPI["prefix"] = [mpirun, *extra]
                     else:
-                        _MPI["why"] = f"mpirun cannot start 2 ranks here (rc {p.returncode}: " \
-                                      f"{(p.stderr or p.stdout).strip().splitlines()[:1]})"
+                        said = [ln.strip() for ln in (p.stderr + p.stdout).splitlines()
+                                if ln.strip() and not ln.strip().startswith("---")]
+                        _MPI["why"] = f"mpirun cannot start 2 ranks here (exit {p.returncode}: " \
+                                      f"{said[0] if said else 'no message'})"
                 except subprocess.TimeoutExpired:
                     _MPI["why"] = "mpirun did not start 2 ranks within 60 s"
     if _MPI["prefix"] is None:
