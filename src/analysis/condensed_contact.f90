@@ -135,7 +135,8 @@ contains
     end if
     ! A sliding frictional CFE makes the full matrix unsymmetric: the
     ! symmetric backends (CHOLMOD, skyline) keep one triangle, so the full
-    ! solve of a frictional model takes UMFPACK, which keeps both.
+    ! solve of a frictional model takes UMFPACK, which keeps both (MUMPS
+    ! keeps both and turns to LU itself).
     solver = m%solver
     if (frictional_set(cs) .and. solver /= solver_mumps) solver = solver_umfpack
     call number_dofs(m, cs, prescribed, solver, m%ordering, dm, sys, constraints=mpc)
