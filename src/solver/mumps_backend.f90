@@ -1,11 +1,12 @@
 !> MUMPS (multifrontal, distributed over the MPI ranks of the run) as a
-!> solver backend. Rank 0 assembles the matrix (both triangles, compressed
-!> columns) and hands MUMPS its coordinates: the upper triangle as a
+!> solver backend. Rank 0 assembles the matrix in compressed columns and
+!> hands MUMPS their coordinates and values: the upper triangle as a
 !> symmetric matrix (SYM=2: LDL^T with pivoting, so that a matrix that is
-!> not positive definite is factored too), or every entry once the matrix
-!> has been found unsymmetric beyond round-off (a sliding frictional
-!> contact; SYM=0, LU; is_symmetric says where the line is),
-!> after which the backend stays unsymmetric for this structure. The
+!> not positive definite is factored too), or, from the first element
+!> matrix that is unsymmetric beyond round-off (a sliding frictional
+!> contact; symmetric_element says where the line is), both triangles as
+!> an unsymmetric one (SYM=0, LU), after which the backend stays
+!> unsymmetric for this structure. The
 !> other ranks join every analysis, factorisation and solve
 !> (mumps_shim.c). Ordering: METIS or AMD, by MUMPS (ICNTL(7)).
 !> A singular matrix is recognised by MUMPS' null-pivot detection
@@ -32,7 +33,7 @@ module mumps_backend
   use messages, only: fatal
   use blas_info, only: set_solver_threads
   use solver_codes, only: order_metis, solver_mumps, solver_in_build
-  use sparse_matrix, only: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec
+  use sparse_matrix, only: csc_t, csc_build, csc_zero, csc_add_element, csc_matvec, csc_add_upper
   use dense_cholesky, only: dense_factor
   use mumps_binding, only: cfe_mpi_start, cfe_mumps_new, cfe_mumps_free, &
                            cfe_mumps_get_control, cfe_mumps_set_control, cfe_mumps_job, cfe_mumps_null_pivots, &
@@ -59,15 +60,13 @@ module mumps_backend
   end interface
 
   type, extends(solver_backend_t) :: mumps_backend_t
-    type(csc_t) :: a                          ! both triangles
+    type(csc_t) :: a                          ! upper triangle, both once unsymmetric
     integer(c_int) :: h = -1                  ! MUMPS instance (mumps_shim), -1 none
     integer :: sym = sym_symmetric
     integer :: ranks = 1
     integer :: margin = 35                    ! ICNTL(14)
     logical :: analysed = .false.
-    integer, allocatable :: pick(:)           ! entries of a%val handed to MUMPS
-    integer(c_int), allocatable :: irn(:), jcn(:), schur_list(:)
-    real(c_double), allocatable :: av(:)
+    integer(c_int), allocatable :: irn(:), jcn(:), schur_list(:)   ! coordinates of a's entries
     real(dp), allocatable :: l22(:, :)        ! chol(S0 + diag(K22)), lower
     !> MUMPS' memory in MB, the largest rank and all ranks: estimated by
     !> the analysis (INFOG(16), INFOG(17)), then used by the last
@@ -78,7 +77,7 @@ module mumps_backend
   contains
     procedure :: setup, zero, add, analyse, factor, solve, matvec, describe, stored_entries, free
     procedure :: condensed_factor, forward, backward, trailing_order
-    procedure, private :: run, interior_solve, numeric
+    procedure, private :: run, interior_solve, numeric, go_general
   end type mumps_backend_t
 
 contains
@@ -90,7 +89,7 @@ contains
     if (.not. solver_in_build(solver_mumps)) call fatal('MUMPS is not in this build of cfe2d (built without MPI or ' // &
                                            'libmumps-dev; see README, "Several machines")')
     call self%keep_structure(n, ordering, xeq, eqs)
-    call csc_build(self%a, n, xeq, eqs, upper=.false.)
+    call csc_build(self%a, n, xeq, eqs, upper=.true.)
     self%sym = sym_symmetric
   end subroutine setup
 
@@ -99,12 +98,52 @@ contains
     call csc_zero(self%a)
   end subroutine zero
 
+  !> Purpose: adds the element matrix ke of element e; the first one that
+  !> is not symmetric turns the store to both triangles (go_general).
   subroutine add(self, e, ke)
     class(mumps_backend_t), intent(inout) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: ke(:, :)
+    if (self%a%upper) then
+      if (.not. symmetric_element(ke)) call self%go_general()
+    end if
     call csc_add_element(self%a, e, self%eqs(self%xeq(e):self%xeq(e + 1) - 1), ke)
   end subroutine add
+
+  !> Purpose: is an element matrix symmetric to round-off? Entry pairs may
+  !> differ by 1e-12 of its largest diagonal entry (the last bits of a
+  !> coupling element's tangent); sliding friction differs by a share mu
+  !> of the normal stiffness.
+  pure logical function symmetric_element(ke)
+    real(dp), intent(in) :: ke(:, :)
+    real(dp), parameter :: sym_tol = 1.0e-12_dp
+    real(dp) :: dmax
+    integer :: i, j
+    dmax = 0.0_dp
+    do i = 1, size(ke, 1)
+      dmax = max(dmax, abs(ke(i, i)))
+    end do
+    symmetric_element = .true.
+    do j = 1, size(ke, 2)
+      do i = 1, j - 1
+        if (abs(ke(i, j) - ke(j, i)) > sym_tol * dmax) symmetric_element = .false.
+      end do
+    end do
+  end function symmetric_element
+
+  !> Purpose: the store from the upper triangle to both (what is assembled
+  !> so far is symmetric), MUMPS to LU: a new instance and analysis.
+  subroutine go_general(self)
+    class(mumps_backend_t), intent(inout) :: self
+    type(csc_t) :: full
+    call csc_build(full, self%n, self%xeq, self%eqs, upper=.false.)
+    call csc_add_upper(full, self%a)
+    self%a = full
+    if (self%h >= 0) call cfe_mumps_free(self%h)
+    self%h = -1
+    self%sym = sym_general
+    self%analysed = .false.
+  end subroutine go_general
 
   !> Purpose: a MUMPS instance for the current symmetry, its controls, the
   !> coordinates handed to it, and MUMPS' analysis (ordering, symbolic
@@ -134,34 +173,32 @@ contains
     icntl(14) = self%margin
     icntl(24) = 1                         ! null pivots detected and listed
     icntl(28) = 1                         ! sequential analysis: the matrix is on rank 0
+    ! an analysis of the structure only (it may run before the matrix is
+    ! assembled: CONTACT SOLVE=AUTO asks for the flop count first): no
+    ! weighted matching or 2x2 compression from the values, which an empty
+    ! matrix made meaningless (the 1e6-dof square: factor 2.0e8 entries
+    ! instead of 1.07e8, 10 s instead of 2.4 s); scaling from the values
+    ! at each factorisation
+    icntl(6) = 0
+    icntl(12) = 1
+    icntl(8) = 7
     icntl(23) = memory_limit_mb()         ! 0: no limit
     cntl(3) = pivot_ratio_min
     icntl(19) = merge(1, 0, self%nlast > 0)   ! Schur complement, centralised by rows
     icntl(26) = 0                         ! with a Schur block: solves of the leading block
     call cfe_mumps_set_control(self%h, icntl, cntl)
-    ! the entries MUMPS gets: the upper triangle, or all of them
-    cnt = 0
+    ! MUMPS gets every stored entry: the upper triangle, or both
+    cnt = size(self%a%val)
+    if (allocated(self%irn)) deallocate(self%irn, self%jcn)
+    allocate(self%irn(cnt), self%jcn(cnt))
     do col = 1, self%n
       do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
-        if (self%sym == sym_general .or. self%a%rowind(k) <= col) cnt = cnt + 1
-      end do
-    end do
-    if (allocated(self%pick)) deallocate(self%pick, self%irn, self%jcn, self%av)
-    allocate(self%pick(cnt), self%irn(cnt), self%jcn(cnt), self%av(cnt))
-    cnt = 0
-    do col = 1, self%n
-      do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
-        if (self%sym == sym_general .or. self%a%rowind(k) <= col) then
-          cnt = cnt + 1
-          self%pick(cnt) = k
-          self%irn(cnt) = int(self%a%rowind(k), c_int)
-          self%jcn(cnt) = int(col, c_int)
-        end if
+        self%irn(k) = int(self%a%rowind(k), c_int)
+        self%jcn(k) = int(col, c_int)
       end do
     end do
     nlead = self%n - self%nlast
     self%schur_list = [(int(k, c_int), k = nlead + 1, self%n)]
-    self%av = 0.0_c_double
     call self%run(mumps_job_analyse, 'analysis')
     self%factor_entries = mumps_count(self%infog(20))
     self%mem_rank_mb = real(self%infog(16), dp)
@@ -195,20 +232,20 @@ contains
       if (present(rhs)) then
         if (self%nlast > 0 .and. job == mumps_job_factor) then
           st = cfe_mumps_job(self%h, job, int(self%n, c_int), int(size(self%irn), c_long_long), self%irn, self%jcn, &
-                             self%av, int(self%nlast, c_int), self%schur_list, self%l22, nrhs, rhs, self%infog, &
+                             self%a%val, int(self%nlast, c_int), self%schur_list, self%l22, nrhs, rhs, self%infog, &
                              self%info, self%rinfog)
         else
           st = cfe_mumps_job(self%h, job, int(self%n, c_int), int(size(self%irn), c_long_long), self%irn, self%jcn, &
-                             self%av, int(self%nlast, c_int), self%schur_list, sdum, nrhs, rhs, self%infog, &
+                             self%a%val, int(self%nlast, c_int), self%schur_list, sdum, nrhs, rhs, self%infog, &
                              self%info, self%rinfog)
         end if
       else if (self%nlast > 0 .and. job == mumps_job_factor) then
         st = cfe_mumps_job(self%h, job, int(self%n, c_int), int(size(self%irn), c_long_long), self%irn, self%jcn, &
-                           self%av, int(self%nlast, c_int), self%schur_list, self%l22, 0_c_int, none, self%infog, &
+                           self%a%val, int(self%nlast, c_int), self%schur_list, self%l22, 0_c_int, none, self%infog, &
                            self%info, self%rinfog)
       else
         st = cfe_mumps_job(self%h, job, int(self%n, c_int), int(size(self%irn), c_long_long), self%irn, self%jcn, &
-                           self%av, int(self%nlast, c_int), self%schur_list, sdum, 0_c_int, none, self%infog, &
+                           self%a%val, int(self%nlast, c_int), self%schur_list, sdum, 0_c_int, none, self%infog, &
                            self%info, self%rinfog)
       end if
       if (st >= 0) return
@@ -277,61 +314,14 @@ contains
     end if
   end function mumps_count
 
-  !> Purpose: is the assembled matrix symmetric? An entry pair differing
-  !> by more than sym_tol of the geometric mean of its two diagonal
-  !> entries makes it unsymmetric (sliding friction: a share mu of the
-  !> normal stiffness); less is the round-off of a coupling element's
-  !> tangent, which CHOLMOD ignores too (it reads the upper triangle).
-  logical function is_symmetric(a)
-    type(csc_t), intent(in) :: a
-    real(dp), parameter :: sym_tol = 1.0e-12_dp
-    real(dp), allocatable :: d(:)
-    integer :: col, k, r, lo, hi, mid
-    real(dp) :: t
-    is_symmetric = .true.
-    allocate(d(a%n))
-    d = 0.0_dp
-    do col = 1, a%n
-      do k = a%colptr(col), a%colptr(col + 1) - 1
-        if (a%rowind(k) == col) d(col) = abs(a%val(k))
-      end do
-    end do
-    do col = 1, a%n
-      do k = a%colptr(col), a%colptr(col + 1) - 1
-        r = a%rowind(k)
-        if (r >= col) cycle
-        ! the entry (col, r): column r, sorted rows
-        lo = a%colptr(r)
-        hi = a%colptr(r + 1) - 1
-        do while (lo < hi)
-          mid = (lo + hi) / 2
-          if (a%rowind(mid) < col) then
-            lo = mid + 1
-          else
-            hi = mid
-          end if
-        end do
-        t = 0.0_dp
-        if (lo <= a%colptr(r + 1) - 1) then
-          if (a%rowind(lo) == col) t = a%val(lo)
-        end if
-        if (abs(t - a%val(k)) > sym_tol * sqrt(d(r) * d(col))) then
-          is_symmetric = .false.
-          return
-        end if
-      end do
-    end do
-  end function is_symmetric
-
   subroutine factor(self, status, bad)
     class(mumps_backend_t), intent(inout) :: self
     integer, intent(out) :: status, bad
     call self%numeric(status, bad)
   end subroutine factor
 
-  !> Purpose: numeric factorisation (analysis first where needed); an
-  !> unsymmetric matrix turns the backend to LU for good (a new instance,
-  !> a new analysis). status factor_singular with bad the first null
+  !> Purpose: numeric factorisation (analysis first where needed).
+  !> status factor_singular with bad the first null
   !> pivot's equation (0 if MUMPS does not name it).
   subroutine numeric(self, status, bad)
     class(mumps_backend_t), intent(inout) :: self
@@ -340,16 +330,7 @@ contains
     status = factor_ok
     bad = 0
     if (self%n == 0) return
-    if (self%sym == sym_symmetric .and. self%nlast == 0) then
-      if (.not. is_symmetric(self%a)) then
-        if (self%h >= 0) call cfe_mumps_free(self%h)
-        self%h = -1
-        self%sym = sym_general
-        self%analysed = .false.
-      end if
-    end if
     call self%analyse()
-    self%av = self%a%val(self%pick)
     if (self%nlast > 0) then
       if (allocated(self%l22)) then
         if (size(self%l22, 1) /= self%nlast) deallocate(self%l22)
@@ -453,12 +434,22 @@ contains
     nlead = self%n - self%nlast
     x = b
     call self%interior_solve(x)
-    do col = 1, nlead
-      do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
-        r = self%a%rowind(k)
-        if (r > nlead) b(r) = b(r) - self%a%val(k) * x(col)
+    ! b2 -= K21 x1: with the upper triangle, K21 is K12 (columns nlead+1..n) transposed
+    if (self%a%upper) then
+      do col = nlead + 1, self%n
+        do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
+          r = self%a%rowind(k)
+          if (r <= nlead) b(col) = b(col) - self%a%val(k) * x(r)
+        end do
       end do
-    end do
+    else
+      do col = 1, nlead
+        do k = self%a%colptr(col), self%a%colptr(col + 1) - 1
+          r = self%a%rowind(k)
+          if (r > nlead) b(r) = b(r) - self%a%val(k) * x(col)
+        end do
+      end do
+    end if
     if (self%nlast > 0) call dtrsv('L', 'N', 'N', self%nlast, self%l22, self%nlast, b(nlead + 1:), 1)
   end subroutine forward
 
@@ -513,7 +504,7 @@ contains
     self%analysed = .false.
     self%a = empty
     self%n = 0
-    if (allocated(self%pick)) deallocate(self%pick, self%irn, self%jcn, self%av)
+    if (allocated(self%irn)) deallocate(self%irn, self%jcn)
     if (allocated(self%l22)) deallocate(self%l22)
     if (allocated(self%xeq)) deallocate(self%xeq, self%eqs)
   end subroutine free
