@@ -90,8 +90,10 @@ contains
   !> sparse one of the whole (m comparable to n).
   !> Arguments: mpc the linear constraints (their dependent dofs
   !> eliminated); t_analyse returns the wall time of the symbolic analysis
-  !> done here to decide (0 when none was needed).
-  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse)
+  !> done here to decide (0 when none was needed); full, if true, asks for
+  !> the full solve (a nonlinear step: the bodies' stiffness changes with
+  !> u, so there is no factor of them to condense with).
+  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse, full)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
@@ -100,14 +102,18 @@ contains
     type(linear_system_t), intent(inout) :: sys
     type(condensed_t), intent(inout) :: cd
     real(dp), intent(out) :: t_analyse
+    logical, intent(in), optional :: full
     logical, allocatable :: mask(:, :)
     integer :: mc, solver
     real(dp) :: flops
     integer(kind=8) :: c0, c1, rate
+    logical :: want_full
     t_analyse = 0.0_dp
     cd%active = .false.
     cd%m = 0
-    if (m%contact_solve /= contact_solve_full .and. m%solver == solver_cholmod .and. cs%n > 0) then
+    want_full = m%contact_solve == contact_solve_full
+    if (present(full)) want_full = want_full .or. full
+    if (.not. want_full .and. m%solver == solver_cholmod .and. cs%n > 0) then
       call contact_dof_mask(m, cs, prescribed, mpc, mask)
       mc = count(mask)
       if (mc > 0) then

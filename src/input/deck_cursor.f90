@@ -89,6 +89,7 @@ module deck_cursor
     integer :: nsets = 0, nelsets = 0, nsurf = 0, nmat = 0, nsec = 0, namp = 0
     integer :: nsteps = 0, npairs = 0, nmbc = 0
     integer :: nbc = 0, nload = 0, nreq = 0   ! of the current step
+    logical :: nlgeom = .false.  ! NLGEOM of the last *STEP (a step without the parameter keeps it)
     ! Cards of decks written for CalculiX/Abaqus:
     type(interaction_t), allocatable :: inter(:)
     integer :: ninter = 0

@@ -3,8 +3,8 @@
 !> checks what needs the whole deck. The readers live in submodules, one
 !> file per family of cards:
 !>   deck_mesh_cards      *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE
-!>   deck_material_cards  *MATERIAL, *ELASTIC, *EXPANSION, *SOLID SECTION,
-!>                        *SPRING
+!>   deck_material_cards  *MATERIAL, *ELASTIC, *EXPANSION, *HYPERELASTIC,
+!>                        *PLASTIC, *SOLID SECTION, *SPRING
 !>   deck_step_cards      *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CLOAD,
 !>                        output requests, *END STEP, *INITIAL CONDITIONS,
 !>                        *TEMPERATURE
@@ -80,6 +80,16 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_expansion
+    module subroutine read_hyperelastic(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_hyperelastic
+    module subroutine read_plastic(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_plastic
     module subroutine read_initial_conditions(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -386,6 +396,8 @@ contains
     case ('MATERIAL');      call in_step(p, kw, .false.); call read_material(p, m, kw)
     case ('ELASTIC');       call in_step(p, kw, .false.); call read_elastic(p, m, kw)
     case ('EXPANSION');     call in_step(p, kw, .false.); call read_expansion(p, m, kw)
+    case ('HYPERELASTIC');  call in_step(p, kw, .false.); call read_hyperelastic(p, m, kw)
+    case ('PLASTIC');       call in_step(p, kw, .false.); call read_plastic(p, m, kw)
     case ('INITIAL CONDITIONS'); call in_step(p, kw, .false.); call read_initial_conditions(p, m, kw)
     case ('TEMPERATURE');   call in_step(p, kw, .true.); call read_temperature(p, m, kw)
     case ('SOLID SECTION'); call in_step(p, kw, .false.); call read_section(p, m, kw)

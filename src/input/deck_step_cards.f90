@@ -361,15 +361,20 @@ contains
 
   !> Purpose: *STEP: opens a step (NAME=, INC= the largest number of
   !> increments, 1..max_increments); its cards follow up to *END STEP.
+  !> NLGEOM (or NLGEOM=YES) makes the step geometrically nonlinear and
+  !> NLGEOM=NO linear; without the parameter a step keeps the previous
+  !> step's choice, as CalculiX does.
   module subroutine read_step(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: v
     if (p%step /= 0) call err(p, '*STEP inside a *STEP (missing *END STEP?)')
     call allow_params(p, kw, 'NAME,INC,NLGEOM,PERTURBATION,AMPLITUDE')
     if (has_param(kw, 'NLGEOM')) then
-      if (to_upper(param_value(kw, 'NLGEOM')) /= 'NO') &
-        call err(p, 'geometric nonlinearity (NLGEOM) is not implemented: cfe2d is small-deformation')
+      v = to_upper(param_value(kw, 'NLGEOM'))
+      if (v /= '' .and. v /= 'YES' .and. v /= 'NO') call err(p, 'NLGEOM must be YES or NO (or stand alone)')
+      p%nlgeom = v /= 'NO'
     end if
     if (has_param(kw, 'PERTURBATION')) call err(p, 'PERTURBATION steps are not implemented')
     if (has_param(kw, 'AMPLITUDE')) then
@@ -389,42 +394,59 @@ contains
       s%name = param_value(kw, 'NAME')
       s%src%line = p%i
       s%period = -1.0_dp
+      s%nlgeom = p%nlgeom
       allocate(s%bcs(0), s%loads(0), s%requests(0))
       s%max_inc = param_int(p, kw, 'INC', s%max_inc, 1, max_increments)
     end associate
   end subroutine read_step
 
   !> Purpose: *STATIC: `initial increment, time period[, min, max]`
-  !> (default 1, 1). The step runs period / increment equal increments:
-  !> both must be positive (and finite, as every real), and the count,
-  !> computed in real arithmetic so that it cannot wrap, must not exceed
-  !> max_increments nor INC= of *STEP.
+  !> (default 1, 1). A linear step runs period / increment equal
+  !> increments: both must be positive (and finite, as every real), and the
+  !> count, computed in real arithmetic so that it cannot wrap, must not
+  !> exceed max_increments nor INC= of *STEP. A nonlinear step (NLGEOM, a
+  !> nonlinear material) starts with the initial increment and adapts it
+  !> between the minimum and the maximum (CalculiX's defaults when not
+  !> given: min(initial, 1e-6 period) and the period), unless DIRECT fixes
+  !> it.
   module subroutine read_static(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
-    integer :: n, k
-    real(dp) :: ratio, x
+    integer :: n
+    real(dp) :: ratio
     call allow_params(p, kw, 'DIRECT,SOLVER')
     associate(s => m%steps(p%step))
       if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
+      s%direct = has_param(kw, 'DIRECT')
       s%dt = 1.0_dp
       s%period = 1.0_dp
+      s%dt_min = 0.0_dp
+      s%dt_max = 0.0_dp
       if (next_data(p)) then
         call split_fields(line_text(p), f, n)
-        if (n > 4) call err(p, '*STATIC data line needs: initial increment, time period[, min, max]')
+        if (n > 5) call err(p, '*STATIC data line needs: initial increment, time period[, min, max]')
         if (len(f(1)%s) > 0) s%dt = get_real(p, f(1), 'initial time increment')
         if (n >= 2) then
           if (len(f(2)%s) > 0) s%period = get_real(p, f(2), 'time period')
         end if
-        ! Minimum and maximum increments: fixed increments make them moot,
-        ! but they must still be numbers.
-        do k = 3, n
-          if (len(f(k)%s) > 0) x = get_real(p, f(k), 'minimum or maximum increment')
-        end do
+        if (n >= 3) then
+          if (len(f(3)%s) > 0) s%dt_min = get_real(p, f(3), 'minimum time increment')
+        end if
+        if (n >= 4) then
+          if (len(f(4)%s) > 0) s%dt_max = get_real(p, f(4), 'maximum time increment')
+        end if
+        ! the fifth, CalculiX's initial increment of CFD, has no use here
+        if (n == 5) then
+          if (len(f(5)%s) > 0) ratio = get_real(p, f(5), 'initial CFD time increment')
+        end if
         if (s%dt <= 0.0_dp .or. s%period <= 0.0_dp) call err(p, 'time increment and period must be positive')
+        if (s%dt_min < 0.0_dp .or. s%dt_max < 0.0_dp) call err(p, 'the minimum and maximum time increments ' // &
+                                                                'must not be negative')
         if (s%dt > s%period) s%dt = s%period
+        if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the ' // &
+                                                                   'maximum')
       end if
       ratio = s%period / s%dt
       if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // count_text(ratio) // &
@@ -486,6 +508,7 @@ contains
         case ('RF'); r%rf = .true.
         case ('S'); r%s = .true.
         case ('E'); r%e = .true.
+        case ('PEEQ'); r%peeq = .true.
         case ('CSTRESS', 'CDISP', 'CONTACT'); r%cstress = .true.
         case ('')
         case default
@@ -495,6 +518,7 @@ contains
       if (.not. next_data(p)) exit
     end do
     if (r%nodal .and. r%e) call err(p, 'E is an element quantity: ask for it in *EL PRINT or *EL FILE')
+    if (r%nodal .and. r%peeq) call err(p, 'PEEQ is an element quantity: ask for it in *EL PRINT or *EL FILE')
     call grow(m%steps(p%step)%requests, p%nreq + 1)
     p%nreq = p%nreq + 1
     m%steps(p%step)%requests(p%nreq) = r

@@ -167,6 +167,8 @@ module model
     logical :: to_file = .false.
     integer :: set = 0
     logical :: u = .false., rf = .false., s = .false., e = .false., cstress = .false.
+    !> PEEQ: the equivalent plastic strain (element quantity)
+    logical :: peeq = .false.
     !> GLOBAL= of *NODE PRINT: U and RF of a node with *TRANSFORM in global
     !> axes (YES) or in its local ones (NO, CalculiX's default).
     logical :: global = .false.
