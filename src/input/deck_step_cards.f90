@@ -448,6 +448,9 @@ contains
         if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the ' // &
                                                                    'maximum')
       end if
+      ! (automatic increments of an NLGEOM step grow from the initial
+      ! one: their count is checked as they are made)
+      if (s%nlgeom .and. .not. s%direct) return
       ratio = s%period / s%dt
       if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // count_text(ratio) // &
           ' increments (time period / initial increment); at most ' // itoa(max_increments) // ' are allowed')
