@@ -12,7 +12,10 @@
 !>   CalculiX's energy (1e-6);
 !> - uniaxial tension past yield, elastic unloading and reversed yielding
 !>   with linear hardening, small strain and (in logarithmic strain)
-!>   finite strain: stresses, PEEQ and plastic strain exact at the points.
+!>   finite strain: stresses, PEEQ and plastic strain exact at the points;
+!> - the follower pressure load: its load stiffness against central
+!>   differences (1e-6), the dead load at zero displacement (1e-12), and
+!>   forces turning with a rigid rotation of the element (1e-12).
 program test_nonlinear
   use kinds, only: dp
   use test_report, only: report, failures
@@ -20,6 +23,7 @@ program test_nonlinear
   use element_catalogue, only: max_nodes, find_element_type, catalogue, state_axisymmetric, &
                                state_plane_stress, shape_quad4
   use element_library, only: element_routine
+  use distributed_loads, only: face_pressure_load, follower_pressure_load
   use model, only: law_neo_hooke, law_mooney_rivlin
   implicit none
   real(dp), parameter :: q4(2, 4) = reshape([0.0_dp, 0.0_dp, 2.2_dp, 0.3_dp, 1.9_dp, 1.7_dp, -0.2_dp, 1.1_dp], [2, 4])
@@ -41,6 +45,7 @@ program test_nonlinear
   call check_uniaxial_rubber()
   call check_uniaxial_plastic(.false.)
   call check_uniaxial_plastic(.true.)
+  call check_follower()
   if (failures() > 0) stop 1
 
 contains
@@ -349,6 +354,57 @@ contains
       ein%hist = eout%hist
     end do
   end subroutine check_uniaxial_plastic
+
+  !> The follower pressure on every face of CPS3, CPE4, CAX4, CPS6, CAX6,
+  !> CPE8 and CAX8 (curved faces) at a deformed state.
+  subroutine check_follower()
+    character(len=4), parameter :: names(7) = ['CPS3', 'CPE4', 'CAX4', 'CPS6', 'CAX6', 'CPE8', 'CAX8']
+    type(elem_in_t) :: ein
+    real(dp) :: u(2, max_nodes), up(2, max_nodes), f(2, max_nodes), f0(2, max_nodes), fp(2, max_nodes), &
+                fm(2, max_nodes), kl(2 * max_nodes, 2 * max_nodes), kd(2 * max_nodes, 2 * max_nodes), &
+                kdum(2 * max_nodes, 2 * max_nodes), h, err_k, err_0, err_r, rot(2, 2), th
+    integer :: i, it, k, j, nd, nen
+    th = 0.7_dp
+    rot = reshape([cos(th), sin(th), -sin(th), cos(th)], [2, 2])
+    do i = 1, 7
+      ein = element(names(i), 1)
+      it = find_element_type(names(i))
+      nen = ein%nen
+      nd = 2 * nen
+      ein%thickness(1:nen) = [(1.0_dp + 0.1_dp * k, k = 1, nen)]
+      call deform(ein, 0.2_dp)
+      u(:, 1:nen) = reshape(ein%ue(1:nd), [2, nen])
+      err_k = 0.0_dp
+      err_0 = 0.0_dp
+      err_r = 0.0_dp
+      do k = 1, catalogue(it)%nedges
+        call follower_pressure_load(it, ein%xy, u, ein%thickness, k, f, kl)
+        h = 1e-6_dp
+        do j = 1, nd
+          up = u
+          up(mod(j - 1, 2) + 1, (j + 1) / 2) = u(mod(j - 1, 2) + 1, (j + 1) / 2) + h
+          call follower_pressure_load(it, ein%xy, up, ein%thickness, k, fp, kdum)
+          up(mod(j - 1, 2) + 1, (j + 1) / 2) = u(mod(j - 1, 2) + 1, (j + 1) / 2) - h
+          call follower_pressure_load(it, ein%xy, up, ein%thickness, k, fm, kdum)
+          kd(1:nd, j) = reshape(fp(:, 1:nen) - fm(:, 1:nen), [nd]) / (2.0_dp * h)
+        end do
+        err_k = max(err_k, maxval(abs(kd(1:nd, 1:nd) - kl(1:nd, 1:nd))) / maxval(abs(kl(1:nd, 1:nd))))
+        up = 0.0_dp
+        call follower_pressure_load(it, ein%xy, up, ein%thickness, k, f, kdum)
+        call face_pressure_load(it, ein%xy, ein%thickness, k, f0)
+        err_0 = max(err_0, maxval(abs(f(:, 1:nen) - f0(:, 1:nen))) / maxval(abs(f0(:, 1:nen))))
+        if (ein%state /= state_axisymmetric) then
+          up(:, 1:nen) = matmul(rot, ein%xy(:, 1:nen)) - ein%xy(:, 1:nen) + spread([0.4_dp, -0.1_dp], 2, nen)
+          call follower_pressure_load(it, ein%xy, up, ein%thickness, k, f, kdum)
+          err_r = max(err_r, maxval(abs(f(:, 1:nen) - matmul(rot, f0(:, 1:nen)))) / maxval(abs(f0(:, 1:nen))))
+        end if
+      end do
+      call report('follower pressure load stiffness ' // names(i), err_k < 1e-6_dp, 'relative ' // num(err_k))
+      call report('follower pressure at zero displacement is the dead load ' // names(i), err_0 < 1e-12_dp, &
+                  'relative ' // num(err_0))
+      call report('follower pressure turns with the element ' // names(i), err_r < 1e-12_dp, 'relative ' // num(err_r))
+    end do
+  end subroutine check_follower
 
   function num(x) result(s)
     real(dp), intent(in) :: x
