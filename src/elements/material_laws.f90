@@ -53,7 +53,7 @@ module material_laws
   public :: material_response, hist_peeq, fc_i, fc_j, deviator, det3, inv3
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
-  !> strain; material_response(ein, state, f, hist_in, p, a, tau,
+  !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
   !> hist_out) finite strain.
   interface material_response
     module procedure small_strain_response, finite_strain_response
@@ -168,16 +168,19 @@ contains
   !> Arguments: ein (law and constants), state, f(3, 3) the deformation
   !> gradient (F13 = F23 = F31 = F32 = 0; F33 = 1 in plane strain, the
   !> hoop stretch r / R in axisymmetry; plane stress: F33 is solved from
-  !> tau33 = 0 and returned), hist_in the committed history; p(5) the
+  !> tau33 = 0 and returned), eth the thermal strain alpha dT (St
+  !> Venant-Kirchhoff only: E - eth I is the mechanical Green-Lagrange
+  !> strain, CalculiX's ME; the other laws ignore it), hist_in the
+  !> committed history; p(5) the
   !> components of P, a(5, 5) = dP/dF (plane stress: condensed, fifth row
   !> and column zero), tau(3, 3) the Kirchhoff stress J sigma, hist_out the
   !> history at f. A non-positive det F gives zero stress and tangent
   !> (the element reports the inverted point).
-  pure subroutine finite_strain_response(ein, state, f, hist_in, p, a, tau, hist_out)
+  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out)
     type(elem_in_t), intent(in) :: ein
     integer, intent(in) :: state
     real(dp), intent(inout) :: f(3, 3)
-    real(dp), intent(in) :: hist_in(max_hist)
+    real(dp), intent(in) :: eth, hist_in(max_hist)
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
     real(dp) :: e2(4), d(4, 4), e33, df33, j2
     integer :: it
@@ -185,9 +188,9 @@ contains
       j2 = f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)
       if (ein%law == law_elastic .and. ein%nyield == 0) then
         ! St Venant-Kirchhoff: S33 = 0 is linear in E33 (closed form)
-        e2 = green_lagrange(f)
+        e2 = green_lagrange(f) - eth * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
         d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-        e33 = -(d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
+        e33 = eth - (d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
         f(3, 3) = sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
       else
         ! local Newton on tau33(F33) = 0 from an incompressible guess for
@@ -195,7 +198,7 @@ contains
         f(3, 3) = 1.0_dp
         if (ein%law /= law_elastic .and. j2 > 0.0_dp) f(3, 3) = 1.0_dp / j2
         do it = 1, max_local
-          call response_3d(ein, f, hist_in, p, a, tau, hist_out)
+          call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
           if (.not. abs(a(5, 5)) > 0.0_dp) exit
           df33 = -p(5) / a(5, 5)
           do while (f(3, 3) + df33 <= 0.0_dp)
@@ -205,11 +208,11 @@ contains
           if (abs(df33) <= 1e-14_dp * f(3, 3)) exit
         end do
       end if
-      call response_3d(ein, f, hist_in, p, a, tau, hist_out)
+      call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
       call condense5(a)
       p(5) = 0.0_dp
     else
-      call response_3d(ein, f, hist_in, p, a, tau, hist_out)
+      call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
     end if
   end subroutine finite_strain_response
 
@@ -217,9 +220,9 @@ contains
   !> condition): tau and its directional derivatives along the five unit
   !> components of F, then P = tau F^-T and
   !> dP = dtau F^-T - tau F^-T dF^T F^-T.
-  pure subroutine response_3d(ein, f, hist_in, p, a, tau, hist_out)
+  pure subroutine response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
     type(elem_in_t), intent(in) :: ein
-    real(dp), intent(in) :: f(3, 3), hist_in(max_hist)
+    real(dp), intent(in) :: f(3, 3), eth, hist_in(max_hist)
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
     real(dp) :: dtau(3, 3, 5), finv(3, 3), fit(3, 3), pm(3, 3), dpm(3, 3), df(3, 3)
     integer :: c, r
@@ -231,7 +234,7 @@ contains
     if (ein%nyield > 0) then
       call hencky_plastic(ein, f, hist_in, tau, dtau, hist_out)
     else if (ein%law == law_elastic) then
-      call saint_venant(ein, f, tau, dtau)
+      call saint_venant(ein, f, eth, tau, dtau)
     else
       call mooney_rivlin(ein, f, tau, dtau)
     end if
@@ -246,18 +249,19 @@ contains
     end do
   end subroutine response_3d
 
-  !> Purpose: St Venant-Kirchhoff: S = D E (D the isotropic elastic_matrix
-  !> on (E11, E22, 2 E12, E33)), tau = F S F^T, and dtau along each unit
+  !> Purpose: St Venant-Kirchhoff: S = D (E - eth I) (D the isotropic
+  !> elastic_matrix on (E11, E22, 2 E12, E33), eth the thermal strain),
+  !> tau = F S F^T, and dtau along each unit
   !> component of F: dtau = dF S F^T + F S dF^T + F (D dE) F^T with
   !> dE = sym(F^T dF).
-  pure subroutine saint_venant(ein, f, tau, dtau)
+  pure subroutine saint_venant(ein, f, eth, tau, dtau)
     type(elem_in_t), intent(in) :: ein
-    real(dp), intent(in) :: f(3, 3)
+    real(dp), intent(in) :: f(3, 3), eth
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
     real(dp) :: d(4, 4), s(3, 3), ds(3, 3), df(3, 3), de(3, 3)
     integer :: c
     d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-    s = voigt_stress(matmul(d, green_lagrange(f)))
+    s = voigt_stress(matmul(d, green_lagrange(f) - eth * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]))
     tau = matmul(matmul(f, s), transpose(f))
     do c = 1, 5
       df = unit_f(c)
@@ -437,7 +441,6 @@ contains
       sy0 = ein%yield(1, k)
       if (hi > lo) h = (ein%yield(1, k + 1) - sy0) / (hi - lo)
     end if
-    if (k == 0) lo = min(lo, 0.0_dp)
   end subroutine segment
 
   ! ------------------------------------------------------------------

@@ -35,9 +35,12 @@
 !> 4-node quadrilateral in plane strain and axisymmetry uses B-bar (the
 !> small-strain F-bar: eps_bar = eps + (1/n) (tr eps0 - tr eps) m, m the
 !> identity over the scaled components; Hughes 1980) against plastic
-!> locking. The thermal strain is subtracted from the strain the law
-!> sees, so fe is the whole internal force and act_thermal gives zero
-!> here. The finite-strain path has no thermal strain.
+!> locking. The thermal strain alpha dT is subtracted from the strain
+!> the law sees (small strain: eps - alpha dT (1, 1, 0, 1); finite strain,
+!> St Venant-Kirchhoff only: E - alpha dT I, CalculiX's mechanical
+!> Lagrange strain; the hyperelastic laws and finite-strain plasticity
+!> ignore it), so fe is the whole internal force and act_thermal gives
+!> zero on this path.
 !>
 !> Stresses (act_stresses): sig_ip the Cauchy stress (s11, s22, s33, s12)
 !> (sigma = tau / det Fbar with F-bar), extrapolated to the nodes;
@@ -170,7 +173,7 @@ contains
     type(elem_out_t), intent(inout) :: eout
     real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol
     real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
-    real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3)
+    real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth
     integer :: ip, nd, nexp
     logical :: fbar
     nd = 2 * ein%nen
@@ -193,6 +196,7 @@ contains
       eout%detj_min = min(eout%detj_min, vol)
       dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
       call deformation(ein, n, dndx, r, f, g)
+      eth = ein%alpha * dot_product(n(1:ein%nen), ein%dtemp(1:ein%nen))
       eout%hist(:, ip) = ein%hist(:, ip)
       jac = (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) * f(3, 3)
       if (.not. jac > 0.0_dp .or. (fbar .and. .not. j0 > 0.0_dp)) then
@@ -205,7 +209,7 @@ contains
         fb = f
         fb(1:2, 1:2) = s * f(1:2, 1:2)
         if (nexp == 3) fb(3, 3) = s * f(3, 3)
-        call material_response(ein, ein%state, fb, ein%hist(:, ip), p, a, tau, eout%hist(:, ip))
+        call material_response(ein, ein%state, fb, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip))
         c = s**(1 - nexp)
         fm = comps(f)
         if (nexp == 2) fm(5) = 0.0_dp
@@ -217,7 +221,7 @@ contains
         eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
         jac = det3(fb)
       else
-        call material_response(ein, ein%state, f, ein%hist(:, ip), p, a, tau, eout%hist(:, ip))
+        call material_response(ein, ein%state, f, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip))
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
         eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
         jac = det3(f)

@@ -15,7 +15,13 @@
 !>   finite strain: stresses, PEEQ and plastic strain exact at the points;
 !> - the follower pressure load: its load stiffness against central
 !>   differences (1e-6), the dead load at zero displacement (1e-12), and
-!>   forces turning with a rigid rotation of the element (1e-12).
+!>   forces turning with a rigid rotation of the element (1e-12);
+!> - F-bar: a nearly incompressible 4-node quadrilateral (K / mu = 1e5) has
+!>   one volumetric constraint (one singular value of ke of the bulk
+!>   modulus's size), where the element without it has more;
+!> - St Venant-Kirchhoff under NLGEOM with a temperature change: free
+!>   thermal expansion (E = alpha dT I) gives no force (plane stress,
+!>   axisymmetry).
 program test_nonlinear
   use kinds, only: dp
   use test_report, only: report, failures
@@ -46,6 +52,12 @@ program test_nonlinear
   call check_uniaxial_plastic(.false.)
   call check_uniaxial_plastic(.true.)
   call check_follower()
+  call check_no_locking('CPE4')
+  call check_no_locking('CAX4')
+  do ie = 1, 5
+    call check_free_expansion('CPS' // trim(suffix(ie)))
+    call check_free_expansion('CAX' // trim(suffix(ie)))
+  end do
   if (failures() > 0) stop 1
 
 contains
@@ -123,6 +135,11 @@ contains
     real(dp) :: kfd(2 * max_nodes, 2 * max_nodes), h, err, scale, amp
     integer :: j, nd
     ein = element(name, il)
+    ! a varying temperature change where the law takes the thermal strain
+    if (il == 1 .or. il == 5) then
+      ein%alpha = 1e-3_dp
+      ein%dtemp(1:ein%nen) = [(5.0_dp + 3.0_dp * j, j = 1, ein%nen)]
+    end if
     amp = 0.15_dp
     if (il >= 4) amp = 0.06_dp
     call deform(ein, amp)
@@ -405,6 +422,58 @@ contains
       call report('follower pressure turns with the element ' // names(i), err_r < 1e-12_dp, 'relative ' // num(err_r))
     end do
   end subroutine check_follower
+
+  !> Singular values of ke at zero displacement of a neo-Hookean element
+  !> with K / mu = 1e5: those above 1e-3 of the largest are the volumetric
+  !> constraints; F-bar leaves one (the element's mean dilatation), the
+  !> plain element (St Venant-Kirchhoff with the same moduli) more.
+  subroutine check_no_locking(name)
+    character(len=*), intent(in) :: name
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: mu, kb, sv(8), work(200), dum(1, 1), a(8, 8)
+    integer :: info, nbig(2), il
+    do il = 1, 2
+      ein = element(name, 2)
+      mu = 2.0_dp * ein%c10
+      kb = 1e5_dp * mu
+      ein%d1 = 2.0_dp / kb
+      if (il == 2) then
+        ! the same moduli in St Venant-Kirchhoff: no F-bar
+        ein%law = 0
+        ein%e = 9.0_dp * kb * mu / (3.0_dp * kb + mu)
+        ein%nu = (3.0_dp * kb - 2.0_dp * mu) / (2.0_dp * (3.0_dp * kb + mu))
+      end if
+      call element_routine(act_tangent, ein, eout)
+      a = eout%ke(1:8, 1:8)
+      call dgesvd('N', 'N', 8, 8, a, 8, sv, dum, 1, dum, 1, work, 200, info)
+      nbig(il) = count(sv > 1e-3_dp * sv(1))
+    end do
+    call report('F-bar one volumetric constraint ' // name, nbig(1) == 1 .and. nbig(2) > 1, &
+                'large singular values with F-bar / without: ' // num(real(nbig(1), dp)) // ' ' // &
+                num(real(nbig(2), dp)))
+  end subroutine check_no_locking
+
+  !> Free thermal expansion under NLGEOM: u = (sqrt(1 + 2 alpha dT) - 1) X
+  !> makes E = alpha dT I (plane stress: the thickness stretch follows
+  !> from s33 = 0; axisymmetry: the hoop stretch is the same), no force.
+  subroutine check_free_expansion(name)
+    character(len=*), intent(in) :: name
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: c, fmax
+    integer :: k
+    ein = element(name, 1)
+    ein%alpha = 1e-3_dp
+    ein%dtemp = 40.0_dp
+    c = sqrt(1.0_dp + 2.0_dp * ein%alpha * 40.0_dp) - 1.0_dp
+    do k = 1, ein%nen
+      ein%ue(2 * k - 1:2 * k) = c * ein%xy(:, k)
+    end do
+    call element_routine(ior(act_residual, act_stresses), ein, eout)
+    fmax = max(maxval(abs(eout%fe(1:2 * ein%nen))), maxval(abs(eout%sig_ip(:, 1:ein%nip)))) / (ein%e * ein%alpha * 40.0_dp)
+    call report('free thermal expansion no force ' // name, fmax < 1e-12_dp, 'relative ' // num(fmax))
+  end subroutine check_free_expansion
 
   function num(x) result(s)
     real(dp), intent(in) :: x
