@@ -14,6 +14,7 @@ module analysis
   use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached
   use constraints, only: mpc_t, resolve_equations, constraint_label
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment
+  use equilibrium_common, only: newton_new_step
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use linear_solver, only: linear_system_t
@@ -138,7 +139,7 @@ contains
     rs%nonlinear = step_is_nonlinear(m, is)
     rs%body%nonlinear = rs%nonlinear
     rs%body%nlgeom = m%steps(is)%nlgeom
-    rs%eq%newton%total = 0
+    call newton_new_step(rs%eq%newton, m%steps(is)%controls)
     rs%cutbacks = 0
     if (rs%nonlinear .and. m%steps(is)%nlgeom .and. size(m%pairs) > 0 .and. is > 1) call research(m, rs)
     call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta, rs%nonlinear)
@@ -272,11 +273,12 @@ contains
   end function step_is_nonlinear
 
   !> Purpose: a nonlinear step's increments (CalculiX's automatic
-  !> incrementation, its manual "Convergence criteria"): the first is the
+  !> incrementation, its manual "Convergence criteria"; the constants are
+  !> the step's *CONTROLS, here with their defaults): the first is the
   !> initial increment of *STATIC; after two increments in a row that
-  !> converged in at most I_G = 4 iterations the next is 1.5 times
-  !> larger, after one that took more than I_L = 10 it is 0.75 times
-  !> smaller, never above the maximum (default the period) nor beyond the
+  !> converged in at most I_G = 4 iterations the next is D_D = 1.5 times
+  !> larger, after one that took more than I_L = 10 it is D_B = 0.75
+  !> times smaller, never above the maximum (default the period) nor beyond the
   !> end of the step; an increment that fails (equilibrium's newton_t:
   !> divergence, too slow, an inverted element, a contact status that
   !> does not settle) is cut back by its factor (0.25 or 0.5) and solved
@@ -315,6 +317,12 @@ contains
       call values_at(m, rs%ls, t + dt_try, rs%u, rs%fext)
       ! the free dofs start where the last increment left them
       where (.not. rs%ls%presc) rs%u = u_saved
+      if (rs%ls%thermal) then
+        ! the temperatures at the end and at the start of the increment
+        if (.not. allocated(rs%body%dtemp)) allocate(rs%body%dtemp(m%nn), rs%body%dtemp0(m%nn))
+        call temperature_change_at(m, rs%ls, t + dt_try, rs%body%dtemp)
+        call temperature_change_at(m, rs%ls, t, rs%body%dtemp0)
+      end if
       call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, &
                            ok, iters, u_saved)
       if (ok) then
@@ -328,15 +336,15 @@ contains
           ' increments done at step time ' // rtoa(t, 6) // ' of ' // rtoa(period, 6) // ', the most INC= ' // &
           'of *STEP allows (default 1000)')
         if (m%steps(is)%direct) cycle
-        if (iters <= 4) then
+        if (iters <= m%steps(is)%controls%ig) then
           fast = fast + 1
         else
           fast = 0
         end if
-        if (iters > 10) then
-          dt = 0.75_dp * dt_try
+        if (iters > m%steps(is)%controls%il) then
+          dt = m%steps(is)%controls%db * dt_try
         else if (fast >= 2) then
-          dt = 1.5_dp * dt_try
+          dt = m%steps(is)%controls%dd * dt_try
         else
           dt = max(dt, dt_try)
         end if

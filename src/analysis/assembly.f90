@@ -52,6 +52,14 @@ module assembly
     !> there (an inverted element, det F <= 0, or a number that is not
     !> finite): bad_elem is it (0: none). The increment is cut back.
     integer :: bad_elem = 0
+    !> Nodal temperature changes at the time of the increment being solved
+    !> (nn; allocated only when the model has thermal strain): in a
+    !> nonlinear step the element routines take them into their internal
+    !> force.
+    real(dp), allocatable :: dtemp(:)
+    !> ... and at the converged state the increment starts from (the
+    !> first iteration is linearised about it, body_predictor_forces).
+    real(dp), allocatable :: dtemp0(:)
     !> CalculiX's average force q-bar of the last evaluation: the mean
     !> |f| over the element dofs of the body elements (its manual,
     !> "Convergence criteria").
@@ -66,11 +74,15 @@ module assembly
 contains
 
   !> Purpose: f = f + the equivalent nodal loads of the thermal strain of
-  !> every body element at nodal temperature changes dtemp(nn).
-  subroutine thermal_forces(m, dtemp, f)
+  !> every body element at nodal temperature changes dtemp(nn). Under
+  !> NLGEOM (nlgeom) and with a plastic material the element routines
+  !> take the thermal strain into their internal force instead (their
+  !> act_thermal gives zero): the body's dtemp carries it there.
+  subroutine thermal_forces(m, dtemp, f, nlgeom)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: dtemp(:)
     real(dp), intent(inout) :: f(:, :)
+    logical, intent(in) :: nlgeom
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, k, nodes(max_en)
@@ -80,7 +92,7 @@ contains
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
       if (body_alpha(m, e) == 0.0_dp) cycle
-      call body_input(m, e, u0, ein, nodes, dtemp)
+      call body_input(m, e, u0, ein, nodes, dtemp, nlgeom=nlgeom)
       if (all(ein%dtemp(1:ein%nen) == 0.0_dp)) cycle
       call element_routine(act_thermal, ein, eout)
       do k = 1, ein%nen
@@ -179,7 +191,11 @@ contains
     ndof_total = 0
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
-      call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      if (allocated(body%dtemp)) then
+        call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      else
+        call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      end if
       call element_routine(act_residual, ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
       nd = eout%ndof
@@ -246,7 +262,11 @@ contains
     f = 0.0_dp
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
-      call body_input(m, e, u0, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      if (allocated(body%dtemp0)) then
+        call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      else
+        call body_input(m, e, u0, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      end if
       call element_routine(ior(act_tangent, act_residual), ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
       nd = eout%ndof
@@ -287,7 +307,11 @@ contains
       nd = 2 * elem_nodes(m, e)
       if (body%nonlinear) then
         ! the consistent tangent at u with the committed history
-        call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+        if (allocated(body%dtemp)) then
+          call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+        else
+          call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+        end if
         call element_routine(act_tangent, ein, eout)
         counts%continuum_tangent = counts%continuum_tangent + 1
         ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd)

@@ -22,7 +22,7 @@ module equilibrium
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
                                 report_iteration, describe, singular, contact_force_scale, take_back, &
                                 stabilise_open, set_aside_or_stop, newton_begin, newton_test, newton_converged, &
-                                newton_failed, newton_df, newton_dc
+                                newton_failed
   use condensed_equilibrium, only: solve_condensed
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
   use messages, only: warn
@@ -132,7 +132,7 @@ contains
       it = it + 1
       if (body%nonlinear) then
         if (body%bad_elem > 0) then
-          call newton_failed(eq%newton, newton_df, 'element ' // elem_label(m, body%bad_elem) // &
+          call newton_failed(eq%newton, eq%newton%ctl%df, 'element ' // elem_label(m, body%bad_elem) // &
                              ' is inverted or cannot be evaluated at the displacements of the iteration')
           exit
         end if
@@ -164,7 +164,7 @@ contains
       call expand_dependent(dm, u)
       if (body%nonlinear) then
         if (.not. all(ieee_is_finite(u))) then
-          call newton_failed(eq%newton, newton_df, 'the displacements are not finite numbers')
+          call newton_failed(eq%newton, eq%newton%ctl%df, 'the displacements are not finite numbers')
           exit
         end if
       else
@@ -220,7 +220,7 @@ contains
       end if
     end do
     iters = it
-    if (body%nonlinear .and. eq%newton%cut >= 1.0_dp) call newton_failed(eq%newton, newton_dc, &
+    if (body%nonlinear .and. eq%newton%cut >= 1.0_dp) call newton_failed(eq%newton, eq%newton%ctl%dc, &
       'the contact status did not settle in ' // itoa(m%contact_max_iter) // ' iterations')
   end subroutine solve_full
 

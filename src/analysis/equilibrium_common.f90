@@ -8,7 +8,7 @@ module equilibrium_common
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use strings, only: itoa
-  use model, only: model_t, node_label
+  use model, only: model_t, node_label, controls_t
   use contact, only: contact_set_t, contact_forces
   use contact_status, only: status_search_t, reject_pivot, begin_status_search
   use assembly, only: element_counts_t, body_t, body_forces, nonlinear_body_forces
@@ -22,32 +22,27 @@ module equilibrium_common
   private
   public :: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, report_iteration, &
             describe, singular, contact_force_scale, take_back, stabilise_open, set_aside_or_stop, newton_t, &
-            newton_begin, newton_test, newton_converged, newton_failed
+            newton_begin, newton_test, newton_converged, newton_failed, newton_new_step
 
   !> The state of the Newton iteration of a nonlinear increment and its
-  !> tests (CalculiX's manual, "Convergence criteria", with its default
-  !> constants): the average force q-bar of each iteration and its mean
-  !> q-tilde, the largest residual force r_max of the last three
-  !> iterations, the largest correction c_max and the largest change of
-  !> the increment Delta u_max. Why the increment failed: reason.
+  !> tests (CalculiX's manual, "Convergence criteria" and *CONTROLS, with
+  !> its default constants): the reference force q-tilde is the average
+  !> force q-bar (the mean |f| over the element dofs) averaged over the
+  !> converged increments of the step and the current iteration (a new
+  !> step starts from the average of the steps before); the largest
+  !> residual force r_max of the last three iterations; why the increment
+  !> failed: reason, and the factor to cut it by: cut.
   type :: newton_t
-    real(dp) :: q_sum = 0.0_dp          ! sum of q-bar over the iterations counted in q_count
+    real(dp) :: q_sum = 0.0_dp          ! sum of q-bar over the converged increments counted in q_count
     integer :: q_count = 0
-    real(dp) :: q_step = 0.0_dp         ! q-tilde of the last converged increment of the run
+    real(dp) :: q_last = 0.0_dp         ! q-bar of the last iteration
     real(dp) :: r(3) = 0.0_dp           ! r_max of iterations i, i-1, i-2
     integer :: it = 0                   ! Newton iterations since the last contact status change
     integer :: total = 0                ! Newton iterations of the step (all increments, cut ones too)
     real(dp) :: cut = 1.0_dp            ! when the increment failed: the factor to cut it by
     character(len=:), allocatable :: reason
+    type(controls_t) :: ctl             ! the step's *CONTROLS
   end type newton_t
-
-  !> CalculiX's constants (*CONTROLS defaults): R_n, R_l, epsilon (zero
-  !> force), C_n, C_epsilon; I_0, I_R, I_C, I_P, R_p; the cut-back factors
-  !> D_F (divergence) and D_C (too slow).
-  real(dp), parameter, public :: newton_rn = 0.005_dp, newton_rl = 1.0e-8_dp, newton_eps = 1.0e-5_dp, &
-                                 newton_cn = 0.02_dp, newton_ceps = 1.0e-3_dp, newton_rp = 0.02_dp
-  integer, parameter, public :: newton_i0 = 4, newton_ir = 8, newton_ic = 16, newton_ip = 9
-  real(dp), parameter, public :: newton_df = 0.25_dp, newton_dc = 0.5_dp
 
   type :: equilibrium_t
     ! factor reuse policy: the factor is valid for the statuses it was made for
@@ -159,8 +154,6 @@ contains
   !> Purpose: the start of a nonlinear increment's Newton iteration.
   subroutine newton_begin(nt)
     type(newton_t), intent(inout) :: nt
-    nt%q_sum = 0.0_dp
-    nt%q_count = 0
     nt%r = 0.0_dp
     nt%it = 0
     nt%cut = 1.0_dp
@@ -171,10 +164,10 @@ contains
   !> manual, "Convergence criteria"): q-bar the average force of this
   !> iteration, r_max the largest residual force on a free dof, c_max the
   !> largest correction of this iteration, du_max the largest change of
-  !> the increment so far. The reference force q-tilde is the mean q-bar
-  !> of the iterations of this increment, never below the last converged
-  !> increment's (unloading to zero force is judged against the forces
-  !> the model has carried). Converged when r_max <= c1 q-tilde and one
+  !> the increment so far; the constants are the step's *CONTROLS
+  !> (nt%ctl, model's controls_t, CalculiX's names). The reference force
+  !> q-tilde is the mean of q-bar over the converged increments of the
+  !> step and this iteration (newton_t), or q_u if given. Converged when r_max <= c1 q-tilde and one
   !> of: c_max <= c2 du_max; the estimate of the next correction
   !> r_max c_max / min(r_{i-1}, r_{i-2}) < c2 du_max; r_max <= R_l
   !> q-tilde (a linear increment); zero force; c_max < 1e-8 of the
@@ -190,55 +183,70 @@ contains
     real(dp), intent(out) :: ratio
     real(dp) :: q, c1, c2, est
     integer :: i
-    nt%q_sum = nt%q_sum + qbar
-    nt%q_count = nt%q_count + 1
-    q = max(nt%q_sum / nt%q_count, nt%q_step, tiny(1.0_dp))
+    nt%q_last = qbar
+    q = max((nt%q_sum + qbar) / (nt%q_count + 1), tiny(1.0_dp))
+    if (nt%ctl%qu > 0.0_dp) q = nt%ctl%qu
     nt%r = [r_max, nt%r(1), nt%r(2)]
     i = nt%it
-    if (qbar > newton_eps * q) then
-      c1 = newton_rn
-      if (i > newton_ip) c1 = newton_rp
-      c2 = newton_cn
+    if (qbar > nt%ctl%eps * q) then
+      c1 = nt%ctl%rn
+      if (i > nt%ctl%ip) c1 = nt%ctl%rp
+      c2 = nt%ctl%cn
     else
-      c1 = newton_eps
-      c2 = newton_ceps
+      c1 = nt%ctl%eps
+      c2 = nt%ctl%ceps
     end if
     ratio = r_max / q
     converged = .false.
     nt%cut = 1.0_dp
     if (r_max <= c1 * q) then
-      converged = c_max <= c2 * du_max .or. r_max <= newton_rl * q .or. qbar <= newton_eps * q .or. &
+      converged = c_max <= c2 * du_max .or. r_max <= nt%ctl%rl * q .or. qbar <= nt%ctl%eps * q .or. &
                   c_max <= 1.0e-8_dp * max(du_max, tiny(1.0_dp))
       if (.not. converged .and. i >= 3) then
         if (min(nt%r(2), nt%r(3)) > 0.0_dp) converged = r_max * c_max / min(nt%r(2), nt%r(3)) < c2 * du_max
       end if
       if (converged) return
     end if
-    if (i >= newton_i0 .and. r_max > 1.0e-20_dp .and. c_max > 1.0e-20_dp .and. nt%r(2) > nt%r(3) .and. &
+    if (i >= nt%ctl%i0 .and. r_max > 1.0e-20_dp .and. c_max > 1.0e-20_dp .and. nt%r(2) > nt%r(3) .and. &
         r_max > nt%r(3) .and. r_max > c1 * q) then
-      nt%cut = newton_df
+      nt%cut = nt%ctl%df
       nt%reason = 'the residual force grew in two successive iterations (divergence)'
       return
     end if
-    if (i >= newton_ic) then
-      nt%cut = newton_dc
-      nt%reason = 'no convergence in ' // itoa(newton_ic) // ' iterations'
+    if (i >= nt%ctl%ic) then
+      nt%cut = nt%ctl%dc
+      nt%reason = 'no convergence in ' // itoa(nt%ctl%ic) // ' iterations'
       return
     end if
-    if (i >= newton_ir .and. nt%r(2) > 0.0_dp .and. r_max < nt%r(2) .and. r_max > 0.0_dp) then
-      est = i + log(newton_rn * q / r_max) / log(r_max / nt%r(2))
-      if (est > newton_ic) then
-        nt%cut = newton_dc
-        nt%reason = 'convergence too slow (' // itoa(newton_ic) // ' iterations would not do)'
+    if (i >= nt%ctl%ir .and. nt%r(2) > 0.0_dp .and. r_max < nt%r(2) .and. r_max > 0.0_dp) then
+      est = i + log(nt%ctl%rn * q / r_max) / log(r_max / nt%r(2))
+      if (est > nt%ctl%ic) then
+        nt%cut = nt%ctl%dc
+        nt%reason = 'convergence too slow (' // itoa(nt%ctl%ic) // ' iterations would not do)'
       end if
     end if
   end subroutine newton_test
 
-  !> Purpose: a converged increment: its q-tilde is the floor of the next.
+  !> Purpose: a converged increment: its average force joins the step's
+  !> time average.
   subroutine newton_converged(nt)
     type(newton_t), intent(inout) :: nt
-    nt%q_step = max(nt%q_step, nt%q_sum / max(nt%q_count, 1))
+    nt%q_sum = nt%q_sum + nt%q_last
+    nt%q_count = nt%q_count + 1
   end subroutine newton_converged
+
+  !> Purpose: a new step starts from the time average of the steps
+  !> before (one sample of it), CalculiX's q_0, with its *CONTROLS ctl.
+  subroutine newton_new_step(nt, ctl)
+    type(newton_t), intent(inout) :: nt
+    type(controls_t), intent(in) :: ctl
+    nt%ctl = ctl
+    if (nt%q_count > 0) then
+      nt%q_sum = nt%q_sum / nt%q_count
+      nt%q_count = 1
+    end if
+    nt%total = 0
+  end subroutine newton_new_step
 
   !> Purpose: the increment failed for reason (cut back by cut).
   subroutine newton_failed(nt, cut, reason)

@@ -57,6 +57,9 @@ module load_state
     !> Nodes the model keeps (kept_nodes); a *BOUNDARY on a dropped node
     !> is ignored, so that it shows zero displacement and no reaction.
     logical, allocatable :: kept(:)
+    !> NLGEOM of the step: the thermal strain is then in the elements'
+    !> internal force, not a load (assembly's thermal_forces).
+    logical :: nlgeom = .false.
   end type load_state_t
 
 contains
@@ -108,6 +111,8 @@ contains
       call hold_temperatures(m, ls, conc)
     end if
     associate(st => m%steps(is))
+      ! (after hold_temperatures: the last step's loads were taken out as it made them)
+      ls%nlgeom = st%nlgeom
       ls%period = st%period
       ls%total_time = total_time
       ls%bc_start = u
@@ -188,7 +193,7 @@ contains
     ls%temp_amp = 0
     if (.not. ls%thermal) return
     fth = 0.0_dp
-    call thermal_forces(m, dtemp, fth)
+    call thermal_forces(m, dtemp, fth, ls%nlgeom)
     conc = conc - fth
   end subroutine hold_temperatures
 
@@ -429,7 +434,7 @@ contains
         real(dp), allocatable :: dtemp(:)
         allocate(dtemp(m%nn))
         call temperature_change_at(m, ls, t, dtemp)
-        call thermal_forces(m, dtemp, fext)
+        call thermal_forces(m, dtemp, fext, ls%nlgeom)
       end block
     end if
   end subroutine values_at

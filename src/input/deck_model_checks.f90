@@ -56,7 +56,9 @@ contains
   !> Purpose: a hyperelastic material makes every step geometrically
   !> nonlinear (CalculiX sets NLGEOM when it reads *HYPERELASTIC); a
   !> truss of a hyperelastic or plastic material stops at its section
-  !> (the truss is linear elastic).
+  !> (the truss is linear elastic), so does the thermal strain of a
+  !> hyperelastic material, and of a plastic one under NLGEOM, at the
+  !> material (the element routines do not have it).
   subroutine check_nonlinear_materials(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -68,6 +70,14 @@ contains
       imat = m%sections(s)%material
       if (m%materials(imat)%law == law_elastic .and. m%materials(imat)%nyield == 0) cycle
       hyper = hyper .or. m%materials(imat)%law /= law_elastic
+      ! the element routines have no thermal strain for these laws
+      if (m%materials(imat)%has_expansion .and. m%materials(imat)%alpha /= 0.0_dp) then
+        p%i = m%materials(imat)%src%line
+        if (m%materials(imat)%law /= law_elastic) call err(p, 'material ' // trim(m%materials(imat)%name) // &
+          ': the thermal strain (*EXPANSION) of a hyperelastic material is not implemented')
+        if (any(m%steps%nlgeom)) call err(p, 'material ' // trim(m%materials(imat)%name) // ': the thermal ' // &
+          'strain (*EXPANSION) of a plastic material under NLGEOM is not implemented (it is without NLGEOM)')
+      end if
       do k = 1, size(m%elsets(m%sections(s)%elset)%items)
         e = m%elsets(m%sections(s)%elset)%items(k)
         if (.not. is_truss(m, e)) cycle

@@ -5,7 +5,7 @@
 !>   deck_mesh_cards      *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE
 !>   deck_material_cards  *MATERIAL, *ELASTIC, *EXPANSION, *HYPERELASTIC,
 !>                        *PLASTIC, *SOLID SECTION, *SPRING
-!>   deck_step_cards      *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CLOAD,
+!>   deck_step_cards      *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CONTROLS, *CLOAD,
 !>                        output requests, *END STEP, *INITIAL CONDITIONS,
 !>                        *TEMPERATURE
 !>   deck_contact_cards   *CONTACT PAIR, *CONTACT CONTROLS, *SOLVER
@@ -80,6 +80,11 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_expansion
+    module subroutine read_controls(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_controls
     module subroutine read_hyperelastic(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -436,8 +441,8 @@ contains
     case ('INSTANCE');      call in_step(p, kw, .false.); call read_instance(p, m, kw)
     case ('END INSTANCE');  call read_end_instance(p, m, kw)
     case ('END ASSEMBLY');  call read_end_assembly(p, kw)
-    case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', &
-          'CONTROLS')
+    case ('CONTROLS');      call read_controls(p, m, kw)
+    case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT')
       call skip_card(p, kw)
     case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', 'CONTACT PRINT', &
           'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &

@@ -11,7 +11,7 @@ submodule (deck_parser) deck_step_cards
                          need_nset, need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
                          note_named, rotation_hint
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
-                   find_name, node_label
+                   find_name, node_label, controls_t
   use growable, only: append
   use model_growth, only: grow
   implicit none
@@ -395,6 +395,7 @@ contains
       s%src%line = p%i
       s%period = -1.0_dp
       s%nlgeom = p%nlgeom
+      s%controls = p%controls
       allocate(s%bcs(0), s%loads(0), s%requests(0))
       s%max_inc = param_int(p, kw, 'INC', s%max_inc, 1, max_increments)
     end associate
@@ -458,6 +459,104 @@ contains
           ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
     end associate
   end subroutine read_static
+
+  !> Purpose: *CONTROLS: the Newton iteration's constants of nonlinear
+  !> steps (CalculiX's, model's controls_t), from this step on until
+  !> RESET. PARAMETERS=FIELD: one line `R_n, C_n, q_0, q_u, R_p,
+  !> epsilon, C_epsilon, R_l` (q_0 is not used); PARAMETERS=TIME
+  !> INCREMENTATION: `I_0, I_R, I_P, I_C, I_L, I_G[, I_S, I_A, I_J, I_T]`
+  !> and a second line `D_f, D_C, D_B[, D_A, D_S, D_H, D_D, W_G]` (the
+  !> entries CalculiX does not use, or that concern what cfe2d has not,
+  !> are read and ignored); empty fields keep their values. The other
+  !> PARAMETERS (LINE SEARCH, CONTACT, NETWORK, CFD) are warned about and
+  !> ignored.
+  module subroutine read_controls(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    character(len=:), allocatable :: what
+    call allow_params(p, kw, 'PARAMETERS,RESET')
+    if (has_param(kw, 'RESET')) then
+      if (has_param(kw, 'PARAMETERS')) call err(p, 'RESET and PARAMETERS= exclude each other')
+      call no_data(p, kw)
+      p%controls = controls_t()
+    else
+      what = to_upper(param_value(kw, 'PARAMETERS'))
+      select case (what)
+      case ('FIELD')
+        call require_data(p, 'R_n, C_n, q_0, q_u, R_p, epsilon, C_epsilon, R_l')
+        call split_fields(line_text(p), f, n)
+        if (n > 8) call err(p, '*CONTROLS, PARAMETERS=FIELD data line has at most 8 fields')
+        associate(c => p%controls)
+          call set_real(1, c%rn, 'R_n')
+          call set_real(2, c%cn, 'C_n')
+          call set_real(4, c%qu, 'q_u')
+          call set_real(5, c%rp, 'R_p')
+          call set_real(6, c%eps, 'epsilon')
+          call set_real(7, c%ceps, 'C_epsilon')
+          call set_real(8, c%rl, 'R_l')
+        end associate
+        if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=FIELD has one data line')
+      case ('TIME INCREMENTATION', 'TIMEINCREMENTATION')
+        call require_data(p, 'I_0, I_R, I_P, I_C, I_L, I_G')
+        call split_fields(line_text(p), f, n)
+        if (n > 10) call err(p, 'the first line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 10 fields')
+        associate(c => p%controls)
+          call set_int(1, c%i0, 'I_0')
+          call set_int(2, c%ir, 'I_R')
+          call set_int(3, c%ip, 'I_P')
+          call set_int(4, c%ic, 'I_C')
+          call set_int(5, c%il, 'I_L')
+          call set_int(6, c%ig, 'I_G')
+          if (next_data(p)) then
+            call split_fields(line_text(p), f, n)
+            if (n > 8) call err(p, 'the second line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 8 fields')
+            call set_real(1, c%df, 'D_f')
+            call set_real(2, c%dc, 'D_C')
+            call set_real(3, c%db, 'D_B')
+            call set_real(7, c%dd, 'D_D')
+            if (c%df >= 1.0_dp .or. c%dc >= 1.0_dp .or. c%db > 1.0_dp) call err(p, 'the cut-back factors ' // &
+              'D_f, D_C and D_B must be below 1')
+            if (c%dd < 1.0_dp) call err(p, 'D_D, the growth factor, must be at least 1')
+            if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=TIME INCREMENTATION has two data lines')
+          end if
+        end associate
+      case ('LINE SEARCH', 'LINESEARCH', 'CONTACT', 'NETWORK', 'CFD')
+        call deck_warning(p%deck, p%i, '*CONTROLS, PARAMETERS=' // what // ' is not implemented and is ignored')
+        do while (next_data(p))
+        end do
+      case ('')
+        call err(p, '*CONTROLS needs PARAMETERS= or RESET')
+      case default
+        call err(p, 'unknown PARAMETERS=' // what // ' on *CONTROLS')
+      end select
+    end if
+    if (p%step > 0) m%steps(p%step)%controls = p%controls
+  contains
+    !> A positive real in field k, if given.
+    subroutine set_real(k, v, name)
+      integer, intent(in) :: k
+      real(dp), intent(inout) :: v
+      character(len=*), intent(in) :: name
+      if (k > n) return
+      if (len(f(k)%s) == 0) return
+      v = get_real(p, f(k), name)
+      if (.not. v > 0.0_dp .and. name /= 'q_u') call err(p, name // ' must be positive')
+      if (v < 0.0_dp) call err(p, name // ' must not be negative')
+    end subroutine set_real
+    !> A positive integer in field k, if given.
+    subroutine set_int(k, v, name)
+      integer, intent(in) :: k
+      integer, intent(inout) :: v
+      character(len=*), intent(in) :: name
+      if (k > n) return
+      if (len(f(k)%s) == 0) return
+      v = get_int(p, f(k), name)
+      if (v < 1) call err(p, name // ' must be a positive integer')
+    end subroutine set_int
+  end subroutine read_controls
 
   !> A number of increments too large for an integer, as text.
   function count_text(ratio) result(s)
