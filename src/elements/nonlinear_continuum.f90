@@ -225,8 +225,10 @@ contains
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
         eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
         jac = det3(f)
-        eout%detj_min = min(eout%detj_min, vol * jac)
       end if
+      ! the current volume element (det F of the point itself, F33 solved
+      ! in plane stress)
+      eout%detj_min = min(eout%detj_min, vol * det3(f))
       eout%peeq_ip(ip) = eout%hist(hist_peeq, ip)
       eout%sig_ip(:, ip) = [tau(1, 1), tau(2, 2), tau(3, 3), tau(1, 2)] / jac
       cg = matmul(transpose(f), f)

@@ -7,6 +7,9 @@
 !> - a rigid rotation (plane) or axial translation (axisymmetry) gives no
 !>   force; at zero and at tiny displacements St Venant-Kirchhoff's ke is the
 !>   linear element's (1e-8);
+!> - neo-Hooke and Mooney-Rivlin at zero displacement: the linear element
+!>   with mu = 2 (C10 + C01), K = 2 / D1 (D1 = 0: CalculiX's 0.1 / mu)
+!>   (1e-12; not the F-bar elements, whose operator differs);
 !> - plane-strain uniaxial stretch and compression of one neo-Hookean and
 !>   one Mooney-Rivlin element against the nominal stress dW/dlambda of
 !>   CalculiX's energy (1e-6);
@@ -19,6 +22,12 @@
 !> - F-bar: a nearly incompressible 4-node quadrilateral (K / mu = 1e5) has
 !>   one volumetric constraint (one singular value of ke of the bulk
 !>   modulus's size), where the element without it has more;
+!> - Newton on one element (a distorted CPE4 neo-Hooke with F-bar pressed
+!>   by 30 %, CAX4 finite-strain plasticity stretched by 20 %, CPS8
+!>   Mooney-Rivlin by 50 %, CAX6 St Venant-Kirchhoff pressed by 20 %): the
+!>   residual falls below 1e-10 of the first in at most 8 iterations, in
+!>   one step from the previous increment, with quadratic convergence at
+!>   the end;
 !> - St Venant-Kirchhoff under NLGEOM with a temperature change: free
 !>   thermal expansion (E = alpha dT I) gives no force (plane stress,
 !>   axisymmetry).
@@ -46,6 +55,7 @@ program test_nonlinear
       end do
       call check_rigid(trim(prefix(is) // suffix(ie)))
       call check_linear_limit(trim(prefix(is) // suffix(ie)))
+      call check_rubber_moduli(trim(prefix(is) // suffix(ie)))
     end do
   end do
   call check_uniaxial_rubber()
@@ -54,6 +64,10 @@ program test_nonlinear
   call check_follower()
   call check_no_locking('CPE4')
   call check_no_locking('CAX4')
+  call check_newton('CPE4', 2, -0.3_dp)
+  call check_newton('CAX4', 4, 0.2_dp)
+  call check_newton('CPS8', 3, 0.5_dp)
+  call check_newton('CAX6', 1, -0.2_dp)
   do ie = 1, 5
     call check_free_expansion('CPS' // trim(suffix(ie)))
     call check_free_expansion('CAX' // trim(suffix(ie)))
@@ -219,6 +233,34 @@ contains
       call report('small-strain plasticity elastic range is linear ' // name, err2 < 1e-12_dp, 'relative ' // num(err2))
     end if
   end subroutine check_linear_limit
+
+  !> The initial stiffness of the rubber laws is the linear element's with
+  !> E and nu from mu = 2 (C10 + C01) and K = 2 / D1.
+  subroutine check_rubber_moduli(name)
+    character(len=*), intent(in) :: name
+    type(elem_in_t) :: ein, elin
+    type(elem_out_t) :: eout, elo
+    real(dp) :: mu, kb, d1, err
+    integer :: il, nd
+    err = 0.0_dp
+    do il = 2, 3
+      ein = element(name, il)
+      if (ein%kind == shape_quad4 .and. ein%state /= state_plane_stress) return
+      d1 = ein%d1
+      mu = 2.0_dp * (ein%c10 + ein%c01)
+      if (d1 == 0.0_dp) d1 = 0.1_dp / mu
+      kb = 2.0_dp / d1
+      elin = element(name, 1)
+      elin%nlgeom = .false.
+      elin%e = 9.0_dp * kb * mu / (3.0_dp * kb + mu)
+      elin%nu = (3.0_dp * kb - 2.0_dp * mu) / (2.0_dp * (3.0_dp * kb + mu))
+      call element_routine(act_tangent, elin, elo)
+      call element_routine(act_tangent, ein, eout)
+      nd = 2 * ein%nen
+      err = max(err, maxval(abs(eout%ke(1:nd, 1:nd) - elo%ke(1:nd, 1:nd))) / maxval(abs(elo%ke(1:nd, 1:nd))))
+    end do
+    call report('rubber initial stiffness is linear with mu, K ' // name, err < 1e-12_dp, 'relative ' // num(err))
+  end subroutine check_rubber_moduli
 
   !> Nominal stresses (P1, P2) = dW/dlambda of CalculiX's Mooney-Rivlin
   !> energy at principal stretches (l1, l2, 1), differentiated by hand:
@@ -453,6 +495,69 @@ contains
                 'large singular values with F-bar / without: ' // num(real(nbig(1), dp)) // ' ' // &
                 num(real(nbig(2), dp)))
   end subroutine check_no_locking
+
+  !> Newton on one element: the nodes at y = min fixed in y, the node(s)
+  !> at the smallest x fixed in x, the nodes at y = max displaced by
+  !> stretch times the height in y, the other dofs solved (LAPACK dgesv on
+  !> the unsymmetric tangent), in 4 increments.
+  subroutine check_newton(name, il, stretch)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: il
+    real(dp), intent(in) :: stretch
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    logical :: fixed(2 * max_nodes), ok, quadratic
+    integer :: free(2 * max_nodes), nf, nd, k, inc, it, info, piv(2 * max_nodes), worst
+    real(dp) :: ymin, ymax, xmin, res(0:20), a(2 * max_nodes, 2 * max_nodes), b(2 * max_nodes)
+    ein = element(name, il)
+    nd = 2 * ein%nen
+    ymin = minval(ein%xy(2, 1:ein%nen))
+    ymax = maxval(ein%xy(2, 1:ein%nen))
+    xmin = minval(ein%xy(1, 1:ein%nen))
+    fixed = .false.
+    do k = 1, ein%nen
+      if (ein%xy(2, k) <= ymin + 1e-12_dp .or. ein%xy(2, k) >= ymax - 0.35_dp) fixed(2 * k) = .true.
+      if (ein%xy(1, k) <= xmin + 1e-12_dp) fixed(2 * k - 1) = .true.
+    end do
+    nf = 0
+    do k = 1, nd
+      if (.not. fixed(k)) then
+        nf = nf + 1
+        free(nf) = k
+      end if
+    end do
+    ok = .true.
+    quadratic = .true.
+    worst = 0
+    info = 0
+    ein%ue = 0.0_dp
+    do inc = 1, 4
+      do k = 1, ein%nen
+        if (fixed(2 * k) .and. ein%xy(2, k) > ymin + 1e-12_dp) &
+          ein%ue(2 * k) = inc / 4.0_dp * stretch * (ein%xy(2, k) - ymin)
+      end do
+      ! ein%hist stays the committed history through the iterations
+      do it = 0, 20
+        call element_routine(ior(act_tangent, act_residual), ein, eout)
+        res(it) = norm2(eout%fe(free(1:nf)))
+        if (res(it) <= 1e-10_dp * res(0)) exit
+        a(1:nf, 1:nf) = eout%ke(free(1:nf), free(1:nf))
+        b(1:nf) = -eout%fe(free(1:nf))
+        call dgesv(nf, 1, a, 2 * max_nodes, piv, b, 2 * max_nodes, info)
+        if (info /= 0) exit
+        ein%ue(free(1:nf)) = ein%ue(free(1:nf)) + b(1:nf)
+      end do
+      worst = max(worst, it)
+      ok = ok .and. it <= 8 .and. info == 0
+      ! quadratic: the last reduction is at least the square of the one
+      ! before it (relative to the first residual), with a factor 100
+      if (it >= 2 .and. it <= 8) quadratic = quadratic .and. &
+        res(it) / res(0) <= 100.0_dp * (res(it - 1) / res(0))**2 + 1e-14_dp
+      ein%hist = eout%hist       ! converged: commit
+    end do
+    call report('Newton on one element ' // name // ' ' // trim(law_name(il)), ok .and. quadratic, &
+                'iterations ' // num(real(worst, dp)) // merge(' quadratic    ', ' not quadratic', quadratic))
+  end subroutine check_newton
 
   !> Free thermal expansion under NLGEOM: u = (sqrt(1 + 2 alpha dT) - 1) X
   !> makes E = alpha dT I (plane stress: the thickness stretch follows
