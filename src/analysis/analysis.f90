@@ -11,7 +11,8 @@ module analysis
   use assembly, only: body_t, element_counts_t, body_setup, commit_history
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
-  use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached
+  use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
+                        follower_loads
   use constraints, only: mpc_t, resolve_equations, constraint_label
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment
   use equilibrium_common, only: newton_new_step
@@ -285,7 +286,9 @@ contains
   !> again from the last committed state. Below the minimum increment
   !> (default min(initial, 1e-6 period)) the run stops with the reason;
   !> the increments done are written already. With DIRECT the increments
-  !> are fixed, and a failure stops the run. Under NLGEOM with contact
+  !> are fixed, and a failure stops the run. Under NLGEOM a face pressure
+  !> (*DLOAD P) follows the deformed face, its load stiffness in the
+  !> tangent (load_state's follower_loads, the body's fl_*). Under NLGEOM with contact
   !> the pairs are searched again on the deformed configuration at the
   !> start of every increment (as UPDATE SEARCH does).
   subroutine advance_nonlinear(m, is, rs, obs)
@@ -317,6 +320,8 @@ contains
       call values_at(m, rs%ls, t + dt_try, rs%u, rs%fext)
       ! the free dofs start where the last increment left them
       where (.not. rs%ls%presc) rs%u = u_saved
+      ! the pressures on the deformed faces (NLGEOM)
+      call follower_loads(m, rs%ls, t + dt_try, rs%body%fl_ptr, rs%body%fl_face, rs%body%fl_mag)
       if (rs%ls%thermal) then
         ! the temperatures at the end and at the start of the increment
         if (.not. allocated(rs%body%dtemp)) allocate(rs%body%dtemp(m%nn), rs%body%dtemp0(m%nn))

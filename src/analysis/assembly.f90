@@ -21,7 +21,8 @@ module assembly
   use contact, only: contact_set_t, cfe_input
   use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses, act_thermal, &
                                act_residual, max_hist
-  use element_catalogue, only: max_ip
+  use element_catalogue, only: max_ip, max_nodes
+  use distributed_loads, only: follower_pressure_load
   use element_library, only: element_routine
   use body_elements, only: body_input, body_alpha
   use linear_solver, only: linear_system_t, sys_zero, sys_add
@@ -60,6 +61,14 @@ module assembly
     !> ... and at the converged state the increment starts from (the
     !> first iteration is linearised about it, body_predictor_forces).
     real(dp), allocatable :: dtemp0(:)
+    !> Follower pressures of a NLGEOM step (*DLOAD P on the deformed
+    !> faces), set by the driver for the increment being solved: load k
+    !> acts on face fl_face(k) of element fl_elem(k) with magnitude
+    !> fl_mag(k); those of element e are k = fl_ptr(e) .. fl_ptr(e+1)-1.
+    !> Their forces enter the internal force with the opposite sign (f_int
+    !> - f_p(u)) and their load stiffness the tangent (K_T - p dfp/du).
+    integer, allocatable :: fl_ptr(:), fl_face(:)
+    real(dp), allocatable :: fl_mag(:)
     !> CalculiX's average force q-bar of the last evaluation: the mean
     !> |f| over the element dofs of the body elements (its manual,
     !> "Convergence criteria").
@@ -184,7 +193,7 @@ contains
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, k, nd, nodes(max_en), ndof_total
-    real(dp) :: fsum
+    real(dp) :: fsum, ke_dummy(1, 1)
     fint = 0.0_dp
     body%bad_elem = 0
     fsum = 0.0_dp
@@ -207,6 +216,7 @@ contains
       body%peeq_trial(:, e) = eout%peeq_ip
       fsum = fsum + sum(abs(eout%fe(1:nd)))
       ndof_total = ndof_total + nd
+      if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, eout%fe, ke_dummy, .false.)
       do k = 1, ein%nen
         fint(:, nodes(k)) = fint(:, nodes(k)) + eout%fe(2 * k - 1:2 * k)
       end do
@@ -273,12 +283,48 @@ contains
       do k = 1, ein%nen
         due(2 * k - 1:2 * k) = du(:, nodes(k))
       end do
+      if (allocated(body%fl_ptr)) then
+        call follower_part(m, body, e, u0, eout%fe, eout%ke, .true.)
+        call follower_part(m, body, e, u0, eout%fe, eout%ke, .false.)
+      end if
       fe(1:nd) = eout%fe(1:nd) + matmul(eout%ke(1:nd, 1:nd), due(1:nd))
       do k = 1, ein%nen
         f(:, nodes(k)) = f(:, nodes(k)) + fe(2 * k - 1:2 * k)
       end do
     end do
   end subroutine body_predictor_forces
+
+  !> Purpose: the follower pressures on element e at u (body%fl_*): with
+  !> tangent, ke = ke - sum p dfp/du (the load stiffness); otherwise fe =
+  !> fe - sum p fp(u) (the pressure's forces on the deformed faces, taken
+  !> into the internal force). fp and its stiffness come from
+  !> distributed_loads' follower_pressure_load (per unit pressure).
+  subroutine follower_part(m, body, e, u, fe, ke, tangent)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    integer, intent(in) :: e
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(inout) :: fe(:), ke(:, :)
+    logical, intent(in) :: tangent
+    real(dp) :: fp(2, max_nodes), kl(2 * max_nodes, 2 * max_nodes), xy(2, max_nodes), ue(2, max_nodes)
+    integer :: k, nen, nd, a
+    if (body%fl_ptr(e + 1) == body%fl_ptr(e)) return
+    nen = elem_nodes(m, e)
+    nd = 2 * nen
+    xy(:, 1:nen) = m%x(:, m%conn(1:nen, e))
+    ue(:, 1:nen) = u(:, m%conn(1:nen, e))
+    do k = body%fl_ptr(e), body%fl_ptr(e + 1) - 1
+      call follower_pressure_load(m%etype(e), xy(:, 1:nen), ue(:, 1:nen), elem_thickness(m, e), body%fl_face(k), &
+                                  fp, kl)
+      if (tangent) then
+        ke(1:nd, 1:nd) = ke(1:nd, 1:nd) - body%fl_mag(k) * kl(1:nd, 1:nd)
+      else
+        do a = 1, nen
+          fe(2 * a - 1:2 * a) = fe(2 * a - 1:2 * a) - body%fl_mag(k) * fp(:, a)
+        end do
+      end if
+    end do
+  end subroutine follower_part
 
   !> Purpose: the stiffness of the current contact status into sys: the
   !> stored body matrices (in a nonlinear step the element tangents at u)
@@ -299,7 +345,7 @@ contains
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, j, nd, nodes(max_en)
-    real(dp) :: ke(2 * max_en, 2 * max_en)
+    real(dp) :: ke(2 * max_en, 2 * max_en), fe_dummy(2 * max_en)
     call sys_zero(sys)
     kmax = body%kmax
     do e = 1, m%ne
@@ -315,6 +361,7 @@ contains
         call element_routine(act_tangent, ein, eout)
         counts%continuum_tangent = counts%continuum_tangent + 1
         ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd)
+        if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, fe_dummy, ke, .true.)
         do j = 1, nd
           kmax = max(kmax, abs(ke(j, j)))
         end do

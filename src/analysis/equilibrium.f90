@@ -13,7 +13,7 @@ module equilibrium
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use strings, only: itoa
-  use model, only: model_t, elem_label
+  use model, only: model_t, elem_label, node_label
   use contact, only: contact_set_t, status_codes, contact_forces
   use contact_status, only: contact_switch, begin_status_search, contact_energy
   use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces
@@ -144,6 +144,11 @@ contains
       else
         call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable)
       end if
+      if (.not. usable .and. eq%newton%singular) then
+        call newton_failed(eq%newton, eq%newton%ctl%df, 'the tangent stiffness is singular' // &
+                           singular_where(m, dm, eq%bad) // ' (a limit load, or a missing support)')
+        exit
+      end if
       if (.not. usable) then
         call take_back(eq, m, cs, dm, obs)
         call internal_forces(m, body, cs, u, fint, eq%counts)
@@ -224,6 +229,17 @@ contains
       'the contact status did not settle in ' // itoa(m%contact_max_iter) // ' iterations')
   end subroutine solve_full
 
+  !> ' at node N, dof D' for equation bad of the numbering (empty if none).
+  function singular_where(m, dm, bad) result(s)
+    type(model_t), intent(in) :: m
+    type(dofmap_t), intent(in) :: dm
+    integer, intent(in) :: bad
+    character(len=:), allocatable :: s
+    s = ''
+    if (bad > 0 .and. bad <= dm%neq) s = ' at node ' // node_label(m, dm%node_of_eq(bad)) // ', dof ' // &
+                                         itoa(dm%dof_of_eq(bad))
+  end function singular_where
+
   !> The largest residual force on a free dof (r_max): rf holds f_int -
   !> f_ext reduced to the independent dofs.
   pure real(dp) function max_free(dm, rf) result(r)
@@ -262,6 +278,15 @@ contains
     if (status == factor_singular) then
       restabilised = stabilise_open(eq, cs, obs)
       if (restabilised) call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+    end if
+    if (status == factor_singular .and. body%nonlinear .and. .not. eq%search%pivoted) then
+      ! a singular tangent of a nonlinear body (a limit load, a buckling
+      ! state, or a missing support): the increment fails and is cut back
+      usable = .false.
+      eq%factor_valid = .false.
+      eq%bad = bad
+      eq%newton%singular = .true.
+      return
     end if
     if (status == factor_singular) then
       call set_aside_or_stop(eq, m, cs, dm, bad, usable)

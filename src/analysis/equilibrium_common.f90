@@ -42,6 +42,7 @@ module equilibrium_common
     real(dp) :: cut = 1.0_dp            ! when the increment failed: the factor to cut it by
     character(len=:), allocatable :: reason
     type(controls_t) :: ctl             ! the step's *CONTROLS
+    logical :: singular = .false.       ! the last factorisation of the tangent was singular
   end type newton_t
 
   type :: equilibrium_t
@@ -154,6 +155,7 @@ contains
   !> Purpose: the start of a nonlinear increment's Newton iteration.
   subroutine newton_begin(nt)
     type(newton_t), intent(inout) :: nt
+    nt%singular = .false.
     nt%r = 0.0_dp
     nt%it = 0
     nt%cut = 1.0_dp
