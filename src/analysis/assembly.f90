@@ -49,6 +49,10 @@ module assembly
     !> the equivalent plastic strain likewise. Allocated once the model is
     !> known to have a nonlinear step.
     real(dp), allocatable :: hist(:, :, :), hist_trial(:, :, :), peeq(:, :), peeq_trial(:, :)
+    !> the committed history before the last commit: the tangent at a
+    !> converged state is the one of its last iteration (assemble_stiffness
+    !> with converged, body_predictor_forces)
+    real(dp), allocatable :: hist_old(:, :, :)
     !> The last evaluation at u met an element that cannot be evaluated
     !> there (an inverted element, det F <= 0, or a number that is not
     !> finite): bad_elem is it (0: none). The increment is cut back.
@@ -149,6 +153,7 @@ contains
       body%hist = 0.0_dp
       body%peeq = 0.0_dp
       body%hist_trial = body%hist
+      body%hist_old = body%hist
       body%peeq_trial = body%peeq
     end if
   end subroutine body_setup
@@ -175,6 +180,7 @@ contains
   subroutine commit_history(body)
     type(body_t), intent(inout) :: body
     if (.not. allocated(body%hist)) return
+    body%hist_old = body%hist
     body%hist = body%hist_trial
     body%peeq = body%peeq_trial
   end subroutine commit_history
@@ -258,7 +264,11 @@ contains
   !> du (overwritten), so that the first solve spreads the prescribed
   !> motion through the body by the tangent instead of meeting it in the
   !> elements next to the prescribed nodes only (which a large step could
-  !> invert).
+  !> invert). Both are those of the last iteration of the increment that
+  !> converged at u0 (from the history before its commit, body%hist_old):
+  !> evaluated from the committed history at u0 itself, a point on the
+  !> yield surface would be elastic or plastic by round-off, and the
+  !> builds would take different first iterations.
   subroutine body_predictor_forces(m, body, u0, du, f, counts)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
@@ -273,9 +283,9 @@ contains
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
       if (allocated(body%dtemp0)) then
-        call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+        call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
       else
-        call body_input(m, e, u0, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+        call body_input(m, e, u0, ein, nodes, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
       end if
       call element_routine(ior(act_tangent, act_residual), ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
@@ -327,13 +337,15 @@ contains
   end subroutine follower_part
 
   !> Purpose: the stiffness of the current contact status into sys: the
-  !> stored body matrices (in a nonlinear step the element tangents at u)
-  !> plus the tangent of every CFE.
+  !> stored body matrices (in a nonlinear step the element tangents at u;
+  !> with converged, u is the converged state an increment starts from and
+  !> the tangent that of its last iteration, from body%hist_old) plus the
+  !> tangent of every CFE.
   !> Arguments: kmax returns the largest diagonal entry of any element
   !> matrix (a stiffness scale for the residual test); dm the numbering
   !> the system was set up for (its constraints transform the groups that
   !> touch a dependent dof).
-  subroutine assemble_stiffness(m, cs, body, u, sys, kmax, counts, dm)
+  subroutine assemble_stiffness(m, cs, body, u, sys, kmax, counts, dm, converged)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     type(body_t), intent(in) :: body
@@ -342,10 +354,14 @@ contains
     real(dp), intent(out) :: kmax
     type(element_counts_t), intent(inout) :: counts
     type(dofmap_t), intent(in) :: dm
+    logical, intent(in), optional :: converged
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, j, nd, nodes(max_en)
     real(dp) :: ke(2 * max_en, 2 * max_en), fe_dummy(2 * max_en)
+    logical :: at_converged
+    at_converged = .false.
+    if (present(converged)) at_converged = converged
     call sys_zero(sys)
     kmax = body%kmax
     do e = 1, m%ne
@@ -358,6 +374,8 @@ contains
         else
           call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
         end if
+        ! at the converged state the increment starts from: its last iteration's tangent
+        if (at_converged) ein%hist = body%hist_old(:, :, e)
         call element_routine(act_tangent, ein, eout)
         counts%continuum_tangent = counts%continuum_tangent + 1
         ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd)

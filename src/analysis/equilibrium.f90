@@ -140,9 +140,11 @@ contains
         eq%factor_valid = .false.
       end if
       if (predict .and. it == 1) then
-        call factor_if_needed(eq, m, is, body, cs, dm, u_from, sys, obs, restabilised, usable)
+        call factor_if_needed(eq, m, is, body, cs, dm, u_from, sys, obs, restabilised, usable, .true.)
       else
-        call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable)
+        ! (the first iteration of a load-controlled increment is at the converged state)
+        call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable, &
+                              body%nonlinear .and. it == 1 .and. present(u_from))
       end if
       if (.not. usable .and. eq%newton%singular) then
         call newton_failed(eq%newton, eq%newton%ctl%df, 'the tangent stiffness is singular' // &
@@ -256,7 +258,7 @@ contains
   !> the stabilisation was used already and the status comes from a pivot
   !> of the search, usable is false (the pivot is to be taken back);
   !> otherwise a singular stiffness stops the run.
-  subroutine factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable)
+  subroutine factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable, converged)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
@@ -267,17 +269,21 @@ contains
     type(linear_system_t), intent(inout) :: sys
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: restabilised, usable
+    logical, intent(in), optional :: converged
     integer :: status, bad
+    logical :: at_converged
+    at_converged = .false.
+    if (present(converged)) at_converged = converged
     restabilised = .false.
     usable = .true.
     ! (with every CFE closed, stabilising changes no penalty)
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states == status_codes(cs))) return
     end if
-    call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+    call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad, at_converged)
     if (status == factor_singular) then
       restabilised = stabilise_open(eq, cs, obs)
-      if (restabilised) call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+      if (restabilised) call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad, at_converged)
     end if
     if (status == factor_singular .and. body%nonlinear .and. .not. eq%search%pivoted) then
       ! a singular tangent of a nonlinear body (a limit load, a buckling
@@ -304,7 +310,7 @@ contains
 
   !> The stiffness of the current status, assembled and factored (timed,
   !> counted).
-  subroutine assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+  subroutine assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad, converged)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     type(body_t), intent(inout) :: body
@@ -313,9 +319,10 @@ contains
     real(dp), intent(in) :: u(:, :)
     type(linear_system_t), intent(inout) :: sys
     integer, intent(out) :: status, bad
+    logical, intent(in) :: converged          ! u is the converged state (assemble_stiffness)
     real(dp) :: t0, t1
     t0 = wall_time()
-    call assemble_stiffness(m, cs, body, u, sys, eq%kmax, eq%counts, dm)
+    call assemble_stiffness(m, cs, body, u, sys, eq%kmax, eq%counts, dm, converged)
     t1 = wall_time()
     call sys_analyse(sys)
     eq%timing%assembly = eq%timing%assembly + (t1 - t0)
