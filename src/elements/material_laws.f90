@@ -169,8 +169,8 @@ contains
   !> gradient (F13 = F23 = F31 = F32 = 0; F33 = 1 in plane strain, the
   !> hoop stretch r / R in axisymmetry; plane stress: F33 is solved from
   !> tau33 = 0 and returned), eth the thermal strain alpha dT (St
-  !> Venant-Kirchhoff only: E - eth I is the mechanical Green-Lagrange
-  !> strain, CalculiX's ME; the other laws ignore it), hist_in the
+  !> Venant-Kirchhoff only, see saint_venant; the other laws ignore it),
+  !> hist_in the
   !> committed history; p(5) the
   !> components of P, a(5, 5) = dP/dF (plane stress: condensed, fifth row
   !> and column zero), tau(3, 3) the Kirchhoff stress J sigma, hist_out the
@@ -187,11 +187,12 @@ contains
     if (state == state_plane_stress) then
       j2 = f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)
       if (ein%law == law_elastic .and. ein%nyield == 0) then
-        ! St Venant-Kirchhoff: S33 = 0 is linear in E33 (closed form)
-        e2 = green_lagrange(f) - eth * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
+        ! St Venant-Kirchhoff: S33 = 0 is linear in the mechanical E33
+        ! (closed form), F33 = (1 + eth) sqrt(1 + 2 Em33)
+        e2 = green_lagrange(f / (1.0_dp + eth))
         d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-        e33 = eth - (d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
-        f(3, 3) = sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
+        e33 = -(d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
+        f(3, 3) = (1.0_dp + eth) * sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
       else
         ! local Newton on tau33(F33) = 0 from an incompressible guess for
         ! rubber, and from 1 otherwise; halved steps keep F33 positive
@@ -249,11 +250,14 @@ contains
     end do
   end subroutine response_3d
 
-  !> Purpose: St Venant-Kirchhoff: S = D (E - eth I) (D the isotropic
-  !> elastic_matrix on (E11, E22, 2 E12, E33), eth the thermal strain),
-  !> tau = F S F^T, and dtau along each unit
-  !> component of F: dtau = dF S F^T + F S dF^T + F (D dE) F^T with
-  !> dE = sym(F^T dF).
+  !> Purpose: St Venant-Kirchhoff: S = D Em (D the isotropic
+  !> elastic_matrix on (E11, E22, 2 E12, E33)), Em the mechanical
+  !> Lagrange strain of Fm = F / (1 + eth): the isotropic thermal stretch
+  !> 1 + alpha dT divided out of F, as CalculiX under NLGEOM
+  !> (calcmechstrain.f); with the total F, tau = F S F^T and along each
+  !> unit component dF of F
+  !>   dtau = dF S F^T + F S dF^T + F (D dEm) F^T,
+  !>   dEm = sym(F^T dF) / (1 + eth)^2.
   pure subroutine saint_venant(ein, f, eth, tau, dtau)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth
@@ -261,11 +265,11 @@ contains
     real(dp) :: d(4, 4), s(3, 3), ds(3, 3), df(3, 3), de(3, 3)
     integer :: c
     d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-    s = voigt_stress(matmul(d, green_lagrange(f) - eth * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]))
+    s = voigt_stress(matmul(d, green_lagrange(f / (1.0_dp + eth))))
     tau = matmul(matmul(f, s), transpose(f))
     do c = 1, 5
       df = unit_f(c)
-      de = 0.5_dp * (matmul(transpose(f), df) + matmul(transpose(df), f))
+      de = 0.5_dp * (matmul(transpose(f), df) + matmul(transpose(df), f)) / (1.0_dp + eth)**2
       ds = voigt_stress(matmul(d, [de(1, 1), de(2, 2), 2.0_dp * de(1, 2), de(3, 3)]))
       dtau(:, :, c) = matmul(matmul(df, s), transpose(f)) + matmul(matmul(f, s), transpose(df)) &
                       + matmul(matmul(f, ds), transpose(f))

@@ -37,10 +37,10 @@
 !> identity over the scaled components; Hughes 1980) against plastic
 !> locking. The thermal strain alpha dT is subtracted from the strain
 !> the law sees (small strain: eps - alpha dT (1, 1, 0, 1); finite strain,
-!> St Venant-Kirchhoff only: E - alpha dT I, CalculiX's mechanical
-!> Lagrange strain; the hyperelastic laws and finite-strain plasticity
-!> ignore it), so fe is the whole internal force and act_thermal gives
-!> zero on this path.
+!> St Venant-Kirchhoff only: the Lagrange strain of F / (1 + alpha dT),
+!> CalculiX's mechanical strain under NLGEOM; the hyperelastic laws and
+!> finite-strain plasticity ignore it), so fe is the whole internal force
+!> and act_thermal gives zero on this path.
 !>
 !> Stresses (act_stresses): sig_ip the Cauchy stress (s11, s22, s33, s12)
 !> (sigma = tau / det Fbar with F-bar), extrapolated to the nodes;
