@@ -54,7 +54,7 @@ module material_laws
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
   !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
-  !> hist_out) finite strain.
+  !> hist_out, ok) finite strain.
   interface material_response
     module procedure small_strain_response, finite_strain_response
   end interface material_response
@@ -174,16 +174,19 @@ contains
   !> committed history; p(5) the
   !> components of P, a(5, 5) = dP/dF (plane stress: condensed, fifth row
   !> and column zero), tau(3, 3) the Kirchhoff stress J sigma, hist_out the
-  !> history at f. A non-positive det F gives zero stress and tangent
-  !> (the element reports the inverted point).
-  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out)
+  !> history at f, ok false where the plane-stress condition could not be
+  !> met. A non-positive det F gives zero stress and tangent (the element
+  !> reports the inverted point).
+  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok)
     type(elem_in_t), intent(in) :: ein
     integer, intent(in) :: state
     real(dp), intent(inout) :: f(3, 3)
     real(dp), intent(in) :: eth, hist_in(max_hist)
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
+    logical, intent(out) :: ok
     real(dp) :: e2(4), d(4, 4), e33, df33, j2
     integer :: it
+    ok = .true.
     if (state == state_plane_stress) then
       j2 = f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)
       if (ein%law == law_elastic .and. ein%nyield == 0) then
@@ -198,6 +201,7 @@ contains
         ! rubber, and from 1 otherwise; halved steps keep F33 positive
         f(3, 3) = 1.0_dp
         if (ein%law /= law_elastic .and. j2 > 0.0_dp) f(3, 3) = 1.0_dp / j2
+        df33 = huge(1.0_dp)
         do it = 1, max_local
           call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
           if (.not. abs(a(5, 5)) > 0.0_dp) exit
@@ -208,6 +212,9 @@ contains
           f(3, 3) = f(3, 3) + df33
           if (abs(df33) <= 1e-14_dp * f(3, 3)) exit
         end do
+        ! not converged (a tangent of zero, or no convergence in
+        ! max_local steps): the point is reported, not used
+        ok = abs(df33) <= 1e-10_dp * f(3, 3)
       end if
       call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
       call condense5(a)

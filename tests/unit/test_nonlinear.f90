@@ -170,8 +170,8 @@ contains
     end do
     scale = maxval(abs(eout%ke(1:nd, 1:nd)))
     err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / scale
-    call report('tangent vs differences ' // name // ' ' // lname, err < 1e-6_dp .and. scale > 0.0_dp, &
-                'relative error ' // num(err))
+    call report('tangent vs differences ' // name // ' ' // lname, err < 1e-6_dp .and. scale > 0.0_dp &
+                .and. eout%detj_min > 0.0_dp, 'relative error ' // num(err) // ', detj_min ' // num(eout%detj_min))
     if (il >= 4) call report('plastic at every point ' // name // ' ' // lname, &
                              all(eout%peeq_ip(1:ein%nip) > 0.0_dp), 'an elastic point: ' // num(minval(eout%peeq_ip(1:ein%nip))))
   end subroutine check_tangent
