@@ -50,7 +50,7 @@ module material_laws
   use materials, only: elastic_matrix
   implicit none
   private
-  public :: material_response, hist_peeq, fc_i, fc_j, deviator, det3, inv3
+  public :: material_response, hist_peeq, fc_i, fc_j, det3, inv3
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
   !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
