@@ -19,6 +19,9 @@
 !> - the follower pressure load: its load stiffness against central
 !>   differences (1e-6), the dead load at zero displacement (1e-12), and
 !>   forces turning with a rigid rotation of the element (1e-12);
+!> - objectivity: a rigid rotation superposed on a deformed (for
+!>   plasticity: plastically deformed and committed) state rotates the
+!>   Cauchy stress and leaves PEEQ and the history unchanged (1e-12);
 !> - F-bar: a nearly incompressible 4-node quadrilateral (K / mu = 1e5) has
 !>   one volumetric constraint (one singular value of ke of the bulk
 !>   modulus's size), where the element without it has more;
@@ -62,6 +65,9 @@ program test_nonlinear
   call check_uniaxial_plastic(.false.)
   call check_uniaxial_plastic(.true.)
   call check_follower()
+  call check_objectivity('CPE4')
+  call check_objectivity('CPS6')
+  call check_objectivity('CPE8R')
   call check_no_locking('CPE4')
   call check_no_locking('CAX4')
   call check_newton('CPE4', 2, -0.3_dp)
@@ -464,6 +470,50 @@ contains
       call report('follower pressure turns with the element ' // names(i), err_r < 1e-12_dp, 'relative ' // num(err_r))
     end do
   end subroutine check_follower
+
+  !> A deformed state u (plastic for il = 4, its history committed), then
+  !> the same state rotated by 50 degrees, x -> Q x: the Cauchy stress at
+  !> each point must be Q sigma Q^T, PEEQ and the history (Cp^-1 is
+  !> invariant) unchanged.
+  subroutine check_objectivity(name)
+    character(len=*), intent(in) :: name
+    type(elem_in_t) :: ein, erot
+    type(elem_out_t) :: e1, e2
+    real(dp) :: q(2, 2), th, x(2), s1(2, 2), s2(2, 2), err, scale
+    integer :: il, k, ip, nd
+    th = 50.0_dp * acos(-1.0_dp) / 180.0_dp
+    q = reshape([cos(th), sin(th), -sin(th), cos(th)], [2, 2])
+    err = 0.0_dp
+    do il = 1, 4
+      ein = element(name, il)
+      nd = 2 * ein%nen
+      call deform(ein, 0.06_dp)
+      call element_routine(ior(act_residual, act_stresses), ein, e1)
+      ein%hist = e1%hist
+      call element_routine(ior(act_residual, act_stresses), ein, e1)
+      erot = ein
+      do k = 1, ein%nen
+        x = ein%xy(:, k) + ein%ue(2 * k - 1:2 * k)
+        erot%ue(2 * k - 1:2 * k) = matmul(q, x) - ein%xy(:, k)
+      end do
+      call element_routine(ior(act_residual, act_stresses), erot, e2)
+      scale = maxval(abs(e1%sig_ip(:, 1:ein%nip)))
+      do ip = 1, ein%nip
+        s1 = reshape([e1%sig_ip(1, ip), e1%sig_ip(4, ip), e1%sig_ip(4, ip), e1%sig_ip(2, ip)], [2, 2])
+        s2 = reshape([e2%sig_ip(1, ip), e2%sig_ip(4, ip), e2%sig_ip(4, ip), e2%sig_ip(2, ip)], [2, 2])
+        err = max(err, maxval(abs(s2 - matmul(matmul(q, s1), transpose(q)))) / scale, &
+                  abs(e2%sig_ip(3, ip) - e1%sig_ip(3, ip)) / scale, abs(e2%peeq_ip(ip) - e1%peeq_ip(ip)), &
+                  maxval(abs(e2%hist(:, ip) - e1%hist(:, ip))))
+      end do
+      ! the internal force turns with the element
+      do k = 1, ein%nen
+        err = max(err, norm2(e2%fe(2 * k - 1:2 * k) - matmul(q, e1%fe(2 * k - 1:2 * k))) &
+                       / maxval(abs(e1%fe(1:nd))))
+      end do
+      if (il == 4 .and. .not. all(e1%peeq_ip(1:ein%nip) > 0.0_dp)) err = huge(1.0_dp)
+    end do
+    call report('objectivity ' // name, err < 1e-12_dp, 'relative ' // num(err))
+  end subroutine check_objectivity
 
   !> Singular values of ke at zero displacement of a neo-Hookean element
   !> with K / mu = 1e5: those above 1e-3 of the largest are the volumetric
