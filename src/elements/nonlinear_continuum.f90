@@ -175,11 +175,11 @@ contains
     real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol
     real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
     real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth
-    logical :: ok
     integer :: ip, nd, nexp
-    logical :: fbar
+    logical :: fbar, ok
     nd = 2 * ein%nen
     fbar = uses_fbar(ein)
+    j0 = 1.0_dp
     nexp = 2
     if (ein%state == state_axisymmetric) nexp = 3
     if (fbar) then
