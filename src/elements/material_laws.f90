@@ -50,11 +50,11 @@ module material_laws
   use materials, only: elastic_matrix
   implicit none
   private
-  public :: material_response, hist_peeq, fc_i, fc_j, deviator, det3, inv3
+  public :: material_response, hist_peeq, fc_i, fc_j, det3, inv3
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
   !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
-  !> hist_out) finite strain.
+  !> hist_out, ok) finite strain.
   interface material_response
     module procedure small_strain_response, finite_strain_response
   end interface material_response
@@ -169,34 +169,39 @@ contains
   !> gradient (F13 = F23 = F31 = F32 = 0; F33 = 1 in plane strain, the
   !> hoop stretch r / R in axisymmetry; plane stress: F33 is solved from
   !> tau33 = 0 and returned), eth the thermal strain alpha dT (St
-  !> Venant-Kirchhoff only: E - eth I is the mechanical Green-Lagrange
-  !> strain, CalculiX's ME; the other laws ignore it), hist_in the
+  !> Venant-Kirchhoff only, see saint_venant; the other laws ignore it),
+  !> hist_in the
   !> committed history; p(5) the
   !> components of P, a(5, 5) = dP/dF (plane stress: condensed, fifth row
   !> and column zero), tau(3, 3) the Kirchhoff stress J sigma, hist_out the
-  !> history at f. A non-positive det F gives zero stress and tangent
-  !> (the element reports the inverted point).
-  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out)
+  !> history at f, ok false where the plane-stress condition could not be
+  !> met. A non-positive det F gives zero stress and tangent (the element
+  !> reports the inverted point).
+  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok)
     type(elem_in_t), intent(in) :: ein
     integer, intent(in) :: state
     real(dp), intent(inout) :: f(3, 3)
     real(dp), intent(in) :: eth, hist_in(max_hist)
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
+    logical, intent(out) :: ok
     real(dp) :: e2(4), d(4, 4), e33, df33, j2
     integer :: it
+    ok = .true.
     if (state == state_plane_stress) then
       j2 = f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)
       if (ein%law == law_elastic .and. ein%nyield == 0) then
-        ! St Venant-Kirchhoff: S33 = 0 is linear in E33 (closed form)
-        e2 = green_lagrange(f) - eth * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
+        ! St Venant-Kirchhoff: S33 = 0 is linear in the mechanical E33
+        ! (closed form), F33 = (1 + eth) sqrt(1 + 2 Em33)
+        e2 = green_lagrange(f / (1.0_dp + eth))
         d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-        e33 = eth - (d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
-        f(3, 3) = sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
+        e33 = -(d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
+        f(3, 3) = (1.0_dp + eth) * sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
       else
         ! local Newton on tau33(F33) = 0 from an incompressible guess for
         ! rubber, and from 1 otherwise; halved steps keep F33 positive
         f(3, 3) = 1.0_dp
         if (ein%law /= law_elastic .and. j2 > 0.0_dp) f(3, 3) = 1.0_dp / j2
+        df33 = huge(1.0_dp)
         do it = 1, max_local
           call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
           if (.not. abs(a(5, 5)) > 0.0_dp) exit
@@ -207,6 +212,9 @@ contains
           f(3, 3) = f(3, 3) + df33
           if (abs(df33) <= 1e-14_dp * f(3, 3)) exit
         end do
+        ! not converged (a tangent of zero, or no convergence in
+        ! max_local steps): the point is reported, not used
+        ok = abs(df33) <= 1e-10_dp * f(3, 3)
       end if
       call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
       call condense5(a)
@@ -249,11 +257,14 @@ contains
     end do
   end subroutine response_3d
 
-  !> Purpose: St Venant-Kirchhoff: S = D (E - eth I) (D the isotropic
-  !> elastic_matrix on (E11, E22, 2 E12, E33), eth the thermal strain),
-  !> tau = F S F^T, and dtau along each unit
-  !> component of F: dtau = dF S F^T + F S dF^T + F (D dE) F^T with
-  !> dE = sym(F^T dF).
+  !> Purpose: St Venant-Kirchhoff: S = D Em (D the isotropic
+  !> elastic_matrix on (E11, E22, 2 E12, E33)), Em the mechanical
+  !> Lagrange strain of Fm = F / (1 + eth): the isotropic thermal stretch
+  !> 1 + alpha dT divided out of F, as CalculiX under NLGEOM
+  !> (calcmechstrain.f); with the total F, tau = F S F^T and along each
+  !> unit component dF of F
+  !>   dtau = dF S F^T + F S dF^T + F (D dEm) F^T,
+  !>   dEm = sym(F^T dF) / (1 + eth)^2.
   pure subroutine saint_venant(ein, f, eth, tau, dtau)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth
@@ -261,11 +272,11 @@ contains
     real(dp) :: d(4, 4), s(3, 3), ds(3, 3), df(3, 3), de(3, 3)
     integer :: c
     d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-    s = voigt_stress(matmul(d, green_lagrange(f) - eth * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]))
+    s = voigt_stress(matmul(d, green_lagrange(f / (1.0_dp + eth))))
     tau = matmul(matmul(f, s), transpose(f))
     do c = 1, 5
       df = unit_f(c)
-      de = 0.5_dp * (matmul(transpose(f), df) + matmul(transpose(df), f))
+      de = 0.5_dp * (matmul(transpose(f), df) + matmul(transpose(df), f)) / (1.0_dp + eth)**2
       ds = voigt_stress(matmul(d, [de(1, 1), de(2, 2), 2.0_dp * de(1, 2), de(3, 3)]))
       dtau(:, :, c) = matmul(matmul(df, s), transpose(f)) + matmul(matmul(f, s), transpose(df)) &
                       + matmul(matmul(f, ds), transpose(f))

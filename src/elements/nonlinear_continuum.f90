@@ -37,10 +37,10 @@
 !> identity over the scaled components; Hughes 1980) against plastic
 !> locking. The thermal strain alpha dT is subtracted from the strain
 !> the law sees (small strain: eps - alpha dT (1, 1, 0, 1); finite strain,
-!> St Venant-Kirchhoff only: E - alpha dT I, CalculiX's mechanical
-!> Lagrange strain; the hyperelastic laws and finite-strain plasticity
-!> ignore it), so fe is the whole internal force and act_thermal gives
-!> zero on this path.
+!> St Venant-Kirchhoff only: the Lagrange strain of F / (1 + alpha dT),
+!> CalculiX's mechanical strain under NLGEOM; the hyperelastic laws and
+!> finite-strain plasticity ignore it), so fe is the whole internal force
+!> and act_thermal gives zero on this path.
 !>
 !> Stresses (act_stresses): sig_ip the Cauchy stress (s11, s22, s33, s12)
 !> (sigma = tau / det Fbar with F-bar), extrapolated to the nodes;
@@ -53,7 +53,8 @@
 !> detj_min: the smallest reference det J (times R in axisymmetry) and,
 !> under finite strain, that times det F, the current one: an element
 !> turned inside out reports a non-positive value, and its points give
-!> no force.
+!> no force; so does (zero) a plane-stress point whose thickness stretch
+!> could not be found.
 module nonlinear_continuum
   use kinds, only: dp
   use model, only: law_elastic
@@ -175,9 +176,10 @@ contains
     real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
     real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth
     integer :: ip, nd, nexp
-    logical :: fbar
+    logical :: fbar, ok
     nd = 2 * ein%nen
     fbar = uses_fbar(ein)
+    j0 = 1.0_dp
     nexp = 2
     if (ein%state == state_axisymmetric) nexp = 3
     if (fbar) then
@@ -209,7 +211,7 @@ contains
         fb = f
         fb(1:2, 1:2) = s * f(1:2, 1:2)
         if (nexp == 3) fb(3, 3) = s * f(3, 3)
-        call material_response(ein, ein%state, fb, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip))
+        call material_response(ein, ein%state, fb, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok)
         c = s**(1 - nexp)
         fm = comps(f)
         if (nexp == 2) fm(5) = 0.0_dp
@@ -221,14 +223,15 @@ contains
         eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
         jac = det3(fb)
       else
-        call material_response(ein, ein%state, f, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip))
+        call material_response(ein, ein%state, f, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok)
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
         eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
         jac = det3(f)
       end if
       ! the current volume element (det F of the point itself, F33 solved
-      ! in plane stress)
+      ! in plane stress); zero where the plane-stress condition failed
       eout%detj_min = min(eout%detj_min, vol * det3(f))
+      if (.not. ok) eout%detj_min = min(eout%detj_min, 0.0_dp)
       eout%peeq_ip(ip) = eout%hist(hist_peeq, ip)
       eout%sig_ip(:, ip) = [tau(1, 1), tau(2, 2), tau(3, 3), tau(1, 2)] / jac
       cg = matmul(transpose(f), f)
