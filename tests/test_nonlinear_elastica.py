@@ -114,3 +114,23 @@ def test_cantilever_follows_the_elastica_to_alpha_10():
     assert abs(last.time - 1.0) < 1e-12
     assert len(run.listing.increments) >= 5
     print(f"  {len(run.listing.increments)} increments; largest difference from the elastica {worst:.2e} L")
+
+
+def test_a_first_increment_too_large_is_cut_back_and_the_step_completes():
+    """The whole load in one increment: the Newton iteration would need more
+    than I_C = 16 iterations; the increment is cut back by D_C = 0.5 (the
+    listing's notes say why) until it converges, nothing of the failed
+    attempts is kept, and the step ends on the elastica."""
+    text, mid = cantilever_deck()
+    text = text.replace("*STATIC\n0.05, 1., 1e-5, 0.1\n", "*STATIC\n1., 1.\n")
+    run = run_deck("nl_elastica_cut", text).ok()
+    listing = open(run.listing_path).read()
+    assert "increment cut back to 5.000E-01" in listing, listing[-2000:]
+    cut = int(listing.split("\ncutbacks ")[1].split()[0])
+    assert cut >= 1
+    last = run.listing.increments[-1]
+    u = last.block("NODE U", set="TIP")
+    d, s = elastica(10.0)
+    assert abs(last.time - 1.0) < 1e-12
+    assert abs(u["U2"][0] / L - d) < 0.002 and abs(-u["U1"][0] / L - s) < 0.002, (u["U2"][0] / L, d)
+    print(f"  {cut} increments cut back, {len(run.listing.increments)} written")
