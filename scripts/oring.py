@@ -130,11 +130,19 @@ def face_of(elem, a, b):
 
 
 def write_deck(path=DECK):
+    with open(path, "w") as f:
+        f.write(deck_text())
+    return path
+
+
+def deck_text(n_core=6, n_layer=5, plate_nx=40, static="0.05, 1., 1e-5, 0.05"):
+    """The deck as text: the example's mesh by default; coarser ones (the
+    fuzzer's seed) with fewer elements."""
     m = Mesh()
-    boundary = ring_mesh(m)
+    boundary = ring_mesh(m, n_core, n_layer)
     n_ring = len(m.elements)
-    lower, first_lower = plate_mesh(m, -0.5 * D - PLATE_T, -0.5 * D)
-    upper, first_upper = plate_mesh(m, 0.5 * D, 0.5 * D + PLATE_T)
+    lower, first_lower = plate_mesh(m, -0.5 * D - PLATE_T, -0.5 * D, nx=plate_nx)
+    upper, first_upper = plate_mesh(m, 0.5 * D, 0.5 * D + PLATE_T, nx=plate_nx)
     for k in range(len(m.elements)):
         orient(m, k)
     # the ring's boundary faces, upper and lower halves
@@ -207,7 +215,7 @@ LOWER_BOTTOM, 1, 2
 UPPER_TOP, 1, 1
 *STEP, NLGEOM, INC=200
 *STATIC
-0.05, 1., 1e-5, 0.05
+{static}
 *BOUNDARY
 UPPER_TOP, 2, 2, {-SQUEEZE}
 *NODE PRINT, NSET=UPPER_TOP, TOTALS=ONLY
@@ -218,9 +226,7 @@ U, S
 S
 *END STEP
 """
-    with open(path, "w") as f:
-        f.write(text)
-    return path
+    return text
 
 
 def cfe2d_curve(listing):

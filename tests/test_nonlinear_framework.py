@@ -165,6 +165,8 @@ def test_cards_errors_at_the_line():
              "*HYPERELASTIC, POLYNOMIAL, N=2", "only N=1")
     error_at("nl_card_d1", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1., 0.\n"), "1., 0.",
              "D1 must be positive")
+    error_at("nl_card_ratio", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1., 1e-12\n"), "1., 1e-12",
+             "more than 1e8 times the shear modulus")
     error_at("nl_card_nh_fields", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1.\n"), "1.",
              "needs: C10, D1")
     error_at("nl_card_temp", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1., 0.1, 20.\n1.1, 0.1, 100.\n"),

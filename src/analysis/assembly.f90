@@ -342,7 +342,8 @@ contains
   !> the tangent that of its last iteration, from body%hist_old) plus the
   !> tangent of every CFE.
   !> Arguments: kmax returns the largest diagonal entry of any element
-  !> matrix (a stiffness scale for the residual test); dm the numbering
+  !> matrix (a stiffness scale for the residual test; in a nonlinear step
+  !> the largest entry of any, huge if one is not finite); dm the numbering
   !> the system was set up for (its constraints transform the groups that
   !> touch a dependent dof).
   subroutine assemble_stiffness(m, cs, body, u, sys, kmax, counts, dm, converged)
@@ -380,9 +381,9 @@ contains
         counts%continuum_tangent = counts%continuum_tangent + 1
         ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd)
         if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, fe_dummy, ke, .true.)
-        do j = 1, nd
-          kmax = max(kmax, abs(ke(j, j)))
-        end do
+        ! every entry (a tangent that overflows is caught by the iteration)
+        kmax = max(kmax, maxval(abs(ke(1:nd, 1:nd))))
+        if (.not. kmax <= huge(1.0_dp)) kmax = huge(1.0_dp)
       else
         call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
       end if

@@ -30,6 +30,9 @@ module equilibrium
   private
   public :: equilibrium_t, begin_equilibrium, solve_increment
 
+  !> The largest element tangent entry a nonlinear step accepts.
+  real(dp), parameter :: tangent_limit = 1.0e250_dp
+
 contains
 
   !> Purpose: equilibrium at the prescribed values and loads already in u
@@ -146,6 +149,12 @@ contains
         call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable, &
                               body%nonlinear .and. it == 1 .and. present(u_from))
       end if
+      if (body%nonlinear .and. eq%kmax > tangent_limit) then
+        ! entries this large sum to overflow in the assembled matrix
+        call newton_failed(eq%newton, eq%newton%ctl%df, 'the tangent stiffness overflows (an element entry ' // &
+                           'beyond 1e250: a thickness, modulus or displacement out of range?)')
+        exit
+      end if
       if (.not. usable .and. eq%newton%singular) then
         call newton_failed(eq%newton, eq%newton%ctl%df, 'the tangent stiffness is singular' // &
                            singular_where(m, dm, eq%bad) // ' (a limit load, or a missing support)')
@@ -189,12 +198,17 @@ contains
       eq%iterations = eq%iterations + 1
       if (body%nonlinear) then
         eq%newton%it = eq%newton%it + 1
+        eq%newton%attempt = eq%newton%attempt + 1
         eq%newton%total = eq%newton%total + 1
-        if (nchanged > 0) eq%newton%it = 0
+        if (nchanged > 0) then
+          eq%newton%it = 0
+          eq%newton%changes = eq%newton%changes + 1
+        end if
         if (body%bad_elem == 0) then
           call newton_test(eq%newton, body%average_force, max_free(dm, rf), c_max, maxval(abs(u - u_start)), &
                            converged, eq%residual)
-          if (eq%newton%cut < 1.0_dp .and. nchanged == 0) exit
+          if (eq%newton%cut < 1.0_dp .and. (nchanged == 0 .or. &
+              eq%newton%attempt >= eq%newton%ctl%ic + eq%newton%changes)) exit
         else
           converged = .false.
         end if

@@ -38,6 +38,10 @@ module equilibrium_common
     real(dp) :: q_last = 0.0_dp         ! q-bar of the last iteration
     real(dp) :: r(3) = 0.0_dp           ! r_max of iterations i, i-1, i-2
     integer :: it = 0                   ! Newton iterations since the last contact status change
+    !> iterations of this attempt at the increment, and those of them that
+    !> changed a contact status (each one adds an iteration to I_C, as
+    !> CalculiX does for node-to-face contact)
+    integer :: attempt = 0, changes = 0
     integer :: total = 0                ! Newton iterations of the step (all increments, cut ones too)
     real(dp) :: cut = 1.0_dp            ! when the increment failed: the factor to cut it by
     character(len=:), allocatable :: reason
@@ -156,6 +160,8 @@ contains
   subroutine newton_begin(nt)
     type(newton_t), intent(inout) :: nt
     nt%singular = .false.
+    nt%attempt = 0
+    nt%changes = 0
     nt%r = 0.0_dp
     nt%it = 0
     nt%cut = 1.0_dp
@@ -175,8 +181,11 @@ contains
   !> q-tilde (a linear increment); zero force; c_max < 1e-8 of the
   !> displacement scale. Otherwise nt%cut and nt%reason say whether to cut
   !> the increment back: divergence (from I_0 on, r_max grew twice: D_F)
-  !> or too slow (from I_R on, the estimated iterations exceed I_C, or I_C
-  !> reached: D_C); nt%cut = 1 means iterate on. The returned ratio is
+  !> or too slow (from I_R on, the estimated iterations exceed I_C, or the
+  !> attempt's iterations reach I_C plus one for each iteration that
+  !> changed a contact status: D_C); the counts of I_0 and I_R start again
+  !> after a status change (CalculiX's rule for node-to-face contact);
+  !> nt%cut = 1 means iterate on. The returned ratio is
   !> r_max / q-tilde (the listing's residual).
   subroutine newton_test(nt, qbar, r_max, c_max, du_max, converged, ratio)
     type(newton_t), intent(inout) :: nt
@@ -215,9 +224,9 @@ contains
       nt%reason = 'the residual force grew in two successive iterations (divergence)'
       return
     end if
-    if (i >= nt%ctl%ic) then
+    if (nt%attempt >= nt%ctl%ic + nt%changes) then
       nt%cut = nt%ctl%dc
-      nt%reason = 'no convergence in ' // itoa(nt%ctl%ic) // ' iterations'
+      nt%reason = 'no convergence in ' // itoa(nt%attempt) // ' iterations'
       return
     end if
     if (i >= nt%ctl%ir .and. nt%r(2) > 0.0_dp .and. r_max < nt%r(2) .and. r_max > 0.0_dp) then

@@ -73,7 +73,8 @@ contains
   !> N > 1 and temperature dependence (a second data line) stop at the
   !> line. D1 must be positive (a compressible potential: the element
   !> routines have no pressure unknown), and the initial shear modulus
-  !> 2 (C10 + C01) too. Like CalculiX, a hyperelastic material makes
+  !> 2 (C10 + C01) too; the bulk modulus 2 / D1 at most 1e8 times the
+  !> shear modulus, both at most 1e100. Like CalculiX, a hyperelastic material makes
   !> every step geometrically nonlinear (deck_model_checks).
   module subroutine read_hyperelastic(p, m, kw)
     type(parser_t), intent(inout) :: p
@@ -128,6 +129,14 @@ contains
         'needs a pressure unknown, which the elements do not have; a small D1 is nearly incompressible')
       if (.not. mat%c10 + mat%c01 > 0.0_dp) call err(p, 'the initial shear modulus 2 (C10 + C01) must be positive')
       if (mat%c10 < 0.0_dp .and. law == law_neo_hooke) call err(p, 'C10 must be positive')
+      ! K / mu = 1 / (D1 (C10 + C01)): beyond 1e8 the volumetric stiffness
+      ! drowns the shear stiffness in round-off; moduli beyond 1e100 overflow
+      ! the energy's products
+      if (abs(mat%c10) + abs(mat%c01) > 1.0e100_dp .or. 2.0_dp > 1.0e100_dp * mat%d1) call err(p, &
+        'the hyperelastic moduli 2 (C10 + C01) and 2 / D1 must not exceed 1e100')
+      if (1.0_dp > 1.0e8_dp * mat%d1 * (mat%c10 + mat%c01)) call err(p, 'the bulk modulus 2 / D1 is more ' // &
+        'than 1e8 times the shear modulus 2 (C10 + C01): nearly incompressible beyond what double precision ' // &
+        'resolves (rubber has 1e3 to 1e4)')
       mat%law = law
     end associate
     if (next_data(p)) call err(p, 'temperature-dependent *HYPERELASTIC data is not implemented')
