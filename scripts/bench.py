@@ -16,12 +16,18 @@
    tangential reaction reaches mu P, mu = 0.3), against the same two-step
    history without friction: wall times, their ratio (target <= 2), the
    sparse factorisations per step (target 1) and the contact iterations.
-3. Nonlinear: the O-ring example (input/examples/oring.inp: axisymmetric
+3. The couplings (scripts/contact_accuracy.py): node-to-segment against
+   segment-to-segment with exact enforcement on the flagship history
+   (default CPS4 mesh, CPS8, a coarse 5 300-node mesh): the pressures'
+   oscillation about the fitted Hertz ellipse, the largest nodal pressure,
+   the slave-master difference, the wall times and their ratio (target
+   <= 1.5), and the exact answer with PENALTY= over three decades.
+4. Nonlinear: the O-ring example (input/examples/oring.inp: axisymmetric
    neo-Hooke, NLGEOM, squeezed 25 % between steel plates with contact,
    automatic increments): wall time, increments, Newton iterations,
    increments cut back, numeric factorisations (one per Newton
    iteration: full Newton) and the force at full squeeze.
-4. With --solvers: the solvers on a structured plane-stress square (Q4) at
+5. With --solvers: the solvers on a structured plane-stress square (Q4) at
    about 1e4, 1e5 and 1e6 dofs (tests/bench/bench.f90, one process per
    case): dofs, stored nonzeros, factor size, wall times of structure,
    assembly, ordering+symbolic analysis, numeric factorisation and solve,
@@ -305,6 +311,7 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--no-square", action="store_true", help="leave out the 1e6-dof square")
     ap.add_argument("--solvers", action="store_true", help="also the solver table on the structured square")
+    ap.add_argument("--no-couplings", action="store_true", help="leave out the table of the two couplings")
     ap.add_argument("--sizes", default="1e4,1e5,1e6", help="sizes of the solver table")
     ap.add_argument("--only-nonlinear", action="store_true", help="only the nonlinear table")
     args = ap.parse_args(argv)
@@ -318,6 +325,10 @@ def main(argv=None):
         meshes = [m for m in args.meshes.split(",") if m]
     contact_table(meshes, args.repeats, not args.no_square)
     friction_table([m for m in meshes if m != "fine"], args.repeats)
+    if meshes and not args.no_couplings:
+        import contact_accuracy
+        print("\ncouplings: node-to-segment (nts) against segment-to-segment with exact enforcement (sts)")
+        contact_accuracy.table(["default", "q8", "ccx"], os.path.join(WORK, "accuracy"), args.repeats, penalties=True)
     nonlinear_table(args.repeats)
     failed = solver_table(args.exe, args.sizes.split(",")) if args.solvers else False
     return 1 if failed else 0

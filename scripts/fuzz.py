@@ -229,7 +229,7 @@ def test_seeds(log):
               ("tests/contact_force", _contact_force), ("tests/contact_unsettled", _contact_unsettled),
               ("tests/features_include", _features), ("tests/patch_tri", _patch_tri),
               ("tests/contact_friction", _contact_friction), ("tests/calculix_friction", _calculix_friction)] \
-        + CARD_MAKERS
+        + CARD_MAKERS + MORTAR_MAKERS
     for name, make in makers:
         try:
             main, files, *expect = make()
@@ -464,6 +464,60 @@ CARD_MAKERS = [("tests/equation_tied", _equation_tied), ("tests/equation_chain",
                ("tests/mass_bar", _mass_bar), ("tests/mass_ring", _mass_ring),
                ("tests/nodal_thickness", _nodal_thickness), ("tests/nodal_thickness_taper", _nodal_thickness_taper)] \
     + NONLINEAR_MAKERS
+
+
+def _mortar_exact():
+    """Segment-to-segment contact with exact enforcement: 7 slave over 5
+    master CPS4 faces (test_mortar's patch test)."""
+    import test_contact_quadratic as tq
+    return "mortar.inp", {"mortar.inp": tq.two_blocks("Q4", "Q4", 5, 7, pair=", TYPE=SURFACE TO SURFACE, EXACT")}
+
+
+def _mortar_quadratic():
+    """Segment-to-segment contact with a penalty: CPS6 slave faces on CPS8
+    master faces."""
+    import test_contact_quadratic as tq
+    return "mortar_q.inp", {"mortar_q.inp": tq.two_blocks("Q8", "T6", 5, 7, pair=", TYPE=SURFACE TO SURFACE")}
+
+
+def _mortar_axisymmetric():
+    """Segment-to-segment contact, EXACT, on CAX8 columns (no radial support)."""
+    import test_contact_quadratic as tq
+    deck = tq.two_blocks("Q8", "Q8", 5, 3, state="AX", x0=0.5, pair=", TYPE=SURFACE TO SURFACE, EXACT")
+    return "mortar_ax.inp", {"mortar_ax.inp": deck.replace("ANCHOR, 1, 1\nTOPLEFT, 1, 1\n", "")}
+
+
+def _mortar_friction():
+    """The frictional patch test with segment-to-segment contact and EXACT,
+    the upper block held by contact alone (the stabilised search)."""
+    import test_friction as tf
+    deck = tf.patch_deck(7, "single")
+    old = f"*CONTACT PAIR, FRICTION={tf.MU}\nSLV, MASTER\n"
+    assert old in deck
+    return "mortar_fric.inp", {"mortar_fric.inp": deck.replace(
+        old, f"*CONTACT PAIR, FRICTION={tf.MU}, TYPE=SURFACE TO SURFACE, EXACT\nUPPERFACE, MASTER\n")}
+
+
+def _mortar_hard_cards():
+    """CalculiX's cards for the new coupling: a HARD interaction (exact
+    enforcement) on a TYPE=SURFACE TO SURFACE pair."""
+    import test_decks_contact as td
+    deck = td.blocks(td.interaction("HARD", "") + "*CONTACT PAIR, INTERACTION=SI1, TYPE=SURFACE TO SURFACE\n"
+                     "UPPERFACE, MASTER\n")
+    return "mortar_hard.inp", {"mortar_hard.inp": deck}
+
+
+def _mortar_tie():
+    """The tied patch test with the mortar tie, the slave coarser."""
+    import test_constraint_decks as tc
+    deck = tc.tie_patch_deck(True, 1, 1e-4, "TOP, P, -3.\nRIGHT, P, -2.\n")
+    return "mtie.inp", {"mtie.inp": deck.replace("*TIE, NAME=GLUE", "*TIE, NAME=GLUE, TYPE=SURFACE TO SURFACE")}
+
+
+# Segment-to-segment contact, exact enforcement and the mortar tie (issue 21).
+MORTAR_MAKERS = [("tests/mortar_exact", _mortar_exact), ("tests/mortar_quadratic", _mortar_quadratic),
+                 ("tests/mortar_axisymmetric", _mortar_axisymmetric), ("tests/mortar_friction", _mortar_friction),
+                 ("tests/mortar_hard_cards", _mortar_hard_cards), ("tests/mortar_tie", _mortar_tie)]
 
 
 def load_seeds(tmp, log):

@@ -69,13 +69,14 @@ def test_nafems1_cylinder_starting_apart_held_only_by_contact():
 
 
 def test_nafems1_cfe2d_contact_pair_gives_the_same_answer():
-    """cfe2d's own *CONTACT PAIR (automatic penalty, one search) in place of
-    the CalculiX cards: the same P, a and p0 to the last digit."""
+    """cfe2d's own *CONTACT PAIR (EXACT: HARD's exact enforcement, one
+    search) in place of the CalculiX cards: the same P, a and p0 to the
+    last digit."""
     def own(deck):
         deck = deck.replace("*SURFACE INTERACTION, NAME=FRICTIONLESS\n", "")
         deck = deck.replace("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n", "")
         return deck.replace("*CONTACT PAIR, INTERACTION=FRICTIONLESS, TYPE=NODE TO SURFACE, SMALL SLIDING",
-                            "*CONTACT PAIR")
+                            "*CONTACT PAIR, EXACT")
     _, ccx = run_case("nafems1")
     _, rows = run_case("nafems1_own", edit=own)
     for key in ("P", "a_FE", "p0_FE"):

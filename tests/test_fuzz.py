@@ -229,7 +229,9 @@ def test_seeds_carry_the_constraint_and_element_cards():
     assert not skipped, skipped
     text = b"\n".join(b"".join(s.files.values()) for s in seeds).upper()
     for card in (b"*EQUATION", b"*TIE", b"*PRE-TENSION SECTION", b"TYPE=T2D2", b"TYPE=T2D3", b"TYPE=SPRING1",
-                 b"TYPE=SPRINGA", b"*SPRING", b"TYPE=MASS", b"*MASS", b"*NODAL THICKNESS"):
+                 b"TYPE=SPRINGA", b"*SPRING", b"TYPE=MASS", b"*MASS", b"*NODAL THICKNESS",
+                 b"TYPE=SURFACE TO SURFACE, EXACT", b"*TIE, NAME=GLUE, TYPE=SURFACE TO SURFACE",
+                 b"PRESSURE-OVERCLOSURE=HARD"):
         assert card in text, card
     import random
     for op in (fuzz.m_card_field, fuzz.m_constraint, fuzz.m_coincide):

@@ -12,7 +12,7 @@ module condensed_equilibrium
   use kinds, only: dp
   use model, only: model_t
   use contact, only: contact_set_t, contact_forces, status_codes
-  use contact_status, only: contact_switch, begin_status_search, contact_energy
+  use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
   use assembly, only: body_t, body_forces, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_analyse, factor_singular
@@ -51,7 +51,7 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), allocatable :: fold(:)
-    integer :: it, nchanged
+    integer :: it, nchanged, naug
     logical :: whole                    ! u holds every equation's solution
     logical :: finite, usable
     real(dp) :: scale, fext_norm, energy
@@ -65,6 +65,7 @@ contains
     call begin_status_search(eq%search)
     whole = .false.
     it = 0
+    naug = 0
     ! MAXIT counts the iterations of each status search
     do while (eq%search%iterations < m%contact_max_iter)
       it = it + 1
@@ -103,6 +104,16 @@ contains
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
                             'iterating on with the nominal one')
         cycle
+      end if
+      if (nchanged == 0 .and. eq%residual < m%contact_tolerance .and. naug < max_augmentations) then
+        ! exact enforcement: the multipliers updated, the search again
+        if (augment_multipliers(cs, contact_force_scale(eq, cs, fext_norm))) then
+          naug = naug + 1
+          u = eq%cd%u0
+          whole = .false.
+          call begin_status_search(eq%search)
+          cycle
+        end if
       end if
       if (nchanged == 0 .and. eq%residual < m%contact_tolerance) then
         ok = .true.

@@ -15,7 +15,7 @@ module equilibrium
   use strings, only: itoa
   use model, only: model_t, elem_label, node_label
   use contact, only: contact_set_t, status_codes, contact_forces
-  use contact_status, only: contact_switch, begin_status_search, contact_energy
+  use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
   use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
@@ -102,7 +102,7 @@ contains
     integer, intent(out) :: iters
     real(dp), intent(in), optional :: u_from(:, :)
     real(dp), allocatable :: fint(:, :), u_start(:, :)
-    integer :: it, a, d, nchanged
+    integer :: it, a, d, nchanged, naug
     logical :: restabilised, usable, converged, predict
     real(dp) :: scale, energy, c_max
     allocate(fint(2, m%nn))
@@ -130,6 +130,7 @@ contains
     end if
     call begin_status_search(eq%search)
     it = 0
+    naug = 0
     ! MAXIT counts the iterations of each status search
     do while (eq%search%iterations < m%contact_max_iter)
       it = it + 1
@@ -224,6 +225,16 @@ contains
         cycle
       end if
       if (body%nonlinear) then
+        if (nchanged == 0 .and. converged .and. naug < max_augmentations) then
+          ! exact enforcement under Newton: the multipliers updated at the
+          ! converged state, the iteration on
+          if (augment_multipliers(cs, contact_force_scale(eq, cs, norm2(fext)))) then
+            naug = naug + 1
+            call internal_forces(m, body, cs, u, fint, eq%counts)
+            call begin_status_search(eq%search)
+            cycle
+          end if
+        end if
         if (nchanged == 0 .and. converged) then
           ok = .true.
           iters = it
@@ -232,6 +243,15 @@ contains
           return
         end if
         cycle
+      end if
+      if (nchanged == 0 .and. eq%residual < m%contact_tolerance .and. naug < max_augmentations) then
+        ! exact enforcement: the multipliers updated, the search again
+        if (augment_multipliers(cs, contact_force_scale(eq, cs, norm2(fext)))) then
+          naug = naug + 1
+          call internal_forces(m, body, cs, u, fint, eq%counts)
+          call begin_status_search(eq%search)
+          cycle
+        end if
       end if
       if (nchanged == 0 .and. eq%residual < m%contact_tolerance) then
         ok = .true.

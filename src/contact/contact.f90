@@ -26,11 +26,12 @@ module contact
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, &
                               edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line
+  use contact_mortar, only: nearest_edge, face_cuts, edge_tol, mortar_t, mortar_integrals
   use element_interface, only: elem_in_t, elem_out_t, kind_cfe, max_slave, max_en, act_residual
   use element_library, only: element_routine
   implicit none
   private
-  public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
+  public :: cfe_t, max_cfe_master, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
             coupling_node, cfe_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
@@ -45,9 +46,6 @@ module contact
   !> is within 1 % at 3 E / h. The penetration is then a third of one
   !> element's compression under the same pressure.
   real(dp), parameter :: auto_face_penalty_factor = 3.0_dp
-  !> A projection this far outside [0, 1] along an edge still counts: it
-  !> catches slave nodes exactly above a master vertex.
-  real(dp), parameter :: edge_tol = 1.0e-6_dp
   !> The round-off of a gap relative to the size of the coordinates that
   !> enter it (64 machine epsilons): a point this close to its master edge
   !> touches it, whatever the build or BLAS kernel rounds (the initial
@@ -56,6 +54,13 @@ module contact
   !> Open penalty (fraction of the closed one) while a body that only open
   !> contact holds is being brought into contact; see contact_set_t.
   real(dp), parameter :: stabilised_open_ratio = 1.0e-6_dp
+  !> Master nodes of a segment-to-segment CFE (one slave node and these
+  !> fill an element's node list).
+  integer, parameter :: max_cfe_master = max_en - 1
+  !> A segment-to-segment CFE whose covered dual weight D_j is below this
+  !> share of its node's whole int N_j da is not made: its support hardly
+  !> faces the master, and its weights M_jm / D_j would be large.
+  real(dp), parameter :: min_mortar_cover = 0.1_dp
 
   type :: cfe_t
     integer :: pair = 0
@@ -67,6 +72,13 @@ module contact
     !> face (0 for a slave node).
     integer :: selem = 0, sedge = 0, sip = 0
     integer :: elem = 0, edge = 0    ! master element and its edge
+    !> Segment-to-segment (nm > 0): the master side is these nodes with
+    !> these weights (M_jm / D_j, contact_mortar), not the shape functions
+    !> of elem at xi; elem, edge and t then name a master face under the
+    !> slave node's support.
+    integer :: nm = 0
+    integer :: mnode(max_cfe_master) = 0
+    real(dp) :: mw(max_cfe_master) = 0.0_dp
     real(dp) :: t = 0.0_dp           ! position of X_C along the edge, 0..1
     real(dp) :: xi(2) = 0.0_dp       ! natural coordinates of X_C in the master
     real(dp) :: normal(2) = 0.0_dp   ! outward unit normal of the master edge
@@ -79,6 +91,12 @@ module contact
     real(dp) :: k_closed = 0.0_dp    ! normal penalty of the CFE (force/length)
     real(dp) :: k_open = 0.0_dp
     logical :: closed = .false.
+    !> Exact enforcement: the Lagrange multiplier (normal force, <= 0) the
+    !> penalty is augmented with, and whether the pair asks for it: a
+    !> closed CFE's force is lambda + k_closed g (contact_status's
+    !> augment_multipliers updates lambda until g vanishes).
+    logical :: exact = .false.
+    real(dp) :: lambda = 0.0_dp
     !> Coulomb friction (mu = 0: none): tangential penalty (force/length);
     !> a closed CFE sticks or slides (slip_sign: +-1 along the tangent
     !> t = (-n_y, n_x)); anchor: the tangential relative displacement t.[[U]]
@@ -177,43 +195,6 @@ contains
     end do
   end subroutine tributary_lengths
 
-  !> Purpose: the master edge (index into the master surface) on which the
-  !> orthogonal projection of point xs falls, nearest first; 0 if none.
-  !> Arguments: x configuration searched, skip_node a slave node (edges
-  !> through it are skipped) and skip_elem a slave element (its edges are
-  !> skipped), 0 for none; dmax search distance, tbest the projection's
-  !> position along the edge.
-  subroutine nearest_edge(m, x, ms, xs, skip_node, skip_elem, dmax, best, tbest)
-    type(model_t), intent(in) :: m
-    real(dp), intent(in) :: x(:, :), xs(2), dmax
-    type(surface_t), intent(in) :: ms
-    integer, intent(in) :: skip_node, skip_elem
-    integer, intent(out) :: best
-    real(dp), intent(out) :: tbest
-    type(edge_t) :: ed
-    integer :: j
-    real(dp) :: nvec(2), t, d, dbest
-    best = 0
-    tbest = 0.0_dp
-    dbest = huge(1.0_dp)
-    do j = 1, size(ms%elem)
-      if (ms%elem(j) == skip_elem) cycle
-      ed = get_edge(m, x, ms%elem(j), ms%edge(j))
-      if (any(ed%node(1:ed%nn) == skip_node)) cycle
-      call project_to_edge(ed, xs, t, nvec, d)
-      if (t < -edge_tol .or. t > 1.0_dp + edge_tol) cycle
-      t = min(max(t, 0.0_dp), 1.0_dp)
-      ! A point behind the master edge by more than half its length is on
-      ! the far side of the master body, not in contact with it.
-      if (d < -0.5_dp * edge_length(ed) .or. d > dmax) cycle
-      if (abs(d) < dbest) then
-        dbest = abs(d)
-        best = j
-        tbest = t
-      end if
-    end do
-  end subroutine nearest_edge
-
   !> Purpose: couples the slave points of every pair (slave nodes, or
   !> Gauss points of 3-node slave faces) to the nearest master edge on
   !> which their orthogonal projection falls, searching on the
@@ -233,7 +214,9 @@ contains
     do ip = 1, size(m%pairs)
       dmax = m%pairs(ip)%search_distance
       if (dmax < 0.0_dp) dmax = huge(1.0_dp)
-      if (quadratic_faces(m, m%surfaces(m%pairs(ip)%slave_surface))) then
+      if (m%pairs(ip)%coupling == coupling_mortar) then
+        call couple_mortar(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
+      else if (quadratic_faces(m, m%surfaces(m%pairs(ip)%slave_surface))) then
         call couple_slave_faces(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
       else
         call couple_slave_nodes(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
@@ -293,6 +276,76 @@ contains
     end associate
   end subroutine couple_slave_nodes
 
+  !> Segment-to-segment: one CFE per slave node, its master side the
+  !> master nodes with the mortar weights M_jm / D_j, its area the dual
+  !> weight D_j, its normal the mean master normal under its support, its
+  !> initial gap the weighted one (contact_mortar). A node whose support
+  !> faces no master face (or less than min_mortar_cover of it) is
+  !> uncoupled.
+  subroutine couple_mortar(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), dmax
+    integer, intent(in) :: ip
+    type(contact_set_t), intent(inout) :: cs
+    integer, allocatable, intent(inout) :: unc(:), uncp(:)
+    integer, intent(inout) :: nunc, nunc_p
+    type(mortar_t) :: mo
+    type(cfe_t) :: c
+    real(dp) :: em, xm(2), xm_ref(2)
+    integer :: k, s, q, e
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
+      if (sl%kind /= surf_element) call fatal('segment-to-segment contact (TYPE=SURFACE TO SURFACE) needs ' // &
+        'an element-based slave surface: ' // trim(sl%name) // ' is a node set')
+      call mortar_integrals(m, x, sl, ms, dmax, mo)
+      do k = 1, mo%n
+        s = sl%nodes(k)
+        if (mo%nm(k) == 0 .or. mo%d(k) <= min_mortar_cover * mo%full(k) .or. norm2(mo%nsum(:, k)) <= 0.0_dp) then
+          call append(unc, nunc, s)
+          call append(uncp, nunc_p, ip)
+          cycle
+        end if
+        if (mo%nm(k) > max_cfe_master) call fatal('segment-to-segment contact: slave node ' // &
+          node_label(m, s) // ' of ' // trim(sl%name) // ' faces more than ' // itoa(max_cfe_master) // &
+          ' master nodes; make the finer surface the slave (or refine the slave side)')
+        c = cfe_t()
+        c%pair = ip
+        c%ns = 1
+        c%snode(1) = s
+        c%nm = mo%nm(k)
+        c%mnode(1:c%nm) = mo%mnode(1:c%nm, k)
+        c%mw(1:c%nm) = mo%mval(1:c%nm, k) / mo%d(k)
+        c%elem = mo%melem(k)
+        c%edge = mo%medge(k)
+        c%t = mo%mt(k)
+        c%xi = edge_natural(m%etype(c%elem), c%edge, c%t)
+        c%normal = mo%nsum(:, k) / norm2(mo%nsum(:, k))
+        c%area = mo%d(k)
+        c%h = mo%h(k)
+        em = 0.0_dp
+        do q = 1, size(sl%elem)
+          if (any(m%conn(1:elem_nodes(m, sl%elem(q)), sl%elem(q)) == s)) em = max(em, section_e(m, sl%elem(q)))
+        end do
+        do q = 1, c%nm
+          do e = 1, size(ms%elem)
+            if (any(m%conn(1:elem_nodes(m, ms%elem(e)), ms%elem(e)) == c%mnode(q))) &
+              em = max(em, section_e(m, ms%elem(e)))
+          end do
+        end do
+        xm = matmul(x(:, c%mnode(1:c%nm)), c%mw(1:c%nm))
+        xm_ref = matmul(m%x(:, c%mnode(1:c%nm)), c%mw(1:c%nm))
+        c%gap0 = m%x(:, s) - xm_ref
+        c%gap_round = gap_round_off * (norm2(x(:, s)) + c%h)
+        c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
+        c%exact = m%pairs(ip)%exact
+        c%k_open = open_stiffness(m%pairs(ip), c%area, em, c%h, .false., c%k_closed)
+        c%mu = m%pairs(ip)%mu
+        if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
+        c%closed = dot_product(c%normal, x(:, s) - xm) <= c%gap_round
+        call add_cfe(cs, c)
+      end do
+    end associate
+  end subroutine couple_mortar
+
   !> Gauss points of 3-node slave faces: each face is cut where the ends
   !> of the master edges project onto it, each piece gets two points, each
   !> point is coupled to the master edge under it. A face none of whose
@@ -343,54 +396,6 @@ contains
     end associate
   end subroutine couple_slave_faces
 
-  !> Positions along a slave face (sorted, from 0 to 1) where the corners
-  !> of the master edges project onto it: between two of them the slave
-  !> face faces one master edge, whose shape functions are polynomials there.
-  subroutine face_cuts(m, x, ed, ms, dmax, cuts, ncut)
-    type(model_t), intent(in) :: m
-    real(dp), intent(in) :: x(:, :), dmax
-    type(edge_t), intent(in) :: ed
-    type(surface_t), intent(in) :: ms
-    real(dp), intent(out) :: cuts(:)
-    integer, intent(out) :: ncut
-    real(dp), parameter :: tol = 1.0e-6_dp
-    type(edge_t) :: mt
-    real(dp) :: t, nvec(2), d
-    integer :: j, q, a
-    ncut = 2
-    cuts(1:2) = [0.0_dp, 1.0_dp]
-    do j = 1, size(ms%elem)
-      mt = get_edge(m, x, ms%elem(j), ms%edge(j))
-      do q = 1, 2
-        a = mt%node(q)
-        if (any(ed%node(1:ed%nn) == a)) cycle
-        call project_to_edge(ed, x(:, a), t, nvec, d)
-        if (t <= tol .or. t >= 1.0_dp - tol .or. abs(d) > dmax) cycle
-        if (any(abs(cuts(1:ncut) - t) <= tol)) cycle
-        if (ncut == size(cuts)) exit
-        ncut = ncut + 1
-        cuts(ncut) = t
-      end do
-    end do
-    call sort_reals(cuts(1:ncut))
-  end subroutine face_cuts
-
-  pure subroutine sort_reals(a)
-    real(dp), intent(inout) :: a(:)
-    integer :: i, j
-    real(dp) :: v
-    do i = 2, size(a)
-      v = a(i)
-      j = i - 1
-      do while (j >= 1)
-        if (a(j) <= v) exit
-        a(j + 1) = a(j)
-        j = j - 1
-      end do
-      a(j + 1) = v
-    end do
-  end subroutine sort_reals
-
   subroutine add_cfe(cs, c)
     type(contact_set_t), intent(inout) :: cs
     type(cfe_t), intent(in) :: c
@@ -434,7 +439,8 @@ contains
     c%h = hm
     c%gap_round = gap_round_off * (norm2(xs) + hm)
     c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, hm, c%ns > 1)
-    c%k_open = m%pairs(ip)%open_ratio * c%k_closed
+    c%exact = m%pairs(ip)%exact
+    c%k_open = open_stiffness(m%pairs(ip), c%area, em, hm, c%ns > 1, c%k_closed)
     c%mu = m%pairs(ip)%mu
     if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
     ! [[U]]_0 between the reference positions of the slave point and of
@@ -506,6 +512,7 @@ contains
             old%c(q)%selem == cs%c(j)%selem .and. old%c(q)%sedge == cs%c(j)%sedge .and. &
             old%c(q)%sip == cs%c(j)%sip) then
           cs%c(j)%closed = old%c(q)%closed
+          cs%c(j)%lambda = old%c(q)%lambda
           ! friction: the elastic tangential offset carries over to the
           ! new coupling, whose t.[[U]] is evaluated where the point is now
           ! (zero on a straight edge; not at a blended corner normal)
@@ -551,6 +558,26 @@ contains
     end if
   end function cfe_penalty
 
+  !> The open penalty of one CFE: OPEN PENALTY (a ratio) times the closed
+  !> penalty; under exact enforcement times the automatic penalty instead,
+  !> whatever PENALTY= says (the penalty then only sets the pace of the
+  !> multiplier updates, and the open state's small force, which the open
+  !> points' relative motion makes, would otherwise follow it: 6.5e-6 of
+  !> P on the flagship between PENALTY=1e8 and 1e11). Never above half
+  !> the closed penalty.
+  pure real(dp) function open_stiffness(pr, area, e, h, face_point, k_closed) result(k)
+    type(contact_pair_t), intent(in) :: pr
+    real(dp), intent(in) :: area, e, h, k_closed
+    logical, intent(in) :: face_point
+    type(contact_pair_t) :: auto
+    k = pr%open_ratio * k_closed
+    if (.not. pr%exact) return
+    auto = pr
+    auto%penalty = -1.0_dp
+    auto%nodal = .false.
+    k = min(pr%open_ratio * cfe_penalty(auto, area, e, h, face_point), 0.5_dp * k_closed)
+  end function open_stiffness
+
   !> Tangential (stick) penalty of one CFE: the pair's stick slope per
   !> unit area times the CFE's area, or (no slope given) the normal
   !> penalty, as CalculiX and Abaqus choose a stick stiffness of the order
@@ -568,9 +595,14 @@ contains
     type(cfe_t), intent(in) :: c
     integer, intent(out) :: nodes(:), nen
     integer :: nm
+    nodes(1:c%ns) = c%snode(1:c%ns)
+    if (c%nm > 0) then
+      nen = c%ns + c%nm
+      nodes(c%ns + 1:nen) = c%mnode(1:c%nm)
+      return
+    end if
     nm = elem_nodes(m, c%elem)
     nen = c%ns + nm
-    nodes(1:c%ns) = c%snode(1:c%ns)
     nodes(c%ns + 1:nen) = m%conn(1:nm, c%elem)
   end subroutine cfe_nodes
 
@@ -593,10 +625,18 @@ contains
       ein%xy(:, k) = m%x(:, nodes(k))
       ein%ue(2 * k - 1:2 * k) = u(:, nodes(k))
     end do
-    ein%master_kind = catalogue(m%etype(c%elem))%shape
-    ein%xi = c%xi
+    if (c%nm > 0) then
+      ein%master_kind = 0
+      ein%wm(1:c%nm) = c%mw(1:c%nm)
+    else
+      ein%master_kind = catalogue(m%etype(c%elem))%shape
+      ein%xi = c%xi
+    end if
     ein%normal = c%normal
     ein%gap0 = c%gap0
+    ! exact enforcement: the closed force lambda + k_closed g is the
+    ! penalty's on the gap shifted by lambda / k_closed along the normal
+    if (c%closed .and. c%lambda /= 0.0_dp) ein%gap0 = c%gap0 + (c%lambda / c%k_closed) * c%normal
     ein%closed = c%closed
     if (c%closed) then
       ein%penalty = c%k_closed
@@ -639,6 +679,7 @@ contains
         fint(:, nodes(i)) = fint(:, nodes(i)) + eout%fe(2 * i - 1:2 * i)
       end do
       cs%c(j)%gap = eout%gap
+      if (cs%c(j)%closed .and. cs%c(j)%lambda /= 0.0_dp) cs%c(j)%gap = eout%gap - cs%c(j)%lambda / cs%c(j)%k_closed
       cs%c(j)%force = eout%normal_force
       cs%c(j)%slide = eout%slide
       cs%c(j)%tforce = eout%tangential_force

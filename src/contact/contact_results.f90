@@ -20,7 +20,7 @@
 module contact_results
   use kinds, only: dp
   use model
-  use contact, only: contact_set_t, coupling_node
+  use contact, only: contact_set_t, coupling_node, max_cfe_master
   use contact_geometry, only: edge_t, get_edge, edge_areas, edge_weights
   implicit none
   private
@@ -265,7 +265,8 @@ contains
     type(pair_results_t), intent(out) :: r
     integer :: k, j, nm, ns, n, q
     integer, allocatable :: pos(:), sel(:)
-    real(dp) :: a(3), w(3), shear
+    real(dp) :: a(3), w(3), shear, ww(max_cfe_master)
+    integer :: nw, wn(max_cfe_master)
     type(edge_t) :: ed
     r%pair = ip
     r%frictional = m%pairs(ip)%mu > 0.0_dp
@@ -322,14 +323,24 @@ contains
         r%slave_force(j) = -c%force
         ! the master's tangential force on the point along t
         shear = -c%tforce
-        ed = get_edge(m, m%x, c%elem, c%edge)
-        if (ed%nn == 2) then
-          w(1:2) = [1.0_dp - c%t, c%t]
+        if (c%nm > 0) then
+          ! segment-to-segment: the master nodes' mortar weights
+          nw = c%nm
+          wn(1:nw) = c%mnode(1:nw)
+          ww(1:nw) = c%mw(1:nw)
         else
-          w = edge_weights(ed, c%t)
+          ed = get_edge(m, m%x, c%elem, c%edge)
+          if (ed%nn == 2) then
+            w(1:2) = [1.0_dp - c%t, c%t]
+          else
+            w = edge_weights(ed, c%t)
+          end if
+          nw = ed%nn
+          wn(1:nw) = ed%node(1:nw)
+          ww(1:nw) = w(1:nw)
         end if
-        do q = 1, ed%nn
-          r%master_force(pos(ed%node(q))) = r%master_force(pos(ed%node(q))) - w(q) * c%force
+        do q = 1, nw
+          r%master_force(pos(wn(q))) = r%master_force(pos(wn(q))) - ww(q) * c%force
         end do
         r%total = r%total - c%force
         r%resultant = r%resultant + c%force * c%normal
@@ -338,8 +349,8 @@ contains
         if (r%frictional) then
           r%slave_sliding(j) = c%sliding
           r%slave_shear(j) = shear
-          do q = 1, ed%nn
-            r%master_shear(pos(ed%node(q))) = r%master_shear(pos(ed%node(q))) + w(q) * shear
+          do q = 1, nw
+            r%master_shear(pos(wn(q))) = r%master_shear(pos(wn(q))) + ww(q) * shear
           end do
           r%shear_total = r%shear_total + shear
           r%resultant = r%resultant + c%tforce * [-c%normal(2), c%normal(1)]

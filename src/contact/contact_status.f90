@@ -58,7 +58,8 @@ module contact_status
   use contact, only: contact_set_t, cfe_label, open_penalty, frictional_set
   implicit none
   private
-  public :: status_search_t, begin_status_search, contact_switch, reject_pivot, shifted_gap, contact_energy
+  public :: status_search_t, begin_status_search, contact_switch, reject_pivot, shifted_gap, contact_energy, &
+            augment_multipliers, max_augmentations
 
   !> Relative round-off under which gap and force count as zero.
   real(dp), parameter :: round_off = 1.0e-10_dp
@@ -67,6 +68,10 @@ module contact_status
   integer, parameter :: max_block_tries = 3
   !> Status changes named in a message.
   integer, parameter :: max_named = 20
+  !> Multiplier updates of exact enforcement per increment, at most (each
+  !> shrinks the closed gaps by about the ratio of the bodies' stiffness
+  !> under a point to the penalty: 1e-3 with the automatic one).
+  integer, parameter :: max_augmentations = 30
 
   !> The state of one increment's status search, and the pivots made
   !> since it was made: block (every violated CFE changes) and single (the
@@ -107,7 +112,8 @@ contains
       ko = open_penalty(c, cs%stabilised)
       d = c%k_closed - ko
       gh = c%gap
-      if (d > 0.0_dp) gh = c%gap + ko * dot_product(c%normal, c%gap0) / d
+      ! (lambda: exact enforcement's multiplier, see augment_multipliers)
+      if (d > 0.0_dp) gh = c%gap + (ko * dot_product(c%normal, c%gap0) + c%lambda) / d
     end associate
   end function shifted_gap
 
@@ -190,7 +196,8 @@ contains
   !> the last increment, sticks while it lies within mu times the normal
   !> force N = -k_closed g, and slides along its sign otherwise (the
   !> sliding force is then mu N). A sliding CFE keeps sliding while its
-  !> trial force exceeds mu N in its direction, to round-off. Open CFEs
+  !> trial force exceeds mu N in its direction, to round-off (N = -(lambda +
+  !> k_closed g) under exact enforcement). Open CFEs
   !> neither stick nor slide. Round-off as in is_violated.
   subroutine return_mapping(m, cs, force_scale, nchanged, changed)
     type(model_t), intent(in) :: m
@@ -212,7 +219,8 @@ contains
         sgn = 0.0_dp
         if (c%closed) then
           trial = c%k_tan * (c%slide - c%anchor)
-          limit = c%mu * max(-c%k_closed * c%gap, 0.0_dp)
+          ! (exact enforcement: the normal force is lambda + k_closed g)
+          limit = c%mu * max(-(c%k_closed * c%gap + c%lambda), 0.0_dp)
           if (c%sliding) then
             ! slides on while the trial force exceeds the limit its way;
             ! otherwise it sticks first (never reverses in one pivot,
@@ -283,6 +291,49 @@ contains
       end associate
     end do
   end function contact_energy
+
+  !> Purpose: exact enforcement (pairs with cfe_t%exact), once the status
+  !> search has settled: the augmented Lagrangian update (Powell 1969,
+  !> Hestenes 1969; for contact Simo & Laursen 1992, "An augmented
+  !> Lagrangian treatment of contact problems involving friction",
+  !> Computers & Structures 42, 97-116). For a fixed multiplier lambda_c
+  !> the status search solves the LCP of the penalty on the gap shifted by
+  !> lambda_c / d_c (closed force lambda_c + k_closed g_c); the update
+  !> lambda_c := that force (closed) or 0 (open) and a new search make the
+  !> closed gaps shrink geometrically, by about the ratio of the bodies'
+  !> stiffness under a point to its penalty per iteration, until they are
+  !> zero to the round-off of the status search (round_off min(h, F/d), or
+  !> the gap's own round-off): the multipliers are then the contact forces
+  !> of exact non-penetration, independent of the penalty, which only sets
+  !> the pace. Returns true when some multiplier changed (search again).
+  !> Arguments: force_scale as contact_switch.
+  logical function augment_multipliers(cs, force_scale) result(again)
+    type(contact_set_t), intent(inout) :: cs
+    real(dp), intent(in) :: force_scale
+    integer :: j
+    real(dp) :: tol
+    again = .false.
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        if (.not. c%exact .or. .not. c%closed) cycle
+        tol = max(round_off * min(c%h, force_scale / max(c%k_closed, tiny(1.0_dp))), c%gap_round)
+        if (abs(c%gap) > tol) again = .true.
+      end associate
+    end do
+    if (.not. again) return
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        if (.not. c%exact) cycle
+        if (c%closed) then
+          ! the closed force of the search (lambda + k_closed g, the open
+          ! penalty's share left out: it resists relative motion only)
+          c%lambda = min(c%lambda + c%k_closed * c%gap, 0.0_dp)
+        else
+          c%lambda = 0.0_dp
+        end if
+      end associate
+    end do
+  end function augment_multipliers
 
   !> Is CFE j's complementarity violated beyond round-off: closed and in
   !> tension, or open and penetrating?

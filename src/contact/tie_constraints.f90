@@ -15,12 +15,18 @@
 !> that is prescribed (*BOUNDARY in the model data or in the first step)
 !> or already the dependent dof of an equation is not tied (a warning).
 !> A slave node that is itself a node of the master surface is not tied.
+!>
+!> TYPE=SURFACE TO SURFACE (tie_t%mortar): the weights are the mortar
+!> integrals of contact_mortar instead, M_jm / D_j with dual shape
+!> functions (a mortar tie): the same form of equation, one per dof of a
+!> slave node, and a uniform stress passes through non-matching meshes.
 module tie_constraints
   use kinds, only: dp
   use strings, only: itoa, rtoa
   use messages, only: warn
   use model, only: model_t, tie_t, equation_t, node_label
   use contact_geometry, only: edge_t, get_edge, project_to_edge, edge_at, edge_weights, edge_length
+  use contact_mortar, only: mortar_t, mortar_integrals, max_mortar_nodes
   implicit none
   private
   public :: tie_surfaces
@@ -29,6 +35,9 @@ module tie_constraints
   real(dp), parameter :: default_fraction = 0.025_dp
   !> Node ids listed in a warning, at most.
   integer, parameter :: max_listed = 10
+  !> TYPE=SURFACE TO SURFACE: a tied node whose covered dual weight is below
+  !> this share of its whole int N_j da takes the node-to-face equation.
+  real(dp), parameter :: min_mortar_cover = 0.1_dp
 
   !> Where a slave node lands on the master surface.
   type :: landing_t
@@ -106,6 +115,8 @@ contains
     type(edge_t), allocatable :: faces(:)
     type(equation_t), allocatable :: eqs(:)
     type(landing_t) :: l
+    type(landing_t), allocatable :: lands(:)
+    type(mortar_t) :: mo
     logical, allocatable :: on_master(:)
     integer, allocatable :: missed(:), skipped(:)
     real(dp) :: tol_face, tol
@@ -114,7 +125,7 @@ contains
     tol = t%tolerance
     if (tol <= 0.0_dp) tol = tol_face
     associate(slaves => m%surfaces(t%slave_surface)%nodes)
-      allocate(eqs(2 * size(slaves)), missed(size(slaves)), skipped(size(slaves)))
+      allocate(eqs(2 * size(slaves)), missed(size(slaves)), skipped(size(slaves)), lands(size(slaves)))
       neq = 0
       nmissed = 0
       nskipped = 0
@@ -136,6 +147,14 @@ contains
           m%x(:, s) = l%x
         end if
         t%tied = t%tied + 1
+        lands(k) = l
+      end do
+      ! the mortar integrals on the adjusted slave surface
+      if (t%mortar) call mortar_integrals(m, m%x, m%surfaces(t%slave_surface), m%surfaces(t%master_surface), &
+                                          tol, mo)
+      do k = 1, size(slaves)
+        s = slaves(k)
+        if (lands(k)%face == 0) cycle
         do j = 1, 2
           if (blocked(j, s) .or. dependent(j, s)) then
             if (nskipped == 0) then
@@ -148,7 +167,12 @@ contains
             cycle
           end if
           neq = neq + 1
-          eqs(neq) = tie_equation(faces(l%face), l%t, s, j, t)
+          eqs(neq) = tie_equation(faces(lands(k)%face), lands(k)%t, s, j, t)
+          ! (two tests: Fortran does not skip the second, and mo is only
+          ! made for a mortar tie)
+          if (t%mortar) then
+            if (mortar_covered(mo, k)) eqs(neq) = mortar_equation(mo, k, s, j, t)
+          end if
           dependent(j, s) = .true.
         end do
       end do
@@ -234,6 +258,41 @@ contains
     eq%src = tie%src
     eq%origin = '*TIE ' // trim(tie%name)
   end function tie_equation
+
+  !> Does the mortar integral of slave node k (in the surface's order)
+  !> cover enough of its support (min_mortar_cover)?
+  pure logical function mortar_covered(mo, k)
+    type(mortar_t), intent(in) :: mo
+    integer, intent(in) :: k
+    ! (a node whose list of master nodes overflowed keeps node to face)
+    mortar_covered = mo%nm(k) > 0 .and. mo%nm(k) < max_mortar_nodes .and. mo%d(k) > min_mortar_cover * mo%full(k)
+  end function mortar_covered
+
+  !> TYPE=SURFACE TO SURFACE (mortar tie): D_j u_j(s) = sum_m M_jm u_j(m)
+  !> with the dual weights of contact_mortar (the dual shape functions make
+  !> the slave side one node), so u_j(s) - sum_m (M_jm / D_j) u_j(m) = 0:
+  !> the tie of the weak continuity int Phi_s (u_slave - u_master) da = 0,
+  !> whose forces on the master are the consistent ones of the slave
+  !> tractions (a uniform stress passes through any two meshes). Master
+  !> terms with a zero weight are left out.
+  function mortar_equation(mo, k, s, j, tie) result(eq)
+    type(mortar_t), intent(in) :: mo
+    integer, intent(in) :: k, s, j
+    type(tie_t), intent(in) :: tie
+    type(equation_t) :: eq
+    integer :: i
+    eq%node = [s]
+    eq%dof = [j]
+    eq%coef = [1.0_dp]
+    do i = 1, mo%nm(k)
+      if (mo%mval(i, k) == 0.0_dp .or. mo%mnode(i, k) == s) cycle
+      eq%node = [eq%node, mo%mnode(i, k)]
+      eq%dof = [eq%dof, j]
+      eq%coef = [eq%coef, -mo%mval(i, k) / mo%d(k)]
+    end do
+    eq%src = tie%src
+    eq%origin = '*TIE ' // trim(tie%name)
+  end function mortar_equation
 
   !> Warnings for the slave nodes not tied and the dofs left free.
   subroutine report(m, t, missed, skipped, nshared, tol)

@@ -4,11 +4,13 @@
 !> the weighted combination sum_j w_j x_j of the ns slave nodes (one node
 !> with weight 1 for node-to-segment contact; any point of a slave edge
 !> otherwise, as section 5 of the paper allows). Nodes 1..ns are the slave
-!> nodes, nodes ns+1..nen the master element's nodes in its own order.
+!> nodes, nodes ns+1..nen the master element's nodes in its own order, or
+!> (master_kind 0, segment-to-segment contact) master nodes whose weights
+!> are given (ein%wm: the mortar integrals, contact_mortar).
 module cfe_element
   use kinds, only: dp
   use element_catalogue, only: max_nodes
-  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, wants
+  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, wants, max_en
   use shape_functions, only: shape_at
   implicit none
   private
@@ -22,10 +24,16 @@ contains
   pure subroutine cfe_b_matrix(ein, b)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(out) :: b(2, 2 * ein%nen)
-    real(dp) :: n(max_nodes), dn(2, max_nodes)
+    real(dp) :: n(max_en), dn(2, max_nodes)
     integer :: nm, k
     nm = ein%nen - ein%ns
-    call shape_at(ein%master_kind, ein%xi, n, dn)
+    if (ein%master_kind == 0) then
+      ! segment-to-segment: the mortar weights of the master nodes
+      n = 0.0_dp
+      n(1:nm) = ein%wm(1:nm)
+    else
+      call shape_at(ein%master_kind, ein%xi, n, dn)
+    end if
     b = 0.0_dp
     do k = 1, ein%ns
       b(1, 2 * k - 1) = ein%ws(k)

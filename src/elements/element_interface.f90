@@ -63,6 +63,10 @@ module element_interface
     real(dp) :: ws(max_slave) = [1.0_dp, 0.0_dp, 0.0_dp]
     integer :: master_kind = 0
     real(dp) :: xi(2) = 0.0_dp
+    !> master_kind 0 (a segment-to-segment CFE): the master nodes' weights
+    !> are given, not shape functions at xi (no default: set and read only
+    !> there, so that no other element's input is made larger to initialise)
+    real(dp) :: wm(max_en)
     real(dp) :: normal(2) = 0.0_dp
     real(dp) :: penalty = 0.0_dp
     real(dp) :: gap0(2) = 0.0_dp
@@ -82,12 +86,16 @@ module element_interface
     !> its constants (model's law_*; law_elastic uses e and nu), the
     !> *PLASTIC table (nyield = 0: elastic), and the history at the
     !> integration points committed by the last converged increment.
+    !> The table and the history have no default: they are defined (and
+    !> read) only where nyield > 0 or the law has state, so that the
+    !> linear elements' input is not made larger to initialise (the
+    !> stress recovery builds it once per element and increment).
     logical :: nlgeom = .false.
     integer :: law = law_elastic
     real(dp) :: c10 = 0.0_dp, c01 = 0.0_dp, d1 = 0.0_dp
     integer :: nyield = 0
-    real(dp) :: yield(2, max_yield) = 0.0_dp
-    real(dp) :: hist(max_hist, max_ip) = 0.0_dp
+    real(dp) :: yield(2, max_yield)
+    real(dp) :: hist(max_hist, max_ip)
   end type elem_in_t
 
   type :: elem_out_t

@@ -353,7 +353,7 @@ contains
     character(len=:), allocatable :: v
     integer :: n
     call allow_params(p, kw, 'NAME,POSITION TOLERANCE,POSITIONTOLERANCE,ADJUST,CYCLIC SYMMETRY,' // &
-                      'CYCLICSYMMETRY,MULTISTAGE')
+                      'CYCLICSYMMETRY,MULTISTAGE,TYPE')
     if (has_param(kw, 'CYCLIC SYMMETRY') .or. has_param(kw, 'CYCLICSYMMETRY') .or. has_param(kw, 'MULTISTAGE')) &
       call err(p, 'CYCLIC SYMMETRY and MULTISTAGE ties (sectors of a 3D model) are not implemented: cfe2d ' // &
                'ties surfaces of a 2D model')
@@ -369,6 +369,14 @@ contains
       if (v /= 'YES' .and. v /= 'NO') call err(p, 'ADJUST must be YES or NO')
       t%adjust = v == 'YES'
     end if
+    ! TYPE= as Abaqus names it: NODE TO SURFACE (here the default, node to
+    ! face) or SURFACE TO SURFACE (the mortar tie, tie_constraints)
+    if (has_param(kw, 'TYPE')) then
+      v = to_upper(param_value(kw, 'TYPE'))
+      if (v /= 'NODE TO SURFACE' .and. v /= 'SURFACE TO SURFACE') &
+        call err(p, 'TYPE must be NODE TO SURFACE or SURFACE TO SURFACE')
+      t%mortar = v == 'SURFACE TO SURFACE'
+    end if
     if (.not. next_data(p)) call err(p, 'missing data line (slave surface, master surface)')
     call split_fields(line_text(p), f, n)
     if (n /= 2) call err(p, '*TIE data line needs: slave surface, master surface')
@@ -378,6 +386,8 @@ contains
     if (t%master_surface == 0) call err(p, 'undefined surface ' // to_upper(f(2)%s))
     if (m%surfaces(t%master_surface)%kind /= surf_element) &
       call err(p, 'the master surface of a tie must be made of element faces')
+    if (t%mortar .and. m%surfaces(t%slave_surface)%kind /= surf_element) &
+      call err(p, 'TYPE=SURFACE TO SURFACE (a mortar tie) needs a slave surface of element faces')
     if (t%master_surface == t%slave_surface) call err(p, 'slave and master are the same surface')
     call warn_empty_set(p, size(m%surfaces(t%slave_surface)%nodes), 'surface', m%surfaces(t%slave_surface)%name, &
                         kw%name)

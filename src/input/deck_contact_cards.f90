@@ -8,7 +8,8 @@ submodule (deck_parser) deck_contact_cards
                          allow_params, param_real, param_int, need_nset, new_surface, get_real, &
                          behaviour_linear, add_pair_interaction, check_name_length, warn_empty_set, &
                          interaction_t
-  use model, only: contact_pair_t, surface_t, surf_element, surf_node, find_name, edge_nodes, elem_thickness, &
+  use model, only: contact_pair_t, surface_t, surf_element, surf_node, coupling_nts, coupling_mortar, &
+                   find_name, edge_nodes, elem_thickness, &
                    elem_nodes, axisymmetric_model, is_continuum
   use model_growth, only: grow
   use element_catalogue, only: max_nodes
@@ -21,9 +22,10 @@ contains
   !> Purpose: *CONTACT PAIR: `slave, master` per data line, the slave a
   !> surface or a node set, the master an element surface; the parameters
   !> (penalty, search) apply to every pair of the card. SYMMETRIC adds the
-  !> pair with the roles swapped (two-pass contact). The CalculiX/Abaqus
-  !> form names a *SURFACE INTERACTION (INTERACTION=) for the penalty;
-  !> TYPE=SURFACE TO SURFACE is two-pass, SMALL SLIDING keeps the first
+  !> pair with the roles swapped (two-pass contact); TYPE=SURFACE TO
+  !> SURFACE is the segment-to-segment coupling, EXACT exact enforcement.
+  !> The CalculiX/Abaqus form names a *SURFACE INTERACTION (INTERACTION=)
+  !> for the penalty (HARD: exact enforcement); SMALL SLIDING keeps the first
   !> pairing (without it, CalculiX's large sliding, the pairing is searched
   !> again every increment), ADJUST= moves slave nodes onto the master.
   module subroutine read_contact_pair(p, m, kw)
@@ -33,19 +35,29 @@ contains
     type(field_t), allocatable :: f(:)
     type(contact_pair_t) :: c
     integer :: n, npair, first, card
-    logical :: two_pass
+    logical :: two_pass, sts
     real(dp) :: ratio
     card = p%i
     call allow_params(p, kw, 'PENALTY,OPEN PENALTY,NODAL,SEARCH DISTANCE,UPDATE SEARCH,TYPE,SYMMETRIC,' // &
-                      'INTERACTION,SMALL SLIDING,ADJUST,FRICTION,STICK SLOPE')
-    two_pass = has_param(kw, 'SYMMETRIC') .or. surface_to_surface(p, kw)
+                      'INTERACTION,SMALL SLIDING,ADJUST,FRICTION,STICK SLOPE,EXACT')
+    sts = surface_to_surface(p, kw)
+    two_pass = has_param(kw, 'SYMMETRIC')
+    if (sts .and. two_pass) call err(p, 'SYMMETRIC (two-pass node-to-segment) and TYPE=SURFACE TO SURFACE ' // &
+                                        '(segment-to-segment) exclude each other')
+    c%coupling = coupling_nts
+    if (sts) c%coupling = coupling_mortar
     call pair_penalty(p, kw, c)
+    ! exact enforcement: cfe2d's EXACT, or (INTERACTION=) a HARD behaviour,
+    ! set once the deck is read (interaction_penalties)
+    c%exact = has_param(kw, 'EXACT')
+    if (c%exact .and. has_param(kw, 'INTERACTION')) call err(p, 'give either INTERACTION= or EXACT (the ' // &
+      'interaction''s PRESSURE-OVERCLOSURE=HARD is exact enforcement)')
     c%open_ratio = param_real(p, kw, 'OPEN PENALTY', 1.0e-12_dp)
     if (c%open_ratio < 0.0_dp .or. c%open_ratio >= 1.0_dp) call err(p, 'OPEN PENALTY (a ratio) must lie in [0, 1)')
     call pair_friction(p, kw, c)
     c%search_distance = param_real(p, kw, 'SEARCH DISTANCE', -1.0_dp)
     c%update_search = has_param(kw, 'UPDATE SEARCH') .or. &
-        (has_param(kw, 'INTERACTION') .and. .not. two_pass .and. .not. has_param(kw, 'SMALL SLIDING'))
+        (has_param(kw, 'INTERACTION') .and. .not. (two_pass .or. sts) .and. .not. has_param(kw, 'SMALL SLIDING'))
     npair = 0
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
@@ -60,6 +72,8 @@ contains
       if (c%master_surface == c%slave_surface) call err(p, 'slave and master are the same surface')
       c%src%line = p%i
       c%twin = 0
+      if (sts .and. m%surfaces(c%slave_surface)%kind /= surf_element) &
+        call err(p, 'TYPE=SURFACE TO SURFACE (segment-to-segment) needs an element-based slave surface')
       if (has_param(kw, 'ADJUST')) call adjust_slave_nodes(p, m, param_value(kw, 'ADJUST'), c)
       call add_pair(p, m, c)
       if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
@@ -123,7 +137,7 @@ contains
   end function mean_edge_length
 
   !> TYPE= of *CONTACT PAIR: NODE TO SURFACE (cfe2d's own, one pass) or
-  !> SURFACE TO SURFACE (true: made two-pass, see docs/contact.md).
+  !> SURFACE TO SURFACE (true: segment-to-segment, see docs/contact.md).
   logical function surface_to_surface(p, kw)
     type(parser_t), intent(in) :: p
     type(keyword_t), intent(in) :: kw
@@ -136,8 +150,8 @@ contains
     case ('SURFACE TO SURFACE')
       surface_to_surface = .true.
     case ('MORTAR')
-      call err(p, 'TYPE=MORTAR (Lagrange multipliers) is not implemented; NODE TO SURFACE and ' // &
-               'SURFACE TO SURFACE (penalty) are')
+      call err(p, 'TYPE=MORTAR is not a CalculiX 2D pair type here; TYPE=SURFACE TO SURFACE is cfe2d''s ' // &
+               'mortar (segment-to-segment) coupling, with exact enforcement under PRESSURE-OVERCLOSURE=HARD')
     case ('MASSLESS')
       call err(p, 'TYPE=MASSLESS belongs to explicit dynamics, which cfe2d does not do')
     case default
@@ -207,6 +221,8 @@ contains
         associate(c => m%pairs(pi%pair))
           c%penalty = -1.0_dp
           if (p%inter(it)%behaviour == behaviour_linear) c%penalty = p%inter(it)%slope
+          ! HARD: exact enforcement (the automatic penalty only sets the pace)
+          c%exact = p%inter(it)%behaviour /= behaviour_linear
           if (c%twin /= 0 .and. c%penalty > 0.0_dp) c%penalty = 0.5_dp * c%penalty
           c%mu = p%inter(it)%mu
           c%stick_slope = p%inter(it)%stick_slope

@@ -17,13 +17,15 @@ module model
             node_label, elem_label, has_instances, &
             is_continuum, carries_stiffness, is_truss, is_spring, is_mass, is_drawn, axisymmetric_model, &
             elem_nodes, elem_thickness, &
-            surf_element, surf_node, &
+            surf_element, surf_node, coupling_nts, coupling_mortar, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
             law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield, controls_t
   public :: kept_nodes
 
   integer, parameter :: surf_element = 1, surf_node = 2
+  !> contact_pair_t%coupling
+  integer, parameter :: coupling_nts = 1, coupling_mortar = 2
   integer, parameter :: amp_step_time = 1, amp_total_time = 2
   !> What made a rigid_t: *RIGID BODY, *COUPLING with *KINEMATIC or with
   !> *DISTRIBUTING.
@@ -228,6 +230,15 @@ module model
     !> SYMMETRIC: the pair made for the second pass (master and slave
     !> swapped) and the other way round; 0 for a single pass.
     integer :: twin = 0
+    !> The coupling: node-to-segment (the paper's CFE at each slave node,
+    !> or Gauss points of 3-node slave faces) or segment-to-segment (a
+    !> dual mortar CFE per slave node, the gap integrated over the slave
+    !> faces: contact_mortar).
+    integer :: coupling = coupling_nts
+    !> Exact enforcement: non-penetration held by Lagrange multipliers (the
+    !> contact pressures), found by augmenting the penalty until the closed
+    !> gaps vanish; false: the penalty alone.
+    logical :: exact = .false.
     type(src_t) :: src
   end type contact_pair_t
 
@@ -268,6 +279,9 @@ module model
     integer :: slave_surface = 0, master_surface = 0
     real(dp) :: tolerance = -1.0_dp       ! <= 0: 2.5 % of the master's mean face length
     logical :: adjust = .true.            ! move tied slave nodes onto the master
+    !> TYPE=SURFACE TO SURFACE: a mortar tie (dual mortar weights,
+    !> tie_constraints), not node to face
+    logical :: mortar = .false.
     type(src_t) :: src
     !> Once generated: slave nodes tied, and not tied (no master face
     !> within the tolerance, or a node of the master surface itself);

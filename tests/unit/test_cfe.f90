@@ -1,13 +1,18 @@
 !> The coupling finite element at element level (eqs. 3-10): symmetry and
 !> rank of K_e, F_int = K_e D_e + B_e^T C [[U]]_0, K_e as the derivative of
-!> F_int, and [[U]] equal to the current slave-to-X_C vector.
+!> F_int, and [[U]] equal to the current slave-to-X_C vector; a master
+!> side of given weights (segment-to-segment) against the shape functions
+!> at X_C, and the dual shape functions of the mortar integrals
+!> (biorthogonality, partition of unity).
 program test_cfe
   use kinds, only: dp
   use test_report, only: report, failures
   use element_interface, only: elem_in_t, elem_out_t, kind_cfe, kind_quad4, kind_tri3, act_tangent, act_residual
   use element_library, only: element_routine
   use cfe_element, only: cfe_b_matrix
-  use shape_functions, only: quad4_shape, tri3_shape
+  use shape_functions, only: quad4_shape, tri3_shape, gauss_line
+  use contact_geometry, only: edge_t, edge_at, edge_weights, area_factor
+  use contact_mortar, only: mortar_dual
   implicit none
   call check('CFE on Q4 master', kind_quad4, 4, [0.3_dp, 1.0_dp])
   call check('CFE on T3 master', kind_tri3, 3, [0.35_dp, 0.65_dp])
@@ -15,6 +20,11 @@ program test_cfe
   call check_friction(.false., 0.0_dp, 'sticking')
   call check_friction(.true., 1.0_dp, 'sliding along +t')
   call check_friction(.true., -1.0_dp, 'sliding along -t')
+  call check_given_master_weights()
+  call check_dual(2, .false., 'straight 2-node plane face')
+  call check_dual(2, .true., '2-node axisymmetric face')
+  call check_dual(3, .false., 'curved 3-node plane face')
+  call check_dual(3, .true., 'curved 3-node axisymmetric face')
   if (failures() > 0) stop 1
 
 contains
@@ -232,4 +242,77 @@ contains
     write(msg, '(a,es9.2)') 'relative asymmetry ', err
     call report('CFE with a slave point: K_e symmetric', err < 1.0e-15_dp, msg)
   end subroutine check_slave_point
+
+  !> A master side of given weights (master_kind 0, ein%wm) equal to the
+  !> Q4 shape functions at X_C: the same gap, forces and K_e as the CFE on
+  !> the Q4 master element.
+  subroutine check_given_master_weights()
+    type(elem_in_t) :: e1, e2
+    type(elem_out_t) :: o1, o2
+    real(dp) :: n(4), dn(2, 4), err
+    character(len=120) :: msg
+    integer :: i
+    e1%kind = kind_cfe
+    e1%master_kind = kind_quad4
+    e1%nen = 5
+    e1%xi = [0.2_dp, 1.0_dp]
+    e1%normal = [0.6_dp, -0.8_dp]
+    e1%penalty = 2.0e8_dp
+    e1%gap0 = [1.0e-6_dp, -2.0e-5_dp]
+    do i = 1, 10
+      e1%ue(i) = 1.0e-4_dp * cos(0.7_dp * i)
+    end do
+    e2 = e1
+    e2%master_kind = 0
+    call quad4_shape(e1%xi(1), e1%xi(2), n, dn)
+    e2%wm(1:4) = n
+    call element_routine(ior(act_tangent, act_residual), e1, o1)
+    call element_routine(ior(act_tangent, act_residual), e2, o2)
+    err = abs(o2%gap - o1%gap) / abs(o1%gap) + maxval(abs(o2%fe(1:10) - o1%fe(1:10))) / maxval(abs(o1%fe(1:10))) + &
+          maxval(abs(o2%ke(1:10, 1:10) - o1%ke(1:10, 1:10))) / maxval(abs(o1%ke(1:10, 1:10)))
+    write(msg, '(a,es9.2)') 'relative difference ', err
+    call report('CFE with given master weights: as the shape functions at X_C', err < 1.0e-14_dp, msg)
+  end subroutine check_given_master_weights
+
+  !> The dual shape functions Phi_i = sum_k a(i, k) N_k of a slave face:
+  !> int Phi_i N_k da = delta_ik int N_i da with the three-point rule of
+  !> the mortar integrals (da: length times thickness, or 2 pi r ds), and
+  !> sum_i Phi_i = 1.
+  subroutine check_dual(nn, axi, what)
+    integer, intent(in) :: nn
+    logical, intent(in) :: axi
+    character(len=*), intent(in) :: what
+    type(edge_t) :: ed
+    real(dp) :: a(3, 3), s(3), w(3), t, p(2), dpdt(2), nv(3), phi(3), da, mix(3, 3), d(3), err
+    character(len=120) :: msg
+    integer :: ig, i
+    ed%nn = nn
+    ed%axi = axi
+    ed%x(:, 1) = [0.4_dp, 1.0_dp]
+    ed%x(:, 2) = [1.6_dp, 1.3_dp]
+    ed%x(:, 3) = [1.0_dp, 1.25_dp]          ! mid-side node off the chord
+    ed%thickness = [0.8_dp, 1.2_dp, 1.0_dp]
+    a = mortar_dual(ed)
+    call gauss_line(3, s, w)
+    mix = 0.0_dp
+    d = 0.0_dp
+    do ig = 1, 3
+      t = 0.5_dp * (s(ig) + 1.0_dp)
+      call edge_at(ed, t, p, dpdt)
+      nv = edge_weights(ed, t)
+      phi = matmul(a, nv)
+      da = 0.5_dp * w(ig) * norm2(dpdt) * area_factor(ed, t, p(1))
+      do i = 1, nn
+        mix(i, 1:nn) = mix(i, 1:nn) + da * phi(i) * nv(1:nn)
+        d(i) = d(i) + da * nv(i)
+      end do
+    end do
+    err = 0.0_dp
+    do i = 1, nn
+      mix(i, i) = mix(i, i) - d(i)
+    end do
+    err = maxval(abs(mix(1:nn, 1:nn))) / maxval(d(1:nn)) + maxval(abs(sum(a(1:nn, 1:nn), dim=1) - 1.0_dp))
+    write(msg, '(a,es9.2)') 'largest deviation ', err
+    call report('dual shape functions, ' // what // ': biorthogonal, sum to one', err < 1.0e-13_dp, msg)
+  end subroutine check_dual
 end program test_cfe
