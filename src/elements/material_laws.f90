@@ -191,11 +191,11 @@ contains
       j2 = f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)
       if (ein%law == law_elastic .and. ein%nyield == 0) then
         ! St Venant-Kirchhoff: S33 = 0 is linear in the mechanical E33
-        ! (closed form), F33 = (1 + eth) sqrt(1 + 2 Em33)
-        e2 = green_lagrange(f / (1.0_dp + eth))
+        ! (closed form); Em33 = ((F33 - eth)^2 - 1) / 2 (saint_venant)
+        e2 = green_lagrange(f - eth * eye)
         d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
         e33 = -(d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
-        f(3, 3) = (1.0_dp + eth) * sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
+        f(3, 3) = eth + sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
       else
         ! local Newton on tau33(F33) = 0 from an incompressible guess for
         ! rubber, and from 1 otherwise; halved steps keep F33 positive
@@ -259,24 +259,30 @@ contains
 
   !> Purpose: St Venant-Kirchhoff: S = D Em (D the isotropic
   !> elastic_matrix on (E11, E22, 2 E12, E33)), Em the mechanical
-  !> Lagrange strain of Fm = F / (1 + eth): the isotropic thermal stretch
-  !> 1 + alpha dT divided out of F, as CalculiX under NLGEOM
-  !> (calcmechstrain.f); with the total F, tau = F S F^T and along each
+  !> Lagrange strain of Fm = F - eth I: CalculiX 2.20's reading under
+  !> NLGEOM (calcmechstrain.f of 2.20-2.22: the thermal strain is taken
+  !> from the displacement gradient, Em = (Fm^T Fm - I) / 2; its later
+  !> development sources divide F by 1 + eth instead, which moved ring1
+  !> 4e-3 away from CalculiX 2.20 and its .dat.ref). Free expansion F =
+  !> (1 + eth) I gives Em = 0; not objective when a heated body rotates
+  !> (in-plane Em = eth (1 + eth) (1 - cos theta) I under F = (1 + eth) R),
+  !> as CalculiX 2.20. With the total F, tau = F S F^T and along each
   !> unit component dF of F
   !>   dtau = dF S F^T + F S dF^T + F (D dEm) F^T,
-  !>   dEm = sym(F^T dF) / (1 + eth)^2.
+  !>   dEm = sym(Fm^T dF).
   pure subroutine saint_venant(ein, f, eth, tau, dtau)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
-    real(dp) :: d(4, 4), s(3, 3), ds(3, 3), df(3, 3), de(3, 3)
+    real(dp) :: d(4, 4), s(3, 3), ds(3, 3), df(3, 3), de(3, 3), fm(3, 3)
     integer :: c
     d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-    s = voigt_stress(matmul(d, green_lagrange(f / (1.0_dp + eth))))
+    fm = f - eth * eye
+    s = voigt_stress(matmul(d, green_lagrange(fm)))
     tau = matmul(matmul(f, s), transpose(f))
     do c = 1, 5
       df = unit_f(c)
-      de = 0.5_dp * (matmul(transpose(f), df) + matmul(transpose(df), f)) / (1.0_dp + eth)**2
+      de = 0.5_dp * (matmul(transpose(fm), df) + matmul(transpose(df), fm))
       ds = voigt_stress(matmul(d, [de(1, 1), de(2, 2), 2.0_dp * de(1, 2), de(3, 3)]))
       dtau(:, :, c) = matmul(matmul(df, s), transpose(f)) + matmul(matmul(f, s), transpose(df)) &
                       + matmul(matmul(f, ds), transpose(f))

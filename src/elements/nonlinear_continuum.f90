@@ -37,8 +37,8 @@
 !> identity over the scaled components; Hughes 1980) against plastic
 !> locking. The thermal strain alpha dT is subtracted from the strain
 !> the law sees (small strain: eps - alpha dT (1, 1, 0, 1); finite strain,
-!> St Venant-Kirchhoff only: the Lagrange strain of F / (1 + alpha dT),
-!> CalculiX's mechanical strain under NLGEOM; the hyperelastic laws and
+!> St Venant-Kirchhoff only: the Lagrange strain of F - alpha dT I,
+!> CalculiX 2.20's mechanical strain under NLGEOM; the hyperelastic laws and
 !> finite-strain plasticity ignore it), so fe is the whole internal force
 !> and act_thermal gives zero on this path.
 !>

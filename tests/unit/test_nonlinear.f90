@@ -33,7 +33,8 @@
 !>   the end;
 !> - St Venant-Kirchhoff under NLGEOM with a temperature change: free
 !>   thermal expansion (F = (1 + alpha dT) I) gives no force (plane stress,
-!>   axisymmetry).
+!>   axisymmetry); at a homogeneous stretch the Cauchy stress is CalculiX
+!>   2.20's, S = D Em with Em the Lagrange strain of F - alpha dT I (1e-12).
 program test_nonlinear
   use kinds, only: dp
   use test_report, only: report, failures
@@ -78,6 +79,10 @@ program test_nonlinear
     call check_free_expansion('CPS' // trim(suffix(ie)))
     call check_free_expansion('CAX' // trim(suffix(ie)))
   end do
+  call check_thermal_nlgeom('CPE4')
+  call check_thermal_nlgeom('CPS4')
+  call check_thermal_nlgeom('CAX4')
+  call check_thermal_nlgeom('CAX8')
   if (failures() > 0) stop 1
 
 contains
@@ -630,6 +635,59 @@ contains
     fmax = max(maxval(abs(eout%fe(1:2 * ein%nen))), maxval(abs(eout%sig_ip(:, 1:ein%nip)))) / (ein%e * ein%alpha * 40.0_dp)
     call report('free thermal expansion no force ' // name, fmax < 1e-12_dp, 'relative ' // num(fmax))
   end subroutine check_free_expansion
+
+  !> St Venant-Kirchhoff with a temperature change under NLGEOM at a
+  !> homogeneous F (F12 = 0, so that the axisymmetric hoop stretch is F11):
+  !> the Cauchy stress at every point against CalculiX 2.20's reading
+  !> computed here in 3D, S = lambda tr(Em) I + 2 mu Em with Em the
+  !> Lagrange strain of Fm = F - alpha dT I (calcmechstrain.f of 2.20:
+  !> the thermal strain taken from the displacement gradient), sigma =
+  !> F S F^T / det F; plane stress: F33 from S33 = 0 (relative 1e-12).
+  subroutine check_thermal_nlgeom(name)
+    character(len=*), intent(in) :: name
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: f(3, 3), fm(3, 3), em(3, 3), s(3, 3), sig(3, 3), eth, lam, mu, err
+    integer :: k, ip
+    ein = element(name, 1)
+    ein%alpha = 2e-3_dp
+    ein%dtemp = 40.0_dp
+    eth = ein%alpha * 40.0_dp
+    f = 0.0_dp
+    f(1:2, 1:2) = reshape([1.2_dp, 0.07_dp, 0.0_dp, 0.9_dp], [2, 2])
+    f(3, 3) = 1.0_dp
+    if (ein%state == state_axisymmetric) f(3, 3) = f(1, 1)
+    do k = 1, ein%nen
+      ein%ue(2 * k - 1:2 * k) = matmul(f(1:2, 1:2), ein%xy(:, k)) - ein%xy(:, k)
+    end do
+    call element_routine(ior(act_residual, act_stresses), ein, eout)
+    lam = ein%e * ein%nu / ((1.0_dp + ein%nu) * (1.0_dp - 2.0_dp * ein%nu))
+    mu = ein%e / (2.0_dp * (1.0_dp + ein%nu))
+    fm = f
+    do k = 1, 3
+      fm(k, k) = f(k, k) - eth
+    end do
+    em = 0.5_dp * matmul(transpose(fm), fm)
+    do k = 1, 3
+      em(k, k) = em(k, k) - 0.5_dp
+    end do
+    if (ein%state == state_plane_stress) then
+      em(3, 3) = -lam * (em(1, 1) + em(2, 2)) / (lam + 2.0_dp * mu)
+      f(3, 3) = eth + sqrt(1.0_dp + 2.0_dp * em(3, 3))
+    end if
+    s = 2.0_dp * mu * em
+    do k = 1, 3
+      s(k, k) = s(k, k) + lam * (em(1, 1) + em(2, 2) + em(3, 3))
+    end do
+    sig = matmul(matmul(f, s), transpose(f)) / (f(3, 3) * (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)))
+    err = 0.0_dp
+    do ip = 1, ein%nip
+      err = max(err, maxval(abs(eout%sig_ip(:, ip) - [sig(1, 1), sig(2, 2), sig(3, 3), sig(1, 2)])))
+    end do
+    err = err / maxval(abs(sig))
+    call report('St Venant-Kirchhoff thermal strain under NLGEOM as CalculiX 2.20 ' // name, err < 1e-12_dp, &
+                'relative ' // num(err))
+  end subroutine check_thermal_nlgeom
 
   function num(x) result(s)
     real(dp), intent(in) :: x
