@@ -54,8 +54,10 @@
 !> under finite strain, that times det F, the current one: an element
 !> turned inside out reports a non-positive value, and its points give
 !> no force; so does (zero) a plane-stress point whose thickness stretch
-!> could not be found.
+!> could not be found, or NaN in ue. Arrays that are not finite (the laws
+!> overflow at absurd deformations) are returned as zero with detj_min 0.
 module nonlinear_continuum
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use model, only: law_elastic
   use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
@@ -95,6 +97,19 @@ contains
     else
       call small_strain(ein, eout)
     end if
+    ! a deformation the laws cannot evaluate (NaN in ue, an overflow at an
+    ! absurd stretch or volume ratio): no arrays, the history unchanged,
+    ! and the element reported bad so that the driver cuts back
+    if (.not. (eout%detj_min <= 0.0_dp .or. eout%detj_min > 0.0_dp) .or. .not. finite_arrays(eout, 2 * nen, ein%nip)) then
+      eout%detj_min = min(eout%detj_min, 0.0_dp)
+      if (.not. eout%detj_min <= 0.0_dp) eout%detj_min = 0.0_dp
+      eout%ke = 0.0_dp
+      eout%fe = 0.0_dp
+      eout%sig_ip = 0.0_dp
+      eout%eps_ip = 0.0_dp
+      eout%peeq_ip = 0.0_dp
+      eout%hist(:, 1:ein%nip) = ein%hist(:, 1:ein%nip)
+    end if
     if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
     if (.not. wants(action, act_residual)) eout%fe = 0.0_dp
     if (wants(action, act_stresses)) then
@@ -105,6 +120,17 @@ contains
       eout%eps_ip = 0.0_dp
     end if
   end subroutine nonlinear_continuum_element
+
+  !> Purpose: are the element's arrays (ke, fe, stresses, strains,
+  !> history at the points) all finite?
+  !> Arguments: eout, nd its dofs, nip its integration points.
+  pure logical function finite_arrays(eout, nd, nip)
+    type(elem_out_t), intent(in) :: eout
+    integer, intent(in) :: nd, nip
+    finite_arrays = all(ieee_is_finite(eout%ke(1:nd, 1:nd))) .and. all(ieee_is_finite(eout%fe(1:nd))) .and. &
+                    all(ieee_is_finite(eout%sig_ip(:, 1:nip))) .and. all(ieee_is_finite(eout%eps_ip(:, 1:nip))) .and. &
+                    all(ieee_is_finite(eout%hist(:, 1:nip)))
+  end function finite_arrays
 
   !> Does the element use F-bar / B-bar (see the module header)?
   pure logical function uses_fbar(ein)
@@ -172,7 +198,7 @@ contains
   pure subroutine finite_strain(ein, eout)
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(inout) :: eout
-    real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol
+    real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol, vinv
     real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
     real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth
     integer :: ip, nd, nexp
@@ -202,8 +228,11 @@ contains
       eout%hist(:, ip) = ein%hist(:, ip)
       jac = (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) * f(3, 3)
       if (.not. jac > 0.0_dp .or. (fbar .and. .not. j0 > 0.0_dp)) then
-        ! turned inside out: no force, reported through detj_min
-        eout%detj_min = min(eout%detj_min, vol * min(jac, merge(j0, jac, fbar)))
+        ! turned inside out (or NaN in ue: reported as zero, which min
+        ! would not do): no force, reported through detj_min
+        vinv = vol * min(jac, merge(j0, jac, fbar))
+        if (.not. vinv <= 0.0_dp) vinv = 0.0_dp
+        eout%detj_min = min(eout%detj_min, vinv)
         cycle
       end if
       if (fbar) then

@@ -34,8 +34,11 @@
 !> - St Venant-Kirchhoff under NLGEOM with a temperature change: free
 !>   thermal expansion (F = (1 + alpha dT) I) gives no force (plane stress,
 !>   axisymmetry); at a homogeneous stretch the Cauchy stress is CalculiX
-!>   2.20's, S = D Em with Em the Lagrange strain of F - alpha dT I (1e-12).
+!>   2.20's, S = D Em with Em the Lagrange strain of F - alpha dT I (1e-12);
+!> - NaN in ue, a volume ratio of 1e-27 and displacements of 1e11: no NaN
+!>   or Infinity in any array, and NaN reported through detj_min <= 0.
 program test_nonlinear
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use kinds, only: dp
   use test_report, only: report, failures
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses
@@ -56,6 +59,7 @@ program test_nonlinear
     do ie = 1, 5
       do il = 1, 5
         call check_tangent(trim(prefix(is) // suffix(ie)), il, trim(law_name(il)))
+        call check_bad_deformation(trim(prefix(is) // suffix(ie)), il, trim(law_name(il)))
       end do
       call check_rigid(trim(prefix(is) // suffix(ie)))
       call check_linear_limit(trim(prefix(is) // suffix(ie)))
@@ -688,6 +692,41 @@ contains
     call report('St Venant-Kirchhoff thermal strain under NLGEOM as CalculiX 2.20 ' // name, err < 1e-12_dp, &
                 'relative ' // num(err))
   end subroutine check_thermal_nlgeom
+
+  !> Deformations the laws cannot evaluate: NaN in ue must be reported
+  !> (detj_min <= 0, the driver cuts back) and no array may hold NaN or
+  !> Infinity, for NaN in ue, a volume ratio of 1e-27 (ue = -(1 - 1e-9) X)
+  !> and displacements of 1e11 times the element's size.
+  subroutine check_bad_deformation(name, il, lname)
+    character(len=*), intent(in) :: name, lname
+    integer, intent(in) :: il
+    character(len=8), parameter :: what(3) = ['NaN     ', 'collapse', 'huge    ']
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: ic, nd
+    logical :: ok
+    do ic = 1, 3
+      ein = element(name, il)
+      nd = 2 * ein%nen
+      call deform(ein, 0.06_dp)
+      select case (ic)
+      case (1)
+        ein%ue(3) = ieee_value(1.0_dp, ieee_quiet_nan)
+      case (2)
+        ein%ue(1:nd) = -(1.0_dp - 1e-9_dp) * reshape(ein%xy(:, 1:ein%nen), [nd])
+      case (3)
+        ein%ue(1:nd) = 1e11_dp * ein%ue(1:nd)
+      end select
+      call element_routine(ior(act_tangent, ior(act_residual, act_stresses)), ein, eout)
+      ok = all(ieee_is_finite(eout%ke(1:nd, 1:nd))) .and. all(ieee_is_finite(eout%fe(1:nd))) .and. &
+           all(ieee_is_finite(eout%sig_ip(:, 1:ein%nip))) .and. all(ieee_is_finite(eout%sig_node(:, 1:ein%nen))) .and. &
+           all(ieee_is_finite(eout%eps_ip(:, 1:ein%nip))) .and. all(ieee_is_finite(eout%hist(:, 1:ein%nip))) .and. &
+           all(ieee_is_finite(eout%peeq_ip(1:ein%nip))) .and. ieee_is_finite(eout%detj_min)
+      if (ic == 1) ok = ok .and. eout%detj_min <= 0.0_dp
+      call report('bad deformation ' // trim(what(ic)) // ' ' // name // ' ' // lname, ok, &
+                  'detj_min ' // num(eout%detj_min))
+    end do
+  end subroutine check_bad_deformation
 
   function num(x) result(s)
     real(dp), intent(in) :: x
