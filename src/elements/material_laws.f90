@@ -227,13 +227,15 @@ contains
   !> Purpose: P(F) and dP/dF of the law for a given F (no plane-stress
   !> condition): tau and its directional derivatives along the five unit
   !> components of F, then P = tau F^-T and
-  !> dP = dtau F^-T - tau F^-T dF^T F^-T.
+  !> dP = dtau F^-T - tau F^-T dF^T F^-T; for the unit dF = e_i (x) e_j
+  !> the last term is (P e_j) (x) (F^-1 e_i)^T, its (k, l) entry
+  !> P_kj Finv_li, taken so instead of two 3x3 products.
   pure subroutine response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth, hist_in(max_hist)
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
-    real(dp) :: dtau(3, 3, 5), finv(3, 3), fit(3, 3), pm(3, 3), dpm(3, 3), df(3, 3)
-    integer :: c, r
+    real(dp) :: dtau(3, 3, 5), finv(3, 3), fit(3, 3), pm(3, 3), dpm(3, 3)
+    integer :: c, r, i, j
     p = 0.0_dp
     a = 0.0_dp
     tau = 0.0_dp
@@ -251,9 +253,12 @@ contains
     pm = matmul(tau, fit)
     do c = 1, 5
       p(c) = pm(fc_i(c), fc_j(c))
-      df = unit_f(c)
-      dpm = matmul(dtau(:, :, c), fit) - matmul(matmul(pm, transpose(df)), fit)
-      a(:, c) = [(dpm(fc_i(r), fc_j(r)), r = 1, 5)]
+      i = fc_i(c)
+      j = fc_j(c)
+      dpm = matmul(dtau(:, :, c), fit)
+      do r = 1, 5
+        a(r, c) = dpm(fc_i(r), fc_j(r)) - pm(fc_i(r), j) * finv(fc_j(r), i)
+      end do
     end do
   end subroutine response_3d
 
@@ -274,18 +279,25 @@ contains
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
-    real(dp) :: d(4, 4), s(3, 3), ds(3, 3), df(3, 3), de(3, 3), fm(3, 3)
-    integer :: c
+    real(dp) :: d(4, 4), s(3, 3), ds(3, 3), de(3, 3), fm(3, 3), sf(3, 3)
+    integer :: c, i, j
     d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
     fm = f - eth * eye
     s = voigt_stress(matmul(d, green_lagrange(fm)))
-    tau = matmul(matmul(f, s), transpose(f))
+    sf = matmul(s, transpose(f))
+    tau = matmul(f, sf)
+    ! dF = e_i (x) e_j: Fm^T dF has column j = row i of Fm; dF S F^T has
+    ! row i = row j of S F^T, F S dF^T its transpose
     do c = 1, 5
-      df = unit_f(c)
-      de = 0.5_dp * (matmul(transpose(fm), df) + matmul(transpose(df), fm))
+      i = fc_i(c)
+      j = fc_j(c)
+      de = 0.0_dp
+      de(:, j) = 0.5_dp * fm(i, :)
+      de(j, :) = de(j, :) + 0.5_dp * fm(i, :)
       ds = voigt_stress(matmul(d, [de(1, 1), de(2, 2), 2.0_dp * de(1, 2), de(3, 3)]))
-      dtau(:, :, c) = matmul(matmul(df, s), transpose(f)) + matmul(matmul(f, s), transpose(df)) &
-                      + matmul(matmul(f, ds), transpose(f))
+      dtau(:, :, c) = matmul(matmul(f, ds), transpose(f))
+      dtau(i, :, c) = dtau(i, :, c) + sf(j, :)
+      dtau(:, i, c) = dtau(:, i, c) + sf(j, :)
     end do
   end subroutine saint_venant
 
@@ -294,16 +306,17 @@ contains
   !> stress (Holzapfel 2000, eq. 6.103 pushed forward):
   !>   tau = dev[2 (C10 + C01 I1bar) bbar - 2 C01 bbar^2] + J p I,
   !>   p = dW/dJ = 2 (J - 1) / D1, bbar = J^(-2/3) F F^T,
-  !> and dtau along each unit component dF of F from
-  !>   dJ = J tr(dF F^-1), db = dF F^T + F dF^T,
-  !>   dbbar = J^(-2/3) (db - 2/3 tr(dF F^-1) b).
+  !> and dtau along each unit component dF = e_i (x) e_j of F from
+  !>   dJ = J tr(dF F^-1) = J Finv_ji, db = dF F^T + F dF^T (row and
+  !>   column i of db: F's column j), dbbar = J^(-2/3) (db - 2/3 Finv_ji b);
+  !> the C01 terms are skipped for neo-Hooke.
   pure subroutine mooney_rivlin(ein, f, tau, dtau)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3)
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
-    real(dp) :: c10, c01, d1, jac, jm23, b(3, 3), bb(3, 3), i1, w1, pr, finv(3, 3), df(3, 3), trl, db(3, 3), &
+    real(dp) :: c10, c01, d1, jac, jm23, b(3, 3), bb(3, 3), i1, w1, pr, finv(3, 3), trl, db(3, 3), &
                 dbb(3, 3), di1, djac
-    integer :: c
+    integer :: c, i, j
     c10 = ein%c10
     c01 = 0.0_dp
     if (ein%law == law_mooney_rivlin) c01 = ein%c01
@@ -320,15 +333,22 @@ contains
     tau = deviator(2.0_dp * w1 * bb - 2.0_dp * c01 * matmul(bb, bb)) + jac * pr * eye
     finv = inv3(f)
     do c = 1, 5
-      df = unit_f(c)
-      trl = sum(df * transpose(finv))          ! tr(dF F^-1)
-      db = matmul(df, transpose(f)) + matmul(f, transpose(df))
+      i = fc_i(c)
+      j = fc_j(c)
+      trl = finv(j, i)                         ! tr(dF F^-1)
+      db = 0.0_dp
+      db(:, i) = f(:, j)
+      db(i, :) = db(i, :) + f(:, j)
       dbb = jm23 * (db - (2.0_dp / 3.0_dp) * trl * b)
-      di1 = dbb(1, 1) + dbb(2, 2) + dbb(3, 3)
       djac = jac * trl
-      dtau(:, :, c) = deviator(2.0_dp * w1 * dbb + 2.0_dp * c01 * di1 * bb &
-                               - 2.0_dp * c01 * (matmul(dbb, bb) + matmul(bb, dbb))) &
-                      + (djac * pr + jac * 2.0_dp * djac / d1) * eye
+      if (c01 == 0.0_dp) then
+        dtau(:, :, c) = deviator(2.0_dp * w1 * dbb)
+      else
+        di1 = dbb(1, 1) + dbb(2, 2) + dbb(3, 3)
+        dtau(:, :, c) = deviator(2.0_dp * w1 * dbb + 2.0_dp * c01 * di1 * bb &
+                                 - 2.0_dp * c01 * (matmul(dbb, bb) + matmul(bb, dbb)))
+      end if
+      dtau(:, :, c) = dtau(:, :, c) + (djac * pr + jac * 2.0_dp * djac / d1) * eye
     end do
   end subroutine mooney_rivlin
 
@@ -346,18 +366,24 @@ contains
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), hist_in(max_hist)
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5), hist_out(max_hist)
-    real(dp) :: cpi(3, 3), be(3, 3), et(3, 3), df(3, 3), dbe(3, 3), finv(3, 3)
+    real(dp) :: cpi(3, 3), be(3, 3), et(3, 3), dbe(3, 3), finv(3, 3), cf(3, 3), lam(3), q(3, 3)
     type(return_t) :: rm
-    integer :: c
+    integer :: c, i, j
     cpi = eye + tensor_of(hist_in(1:4))
-    be = matmul(matmul(f, cpi), transpose(f))
+    cf = matmul(cpi, transpose(f))
+    be = matmul(f, cf)
     et = 0.5_dp * sym_fun(be, .true.)
     call radial_return(ein, et, hist_in(hist_peeq), rm)
     tau = rm%sig
+    ! dbe along dF = e_i (x) e_j: row i and column i are row j of Cp^-1 F^T
+    call block_eig(be, lam, q)
     do c = 1, 5
-      df = unit_f(c)
-      dbe = matmul(matmul(df, cpi), transpose(f)) + matmul(matmul(f, cpi), transpose(df))
-      dtau(:, :, c) = return_tangent(rm, 0.5_dp * dlog_dir(be, dbe))
+      i = fc_i(c)
+      j = fc_j(c)
+      dbe = 0.0_dp
+      dbe(i, :) = cf(j, :)
+      dbe(:, i) = dbe(:, i) + cf(j, :)
+      dtau(:, :, c) = return_tangent(rm, 0.5_dp * dlog_dir(lam, q, dbe))
     end do
     hist_out = hist_in
     if (rm%dgamma > 0.0_dp) then
@@ -498,6 +524,7 @@ contains
     t = voigt_stress([h(1), h(2), h(4), h(3)])
   end function tensor_of
 
+  !> The unit strain vector (e11, e22, gamma12, e33) along component c.
   pure function unit4(c) result(v)
     integer, intent(in) :: c
     real(dp) :: v(4)
@@ -505,20 +532,14 @@ contains
     v(c) = 1.0_dp
   end function unit4
 
-  !> The unit direction of component c of F.
-  pure function unit_f(c) result(df)
-    integer, intent(in) :: c
-    real(dp) :: df(3, 3)
-    df = 0.0_dp
-    df(fc_i(c), fc_j(c)) = 1.0_dp
-  end function unit_f
-
+  !> The deviatoric part of a 3x3 tensor.
   pure function deviator(t) result(d)
     real(dp), intent(in) :: t(3, 3)
     real(dp) :: d(3, 3)
     d = t - (t(1, 1) + t(2, 2) + t(3, 3)) / 3.0_dp * eye
   end function deviator
 
+  !> The determinant of a 3x3 matrix.
   pure real(dp) function det3(a)
     real(dp), intent(in) :: a(3, 3)
     det3 = a(1, 1) * (a(2, 2) * a(3, 3) - a(2, 3) * a(3, 2)) - a(1, 2) * (a(2, 1) * a(3, 3) - a(2, 3) * a(3, 1)) &
@@ -583,11 +604,12 @@ contains
   !> dln(x)[dx], by the Daleckii-Krein formula: in the eigenbasis of x,
   !> component (i, j) of dx times the divided difference of ln at
   !> (lam_i, lam_j) (1 / lam_i when they coincide).
-  pure function dlog_dir(x, dx) result(dy)
-    real(dp), intent(in) :: x(3, 3), dx(3, 3)
-    real(dp) :: dy(3, 3), lam(3), q(3, 3), h(3, 3)
+  !> Arguments: lam, q the eigenvalues and eigenvectors of x (block_eig,
+  !> computed once for the five directions), dx the direction.
+  pure function dlog_dir(lam, q, dx) result(dy)
+    real(dp), intent(in) :: lam(3), q(3, 3), dx(3, 3)
+    real(dp) :: dy(3, 3), h(3, 3)
     integer :: i, j
-    call block_eig(x, lam, q)
     h = matmul(matmul(transpose(q), dx), q)
     do j = 1, 3
       do i = 1, 3

@@ -200,8 +200,9 @@ contains
     type(elem_out_t), intent(inout) :: eout
     real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol, vinv
     real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
-    real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth
-    integer :: ip, nd, nexp
+    real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth, w0(2 * max_nodes), &
+                wd(2 * max_nodes)
+    integer :: ip, nd, nexp, k
     logical :: fbar, ok
     nd = 2 * ein%nen
     fbar = uses_fbar(ein)
@@ -212,6 +213,8 @@ contains
       call reference_point(ein, [0.0_dp, 0.0_dp], n, dndx, detj, r)
       call deformation(ein, n, dndx, r, f0, g0)
       j0 = det3(f0)
+      ! F0^-T : dF0 as a row over the dofs, the same at every point
+      if (j0 > 0.0_dp) w0(1:nd) = matmul(comps(transpose(inv3(f0))), g0(:, 1:nd))
     end if
     call gauss_rule(ein%kind, ein%nip, xg, wg)
     eout%detj_min = huge(1.0_dp)
@@ -244,10 +247,12 @@ contains
         c = s**(1 - nexp)
         fm = comps(f)
         if (nexp == 2) fm(5) = 0.0_dp
-        v = (1 - nexp) * p + s * matmul(a, fm)
-        kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd)) &
-                        + (c / nexp) * spread(v, 2, nd) * spread(matmul(comps(transpose(inv3(f0))), g0(:, 1:nd)) &
-                                                           - matmul(comps(transpose(inv3(f))), g(:, 1:nd)), 1, 5)
+        v = (c / nexp) * ((1 - nexp) * p + s * matmul(a, fm))
+        wd(1:nd) = w0(1:nd) - matmul(comps(transpose(inv3(f))), g(:, 1:nd))
+        kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd))
+        do k = 1, nd
+          kmat(:, k) = kmat(:, k) + v * wd(k)
+        end do
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(c * p, g(:, 1:nd)) * dv
         eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
         jac = det3(fb)
