@@ -404,7 +404,9 @@ contains
   !> committed equivalent plastic strain peeq_n (de Souza Neto et al. 2008,
   !> Box 7.3). The hardening curve is piecewise linear, so the consistency
   !> condition q_tr - 3 mu dgamma - sy(peeq_n + dgamma) = 0 is solved
-  !> exactly segment by segment.
+  !> exactly segment by segment (a segment softening faster than 3 mu has
+  !> no root and is passed over: the first root of the piecewise-linear
+  !> function lies beyond it).
   pure subroutine radial_return(ein, et, peeq_n, rm)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: et(3, 3), peeq_n
@@ -423,9 +425,15 @@ contains
     k = segment_of(ein, peeq_n)
     call segment(ein, k, lo, hi, sy0, h)
     if (.not. q > sy0 + h * (peeq_n - lo)) return          ! elastic (or unloading)
+    ! f(dg) = q - 3 mu dg - sy(peeq_n + dg) is positive at dg = 0; on a
+    ! segment with 3 mu + h > 0 it falls and its root is accepted if it lies
+    ! on the segment; on a drop steeper than 3 mu (3 mu + h <= 0) f does
+    ! not fall, so the root lies beyond it (the last segment is flat)
     do
-      dg = (q - sy0 - h * (peeq_n - lo)) / (3.0_dp * mu + h)
-      if (peeq_n + dg <= hi .or. k >= ein%nyield) exit
+      if (3.0_dp * mu + h > 0.0_dp) then
+        dg = (q - sy0 - h * (peeq_n - lo)) / (3.0_dp * mu + h)
+        if (peeq_n + dg <= hi .or. k >= ein%nyield) exit
+      end if
       k = k + 1
       call segment(ein, k, lo, hi, sy0, h)
     end do

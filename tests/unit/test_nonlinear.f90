@@ -35,6 +35,8 @@
 !>   thermal expansion (F = (1 + alpha dT) I) gives no force (plane stress,
 !>   axisymmetry); at a homogeneous stretch the Cauchy stress is CalculiX
 !>   2.20's, S = D Em with Em the Lagrange strain of F - alpha dT I (1e-12);
+!> - a hardening table dropping faster than 3 mu: the return lands beyond
+!>   the drop (Mises and PEEQ exact, small and finite strain);
 !> - NaN in ue, a volume ratio of 1e-27 and displacements of 1e11: no NaN
 !>   or Infinity in any array, and NaN reported through detj_min <= 0.
 program test_nonlinear
@@ -69,6 +71,8 @@ program test_nonlinear
   call check_uniaxial_rubber()
   call check_uniaxial_plastic(.false.)
   call check_uniaxial_plastic(.true.)
+  call check_steep_drop(.false.)
+  call check_steep_drop(.true.)
   call check_follower()
   call check_objectivity('CPE4')
   call check_objectivity('CPS6')
@@ -727,6 +731,45 @@ contains
                   'detj_min ' // num(eout%detj_min))
     end do
   end subroutine check_bad_deformation
+
+  !> A hardening table with a drop steeper than 3 mu (300 at PEEQ 0, 100
+  !> from 1e-6 on): the local problem has no root on the drop, the return
+  !> must land on the flat part beyond it, Mises = 100 and PEEQ = (q_tr -
+  !> 100) / (3 mu) with q_tr = 2 mu e (small strain, uniaxial strain e =
+  !> 0.01) or 2 mu ln(1 + e) and the Kirchhoff stress (finite strain);
+  !> relative 1e-12.
+  subroutine check_steep_drop(finite)
+    logical, intent(in) :: finite
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: mu, qtr, jac, sg(4), mises, err
+    integer :: k
+    ein = element('CPE4', merge(4, 5, finite))
+    ein%xy(:, 1:4) = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp], [2, 4])
+    ein%e = 200000.0_dp
+    ein%nyield = 3
+    ein%yield(:, 1:3) = reshape([300.0_dp, 0.0_dp, 100.0_dp, 1e-6_dp, 100.0_dp, 1.0_dp], [2, 3])
+    do k = 1, 4
+      ein%ue(2 * k - 1:2 * k) = [0.01_dp * ein%xy(1, k), 0.0_dp]
+    end do
+    call element_routine(ior(act_residual, act_stresses), ein, eout)
+    mu = ein%e / (2.0_dp * (1.0_dp + ein%nu))
+    qtr = 2.0_dp * mu * 0.01_dp
+    jac = 1.0_dp
+    if (finite) then
+      qtr = 2.0_dp * mu * log(1.01_dp)
+      jac = 1.01_dp
+    end if
+    err = 0.0_dp
+    do k = 1, ein%nip
+      sg = eout%sig_ip(:, k) * jac
+      mises = sqrt(0.5_dp * ((sg(1) - sg(2))**2 + (sg(2) - sg(3))**2 + (sg(3) - sg(1))**2) + 3.0_dp * sg(4)**2)
+      err = max(err, abs(mises - 100.0_dp) / 100.0_dp, &
+                abs(eout%peeq_ip(k) - (qtr - 100.0_dp) / (3.0_dp * mu)) / ((qtr - 100.0_dp) / (3.0_dp * mu)))
+    end do
+    call report('hardening table with a drop steeper than 3 mu ' // merge('finite', 'small ', finite), &
+                err < 1e-12_dp, 'relative ' // num(err))
+  end subroutine check_steep_drop
 
   function num(x) result(s)
     real(dp), intent(in) :: x
