@@ -54,7 +54,7 @@ module material_laws
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
   !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
-  !> hist_out, ok) finite strain.
+  !> hist_out, ok[, tangent]) finite strain.
   interface material_response
     module procedure small_strain_response, finite_strain_response
   end interface material_response
@@ -175,17 +175,22 @@ contains
   !> components of P, a(5, 5) = dP/dF (plane stress: condensed, fifth row
   !> and column zero), tau(3, 3) the Kirchhoff stress J sigma, hist_out the
   !> history at f, ok false where the plane-stress condition could not be
-  !> met. A non-positive det F gives zero stress and tangent (the element
-  !> reports the inverted point).
-  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok)
+  !> met; tangent (optional, default true): false leaves a zero (the
+  !> stress alone costs about half). A non-positive det F gives zero
+  !> stress and tangent (the element reports the inverted point).
+  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok, tangent)
     type(elem_in_t), intent(in) :: ein
     integer, intent(in) :: state
     real(dp), intent(inout) :: f(3, 3)
     real(dp), intent(in) :: eth, hist_in(max_hist)
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
     logical, intent(out) :: ok
+    logical, intent(in), optional :: tangent
     real(dp) :: e2(4), d(4, 4), e33, df33, j2
     integer :: it
+    logical :: want
+    want = .true.
+    if (present(tangent)) want = tangent
     ok = .true.
     if (state == state_plane_stress) then
       j2 = f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)
@@ -203,7 +208,7 @@ contains
         if (ein%law /= law_elastic .and. j2 > 0.0_dp) f(3, 3) = 1.0_dp / j2
         df33 = huge(1.0_dp)
         do it = 1, max_local
-          call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
+          call response_3d(ein, f, eth, hist_in, .true., p, a, tau, hist_out)
           if (.not. abs(a(5, 5)) > 0.0_dp) exit
           df33 = -p(5) / a(5, 5)
           do while (f(3, 3) + df33 <= 0.0_dp)
@@ -216,11 +221,11 @@ contains
         ! max_local steps): the point is reported, not used
         ok = abs(df33) <= 1e-10_dp * f(3, 3)
       end if
-      call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
+      call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out)
       call condense5(a)
       p(5) = 0.0_dp
     else
-      call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
+      call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out)
     end if
   end subroutine finite_strain_response
 
@@ -229,10 +234,12 @@ contains
   !> components of F, then P = tau F^-T and
   !> dP = dtau F^-T - tau F^-T dF^T F^-T; for the unit dF = e_i (x) e_j
   !> the last term is (P e_j) (x) (F^-1 e_i)^T, its (k, l) entry
-  !> P_kj Finv_li, taken so instead of two 3x3 products.
-  pure subroutine response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
+  !> P_kj Finv_li, taken so instead of two 3x3 products. tangent false:
+  !> P only (a = 0).
+  pure subroutine response_3d(ein, f, eth, hist_in, tangent, p, a, tau, hist_out)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth, hist_in(max_hist)
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
     real(dp) :: dtau(3, 3, 5), finv(3, 3), fit(3, 3), pm(3, 3), dpm(3, 3)
     integer :: c, r, i, j
@@ -242,17 +249,18 @@ contains
     hist_out = hist_in
     if (.not. det3(f) > 0.0_dp) return
     if (ein%nyield > 0) then
-      call hencky_plastic(ein, f, hist_in, tau, dtau, hist_out)
+      call hencky_plastic(ein, f, hist_in, tangent, tau, dtau, hist_out)
     else if (ein%law == law_elastic) then
-      call saint_venant(ein, f, eth, tau, dtau)
+      call saint_venant(ein, f, eth, tangent, tau, dtau)
     else
-      call mooney_rivlin(ein, f, tau, dtau)
+      call mooney_rivlin(ein, f, tangent, tau, dtau)
     end if
     finv = inv3(f)
     fit = transpose(finv)
     pm = matmul(tau, fit)
+    p = [(pm(fc_i(c), fc_j(c)), c = 1, 5)]
+    if (.not. tangent) return
     do c = 1, 5
-      p(c) = pm(fc_i(c), fc_j(c))
       i = fc_i(c)
       j = fc_j(c)
       dpm = matmul(dtau(:, :, c), fit)
@@ -274,10 +282,12 @@ contains
   !> as CalculiX 2.20. With the total F, tau = F S F^T and along each
   !> unit component dF of F
   !>   dtau = dF S F^T + F S dF^T + F (D dEm) F^T,
-  !>   dEm = sym(Fm^T dF).
-  pure subroutine saint_venant(ein, f, eth, tau, dtau)
+  !>   dEm = sym(Fm^T dF)
+  !> (dtau zero when tangent is false).
+  pure subroutine saint_venant(ein, f, eth, tangent, tau, dtau)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
     real(dp) :: d(4, 4), s(3, 3), ds(3, 3), de(3, 3), fm(3, 3), sf(3, 3)
     integer :: c, i, j
@@ -286,6 +296,8 @@ contains
     s = voigt_stress(matmul(d, green_lagrange(fm)))
     sf = matmul(s, transpose(f))
     tau = matmul(f, sf)
+    dtau = 0.0_dp
+    if (.not. tangent) return
     ! dF = e_i (x) e_j: Fm^T dF has column j = row i of Fm; dF S F^T has
     ! row i = row j of S F^T, F S dF^T its transpose
     do c = 1, 5
@@ -309,10 +321,12 @@ contains
   !> and dtau along each unit component dF = e_i (x) e_j of F from
   !>   dJ = J tr(dF F^-1) = J Finv_ji, db = dF F^T + F dF^T (row and
   !>   column i of db: F's column j), dbbar = J^(-2/3) (db - 2/3 Finv_ji b);
-  !> the C01 terms are skipped for neo-Hooke.
-  pure subroutine mooney_rivlin(ein, f, tau, dtau)
+  !> the C01 terms are skipped for neo-Hooke (dtau zero when tangent is
+  !> false).
+  pure subroutine mooney_rivlin(ein, f, tangent, tau, dtau)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3)
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
     real(dp) :: c10, c01, d1, jac, jm23, b(3, 3), bb(3, 3), i1, w1, pr, finv(3, 3), trl, db(3, 3), &
                 dbb(3, 3), di1, djac
@@ -331,6 +345,8 @@ contains
     w1 = c10 + c01 * i1
     pr = 2.0_dp * (jac - 1.0_dp) / d1
     tau = deviator(2.0_dp * w1 * bb - 2.0_dp * c01 * matmul(bb, bb)) + jac * pr * eye
+    dtau = 0.0_dp
+    if (.not. tangent) return
     finv = inv3(f)
     do c = 1, 5
       i = fc_i(c)
@@ -361,10 +377,11 @@ contains
   !> (the derivative of the tensor logarithm by the Daleckii-Krein
   !> formula, dlog_dir). The updated elastic strain eps_e = eps_tr -
   !> dgamma flow (coaxial with eps_tr) gives be = exp(2 eps_e) and the new
-  !> Cp^-1 = F^-1 be F^-T.
-  pure subroutine hencky_plastic(ein, f, hist_in, tau, dtau, hist_out)
+  !> Cp^-1 = F^-1 be F^-T (dtau zero when tangent is false).
+  pure subroutine hencky_plastic(ein, f, hist_in, tangent, tau, dtau, hist_out)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), hist_in(max_hist)
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5), hist_out(max_hist)
     real(dp) :: cpi(3, 3), be(3, 3), et(3, 3), dbe(3, 3), finv(3, 3), cf(3, 3), lam(3), q(3, 3)
     type(return_t) :: rm
@@ -376,8 +393,9 @@ contains
     call radial_return(ein, et, hist_in(hist_peeq), rm)
     tau = rm%sig
     ! dbe along dF = e_i (x) e_j: row i and column i are row j of Cp^-1 F^T
-    call block_eig(be, lam, q)
-    do c = 1, 5
+    dtau = 0.0_dp
+    if (tangent) call block_eig(be, lam, q)
+    do c = 1, merge(5, 0, tangent)
       i = fc_i(c)
       j = fc_j(c)
       dbe = 0.0_dp

@@ -93,7 +93,7 @@ contains
     eout%ndof = 2 * nen
     eout%nip = ein%nip
     if (ein%nlgeom .or. ein%law /= law_elastic) then
-      call finite_strain(ein, eout)
+      call finite_strain(ein, wants(action, act_tangent), eout)
     else
       call small_strain(ein, eout)
     end if
@@ -195,8 +195,11 @@ contains
   end function comps
 
   !> Purpose: the total Lagrangian element (module header).
-  pure subroutine finite_strain(ein, eout)
+  !> Arguments: ein, tangent (false: fe, stresses and history only, ke
+  !> left zero; the laws then skip their derivatives), eout.
+  pure subroutine finite_strain(ein, tangent, eout)
     type(elem_in_t), intent(in) :: ein
+    logical, intent(in) :: tangent
     type(elem_out_t), intent(inout) :: eout
     real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol, vinv
     real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
@@ -243,23 +246,26 @@ contains
         fb = f
         fb(1:2, 1:2) = s * f(1:2, 1:2)
         if (nexp == 3) fb(3, 3) = s * f(3, 3)
-        call material_response(ein, ein%state, fb, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok)
+        call material_response(ein, ein%state, fb, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
         c = s**(1 - nexp)
-        fm = comps(f)
-        if (nexp == 2) fm(5) = 0.0_dp
-        v = (c / nexp) * ((1 - nexp) * p + s * matmul(a, fm))
-        wd(1:nd) = w0(1:nd) - matmul(comps(transpose(inv3(f))), g(:, 1:nd))
-        kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd))
-        do k = 1, nd
-          kmat(:, k) = kmat(:, k) + v * wd(k)
-        end do
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(c * p, g(:, 1:nd)) * dv
-        eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
+        if (tangent) then
+          fm = comps(f)
+          if (nexp == 2) fm(5) = 0.0_dp
+          v = (c / nexp) * ((1 - nexp) * p + s * matmul(a, fm))
+          wd(1:nd) = w0(1:nd) - matmul(comps(transpose(inv3(f))), g(:, 1:nd))
+          kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd))
+          do k = 1, nd
+            kmat(:, k) = kmat(:, k) + v * wd(k)
+          end do
+          eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
+        end if
         jac = det3(fb)
       else
-        call material_response(ein, ein%state, f, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok)
+        call material_response(ein, ein%state, f, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
-        eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
+        if (tangent) eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) &
+                                           + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
         jac = det3(f)
       end if
       ! the current volume element (det F of the point itself, F33 solved

@@ -193,6 +193,11 @@ contains
                 .and. eout%detj_min > 0.0_dp, 'relative error ' // num(err) // ', detj_min ' // num(eout%detj_min))
     if (il >= 4) call report('plastic at every point ' // name // ' ' // lname, &
                              all(eout%peeq_ip(1:ein%nip) > 0.0_dp), 'an elastic point: ' // num(minval(eout%peeq_ip(1:ein%nip))))
+    ! act_residual alone skips the laws' derivatives: the same fe and history
+    call element_routine(act_residual, ein, eplus)
+    call report('residual without the tangent identical ' // name // ' ' // lname, &
+                all(eplus%fe(1:nd) == eout%fe(1:nd)) .and. all(eplus%hist == eout%hist) &
+                .and. all(eplus%ke == 0.0_dp), 'differs by ' // num(maxval(abs(eplus%fe(1:nd) - eout%fe(1:nd)))))
   end subroutine check_tangent
 
   !> Rigid motion: a rotation by 40 degrees and a translation (plane), a
