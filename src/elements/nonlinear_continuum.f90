@@ -48,7 +48,8 @@
 !> strain, what CalculiX prints as E under NLGEOM ("total Lagrangian
 !> strain", its manual), the small strain otherwise; peeq_ip the
 !> equivalent plastic strain. Every action returns eout%hist, the
-!> history at ue computed from ein%hist.
+!> history at ue computed from ein%hist (read for *PLASTIC only: the
+!> elastic laws have no history, zero).
 !>
 !> detj_min: the smallest reference det J (times R in axisymmetry) and,
 !> under finite strain, that times det F, the current one: an element
@@ -61,7 +62,7 @@ module nonlinear_continuum
   use kinds, only: dp
   use model, only: law_elastic
   use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
-  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants
+  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants, max_hist
   use shape_functions, only: shape_at, gauss_rule, extrapolation
   use continuum_element, only: volume_factor, strain_matrix
   use material_laws, only: material_response, hist_peeq, fc_i, fc_j, det3, inv3
@@ -88,7 +89,7 @@ contains
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     real(dp) :: ex(max_nodes, max_ip)
-    integer :: nen
+    integer :: nen, ip
     nen = ein%nen
     eout%ndof = 2 * nen
     eout%nip = ein%nip
@@ -108,7 +109,9 @@ contains
       eout%sig_ip = 0.0_dp
       eout%eps_ip = 0.0_dp
       eout%peeq_ip = 0.0_dp
-      eout%hist(:, 1:ein%nip) = ein%hist(:, 1:ein%nip)
+      do ip = 1, ein%nip
+        eout%hist(:, ip) = committed(ein, ip)
+      end do
     end if
     if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
     if (.not. wants(action, act_residual)) eout%fe = 0.0_dp
@@ -131,6 +134,18 @@ contains
                     all(ieee_is_finite(eout%sig_ip(:, 1:nip))) .and. all(ieee_is_finite(eout%eps_ip(:, 1:nip))) .and. &
                     all(ieee_is_finite(eout%hist(:, 1:nip)))
   end function finite_arrays
+
+  !> Purpose: the committed history of integration point ip: ein%hist
+  !> for a law with state (*PLASTIC), zero for the elastic laws, whose
+  !> callers need not define ein%hist (element_interface gives it no
+  !> default, and the stiffness at setup is built without it).
+  pure function committed(ein, ip) result(h)
+    type(elem_in_t), intent(in) :: ein
+    integer, intent(in) :: ip
+    real(dp) :: h(max_hist)
+    h = 0.0_dp
+    if (ein%nyield > 0) h = ein%hist(:, ip)
+  end function committed
 
   !> Does the element use F-bar / B-bar (see the module header)?
   pure logical function uses_fbar(ein)
@@ -231,7 +246,7 @@ contains
       dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
       call deformation(ein, n, dndx, r, f, g)
       eth = ein%alpha * dot_product(n(1:ein%nen), ein%dtemp(1:ein%nen))
-      eout%hist(:, ip) = ein%hist(:, ip)
+      eout%hist(:, ip) = committed(ein, ip)
       jac = (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) * f(3, 3)
       if (.not. jac > 0.0_dp .or. (fbar .and. .not. j0 > 0.0_dp)) then
         ! turned inside out (or NaN in ue: reported as zero, which min
@@ -246,7 +261,7 @@ contains
         fb = f
         fb(1:2, 1:2) = s * f(1:2, 1:2)
         if (nexp == 3) fb(3, 3) = s * f(3, 3)
-        call material_response(ein, ein%state, fb, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
+        call material_response(ein, ein%state, fb, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
         c = s**(1 - nexp)
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(c * p, g(:, 1:nd)) * dv
         if (tangent) then
@@ -262,7 +277,7 @@ contains
         end if
         jac = det3(fb)
       else
-        call material_response(ein, ein%state, f, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
+        call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
         if (tangent) eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) &
                                            + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
@@ -318,7 +333,7 @@ contains
       if (bbar) b(:, 1:nd) = b(:, 1:nd) + spread(m, 2, nd) * spread(bv0(1:nd) - matmul(m, b(:, 1:nd)), 1, 4) / nexp
       eps0 = ein%alpha * dot_product(n(1:nen), ein%dtemp(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
       eps = matmul(b(:, 1:nd), ein%ue(1:nd))
-      call material_response(ein, ein%state, eps - eps0, ein%hist(:, ip), sig, d, eout%hist(:, ip))
+      call material_response(ein, ein%state, eps - eps0, committed(ein, ip), sig, d, eout%hist(:, ip))
       eout%fe(1:nd) = eout%fe(1:nd) + matmul(sig, b(:, 1:nd)) * dv
       eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(b(:, 1:nd)), matmul(d, b(:, 1:nd))) * dv
       eout%peeq_ip(ip) = eout%hist(hist_peeq, ip)

@@ -37,6 +37,7 @@
 !>   2.20's, S = D Em with Em the Lagrange strain of F - alpha dT I (1e-12);
 !> - a hardening table dropping faster than 3 mu: the return lands beyond
 !>   the drop (Mises and PEEQ exact, small and finite strain);
+!> - the elastic laws do not read ein%hist (NaN there changes nothing);
 !> - NaN in ue, a volume ratio of 1e-27 and displacements of 1e11: no NaN
 !>   or Infinity in any array, and NaN reported through detj_min <= 0.
 program test_nonlinear
@@ -62,6 +63,7 @@ program test_nonlinear
       do il = 1, 5
         call check_tangent(trim(prefix(is) // suffix(ie)), il, trim(law_name(il)))
         call check_bad_deformation(trim(prefix(is) // suffix(ie)), il, trim(law_name(il)))
+        if (il <= 3) call check_no_history_read(trim(prefix(is) // suffix(ie)), il, trim(law_name(il)))
       end do
       call check_rigid(trim(prefix(is) // suffix(ie)))
       call check_linear_limit(trim(prefix(is) // suffix(ie)))
@@ -125,6 +127,9 @@ contains
     end do
     if (ein%state == state_axisymmetric) ein%xy(1, 1:ein%nen) = ein%xy(1, 1:ein%nen) + 0.7_dp
     ein%thickness = 1.3_dp
+    ! the table and the history have no default in elem_in_t
+    ein%yield = 0.0_dp
+    ein%hist = 0.0_dp
     ein%e = 1000.0_dp
     ein%nu = 0.3_dp
     ein%nlgeom = il /= 5
@@ -775,6 +780,27 @@ contains
     call report('hardening table with a drop steeper than 3 mu ' // merge('finite', 'small ', finite), &
                 err < 1e-12_dp, 'relative ' // num(err))
   end subroutine check_steep_drop
+
+  !> The elastic laws have no history and must not read ein%hist, which
+  !> callers leave undefined (element_interface gives it no default; the
+  !> driver's setup stiffness is built without it): with NaN there, the
+  !> same fe, a zero history and PEEQ, and a positive detj_min.
+  subroutine check_no_history_read(name, il, lname)
+    character(len=*), intent(in) :: name, lname
+    integer, intent(in) :: il
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout, eref
+    integer :: nd
+    ein = element(name, il)
+    nd = 2 * ein%nen
+    call deform(ein, 0.1_dp)
+    call element_routine(ior(act_tangent, ior(act_residual, act_stresses)), ein, eref)
+    ein%hist = ieee_value(1.0_dp, ieee_quiet_nan)
+    call element_routine(ior(act_tangent, ior(act_residual, act_stresses)), ein, eout)
+    call report('elastic law ignores ein%hist ' // name // ' ' // lname, all(eout%fe(1:nd) == eref%fe(1:nd)) &
+                .and. all(eout%hist == 0.0_dp) .and. all(eout%peeq_ip == 0.0_dp) .and. eout%detj_min > 0.0_dp, &
+                'detj_min ' // num(eout%detj_min))
+  end subroutine check_no_history_read
 
   function num(x) result(s)
     real(dp), intent(in) :: x
