@@ -101,7 +101,8 @@ contains
     ! a deformation the laws cannot evaluate (NaN in ue, an overflow at an
     ! absurd stretch or volume ratio): no arrays, the history unchanged,
     ! and the element reported bad so that the driver cuts back
-    if (.not. (eout%detj_min <= 0.0_dp .or. eout%detj_min > 0.0_dp) .or. .not. finite_arrays(eout, 2 * nen, ein%nip)) then
+    if (.not. (eout%detj_min <= 0.0_dp .or. eout%detj_min > 0.0_dp) &
+        .or. .not. finite_arrays(eout, 2 * nen, ein%nip)) then
       eout%detj_min = min(eout%detj_min, 0.0_dp)
       if (.not. eout%detj_min <= 0.0_dp) eout%detj_min = 0.0_dp
       eout%ke = 0.0_dp
