@@ -201,6 +201,9 @@ contains
         e2 = green_lagrange(f - eth * eye)
         d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
         e33 = -(d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
+        ! no real thickness stretch when 1 + 2 Em33 <= 0 (an in-plane
+        ! stretch of about 1.5 each way for nu = 0.3): reported, not used
+        ok = 1.0_dp + 2.0_dp * e33 > 0.0_dp
         f(3, 3) = eth + sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
       else
         ! local Newton on tau33(F33) = 0 from an incompressible guess for

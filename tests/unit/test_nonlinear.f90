@@ -37,6 +37,8 @@
 !>   2.20's, S = D Em with Em the Lagrange strain of F - alpha dT I (1e-12);
 !> - a hardening table dropping faster than 3 mu: the return lands beyond
 !>   the drop (Mises and PEEQ exact, small and finite strain);
+!> - plane-stress St Venant-Kirchhoff past the stretch where no thickness
+!>   stretch satisfies S33 = 0: reported (detj_min <= 0);
 !> - the elastic laws do not read ein%hist (NaN there changes nothing);
 !> - NaN in ue, a volume ratio of 1e-27 and displacements of 1e11: no NaN
 !>   or Infinity in any array, and NaN reported through detj_min <= 0.
@@ -75,6 +77,7 @@ program test_nonlinear
   call check_uniaxial_plastic(.true.)
   call check_steep_drop(.false.)
   call check_steep_drop(.true.)
+  call check_no_thickness()
   call check_follower()
   call check_objectivity('CPE4')
   call check_objectivity('CPS6')
@@ -801,6 +804,23 @@ contains
                 .and. all(eout%hist == 0.0_dp) .and. all(eout%peeq_ip == 0.0_dp) .and. eout%detj_min > 0.0_dp, &
                 'detj_min ' // num(eout%detj_min))
   end subroutine check_no_history_read
+
+  !> Plane-stress St Venant-Kirchhoff stretched 1.5 each way (nu = 0.3):
+  !> S33 = 0 asks 1 + 2 Em33 < 0, no real thickness stretch; the element
+  !> must report it (detj_min <= 0), not return F33 = 1e-154 and stresses
+  !> of 1e156 with a positive detj_min.
+  subroutine check_no_thickness()
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: k
+    ein = element('CPS4', 1)
+    do k = 1, ein%nen
+      ein%ue(2 * k - 1:2 * k) = 0.5_dp * ein%xy(:, k)
+    end do
+    call element_routine(ior(act_tangent, ior(act_residual, act_stresses)), ein, eout)
+    call report('plane-stress St Venant-Kirchhoff without a thickness stretch reported', eout%detj_min <= 0.0_dp, &
+                'detj_min ' // num(eout%detj_min))
+  end subroutine check_no_thickness
 
   function num(x) result(s)
     real(dp), intent(in) :: x
