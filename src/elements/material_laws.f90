@@ -35,7 +35,8 @@
 !>   finite strain: hist(1:4) = Cp^-1 - I (11, 22, 33, 12), Cp^-1 the
 !>                  inverse plastic right Cauchy-Green tensor, so that a
 !>                  zero history is the virgin state; hist(5) = PEEQ;
-!>   hist(6:8) unused (zero). Elastic laws keep the history unchanged.
+!>   hist(6:8) unused (zero). Elastic laws keep the history unchanged
+!>   (nonlinear_continuum gives them a zero one).
 !>
 !> Plane stress: the out-of-plane strain (small strain) or stretch F33
 !> (finite strain) is found from s33 = 0, in closed form for the elastic
@@ -54,7 +55,7 @@ module material_laws
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
   !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
-  !> hist_out, ok) finite strain.
+  !> hist_out, ok[, tangent]) finite strain.
   interface material_response
     module procedure small_strain_response, finite_strain_response
   end interface material_response
@@ -175,27 +176,35 @@ contains
   !> components of P, a(5, 5) = dP/dF (plane stress: condensed, fifth row
   !> and column zero), tau(3, 3) the Kirchhoff stress J sigma, hist_out the
   !> history at f, ok false where the plane-stress condition could not be
-  !> met. A non-positive det F gives zero stress and tangent (the element
-  !> reports the inverted point).
-  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok)
+  !> met; tangent (optional, default true): false leaves a zero (the
+  !> stress alone costs about half). A non-positive det F gives zero
+  !> stress and tangent (the element reports the inverted point).
+  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok, tangent)
     type(elem_in_t), intent(in) :: ein
     integer, intent(in) :: state
     real(dp), intent(inout) :: f(3, 3)
     real(dp), intent(in) :: eth, hist_in(max_hist)
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
     logical, intent(out) :: ok
+    logical, intent(in), optional :: tangent
     real(dp) :: e2(4), d(4, 4), e33, df33, j2
     integer :: it
+    logical :: want
+    want = .true.
+    if (present(tangent)) want = tangent
     ok = .true.
     if (state == state_plane_stress) then
       j2 = f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)
       if (ein%law == law_elastic .and. ein%nyield == 0) then
         ! St Venant-Kirchhoff: S33 = 0 is linear in the mechanical E33
-        ! (closed form), F33 = (1 + eth) sqrt(1 + 2 Em33)
-        e2 = green_lagrange(f / (1.0_dp + eth))
+        ! (closed form); Em33 = ((F33 - eth)^2 - 1) / 2 (saint_venant)
+        e2 = green_lagrange(f - eth * eye)
         d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
         e33 = -(d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
-        f(3, 3) = (1.0_dp + eth) * sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
+        ! no real thickness stretch when 1 + 2 Em33 <= 0 (an in-plane
+        ! stretch of about 1.5 each way for nu = 0.3): reported, not used
+        ok = 1.0_dp + 2.0_dp * e33 > 0.0_dp
+        f(3, 3) = eth + sqrt(max(1.0_dp + 2.0_dp * e33, tiny(1.0_dp)))
       else
         ! local Newton on tau33(F33) = 0 from an incompressible guess for
         ! rubber, and from 1 otherwise; halved steps keep F33 positive
@@ -203,7 +212,7 @@ contains
         if (ein%law /= law_elastic .and. j2 > 0.0_dp) f(3, 3) = 1.0_dp / j2
         df33 = huge(1.0_dp)
         do it = 1, max_local
-          call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
+          call response_3d(ein, f, eth, hist_in, .true., p, a, tau, hist_out)
           if (.not. abs(a(5, 5)) > 0.0_dp) exit
           df33 = -p(5) / a(5, 5)
           do while (f(3, 3) + df33 <= 0.0_dp)
@@ -216,70 +225,95 @@ contains
         ! max_local steps): the point is reported, not used
         ok = abs(df33) <= 1e-10_dp * f(3, 3)
       end if
-      call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
+      call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out)
       call condense5(a)
       p(5) = 0.0_dp
     else
-      call response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
+      call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out)
     end if
   end subroutine finite_strain_response
 
   !> Purpose: P(F) and dP/dF of the law for a given F (no plane-stress
   !> condition): tau and its directional derivatives along the five unit
   !> components of F, then P = tau F^-T and
-  !> dP = dtau F^-T - tau F^-T dF^T F^-T.
-  pure subroutine response_3d(ein, f, eth, hist_in, p, a, tau, hist_out)
+  !> dP = dtau F^-T - tau F^-T dF^T F^-T; for the unit dF = e_i (x) e_j
+  !> the last term is (P e_j) (x) (F^-1 e_i)^T, its (k, l) entry
+  !> P_kj Finv_li, taken so instead of two 3x3 products. tangent false:
+  !> P only (a = 0).
+  pure subroutine response_3d(ein, f, eth, hist_in, tangent, p, a, tau, hist_out)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth, hist_in(max_hist)
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
-    real(dp) :: dtau(3, 3, 5), finv(3, 3), fit(3, 3), pm(3, 3), dpm(3, 3), df(3, 3)
-    integer :: c, r
+    real(dp) :: dtau(3, 3, 5), finv(3, 3), fit(3, 3), pm(3, 3), dpm(3, 3)
+    integer :: c, r, i, j
     p = 0.0_dp
     a = 0.0_dp
     tau = 0.0_dp
     hist_out = hist_in
     if (.not. det3(f) > 0.0_dp) return
     if (ein%nyield > 0) then
-      call hencky_plastic(ein, f, hist_in, tau, dtau, hist_out)
+      call hencky_plastic(ein, f, hist_in, tangent, tau, dtau, hist_out)
     else if (ein%law == law_elastic) then
-      call saint_venant(ein, f, eth, tau, dtau)
+      call saint_venant(ein, f, eth, tangent, tau, dtau)
     else
-      call mooney_rivlin(ein, f, tau, dtau)
+      call mooney_rivlin(ein, f, tangent, tau, dtau)
     end if
     finv = inv3(f)
     fit = transpose(finv)
     pm = matmul(tau, fit)
+    p = [(pm(fc_i(c), fc_j(c)), c = 1, 5)]
+    if (.not. tangent) return
     do c = 1, 5
-      p(c) = pm(fc_i(c), fc_j(c))
-      df = unit_f(c)
-      dpm = matmul(dtau(:, :, c), fit) - matmul(matmul(pm, transpose(df)), fit)
-      a(:, c) = [(dpm(fc_i(r), fc_j(r)), r = 1, 5)]
+      i = fc_i(c)
+      j = fc_j(c)
+      dpm = matmul(dtau(:, :, c), fit)
+      do r = 1, 5
+        a(r, c) = dpm(fc_i(r), fc_j(r)) - pm(fc_i(r), j) * finv(fc_j(r), i)
+      end do
     end do
   end subroutine response_3d
 
   !> Purpose: St Venant-Kirchhoff: S = D Em (D the isotropic
   !> elastic_matrix on (E11, E22, 2 E12, E33)), Em the mechanical
-  !> Lagrange strain of Fm = F / (1 + eth): the isotropic thermal stretch
-  !> 1 + alpha dT divided out of F, as CalculiX under NLGEOM
-  !> (calcmechstrain.f); with the total F, tau = F S F^T and along each
+  !> Lagrange strain of Fm = F - eth I: CalculiX 2.20's reading under
+  !> NLGEOM (calcmechstrain.f of 2.20-2.22: the thermal strain is taken
+  !> from the displacement gradient, Em = (Fm^T Fm - I) / 2; its later
+  !> development sources divide F by 1 + eth instead, which moved ring1
+  !> 4e-3 away from CalculiX 2.20 and its .dat.ref). Free expansion F =
+  !> (1 + eth) I gives Em = 0; not objective when a heated body rotates
+  !> (in-plane Em = eth (1 + eth) (1 - cos theta) I under F = (1 + eth) R),
+  !> as CalculiX 2.20. With the total F, tau = F S F^T and along each
   !> unit component dF of F
   !>   dtau = dF S F^T + F S dF^T + F (D dEm) F^T,
-  !>   dEm = sym(F^T dF) / (1 + eth)^2.
-  pure subroutine saint_venant(ein, f, eth, tau, dtau)
+  !>   dEm = sym(Fm^T dF)
+  !> (dtau zero when tangent is false).
+  pure subroutine saint_venant(ein, f, eth, tangent, tau, dtau)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
-    real(dp) :: d(4, 4), s(3, 3), ds(3, 3), df(3, 3), de(3, 3)
-    integer :: c
+    real(dp) :: d(4, 4), s(3, 3), ds(3, 3), de(3, 3), fm(3, 3), sf(3, 3)
+    integer :: c, i, j
     d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-    s = voigt_stress(matmul(d, green_lagrange(f / (1.0_dp + eth))))
-    tau = matmul(matmul(f, s), transpose(f))
+    fm = f - eth * eye
+    s = voigt_stress(matmul(d, green_lagrange(fm)))
+    sf = matmul(s, transpose(f))
+    tau = matmul(f, sf)
+    dtau = 0.0_dp
+    if (.not. tangent) return
+    ! dF = e_i (x) e_j: Fm^T dF has column j = row i of Fm; dF S F^T has
+    ! row i = row j of S F^T, F S dF^T its transpose
     do c = 1, 5
-      df = unit_f(c)
-      de = 0.5_dp * (matmul(transpose(f), df) + matmul(transpose(df), f)) / (1.0_dp + eth)**2
+      i = fc_i(c)
+      j = fc_j(c)
+      de = 0.0_dp
+      de(:, j) = 0.5_dp * fm(i, :)
+      de(j, :) = de(j, :) + 0.5_dp * fm(i, :)
       ds = voigt_stress(matmul(d, [de(1, 1), de(2, 2), 2.0_dp * de(1, 2), de(3, 3)]))
-      dtau(:, :, c) = matmul(matmul(df, s), transpose(f)) + matmul(matmul(f, s), transpose(df)) &
-                      + matmul(matmul(f, ds), transpose(f))
+      dtau(:, :, c) = matmul(matmul(f, ds), transpose(f))
+      dtau(i, :, c) = dtau(i, :, c) + sf(j, :)
+      dtau(:, i, c) = dtau(:, i, c) + sf(j, :)
     end do
   end subroutine saint_venant
 
@@ -288,16 +322,19 @@ contains
   !> stress (Holzapfel 2000, eq. 6.103 pushed forward):
   !>   tau = dev[2 (C10 + C01 I1bar) bbar - 2 C01 bbar^2] + J p I,
   !>   p = dW/dJ = 2 (J - 1) / D1, bbar = J^(-2/3) F F^T,
-  !> and dtau along each unit component dF of F from
-  !>   dJ = J tr(dF F^-1), db = dF F^T + F dF^T,
-  !>   dbbar = J^(-2/3) (db - 2/3 tr(dF F^-1) b).
-  pure subroutine mooney_rivlin(ein, f, tau, dtau)
+  !> and dtau along each unit component dF = e_i (x) e_j of F from
+  !>   dJ = J tr(dF F^-1) = J Finv_ji, db = dF F^T + F dF^T (row and
+  !>   column i of db: F's column j), dbbar = J^(-2/3) (db - 2/3 Finv_ji b);
+  !> the C01 terms are skipped for neo-Hooke (dtau zero when tangent is
+  !> false).
+  pure subroutine mooney_rivlin(ein, f, tangent, tau, dtau)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3)
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
-    real(dp) :: c10, c01, d1, jac, jm23, b(3, 3), bb(3, 3), i1, w1, pr, finv(3, 3), df(3, 3), trl, db(3, 3), &
+    real(dp) :: c10, c01, d1, jac, jm23, b(3, 3), bb(3, 3), i1, w1, pr, finv(3, 3), trl, db(3, 3), &
                 dbb(3, 3), di1, djac
-    integer :: c
+    integer :: c, i, j
     c10 = ein%c10
     c01 = 0.0_dp
     if (ein%law == law_mooney_rivlin) c01 = ein%c01
@@ -312,17 +349,26 @@ contains
     w1 = c10 + c01 * i1
     pr = 2.0_dp * (jac - 1.0_dp) / d1
     tau = deviator(2.0_dp * w1 * bb - 2.0_dp * c01 * matmul(bb, bb)) + jac * pr * eye
+    dtau = 0.0_dp
+    if (.not. tangent) return
     finv = inv3(f)
     do c = 1, 5
-      df = unit_f(c)
-      trl = sum(df * transpose(finv))          ! tr(dF F^-1)
-      db = matmul(df, transpose(f)) + matmul(f, transpose(df))
+      i = fc_i(c)
+      j = fc_j(c)
+      trl = finv(j, i)                         ! tr(dF F^-1)
+      db = 0.0_dp
+      db(:, i) = f(:, j)
+      db(i, :) = db(i, :) + f(:, j)
       dbb = jm23 * (db - (2.0_dp / 3.0_dp) * trl * b)
-      di1 = dbb(1, 1) + dbb(2, 2) + dbb(3, 3)
       djac = jac * trl
-      dtau(:, :, c) = deviator(2.0_dp * w1 * dbb + 2.0_dp * c01 * di1 * bb &
-                               - 2.0_dp * c01 * (matmul(dbb, bb) + matmul(bb, dbb))) &
-                      + (djac * pr + jac * 2.0_dp * djac / d1) * eye
+      if (c01 == 0.0_dp) then
+        dtau(:, :, c) = deviator(2.0_dp * w1 * dbb)
+      else
+        di1 = dbb(1, 1) + dbb(2, 2) + dbb(3, 3)
+        dtau(:, :, c) = deviator(2.0_dp * w1 * dbb + 2.0_dp * c01 * di1 * bb &
+                                 - 2.0_dp * c01 * (matmul(dbb, bb) + matmul(bb, dbb)))
+      end if
+      dtau(:, :, c) = dtau(:, :, c) + (djac * pr + jac * 2.0_dp * djac / d1) * eye
     end do
   end subroutine mooney_rivlin
 
@@ -335,23 +381,31 @@ contains
   !> (the derivative of the tensor logarithm by the Daleckii-Krein
   !> formula, dlog_dir). The updated elastic strain eps_e = eps_tr -
   !> dgamma flow (coaxial with eps_tr) gives be = exp(2 eps_e) and the new
-  !> Cp^-1 = F^-1 be F^-T.
-  pure subroutine hencky_plastic(ein, f, hist_in, tau, dtau, hist_out)
+  !> Cp^-1 = F^-1 be F^-T (dtau zero when tangent is false).
+  pure subroutine hencky_plastic(ein, f, hist_in, tangent, tau, dtau, hist_out)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), hist_in(max_hist)
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5), hist_out(max_hist)
-    real(dp) :: cpi(3, 3), be(3, 3), et(3, 3), df(3, 3), dbe(3, 3), finv(3, 3)
+    real(dp) :: cpi(3, 3), be(3, 3), et(3, 3), dbe(3, 3), finv(3, 3), cf(3, 3), lam(3), q(3, 3)
     type(return_t) :: rm
-    integer :: c
+    integer :: c, i, j
     cpi = eye + tensor_of(hist_in(1:4))
-    be = matmul(matmul(f, cpi), transpose(f))
+    cf = matmul(cpi, transpose(f))
+    be = matmul(f, cf)
     et = 0.5_dp * sym_fun(be, .true.)
     call radial_return(ein, et, hist_in(hist_peeq), rm)
     tau = rm%sig
-    do c = 1, 5
-      df = unit_f(c)
-      dbe = matmul(matmul(df, cpi), transpose(f)) + matmul(matmul(f, cpi), transpose(df))
-      dtau(:, :, c) = return_tangent(rm, 0.5_dp * dlog_dir(be, dbe))
+    ! dbe along dF = e_i (x) e_j: row i and column i are row j of Cp^-1 F^T
+    dtau = 0.0_dp
+    if (tangent) call block_eig(be, lam, q)
+    do c = 1, merge(5, 0, tangent)
+      i = fc_i(c)
+      j = fc_j(c)
+      dbe = 0.0_dp
+      dbe(i, :) = cf(j, :)
+      dbe(:, i) = dbe(:, i) + cf(j, :)
+      dtau(:, :, c) = return_tangent(rm, 0.5_dp * dlog_dir(lam, q, dbe))
     end do
     hist_out = hist_in
     if (rm%dgamma > 0.0_dp) then
@@ -372,7 +426,9 @@ contains
   !> committed equivalent plastic strain peeq_n (de Souza Neto et al. 2008,
   !> Box 7.3). The hardening curve is piecewise linear, so the consistency
   !> condition q_tr - 3 mu dgamma - sy(peeq_n + dgamma) = 0 is solved
-  !> exactly segment by segment.
+  !> exactly segment by segment (a segment softening faster than 3 mu has
+  !> no root and is passed over: the first root of the piecewise-linear
+  !> function lies beyond it).
   pure subroutine radial_return(ein, et, peeq_n, rm)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: et(3, 3), peeq_n
@@ -391,9 +447,15 @@ contains
     k = segment_of(ein, peeq_n)
     call segment(ein, k, lo, hi, sy0, h)
     if (.not. q > sy0 + h * (peeq_n - lo)) return          ! elastic (or unloading)
+    ! f(dg) = q - 3 mu dg - sy(peeq_n + dg) is positive at dg = 0; on a
+    ! segment with 3 mu + h > 0 it falls and its root is accepted if it lies
+    ! on the segment; on a drop steeper than 3 mu (3 mu + h <= 0) f does
+    ! not fall, so the root lies beyond it (the last segment is flat)
     do
-      dg = (q - sy0 - h * (peeq_n - lo)) / (3.0_dp * mu + h)
-      if (peeq_n + dg <= hi .or. k >= ein%nyield) exit
+      if (3.0_dp * mu + h > 0.0_dp) then
+        dg = (q - sy0 - h * (peeq_n - lo)) / (3.0_dp * mu + h)
+        if (peeq_n + dg <= hi .or. k >= ein%nyield) exit
+      end if
       k = k + 1
       call segment(ein, k, lo, hi, sy0, h)
     end do
@@ -492,6 +554,7 @@ contains
     t = voigt_stress([h(1), h(2), h(4), h(3)])
   end function tensor_of
 
+  !> The unit strain vector (e11, e22, gamma12, e33) along component c.
   pure function unit4(c) result(v)
     integer, intent(in) :: c
     real(dp) :: v(4)
@@ -499,20 +562,14 @@ contains
     v(c) = 1.0_dp
   end function unit4
 
-  !> The unit direction of component c of F.
-  pure function unit_f(c) result(df)
-    integer, intent(in) :: c
-    real(dp) :: df(3, 3)
-    df = 0.0_dp
-    df(fc_i(c), fc_j(c)) = 1.0_dp
-  end function unit_f
-
+  !> The deviatoric part of a 3x3 tensor.
   pure function deviator(t) result(d)
     real(dp), intent(in) :: t(3, 3)
     real(dp) :: d(3, 3)
     d = t - (t(1, 1) + t(2, 2) + t(3, 3)) / 3.0_dp * eye
   end function deviator
 
+  !> The determinant of a 3x3 matrix.
   pure real(dp) function det3(a)
     real(dp), intent(in) :: a(3, 3)
     det3 = a(1, 1) * (a(2, 2) * a(3, 3) - a(2, 3) * a(3, 2)) - a(1, 2) * (a(2, 1) * a(3, 3) - a(2, 3) * a(3, 1)) &
@@ -577,11 +634,12 @@ contains
   !> dln(x)[dx], by the Daleckii-Krein formula: in the eigenbasis of x,
   !> component (i, j) of dx times the divided difference of ln at
   !> (lam_i, lam_j) (1 / lam_i when they coincide).
-  pure function dlog_dir(x, dx) result(dy)
-    real(dp), intent(in) :: x(3, 3), dx(3, 3)
-    real(dp) :: dy(3, 3), lam(3), q(3, 3), h(3, 3)
+  !> Arguments: lam, q the eigenvalues and eigenvectors of x (block_eig,
+  !> computed once for the five directions), dx the direction.
+  pure function dlog_dir(lam, q, dx) result(dy)
+    real(dp), intent(in) :: lam(3), q(3, 3), dx(3, 3)
+    real(dp) :: dy(3, 3), h(3, 3)
     integer :: i, j
-    call block_eig(x, lam, q)
     h = matmul(matmul(transpose(q), dx), q)
     do j = 1, 3
       do i = 1, 3

@@ -37,8 +37,8 @@
 !> identity over the scaled components; Hughes 1980) against plastic
 !> locking. The thermal strain alpha dT is subtracted from the strain
 !> the law sees (small strain: eps - alpha dT (1, 1, 0, 1); finite strain,
-!> St Venant-Kirchhoff only: the Lagrange strain of F / (1 + alpha dT),
-!> CalculiX's mechanical strain under NLGEOM; the hyperelastic laws and
+!> St Venant-Kirchhoff only: the Lagrange strain of F - alpha dT I,
+!> CalculiX 2.20's mechanical strain under NLGEOM; the hyperelastic laws and
 !> finite-strain plasticity ignore it), so fe is the whole internal force
 !> and act_thermal gives zero on this path.
 !>
@@ -48,18 +48,21 @@
 !> strain, what CalculiX prints as E under NLGEOM ("total Lagrangian
 !> strain", its manual), the small strain otherwise; peeq_ip the
 !> equivalent plastic strain. Every action returns eout%hist, the
-!> history at ue computed from ein%hist.
+!> history at ue computed from ein%hist (read for *PLASTIC only: the
+!> elastic laws have no history, zero).
 !>
 !> detj_min: the smallest reference det J (times R in axisymmetry) and,
 !> under finite strain, that times det F, the current one: an element
 !> turned inside out reports a non-positive value, and its points give
 !> no force; so does (zero) a plane-stress point whose thickness stretch
-!> could not be found.
+!> could not be found, or NaN in ue. Arrays that are not finite (the laws
+!> overflow at absurd deformations) are returned as zero with detj_min 0.
 module nonlinear_continuum
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use model, only: law_elastic
   use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
-  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants
+  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants, max_hist
   use shape_functions, only: shape_at, gauss_rule, extrapolation
   use continuum_element, only: volume_factor, strain_matrix
   use material_laws, only: material_response, hist_peeq, fc_i, fc_j, det3, inv3
@@ -86,14 +89,30 @@ contains
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     real(dp) :: ex(max_nodes, max_ip)
-    integer :: nen
+    integer :: nen, ip
     nen = ein%nen
     eout%ndof = 2 * nen
     eout%nip = ein%nip
     if (ein%nlgeom .or. ein%law /= law_elastic) then
-      call finite_strain(ein, eout)
+      call finite_strain(ein, wants(action, act_tangent), eout)
     else
       call small_strain(ein, eout)
+    end if
+    ! a deformation the laws cannot evaluate (NaN in ue, an overflow at an
+    ! absurd stretch or volume ratio): no arrays, the history unchanged,
+    ! and the element reported bad so that the driver cuts back
+    if (.not. (eout%detj_min <= 0.0_dp .or. eout%detj_min > 0.0_dp) &
+        .or. .not. finite_arrays(eout, 2 * nen, ein%nip)) then
+      eout%detj_min = min(eout%detj_min, 0.0_dp)
+      if (.not. eout%detj_min <= 0.0_dp) eout%detj_min = 0.0_dp
+      eout%ke = 0.0_dp
+      eout%fe = 0.0_dp
+      eout%sig_ip = 0.0_dp
+      eout%eps_ip = 0.0_dp
+      eout%peeq_ip = 0.0_dp
+      do ip = 1, ein%nip
+        eout%hist(:, ip) = committed(ein, ip)
+      end do
     end if
     if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
     if (.not. wants(action, act_residual)) eout%fe = 0.0_dp
@@ -105,6 +124,29 @@ contains
       eout%eps_ip = 0.0_dp
     end if
   end subroutine nonlinear_continuum_element
+
+  !> Purpose: are the element's arrays (ke, fe, stresses, strains,
+  !> history at the points) all finite?
+  !> Arguments: eout, nd its dofs, nip its integration points.
+  pure logical function finite_arrays(eout, nd, nip)
+    type(elem_out_t), intent(in) :: eout
+    integer, intent(in) :: nd, nip
+    finite_arrays = all(ieee_is_finite(eout%ke(1:nd, 1:nd))) .and. all(ieee_is_finite(eout%fe(1:nd))) .and. &
+                    all(ieee_is_finite(eout%sig_ip(:, 1:nip))) .and. all(ieee_is_finite(eout%eps_ip(:, 1:nip))) .and. &
+                    all(ieee_is_finite(eout%hist(:, 1:nip)))
+  end function finite_arrays
+
+  !> Purpose: the committed history of integration point ip: ein%hist
+  !> for a law with state (*PLASTIC), zero for the elastic laws, whose
+  !> callers need not define ein%hist (element_interface gives it no
+  !> default, and the stiffness at setup is built without it).
+  pure function committed(ein, ip) result(h)
+    type(elem_in_t), intent(in) :: ein
+    integer, intent(in) :: ip
+    real(dp) :: h(max_hist)
+    h = 0.0_dp
+    if (ein%nyield > 0) h = ein%hist(:, ip)
+  end function committed
 
   !> Does the element use F-bar / B-bar (see the module header)?
   pure logical function uses_fbar(ein)
@@ -169,13 +211,17 @@ contains
   end function comps
 
   !> Purpose: the total Lagrangian element (module header).
-  pure subroutine finite_strain(ein, eout)
+  !> Arguments: ein, tangent (false: fe, stresses and history only, ke
+  !> left zero; the laws then skip their derivatives), eout.
+  pure subroutine finite_strain(ein, tangent, eout)
     type(elem_in_t), intent(in) :: ein
+    logical, intent(in) :: tangent
     type(elem_out_t), intent(inout) :: eout
-    real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol
+    real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol, vinv
     real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
-    real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth
-    integer :: ip, nd, nexp
+    real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth, w0(2 * max_nodes), &
+                wd(2 * max_nodes)
+    integer :: ip, nd, nexp, k
     logical :: fbar, ok
     nd = 2 * ein%nen
     fbar = uses_fbar(ein)
@@ -186,6 +232,8 @@ contains
       call reference_point(ein, [0.0_dp, 0.0_dp], n, dndx, detj, r)
       call deformation(ein, n, dndx, r, f0, g0)
       j0 = det3(f0)
+      ! F0^-T : dF0 as a row over the dofs, the same at every point
+      if (j0 > 0.0_dp) w0(1:nd) = matmul(comps(transpose(inv3(f0))), g0(:, 1:nd))
     end if
     call gauss_rule(ein%kind, ein%nip, xg, wg)
     eout%detj_min = huge(1.0_dp)
@@ -199,11 +247,14 @@ contains
       dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
       call deformation(ein, n, dndx, r, f, g)
       eth = ein%alpha * dot_product(n(1:ein%nen), ein%dtemp(1:ein%nen))
-      eout%hist(:, ip) = ein%hist(:, ip)
+      eout%hist(:, ip) = committed(ein, ip)
       jac = (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) * f(3, 3)
       if (.not. jac > 0.0_dp .or. (fbar .and. .not. j0 > 0.0_dp)) then
-        ! turned inside out: no force, reported through detj_min
-        eout%detj_min = min(eout%detj_min, vol * min(jac, merge(j0, jac, fbar)))
+        ! turned inside out (or NaN in ue: reported as zero, which min
+        ! would not do): no force, reported through detj_min
+        vinv = vol * min(jac, merge(j0, jac, fbar))
+        if (.not. vinv <= 0.0_dp) vinv = 0.0_dp
+        eout%detj_min = min(eout%detj_min, vinv)
         cycle
       end if
       if (fbar) then
@@ -211,21 +262,26 @@ contains
         fb = f
         fb(1:2, 1:2) = s * f(1:2, 1:2)
         if (nexp == 3) fb(3, 3) = s * f(3, 3)
-        call material_response(ein, ein%state, fb, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok)
+        call material_response(ein, ein%state, fb, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
         c = s**(1 - nexp)
-        fm = comps(f)
-        if (nexp == 2) fm(5) = 0.0_dp
-        v = (1 - nexp) * p + s * matmul(a, fm)
-        kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd)) &
-                        + (c / nexp) * spread(v, 2, nd) * spread(matmul(comps(transpose(inv3(f0))), g0(:, 1:nd)) &
-                                                           - matmul(comps(transpose(inv3(f))), g(:, 1:nd)), 1, 5)
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(c * p, g(:, 1:nd)) * dv
-        eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
+        if (tangent) then
+          fm = comps(f)
+          if (nexp == 2) fm(5) = 0.0_dp
+          v = (c / nexp) * ((1 - nexp) * p + s * matmul(a, fm))
+          wd(1:nd) = w0(1:nd) - matmul(comps(transpose(inv3(f))), g(:, 1:nd))
+          kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd))
+          do k = 1, nd
+            kmat(:, k) = kmat(:, k) + v * wd(k)
+          end do
+          eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
+        end if
         jac = det3(fb)
       else
-        call material_response(ein, ein%state, f, eth, ein%hist(:, ip), p, a, tau, eout%hist(:, ip), ok)
+        call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
-        eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
+        if (tangent) eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) &
+                                           + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
         jac = det3(f)
       end if
       ! the current volume element (det F of the point itself, F33 solved
@@ -278,7 +334,7 @@ contains
       if (bbar) b(:, 1:nd) = b(:, 1:nd) + spread(m, 2, nd) * spread(bv0(1:nd) - matmul(m, b(:, 1:nd)), 1, 4) / nexp
       eps0 = ein%alpha * dot_product(n(1:nen), ein%dtemp(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
       eps = matmul(b(:, 1:nd), ein%ue(1:nd))
-      call material_response(ein, ein%state, eps - eps0, ein%hist(:, ip), sig, d, eout%hist(:, ip))
+      call material_response(ein, ein%state, eps - eps0, committed(ein, ip), sig, d, eout%hist(:, ip))
       eout%fe(1:nd) = eout%fe(1:nd) + matmul(sig, b(:, 1:nd)) * dv
       eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(b(:, 1:nd)), matmul(d, b(:, 1:nd))) * dv
       eout%peeq_ip(ip) = eout%hist(hist_peeq, ip)

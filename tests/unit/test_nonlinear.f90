@@ -33,8 +33,17 @@
 !>   the end;
 !> - St Venant-Kirchhoff under NLGEOM with a temperature change: free
 !>   thermal expansion (F = (1 + alpha dT) I) gives no force (plane stress,
-!>   axisymmetry).
+!>   axisymmetry); at a homogeneous stretch the Cauchy stress is CalculiX
+!>   2.20's, S = D Em with Em the Lagrange strain of F - alpha dT I (1e-12);
+!> - a hardening table dropping faster than 3 mu: the return lands beyond
+!>   the drop (Mises and PEEQ exact, small and finite strain);
+!> - plane-stress St Venant-Kirchhoff past the stretch where no thickness
+!>   stretch satisfies S33 = 0: reported (detj_min <= 0);
+!> - the elastic laws do not read ein%hist (NaN there changes nothing);
+!> - NaN in ue, a volume ratio of 1e-27 and displacements of 1e11: no NaN
+!>   or Infinity in any array, and NaN reported through detj_min <= 0.
 program test_nonlinear
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use kinds, only: dp
   use test_report, only: report, failures
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses
@@ -55,6 +64,8 @@ program test_nonlinear
     do ie = 1, 5
       do il = 1, 5
         call check_tangent(trim(prefix(is) // suffix(ie)), il, trim(law_name(il)))
+        call check_bad_deformation(trim(prefix(is) // suffix(ie)), il, trim(law_name(il)))
+        if (il <= 3) call check_no_history_read(trim(prefix(is) // suffix(ie)), il, trim(law_name(il)))
       end do
       call check_rigid(trim(prefix(is) // suffix(ie)))
       call check_linear_limit(trim(prefix(is) // suffix(ie)))
@@ -64,6 +75,9 @@ program test_nonlinear
   call check_uniaxial_rubber()
   call check_uniaxial_plastic(.false.)
   call check_uniaxial_plastic(.true.)
+  call check_steep_drop(.false.)
+  call check_steep_drop(.true.)
+  call check_no_thickness()
   call check_follower()
   call check_objectivity('CPE4')
   call check_objectivity('CPS6')
@@ -78,6 +92,10 @@ program test_nonlinear
     call check_free_expansion('CPS' // trim(suffix(ie)))
     call check_free_expansion('CAX' // trim(suffix(ie)))
   end do
+  call check_thermal_nlgeom('CPE4')
+  call check_thermal_nlgeom('CPS4')
+  call check_thermal_nlgeom('CAX4')
+  call check_thermal_nlgeom('CAX8')
   if (failures() > 0) stop 1
 
 contains
@@ -112,6 +130,9 @@ contains
     end do
     if (ein%state == state_axisymmetric) ein%xy(1, 1:ein%nen) = ein%xy(1, 1:ein%nen) + 0.7_dp
     ein%thickness = 1.3_dp
+    ! the table and the history have no default in elem_in_t
+    ein%yield = 0.0_dp
+    ein%hist = 0.0_dp
     ein%e = 1000.0_dp
     ein%nu = 0.3_dp
     ein%nlgeom = il /= 5
@@ -180,6 +201,11 @@ contains
                 .and. eout%detj_min > 0.0_dp, 'relative error ' // num(err) // ', detj_min ' // num(eout%detj_min))
     if (il >= 4) call report('plastic at every point ' // name // ' ' // lname, &
                              all(eout%peeq_ip(1:ein%nip) > 0.0_dp), 'an elastic point: ' // num(minval(eout%peeq_ip(1:ein%nip))))
+    ! act_residual alone skips the laws' derivatives: the same fe and history
+    call element_routine(act_residual, ein, eplus)
+    call report('residual without the tangent identical ' // name // ' ' // lname, &
+                all(eplus%fe(1:nd) == eout%fe(1:nd)) .and. all(eplus%hist == eout%hist) &
+                .and. all(eplus%ke == 0.0_dp), 'differs by ' // num(maxval(abs(eplus%fe(1:nd) - eout%fe(1:nd)))))
   end subroutine check_tangent
 
   !> Rigid motion: a rotation by 40 degrees and a translation (plane), a
@@ -630,6 +656,171 @@ contains
     fmax = max(maxval(abs(eout%fe(1:2 * ein%nen))), maxval(abs(eout%sig_ip(:, 1:ein%nip)))) / (ein%e * ein%alpha * 40.0_dp)
     call report('free thermal expansion no force ' // name, fmax < 1e-12_dp, 'relative ' // num(fmax))
   end subroutine check_free_expansion
+
+  !> St Venant-Kirchhoff with a temperature change under NLGEOM at a
+  !> homogeneous F (F12 = 0, so that the axisymmetric hoop stretch is F11):
+  !> the Cauchy stress at every point against CalculiX 2.20's reading
+  !> computed here in 3D, S = lambda tr(Em) I + 2 mu Em with Em the
+  !> Lagrange strain of Fm = F - alpha dT I (calcmechstrain.f of 2.20:
+  !> the thermal strain taken from the displacement gradient), sigma =
+  !> F S F^T / det F; plane stress: F33 from S33 = 0 (relative 1e-12).
+  subroutine check_thermal_nlgeom(name)
+    character(len=*), intent(in) :: name
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: f(3, 3), fm(3, 3), em(3, 3), s(3, 3), sig(3, 3), eth, lam, mu, err
+    integer :: k, ip
+    ein = element(name, 1)
+    ein%alpha = 2e-3_dp
+    ein%dtemp = 40.0_dp
+    eth = ein%alpha * 40.0_dp
+    f = 0.0_dp
+    f(1:2, 1:2) = reshape([1.2_dp, 0.07_dp, 0.0_dp, 0.9_dp], [2, 2])
+    f(3, 3) = 1.0_dp
+    if (ein%state == state_axisymmetric) f(3, 3) = f(1, 1)
+    do k = 1, ein%nen
+      ein%ue(2 * k - 1:2 * k) = matmul(f(1:2, 1:2), ein%xy(:, k)) - ein%xy(:, k)
+    end do
+    call element_routine(ior(act_residual, act_stresses), ein, eout)
+    lam = ein%e * ein%nu / ((1.0_dp + ein%nu) * (1.0_dp - 2.0_dp * ein%nu))
+    mu = ein%e / (2.0_dp * (1.0_dp + ein%nu))
+    fm = f
+    do k = 1, 3
+      fm(k, k) = f(k, k) - eth
+    end do
+    em = 0.5_dp * matmul(transpose(fm), fm)
+    do k = 1, 3
+      em(k, k) = em(k, k) - 0.5_dp
+    end do
+    if (ein%state == state_plane_stress) then
+      em(3, 3) = -lam * (em(1, 1) + em(2, 2)) / (lam + 2.0_dp * mu)
+      f(3, 3) = eth + sqrt(1.0_dp + 2.0_dp * em(3, 3))
+    end if
+    s = 2.0_dp * mu * em
+    do k = 1, 3
+      s(k, k) = s(k, k) + lam * (em(1, 1) + em(2, 2) + em(3, 3))
+    end do
+    sig = matmul(matmul(f, s), transpose(f)) / (f(3, 3) * (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)))
+    err = 0.0_dp
+    do ip = 1, ein%nip
+      err = max(err, maxval(abs(eout%sig_ip(:, ip) - [sig(1, 1), sig(2, 2), sig(3, 3), sig(1, 2)])))
+    end do
+    err = err / maxval(abs(sig))
+    call report('St Venant-Kirchhoff thermal strain under NLGEOM as CalculiX 2.20 ' // name, err < 1e-12_dp, &
+                'relative ' // num(err))
+  end subroutine check_thermal_nlgeom
+
+  !> Deformations the laws cannot evaluate: NaN in ue must be reported
+  !> (detj_min <= 0, the driver cuts back) and no array may hold NaN or
+  !> Infinity, for NaN in ue, a volume ratio of 1e-27 (ue = -(1 - 1e-9) X)
+  !> and displacements of 1e11 times the element's size.
+  subroutine check_bad_deformation(name, il, lname)
+    character(len=*), intent(in) :: name, lname
+    integer, intent(in) :: il
+    character(len=8), parameter :: what(3) = ['NaN     ', 'collapse', 'huge    ']
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: ic, nd
+    logical :: ok
+    do ic = 1, 3
+      ein = element(name, il)
+      nd = 2 * ein%nen
+      call deform(ein, 0.06_dp)
+      select case (ic)
+      case (1)
+        ein%ue(3) = ieee_value(1.0_dp, ieee_quiet_nan)
+      case (2)
+        ein%ue(1:nd) = -(1.0_dp - 1e-9_dp) * reshape(ein%xy(:, 1:ein%nen), [nd])
+      case (3)
+        ein%ue(1:nd) = 1e11_dp * ein%ue(1:nd)
+      end select
+      call element_routine(ior(act_tangent, ior(act_residual, act_stresses)), ein, eout)
+      ok = all(ieee_is_finite(eout%ke(1:nd, 1:nd))) .and. all(ieee_is_finite(eout%fe(1:nd))) .and. &
+           all(ieee_is_finite(eout%sig_ip(:, 1:ein%nip))) .and. all(ieee_is_finite(eout%sig_node(:, 1:ein%nen))) .and. &
+           all(ieee_is_finite(eout%eps_ip(:, 1:ein%nip))) .and. all(ieee_is_finite(eout%hist(:, 1:ein%nip))) .and. &
+           all(ieee_is_finite(eout%peeq_ip(1:ein%nip))) .and. ieee_is_finite(eout%detj_min)
+      if (ic == 1) ok = ok .and. eout%detj_min <= 0.0_dp
+      call report('bad deformation ' // trim(what(ic)) // ' ' // name // ' ' // lname, ok, &
+                  'detj_min ' // num(eout%detj_min))
+    end do
+  end subroutine check_bad_deformation
+
+  !> A hardening table with a drop steeper than 3 mu (300 at PEEQ 0, 100
+  !> from 1e-6 on): the local problem has no root on the drop, the return
+  !> must land on the flat part beyond it, Mises = 100 and PEEQ = (q_tr -
+  !> 100) / (3 mu) with q_tr = 2 mu e (small strain, uniaxial strain e =
+  !> 0.01) or 2 mu ln(1 + e) and the Kirchhoff stress (finite strain);
+  !> relative 1e-12.
+  subroutine check_steep_drop(finite)
+    logical, intent(in) :: finite
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    real(dp) :: mu, qtr, jac, sg(4), mises, err
+    integer :: k
+    ein = element('CPE4', merge(4, 5, finite))
+    ein%xy(:, 1:4) = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp], [2, 4])
+    ein%e = 200000.0_dp
+    ein%nyield = 3
+    ein%yield(:, 1:3) = reshape([300.0_dp, 0.0_dp, 100.0_dp, 1e-6_dp, 100.0_dp, 1.0_dp], [2, 3])
+    do k = 1, 4
+      ein%ue(2 * k - 1:2 * k) = [0.01_dp * ein%xy(1, k), 0.0_dp]
+    end do
+    call element_routine(ior(act_residual, act_stresses), ein, eout)
+    mu = ein%e / (2.0_dp * (1.0_dp + ein%nu))
+    qtr = 2.0_dp * mu * 0.01_dp
+    jac = 1.0_dp
+    if (finite) then
+      qtr = 2.0_dp * mu * log(1.01_dp)
+      jac = 1.01_dp
+    end if
+    err = 0.0_dp
+    do k = 1, ein%nip
+      sg = eout%sig_ip(:, k) * jac
+      mises = sqrt(0.5_dp * ((sg(1) - sg(2))**2 + (sg(2) - sg(3))**2 + (sg(3) - sg(1))**2) + 3.0_dp * sg(4)**2)
+      err = max(err, abs(mises - 100.0_dp) / 100.0_dp, &
+                abs(eout%peeq_ip(k) - (qtr - 100.0_dp) / (3.0_dp * mu)) / ((qtr - 100.0_dp) / (3.0_dp * mu)))
+    end do
+    call report('hardening table with a drop steeper than 3 mu ' // merge('finite', 'small ', finite), &
+                err < 1e-12_dp, 'relative ' // num(err))
+  end subroutine check_steep_drop
+
+  !> The elastic laws have no history and must not read ein%hist, which
+  !> callers leave undefined (element_interface gives it no default; the
+  !> driver's setup stiffness is built without it): with NaN there, the
+  !> same fe, a zero history and PEEQ, and a positive detj_min.
+  subroutine check_no_history_read(name, il, lname)
+    character(len=*), intent(in) :: name, lname
+    integer, intent(in) :: il
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout, eref
+    integer :: nd
+    ein = element(name, il)
+    nd = 2 * ein%nen
+    call deform(ein, 0.1_dp)
+    call element_routine(ior(act_tangent, ior(act_residual, act_stresses)), ein, eref)
+    ein%hist = ieee_value(1.0_dp, ieee_quiet_nan)
+    call element_routine(ior(act_tangent, ior(act_residual, act_stresses)), ein, eout)
+    call report('elastic law ignores ein%hist ' // name // ' ' // lname, all(eout%fe(1:nd) == eref%fe(1:nd)) &
+                .and. all(eout%hist == 0.0_dp) .and. all(eout%peeq_ip == 0.0_dp) .and. eout%detj_min > 0.0_dp, &
+                'detj_min ' // num(eout%detj_min))
+  end subroutine check_no_history_read
+
+  !> Plane-stress St Venant-Kirchhoff stretched 1.5 each way (nu = 0.3):
+  !> S33 = 0 asks 1 + 2 Em33 < 0, no real thickness stretch; the element
+  !> must report it (detj_min <= 0), not return F33 = 1e-154 and stresses
+  !> of 1e156 with a positive detj_min.
+  subroutine check_no_thickness()
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: k
+    ein = element('CPS4', 1)
+    do k = 1, ein%nen
+      ein%ue(2 * k - 1:2 * k) = 0.5_dp * ein%xy(:, k)
+    end do
+    call element_routine(ior(act_tangent, ior(act_residual, act_stresses)), ein, eout)
+    call report('plane-stress St Venant-Kirchhoff without a thickness stretch reported', eout%detj_min <= 0.0_dp, &
+                'detj_min ' // num(eout%detj_min))
+  end subroutine check_no_thickness
 
   function num(x) result(s)
     real(dp), intent(in) :: x
