@@ -61,7 +61,12 @@ contains
         if (mat%nyield > 0) ein%yield(:, 1:mat%nyield) = mat%yield(:, 1:mat%nyield)
       end associate
       if (present(nlgeom)) ein%nlgeom = nlgeom
-      if (present(hist)) ein%hist = hist
+      ! (elem_in_t's history has no default: a plastic law reads it)
+      if (present(hist)) then
+        ein%hist = hist
+      else if (m%materials(sec%material)%nyield > 0) then
+        ein%hist = 0.0_dp
+      end if
       if (is_truss(m, e)) then
         ein%area = sec%thickness
       else
