@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Installs what cfe2d needs to build, run and test, and only what is
 # missing: gfortran, LAPACK/BLAS, SuiteSparse, METIS and gmsh from Debian,
-# numpy, matplotlib and meshio from PyPI. Safe to run again: it says what it finds.
+# numpy, matplotlib and meshio from PyPI; CalculiX's test decks
+# (calculix-ccx-test: data only, read by tests/test_nonlinear_calculix.py). Safe to run again: it says what it finds.
 set -euo pipefail
 
 PYTHON=${PYTHON:-python3}
-apt_pkgs=(gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev gmsh)
+apt_pkgs=(gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev gmsh calculix-ccx-test)
 missing=()
 for p in "${apt_pkgs[@]}"; do
   if dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
