@@ -2,7 +2,8 @@
 # Installs what cfe2d needs to build, run and test, and only what is
 # missing: gfortran, LAPACK/BLAS, SuiteSparse, METIS, gmsh, and MUMPS with
 # Open MPI (the MUMPS backend, mpirun) from Debian,
-# numpy, matplotlib and meshio from PyPI. Safe to run again: it says what it finds.
+# numpy, matplotlib and meshio from PyPI; CalculiX's test decks (Debian's
+# calculix-ccx-test, data only). Safe to run again: it says what it finds.
 set -euo pipefail
 
 PYTHON=${PYTHON:-python3}
@@ -28,6 +29,19 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 else
   echo "install-deps: Debian packages present (${apt_pkgs[*]})"
+fi
+
+# CalculiX's test decks, data only (tests/test_calculix_suite_debian.py and
+# test_nonlinear_calculix.py compare with their reference results); not the
+# solver the package recommends: the tests never run CalculiX.
+if ! dpkg-query -W -f='${Status}' calculix-ccx-test 2>/dev/null | grep -q "install ok installed"; then
+  echo "install-deps: installing CalculiX's test decks (calculix-ccx-test)"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1; then SUDO="sudo"; fi
+  if ! { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq \
+         --no-install-recommends calculix-ccx-test >/dev/null; }; then
+    echo "install-deps: calculix-ccx-test not installed: the tests of CalculiX's decks are skipped" >&2
+  fi
 fi
 
 py_missing=()
