@@ -33,6 +33,7 @@ Usage: contact_accuracy.py [--cases default,q8,ccx] [--out results/accuracy]
 import argparse
 import csv
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -55,9 +56,12 @@ RADIUS = 10.0
 ESTAR = effective_modulus(210000.0, 0.3)
 
 
-def write_case(outdir, mesh, pair_params):
-    """The flagship deck on one mesh with the pair's parameters appended;
-    returns the deck's path. The mesh is made once per folder."""
+def write_case(outdir, mesh, pair_params, solve=None):
+    """The flagship deck on one mesh with the pair's parameters appended
+    (and a *SOLVER, CONTACT SOLVE=solve card where solve is given: FULL
+    keeps exact enforcement's augmented Lagrangian, CONDENSED its direct
+    multipliers); returns the deck's path. The mesh is made once per
+    folder."""
     os.makedirs(outdir, exist_ok=True)
     h, order = MESHES[mesh]
     mesh_file = os.path.join(outdir, "hertz_mesh.inp")
@@ -71,6 +75,9 @@ def write_case(outdir, mesh, pair_params):
         deck = f.read()
     assert PAIR + "\n" in deck
     deck = deck.replace(PAIR + "\n", PAIR + pair_params + "\n")
+    if solve is not None:
+        assert "*SOLVER" not in deck
+        deck = deck.replace("*STEP", f"*SOLVER, CONTACT SOLVE={solve}\n*STEP", 1)
     path = os.path.join(outdir, "hertz.inp")
     with open(path, "w") as f:
         f.write(deck)
@@ -106,14 +113,28 @@ def figures(contact_csv, increment=10):
             "points": int(core.sum())}
 
 
-def measure(out, mesh, coupling, pair_params=None, repeats=1):
-    """Runs one case (best wall time of `repeats`) and returns its figures."""
+def measure(out, mesh, coupling, pair_params=None, repeats=1, solve=None):
+    """Runs one case (best wall time of `repeats`) and returns its figures,
+    with `solves` the direct multiplier solves of each increment (exact
+    enforcement on the condensed path: the listing's notes) and `deck`."""
     params = COUPLINGS[coupling] if pair_params is None else pair_params
-    deck = write_case(os.path.join(out, mesh, coupling if pair_params is None else "custom"), mesh, params)
+    folder = coupling if pair_params is None else "custom"
+    if solve is not None:
+        folder += "_" + solve.lower()
+    deck = write_case(os.path.join(out, mesh, folder), mesh, params, solve)
     wall = min(run(deck) for _ in range(repeats))
     f = figures(os.path.splitext(deck)[0] + "_contact.csv")
     f["wall"] = wall
+    f["deck"] = deck
+    f["solves"] = multiplier_solves(os.path.splitext(deck)[0] + ".out")
     return f
+
+
+def multiplier_solves(listing):
+    """The direct multiplier solves of each increment, from the listing's
+    notes (empty where exact enforcement did not take them)."""
+    pat = re.compile(r"exact contact: (\d+) direct multiplier solves")
+    return [int(mo.group(1)) for mo in pat.finditer(open(listing).read())]
 
 
 def table(cases, out, repeats=1, penalties=False):
@@ -130,6 +151,9 @@ def table(cases, out, repeats=1, penalties=False):
             row = [mesh, coupling, f"{f['P']:.2f}", f"{f['osc']:.2%}", f"{f['node_p0']:+.2%}", f"{f['s-m']:.2%}",
                    f"{f['wall']:.2f}", f"{ratio:.2f}"]
             print(" ".join(f"{c:>10}" for c in row), flush=True)
+            if f["solves"]:
+                print(f"{'':>10} exact: direct multiplier solves per increment {min(f['solves'])}..{max(f['solves'])}, "
+                      f"{sum(f['solves'])} in {len(f['solves'])} increments", flush=True)
     if penalties:
         print("sts (EXACT) on the default mesh with PENALTY= over three decades (automatic: about 8e9 per area)")
         for k in ("1e8", "1e9", "1e10", "1e11"):

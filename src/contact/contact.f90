@@ -93,7 +93,9 @@ module contact
     logical :: closed = .false.
     !> Exact enforcement: the Lagrange multiplier (normal force, <= 0) the
     !> penalty is augmented with, and whether the pair asks for it: a
-    !> closed CFE's force is lambda + k_closed g (contact_status's
+    !> closed CFE's force is lambda + k_closed g (solved for g = 0 per
+    !> status on the condensed path, condensed_contact's
+    !> condensed_multipliers; otherwise contact_status's
     !> augment_multipliers updates lambda until g vanishes).
     logical :: exact = .false.
     real(dp) :: lambda = 0.0_dp
