@@ -32,7 +32,7 @@ module condensed_contact
   use constraints, only: mpc_t
   use linear_solver, only: linear_system_t, sys_condensed_factor, sys_trailing_order, sys_forward, sys_backward, &
                            sys_factor_flops, sys_nlast, factor_ok, factor_singular, pivot_ratio_min
-  use dense_cholesky, only: dense_factor, dense_solve, upper_times, lower_gram
+  use dense_cholesky, only: dense_factor, dense_solve, upper_times, lower_gram, lower_solve, transposed_gram
   use dense_lu, only: lu_factor, lu_solve
   implicit none
   private
@@ -573,7 +573,9 @@ contains
   !>   (B S^-1 B^T) dlambda = g(x2),
   !> the Schur complement of the bordered (KKT) system of S and the active
   !> rows B, symmetric positive definite where the rows are independent
-  !> (S is), factored by LAPACK (dpotrf): one solve, exact to round-off.
+  !> (S is): with S = L L^T it is Z^T Z, Z = L^-1 B^T (one triangular
+  !> solve with the active columns at once, dtrsm, and dsyrk), factored by
+  !> LAPACK (dpotrf): one solve, exact to round-off.
   !> The closed penalty already in S then carries no force (its gap is
   !> zero) and the multipliers are the closed forces; open exact CFEs get
   !> lambda = 0. The status search decides the active set as for the
@@ -591,18 +593,19 @@ contains
     integer, intent(out) :: nactive
     logical, intent(out) :: ok
     integer, allocatable :: act(:), geq(:)
-    real(dp), allocatable :: bc(:, :), y(:, :), w(:, :), g(:), t(:, :), bn(:)
+    real(dp), allocatable :: z(:, :), w(:, :), g(:), t(:, :), bn(:), wdiag(:), dx(:, :)
     type(elem_in_t) :: ein
     real(dp) :: bm(2, max_edof)
-    integer :: j, k, l, p, nd, ng, info, nodes(max_en)
+    integer :: j, k, p, nd, info, nodes(max_en)
     ok = .true.
     where (cs%c(1:cs%n)%exact .and. .not. cs%c(1:cs%n)%closed) cs%c(1:cs%n)%lambda = 0.0_dp
     act = pack([(j, j = 1, cs%n)], cs%c(1:cs%n)%exact .and. cs%c(1:cs%n)%closed)
     nactive = size(act)
     if (nactive == 0) return
-    ! b_c on the trailing positions (dense columns of B^T) and the gaps at x2
-    allocate(bc(cd%m, nactive), y(cd%m, nactive), w(nactive, nactive), g(nactive))
-    bc = 0.0_dp
+    ! B^T on the trailing positions (b_c = B_e^T n of each active CFE, a
+    ! column) and the gaps at x2
+    allocate(z(cd%m, nactive), w(nactive, nactive), g(nactive), dx(cd%m, 1))
+    z = 0.0_dp
     do k = 1, nactive
       j = act(k)
       call cfe_input(m, cs%c(j), cd%u0, cs%stabilised, ein, nodes)
@@ -613,24 +616,20 @@ contains
         call group_transform(dm, nodes(1:ein%nen), geq, t)
         bn = matmul(bn, t)
       end if
-      ng = size(bn)
-      do p = 1, ng
-        if (cd%cfe_pos(p, j) > 0) bc(cd%cfe_pos(p, j), k) = bc(cd%cfe_pos(p, j), k) + bn(p)
+      do p = 1, size(bn)
+        if (cd%cfe_pos(p, j) > 0) z(cd%cfe_pos(p, j), k) = z(cd%cfe_pos(p, j), k) + bn(p)
       end do
-      g(k) = cd%gap_start(j) + dot_product(bc(:, k), cd%x2)
-      y(:, k) = bc(:, k)
-      call solve_s(cd, y(:, k))
+      g(k) = cd%gap_start(j) + dot_product(z(:, k), cd%x2)
     end do
-    do l = 1, nactive
-      do k = l, nactive
-        w(k, l) = dot_product(bc(:, k), y(:, l))
-      end do
-    end do
+    ! with S = L L^T: Z = L^-1 B^T, B S^-1 B^T = Z^T Z (dtrsm, dsyrk)
+    call lower_solve(cd%s, z, .false.)
+    call transposed_gram(z, w)
+    wdiag = [(w(k, k), k = 1, nactive)]
     call dense_factor(w, info)
     if (info == 0) then
       do k = 1, nactive
         ! a pivot lost to cancellation: dependent active rows
-        if (.not. (w(k, k)**2 > 1.0e-13_dp * dot_product(bc(:, k), y(:, k)))) info = k
+        if (.not. (w(k, k)**2 > 1.0e-13_dp * wdiag(k))) info = k
       end do
     end if
     if (info /= 0) then
@@ -638,7 +637,10 @@ contains
       return
     end if
     call dense_solve(w, g)
-    cd%x2 = cd%x2 - matmul(y, g)
+    ! x2 -= S^-1 B^T dlambda = L^-T (Z dlambda)
+    dx(:, 1) = matmul(z, g)
+    call lower_solve(cd%s, dx, .true.)
+    cd%x2 = cd%x2 - dx(:, 1)
     do k = 1, nactive
       cs%c(act(k))%lambda = cs%c(act(k))%lambda + g(k)
     end do
