@@ -219,8 +219,9 @@ module model
     !> faces: contact_mortar).
     integer :: coupling = coupling_nts
     !> Exact enforcement: non-penetration held by Lagrange multipliers (the
-    !> contact pressures), found by augmenting the penalty until the closed
-    !> gaps vanish; false: the penalty alone.
+    !> contact pressures), solved directly for each contact status on the
+    !> condensed path without friction, otherwise found by augmenting the
+    !> penalty until the closed gaps vanish; false: the penalty alone.
     logical :: exact = .false.
     type(src_t) :: src
     !> The *CONTACT PAIR card (file, line number, text), for messages once
