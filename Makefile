@@ -25,7 +25,7 @@ vpath %.f90 $(LAYERS:%=src/%) src
 vpath %.c $(LAYERS:%=src/%)
 OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
-TESTS := test_elements test_skyline test_cfe test_solvers test_numbering test_constraints test_strings test_contact_status
+TESTS := test_elements test_skyline test_cfe test_solvers test_numbering test_constraints test_strings test_contact_status test_nonlinear
 
 .PHONY: all debug sanitize run check bench deps clean help fuzz kernels
 all: bin/cfe2d

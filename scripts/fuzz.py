@@ -3,8 +3,10 @@
 
 Takes the project's own decks (input/examples, input/hertz with a small
 gmsh mesh, decks written by the tests: contact, features, triangles, and
-*EQUATION, *TIE, *PRE-TENSION SECTION, trusses, springs, point masses and
-*NODAL THICKNESS as their tests write them), mutates them with a fixed
+*EQUATION, *TIE, *PRE-TENSION SECTION, trusses, springs, point masses,
+*NODAL THICKNESS, and nonlinear bodies: NLGEOM, *HYPERELASTIC, *PLASTIC,
+*CONTROLS, follower pressures, a plastic collapse, as their tests write
+them, and the O-ring example on a coarse mesh), mutates them with a fixed
 seed (cards dropped, duplicated, moved or spliced in from another deck;
 numbers replaced by 0, -1, 1e308, 1e-320, nan, inf, huge integers; lines
 truncated, joined, deleted, made very long; CR-LF endings, binary bytes;
@@ -170,15 +172,20 @@ def load_case(folder):
     return Deck(os.path.basename(os.path.normpath(folder)), main, files, fifos, dirs), meta
 
 
+SLOW_EXAMPLES = ("oring.inp",)
+
+
 def example_seeds():
     """The self-contained examples. A deck that *INCLUDEs a file the folder
     does not hold (a gmsh mesh made from its .geo, e.g. sphere_on_block) is
     left out: its mesh is too large for quick mutants, and the Hertz seeds
-    already carry a gmsh mesh."""
+    already carry a gmsh mesh. So is the O-ring (a mutant that keeps its
+    contact from settling takes a minute of cut-backs on the debug build):
+    a coarse O-ring is among the nonlinear seeds."""
     seeds = []
     folder = os.path.join(ROOT, "input", "examples")
     for name in sorted(os.listdir(folder)):
-        if name.endswith(".inp"):
+        if name.endswith(".inp") and name not in SLOW_EXAMPLES:
             with open(os.path.join(folder, name), "rb") as f:
                 text = f.read()
             includes = re.findall(rb"(?im)^\*\s*INCLUDE\s*,\s*INPUT\s*=\s*([^,\r\n]+)", text)
@@ -375,6 +382,77 @@ def _nodal_thickness_taper():
     return "taper.inp", {"taper.inp": tn.tapered_bar(2)[0]}
 
 
+def _nl_neo_hooke():
+    """A neo-Hookean block stretched under NLGEOM (automatic increments)."""
+    import test_nonlinear_closed_forms as tn
+    return "nl_hyper.inp", {"nl_hyper.inp": tn.block(1.5)}
+
+
+def _nl_mooney_compression():
+    import test_nonlinear_closed_forms as tn
+    deck = tn.block(0.7, element="CPE8", material="*HYPERELASTIC, MOONEY-RIVLIN\n0.4, 0.1, 0.02\n")
+    return "nl_mooney.inp", {"nl_mooney.inp": deck}
+
+
+def _nl_plastic():
+    """Plane-stress tension past yield and back (small strain, *PLASTIC, DIRECT)."""
+    import test_nonlinear_closed_forms as tn
+    material = "*ELASTIC\n200000., 0.3\n*PLASTIC\n200., 0.\n220., 0.5\n"
+    steps = [("*STATIC, DIRECT\n0.25, 1.\n", 0.006), ("*STATIC\n0.25, 1.\n", -0.006)]
+    return "nl_plastic.inp", {"nl_plastic.inp": tn.block(1.0, element="CPS4", material=material, nlgeom="",
+                                                         steps=steps)}
+
+
+def _nl_plastic_nlgeom():
+    """Finite-strain plasticity: CAX4 block under NLGEOM."""
+    import test_nonlinear_closed_forms as tn
+    material = "*ELASTIC\n200000., 0.3\n*PLASTIC\n200., 0.\n400., 1.\n"
+    deck = tn.block(1.05, element="CAX4", material=material)
+    return "nl_plastic_nlgeom.inp", {"nl_plastic_nlgeom.inp": deck}
+
+
+def _nl_follower_cylinder():
+    """A neo-Hookean cylinder under a follower pressure (NLGEOM)."""
+    import test_nonlinear_closed_forms as tn
+    m = tn.annulus(1.0, 2.0, 4, 4)
+    deck = tn.cylinder_deck(m, "CPE4", "*HYPERELASTIC, NEO HOOKE\n0.5, 0.01\n", 0.3, "*STATIC\n0.25, 1.\n")
+    return "nl_follower.inp", {"nl_follower.inp": deck}
+
+
+def _nl_collapse():
+    """A perfectly plastic cylinder pushed past collapse: stops below the
+    minimum increment."""
+    import test_nonlinear_closed_forms as tn
+    m = tn.annulus(1.0, 2.0, 4, 2, shape="Q8")
+    deck = tn.cylinder_deck(m, "CPE8R", "*ELASTIC\n200000., 0.3\n*PLASTIC\n200., 0.\n", 300.0,
+                            "*STATIC\n0.25, 1., 0.01\n")
+    return "nl_collapse.inp", {"nl_collapse.inp": deck}, "ok-error"
+
+
+def _nl_oring():
+    """The O-ring example on a coarse mesh (scripts/oring.py): NLGEOM rubber,
+    contact searched again every increment."""
+    sys.path.insert(0, HERE)
+    import oring
+    return "oring_coarse.inp", {"oring_coarse.inp": oring.deck_text(2, 2, 10, "0.25, 1., 1e-3, 0.25")}
+
+
+def _nl_controls():
+    """Trusses under NLGEOM with *CONTROLS and three steps (NLGEOM carried, then off)."""
+    import test_nonlinear_framework as tf
+    second = ("*STEP\n*CONTROLS, PARAMETERS=FIELD\n1e-4, 1e-3\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n"
+              "4, 8, 9, 16, 10, 4\n0.25, 0.5, 0.75, , , , 1.5\n*STATIC\n0.5, 1.\n*CLOAD\n4, 1, 0.\n*END STEP\n"
+              "*STEP, NLGEOM=NO\n*CONTROLS, RESET\n*STATIC\n0.5, 1.\n*END STEP\n")
+    return "nl_controls.inp", {"nl_controls.inp": tf.bar_deck(extra_steps=second)}
+
+
+# Nonlinear bodies (NLGEOM, *HYPERELASTIC, *PLASTIC, *CONTROLS) as their tests write them.
+NONLINEAR_MAKERS = [("tests/nl_neo_hooke", _nl_neo_hooke), ("tests/nl_mooney", _nl_mooney_compression),
+                    ("tests/nl_plastic", _nl_plastic), ("tests/nl_plastic_nlgeom", _nl_plastic_nlgeom),
+                    ("tests/nl_follower", _nl_follower_cylinder), ("tests/nl_collapse", _nl_collapse),
+                    ("tests/nl_controls", _nl_controls), ("tests/nl_oring", _nl_oring)]
+
+
 # Today's cards (*EQUATION, *TIE, *PRE-TENSION SECTION, trusses, springs,
 # point masses, *NODAL THICKNESS) as the tests write them.
 CARD_MAKERS = [("tests/equation_tied", _equation_tied), ("tests/equation_chain", _equation_chain),
@@ -384,7 +462,8 @@ CARD_MAKERS = [("tests/equation_tied", _equation_tied), ("tests/equation_chain",
                ("tests/truss_v", _truss_v), ("tests/truss_block", _truss_block),
                ("tests/springs_grounded", _springs_grounded), ("tests/springs_axial", _springs_axial),
                ("tests/mass_bar", _mass_bar), ("tests/mass_ring", _mass_ring),
-               ("tests/nodal_thickness", _nodal_thickness), ("tests/nodal_thickness_taper", _nodal_thickness_taper)]
+               ("tests/nodal_thickness", _nodal_thickness), ("tests/nodal_thickness_taper", _nodal_thickness_taper)] \
+    + NONLINEAR_MAKERS
 
 
 def _mortar_exact():
@@ -996,8 +1075,9 @@ def _preexec(limits):
 #   error       the error message of a run that stops (floats masked, and
 #               the nodes a message names as examples of a round-off
 #               decision: the node and dof of "singular stiffness at node
-#               N, dof D", where any dof of a free body is right and the
-#               first zero pivot is found by round-off, and the nodes
+#               N, dof D" (and of a nonlinear step's "tangent stiffness is
+#               singular at node N, dof D"), where any dof of a free body is
+#               right and the first zero pivot is found by round-off, and the nodes
 #               "still switching" when a search gives up)
 #   notes       the other notes of the contact search (stabilised open
 #               penalty, pivot taken back, matrix not positive definite)
@@ -1021,6 +1101,7 @@ _NOTE = re.compile(r"^(?:contact status |singular stiffness|the contact status |
 _SEARCH_KEYS = ("contact_iterations", "contact_block_pivots", "contact_single_pivots", "numeric_factorisations",
                 "condensed_factorisations")
 _EXAMPLE_NODES = [re.compile(r"(singular stiffness at node )\d+(, dof )\d"),
+                  re.compile(r"(tangent stiffness is singular at node )\d+(, dof )\d"),
                   re.compile(r"(still switching:)(?: \S+)+")]
 
 

@@ -22,7 +22,7 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from helpers import Skip  # noqa: E402
 
 UNIT_PROGRAMS = ["test_elements", "test_skyline", "test_cfe", "test_solvers", "test_numbering", "test_constraints",
-                 "test_strings", "test_contact_status"]
+                 "test_strings", "test_contact_status", "test_nonlinear"]
 
 
 def main():

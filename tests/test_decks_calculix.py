@@ -165,10 +165,10 @@ def test_cards_that_change_the_physics_stop_others_warn():
         run = run_deck("decks_reject", deck)
         line = deck.splitlines().index(card.split("\n")[0]) + 1
         assert run.rc == 1 and f"decks_reject.inp:{line}: error: {fragment}" in run.stderr, run.stderr
-    deck = block(extra="*MATERIAL, NAME=P\n*ELASTIC\n1., 0.\n*PLASTIC\n10., 0.\n")
-    run = run_deck("decks_plastic", deck)
-    line = deck.splitlines().index("*PLASTIC") + 1
-    assert run.rc == 1 and f"decks_plastic.inp:{line}: error: the material law *PLASTIC" in run.stderr
+    deck = block(extra="*MATERIAL, NAME=P\n*ELASTIC\n1., 0.\n*CREEP\n1e-10, 3., 0.\n")
+    run = run_deck("decks_creep", deck)
+    line = deck.splitlines().index("*CREEP") + 1
+    assert run.rc == 1 and f"decks_creep.inp:{line}: error: the material law *CREEP" in run.stderr
     deck = block(extra="*MATERIAL, NAME=Q\n*ELASTIC\n1., 0.\n*SPECIFIC HEAT\n450.\n*CONDUCTIVITY\n50.\n")
     run = run_deck("decks_inert", deck).ok()
     line = deck.splitlines().index("*SPECIFIC HEAT") + 1

@@ -188,5 +188,5 @@ def test_what_cfe2d_cannot_do_stops_at_the_card():
     error_at("decks_behavior_outside", blocks(
         "*SURFACE INTERACTION, NAME=SI1\n*NSET, NSET=X\n1\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n" + pair),
         "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD", "outside a *SURFACE INTERACTION block")
-    error_at("decks_nlgeom", blocks("*CONTACT PAIR\nSLAVE, MASTER\n").replace("*STEP\n", "*STEP, NLGEOM\n"),
-             "*STEP, NLGEOM", "NLGEOM")
+    error_at("decks_nlgeom", blocks("*CONTACT PAIR\nSLAVE, MASTER\n").replace("*STEP\n", "*STEP, NLGEOM=MAYBE\n"),
+             "*STEP, NLGEOM=MAYBE", "NLGEOM must be YES or NO")

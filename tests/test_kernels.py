@@ -9,7 +9,7 @@ decision that follows those bits is not: a deck must open and close the
 same contact elements, in the same iterations and increments, on every
 machine.
 
-This module runs the contact decks of DECKS (one test each, named
+This module runs the decks of DECKS (one test each, named
 "kernels <deck>") with bin/cfe2d under every kernel this CPU can run and
 compares each run with the reference, bin/cfe2d on Prescott:
 
@@ -305,6 +305,19 @@ def equation_contact(path):
     return text
 
 
+def plastic_cylinder():
+    """The plane-strain perfectly plastic cylinder of
+    tests/test_nonlinear_closed_forms.py pressed to 0.9 of its collapse
+    pressure: automatic increments whose sizes follow the Newton
+    iteration counts."""
+    import math
+    import test_nonlinear_closed_forms as tn
+    pc = 2.0 / math.sqrt(3.0) * 200.0 * math.log(2.0)
+    m = tn.annulus(1.0, 2.0, 8, 4, shape="Q8")
+    return tn.cylinder_deck(m, "CPE8R", "*ELASTIC\n200000., 0.3\n*PLASTIC\n200., 0.\n", 0.9 * pc,
+                            "*STATIC\n0.1, 1.\n")
+
+
 # name, what it covers, builder(dir) -> deck path
 DECKS = [
     ("hertz_point_cax4", "sphere on a flat, CAX4, h = 0.03 (tests/test_hertz_point.py): axisymmetric "
@@ -346,6 +359,10 @@ DECKS = [
      "contact and its axis, SURFACE TO SURFACE two-pass", meshed_example("sphere_on_block", 1)),
     ("hanging_plate", "input/examples/hanging_plate.inp: a CPS8 plate hanging on three pins with clearance "
      "(stabilised search, then the nominal one; full solve)", meshed_example("hanging_plate", 2)),
+    ("oring", "input/examples/oring.inp: NLGEOM neo-Hooke O-ring squeezed between plates, contact searched "
+     "again every increment, Newton with automatic increments", copy_of("input/examples/oring.inp")),
+    ("plastic_cylinder", "a perfectly plastic cylinder to 0.9 of collapse (no contact): Newton iteration counts "
+     "and the increment sizes they set", from_text(plastic_cylinder, "plastic_cylinder")),
 ]
 
 # Families not compared as numbers: the unsettled deck completes only its

@@ -8,12 +8,14 @@ module analysis
   use strings, only: itoa, rtoa
   use model
   use contact, only: contact_set_t, cfe_t, contact_search, contact_research, contact_commit
-  use assembly, only: body_t, element_counts_t, body_setup
+  use assembly, only: body_t, element_counts_t, body_setup, commit_history
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
-  use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached
+  use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
+                        follower_loads
   use constraints, only: mpc_t, resolve_equations, constraint_label
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment
+  use equilibrium_common, only: newton_new_step
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use linear_solver, only: linear_system_t
@@ -35,6 +37,10 @@ module analysis
     real(dp) :: total_time = 0.0_dp     ! at the start of the current step
     integer :: inc = 0                  ! increments done in the current step
     logical :: update_search = .false.
+    !> The current step is nonlinear (NLGEOM or a nonlinear material):
+    !> Newton with automatic increments (advance_nonlinear).
+    logical :: nonlinear = .false.
+    integer :: cutbacks = 0             ! increments cut back in the current step
     type(run_timing_t) :: timing        ! the driver's own parts (the iteration's are in eq)
   end type run_state_t
 
@@ -130,7 +136,14 @@ contains
     started = wall_time()
     t0 = started
     call begin_step(m, is, rs%u, rs%fext, rs%total_time, rs%ls)
-    call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta)
+    ! a nonlinear step: the bodies evaluated at u, the full solve
+    rs%nonlinear = step_is_nonlinear(m, is)
+    rs%body%nonlinear = rs%nonlinear
+    rs%body%nlgeom = m%steps(is)%nlgeom
+    call newton_new_step(rs%eq%newton, m%steps(is)%controls)
+    rs%cutbacks = 0
+    if (rs%nonlinear .and. m%steps(is)%nlgeom .and. size(m%pairs) > 0 .and. is > 1) call research(m, rs)
+    call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta, rs%nonlinear)
     call check_loads_reached(m, rs%ls, rs%dm%inactive)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .true.)
     rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
@@ -151,9 +164,13 @@ contains
     end do
     rs%timing%output = rs%timing%output + (wall_time() - t0)
     rs%inc = 0
-    do i = 1, ninc
-      call advance(m, is, rs, obs, m%steps(is)%period * (i - 1) / ninc, m%steps(is)%period * i / ninc)
-    end do
+    if (rs%nonlinear) then
+      call advance_nonlinear(m, is, rs, obs)
+    else
+      do i = 1, ninc
+        call advance(m, is, rs, obs, m%steps(is)%period * (i - 1) / ninc, m%steps(is)%period * i / ninc)
+      end do
+    end if
     summary%step = is
     summary%increments = rs%inc
     summary%factorisations = rs%eq%factorisations
@@ -165,6 +182,9 @@ contains
     summary%continuum_stresses = rs%eq%counts%continuum_stresses
     summary%coupling = rs%eq%counts%coupling
     summary%wall_seconds = wall_time() - started
+    summary%nonlinear = rs%nonlinear
+    summary%newton_iterations = rs%eq%newton%total
+    summary%cutbacks = rs%cutbacks
     t0 = wall_time()
     do k = 1, size(obs)
       call obs(k)%o%step_finished(summary)
@@ -203,7 +223,7 @@ contains
       if (ok) then
         call commit_increment(rs)
         rs%inc = rs%inc + 1
-        call report(m, is, rs, obs, iv%t1, iters)
+        call report(m, is, rs, obs, iv%t1, iters, iv%t1 - iv%t0)
         cycle
       end if
       ! the statuses and displacements the increment started with (the
@@ -227,14 +247,131 @@ contains
 
   !> Purpose: a converged increment's history becomes the state the next
   !> increment starts from: the one place where state that depends on
-  !> the loading path is committed (today the contact layer's friction
-  !> anchors and slips; a material with history would commit here too).
-  !> An increment that does not converge commits nothing: its bisected
-  !> halves start again from the last committed state.
+  !> the loading path is committed (the contact layer's friction anchors
+  !> and slips; the bodies' material history at their integration
+  !> points, plastic strain and hardening). An increment that does not
+  !> converge commits nothing: its bisected or cut-back parts start again
+  !> from the last committed state.
   subroutine commit_increment(rs)
     type(run_state_t), intent(inout) :: rs
     call contact_commit(rs%cs)
+    if (rs%nonlinear) call commit_history(rs%body)
   end subroutine commit_increment
+
+  !> Purpose: whether step is of model m is solved as a nonlinear one:
+  !> NLGEOM, or a hyperelastic or plastic material in a section.
+  logical function step_is_nonlinear(m, is) result(nl)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is
+    integer :: s
+    nl = m%steps(is)%nlgeom
+    do s = 1, size(m%sections)
+      if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
+      associate(mat => m%materials(m%sections(s)%material))
+        nl = nl .or. mat%law /= law_elastic .or. mat%nyield > 0
+      end associate
+    end do
+  end function step_is_nonlinear
+
+  !> Purpose: a nonlinear step's increments (CalculiX's automatic
+  !> incrementation, its manual "Convergence criteria"; the constants are
+  !> the step's *CONTROLS, here with their defaults): the first is the
+  !> initial increment of *STATIC; after two increments in a row that
+  !> converged in at most I_G = 4 iterations the next is D_D = 1.5 times
+  !> larger, after one that took more than I_L = 10 it is D_B = 0.75
+  !> times smaller, never above the maximum (default the period) nor beyond the
+  !> end of the step; an increment that fails (equilibrium's newton_t:
+  !> divergence, too slow, an inverted element, a contact status that
+  !> does not settle) is cut back by its factor (0.25 or 0.5) and solved
+  !> again from the last committed state. Below the minimum increment
+  !> (default min(initial, 1e-6 period)) the run stops with the reason;
+  !> the increments done are written already. With DIRECT the increments
+  !> are fixed, and a failure stops the run. Under NLGEOM a face pressure
+  !> (*DLOAD P) follows the deformed face, its load stiffness in the
+  !> tangent (load_state's follower_loads, the body's fl_*). Under NLGEOM with contact
+  !> the pairs are searched again on the deformed configuration at the
+  !> start of every increment (as UPDATE SEARCH does).
+  subroutine advance_nonlinear(m, is, rs, obs)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is
+    type(run_state_t), intent(inout) :: rs
+    type(observer_ref_t), intent(in) :: obs(:)
+    type(cfe_t), allocatable :: saved(:)
+    real(dp), allocatable :: u_saved(:, :)
+    real(dp) :: t, dt, dt_try, dt_min, dt_max, period
+    integer :: iters, fast
+    logical :: ok, research_each
+    period = m%steps(is)%period
+    dt = m%steps(is)%dt
+    dt_min = m%steps(is)%dt_min
+    if (dt_min <= 0.0_dp) dt_min = min(dt, 1.0e-6_dp * period)
+    dt_max = m%steps(is)%dt_max
+    if (dt_max <= 0.0_dp) dt_max = period
+    research_each = m%steps(is)%nlgeom .and. size(m%pairs) > 0
+    t = 0.0_dp
+    fast = 0
+    do while (t < period)
+      dt_try = min(dt, period - t)
+      ! a last sliver of the step joins this increment
+      if (period - (t + dt_try) < 1.0e-6_dp * dt_try) dt_try = period - t
+      if ((research_each .or. rs%update_search) .and. rs%inc > 0) call research(m, rs)
+      saved = rs%cs%c(1:rs%cs%n)
+      u_saved = rs%u
+      call values_at(m, rs%ls, t + dt_try, rs%u, rs%fext)
+      ! the free dofs start where the last increment left them
+      where (.not. rs%ls%presc) rs%u = u_saved
+      ! the pressures on the deformed faces (NLGEOM)
+      call follower_loads(m, rs%ls, t + dt_try, rs%body%fl_ptr, rs%body%fl_face, rs%body%fl_mag)
+      if (rs%ls%thermal) then
+        ! the temperatures at the end and at the start of the increment
+        if (.not. allocated(rs%body%dtemp)) allocate(rs%body%dtemp(m%nn), rs%body%dtemp0(m%nn))
+        call temperature_change_at(m, rs%ls, t + dt_try, rs%body%dtemp)
+        call temperature_change_at(m, rs%ls, t, rs%body%dtemp0)
+      end if
+      call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, &
+                           ok, iters, u_saved)
+      if (ok) then
+        call commit_increment(rs)
+        rs%inc = rs%inc + 1
+        t = t + dt_try
+        if (period - t <= 1.0e-12_dp * period) t = period
+        call report(m, is, rs, obs, t, iters, dt_try)
+        if (t >= period) exit
+        if (rs%inc >= m%steps(is)%max_inc) call fatal('step ' // itoa(is) // ': ' // itoa(rs%inc) // &
+          ' increments done at step time ' // rtoa(t, 6) // ' of ' // rtoa(period, 6) // ', the most INC= ' // &
+          'of *STEP allows (default 1000)')
+        if (m%steps(is)%direct) cycle
+        if (iters <= m%steps(is)%controls%ig) then
+          fast = fast + 1
+        else
+          fast = 0
+        end if
+        if (iters > m%steps(is)%controls%il) then
+          dt = m%steps(is)%controls%db * dt_try
+        else if (fast >= 2) then
+          dt = m%steps(is)%controls%dd * dt_try
+        else
+          dt = max(dt, dt_try)
+        end if
+        dt = min(max(dt, dt_min), dt_max)
+        cycle
+      end if
+      ! nothing of the failed attempt is kept
+      rs%cs%c(1:rs%cs%n) = saved
+      rs%u = u_saved
+      fast = 0
+      rs%cutbacks = rs%cutbacks + 1
+      if (m%steps(is)%direct) call fatal('step ' // itoa(is) // ', increment ' // itoa(rs%inc + 1) // ' (to step ' // &
+        'time ' // rtoa(t + dt_try, 6) // '): ' // rs%eq%newton%reason // '; the increments are fixed (DIRECT on ' // &
+        '*STATIC): a smaller initial increment, or automatic increments (no DIRECT), may converge')
+      dt = dt_try * rs%eq%newton%cut
+      if (dt < dt_min) call fatal('step ' // itoa(is) // ', increment ' // itoa(rs%inc + 1) // ': ' // &
+        rs%eq%newton%reason // '; the increment cut back to ' // rtoa(dt, 4) // ' is below the minimum ' // &
+        rtoa(dt_min, 4) // ' (*STATIC): no convergence at step time ' // rtoa(t, 6) // &
+        '; the increments before are written')
+      call tell_note(obs, rs%eq%newton%reason // ': increment cut back to ' // rtoa(dt, 4))
+    end do
+  end subroutine advance_nonlinear
 
   !> UPDATE SEARCH: the contact layer pairs again on the deformed
   !> configuration; the equations are renumbered for the new couplings.
@@ -244,19 +381,19 @@ contains
     real(dp) :: t0, ta
     t0 = wall_time()
     call contact_research(m, m%x + rs%u, rs%cs)
-    call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta)
+    call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta, rs%nonlinear)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .false.)
     rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
     rs%timing%analyse = rs%timing%analyse + ta
   end subroutine research
 
   !> The results of a converged increment, computed once, to every observer.
-  subroutine report(m, is, rs, obs, t, iters)
+  subroutine report(m, is, rs, obs, t, iters, dt)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, iters
     type(run_state_t), intent(inout) :: rs
     type(observer_ref_t), intent(in) :: obs(:)
-    real(dp), intent(in) :: t
+    real(dp), intent(in) :: t, dt
     type(increment_results_t) :: res
     integer :: k
     real(dp) :: t0, t1
@@ -266,10 +403,10 @@ contains
       allocate(dtemp(m%nn))
       call temperature_change_at(m, rs%ls, t, dtemp)
       call compute_increment_results(m, is, rs%inc, t, rs%total_time + t, iters, rs%u, rs%rf, rs%cs, &
-                                     rs%ls%set_ids, res, rs%eq%counts, dtemp)
+                                     rs%ls%set_ids, res, rs%eq%counts, dtemp, rs%body, dt)
     else
       call compute_increment_results(m, is, rs%inc, t, rs%total_time + t, iters, rs%u, rs%rf, rs%cs, &
-                                     rs%ls%set_ids, res, rs%eq%counts)
+                                     rs%ls%set_ids, res, rs%eq%counts, body=rs%body, dt=dt)
     end if
     t1 = wall_time()
     do k = 1, size(obs)

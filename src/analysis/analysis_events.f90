@@ -31,6 +31,10 @@ module analysis_events
     integer :: block_pivots = 0, single_pivots = 0           ! of the contact status search (contact_status)
     integer(kind=8) :: continuum_tangent = 0, continuum_stresses = 0, coupling = 0   ! element routine calls
     real(dp) :: wall_seconds = 0.0_dp
+    !> A nonlinear step: its Newton iterations (of every attempt) and the
+    !> increments cut back.
+    logical :: nonlinear = .false.
+    integer :: newton_iterations = 0, cutbacks = 0
   end type step_summary_t
 
   !> The solver of a step, once its first factorisation is done.

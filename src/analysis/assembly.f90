@@ -1,10 +1,17 @@
-!> The element arrays of the bodies and their assembly. The bodies are
-!> linear elastic with small deformations, so their element stiffness
+!> The element arrays of the bodies and their assembly. In a linear step
+!> (small deformation, linear elastic materials) the element stiffness
 !> matrices are computed once and kept (`body_t`); internal forces are
 !> then ke * ue, and only the coupling elements are evaluated again as the
-!> contact status changes. Stresses are computed by the element routines
-!> once per converged increment. A thermal strain enters as a load
-!> (`thermal_forces`) and in the stresses; the stiffness does not change.
+!> contact status changes. In a nonlinear step (NLGEOM, a hyperelastic or
+!> plastic material; body_t%nonlinear) every body element is evaluated by
+!> its routine at the current displacements: its tangent for the
+!> assembly, its internal force and its trial history for the residual;
+!> the history committed by the last converged increment is kept per
+!> element and integration point (body_t%hist) and replaced by the trial
+!> one only by commit_history. Stresses are computed by the element
+!> routines once per converged increment. A thermal strain enters as a
+!> load (`thermal_forces`) and in the stresses; the stiffness does not
+!> change.
 module assembly
   use kinds, only: dp
   use strings, only: itoa
@@ -12,7 +19,10 @@ module assembly
   use model
   use element_catalogue, only: catalogue
   use contact, only: contact_set_t, cfe_input
-  use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses, act_thermal
+  use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses, act_thermal, &
+                               act_residual, max_hist
+  use element_catalogue, only: max_ip, max_nodes
+  use distributed_loads, only: follower_pressure_load
   use element_library, only: element_routine
   use body_elements, only: body_input, body_alpha
   use linear_solver, only: linear_system_t, sys_zero, sys_add
@@ -20,7 +30,8 @@ module assembly
   implicit none
   private
   public :: body_t, element_counts_t, body_setup, assemble_stiffness, body_forces, free_residual, &
-            stress_recovery, thermal_forces
+            stress_recovery, thermal_forces, nonlinear_body_forces, commit_history, nonlinear_model, &
+            body_predictor_forces
 
   !> Stored element stiffness of every body element: the upper
   !> triangle of the symmetric nd x nd matrix of element e, column by
@@ -29,6 +40,43 @@ module assembly
     integer(kind=8), allocatable :: kptr(:)
     real(dp), allocatable :: ke(:)
     real(dp) :: kmax = 0.0_dp     ! largest diagonal entry of an element matrix
+    !> The current step is nonlinear: element routines at the current u
+    !> (nlgeom: with large deformation).
+    logical :: nonlinear = .false., nlgeom = .false.
+    !> History at the integration points (max_hist, max_ip, ne): hist as
+    !> committed by the last converged increment, hist_trial at the last
+    !> evaluation of the internal forces; peeq and peeq_trial (max_ip, ne)
+    !> the equivalent plastic strain likewise. Allocated once the model is
+    !> known to have a nonlinear step.
+    real(dp), allocatable :: hist(:, :, :), hist_trial(:, :, :), peeq(:, :), peeq_trial(:, :)
+    !> the committed history before the last commit: the tangent at a
+    !> converged state is the one of its last iteration (assemble_stiffness
+    !> with converged, body_predictor_forces)
+    real(dp), allocatable :: hist_old(:, :, :)
+    !> The last evaluation at u met an element that cannot be evaluated
+    !> there (an inverted element, det F <= 0, or a number that is not
+    !> finite): bad_elem is it (0: none). The increment is cut back.
+    integer :: bad_elem = 0
+    !> Nodal temperature changes at the time of the increment being solved
+    !> (nn; allocated only when the model has thermal strain): in a
+    !> nonlinear step the element routines take them into their internal
+    !> force.
+    real(dp), allocatable :: dtemp(:)
+    !> ... and at the converged state the increment starts from (the
+    !> first iteration is linearised about it, body_predictor_forces).
+    real(dp), allocatable :: dtemp0(:)
+    !> Follower pressures of a NLGEOM step (*DLOAD P on the deformed
+    !> faces), set by the driver for the increment being solved: load k
+    !> acts on face fl_face(k) of element fl_elem(k) with magnitude
+    !> fl_mag(k); those of element e are k = fl_ptr(e) .. fl_ptr(e+1)-1.
+    !> Their forces enter the internal force with the opposite sign (f_int
+    !> - f_p(u)) and their load stiffness the tangent (K_T - p dfp/du).
+    integer, allocatable :: fl_ptr(:), fl_face(:)
+    real(dp), allocatable :: fl_mag(:)
+    !> CalculiX's average force q-bar of the last evaluation: the mean
+    !> |f| over the element dofs of the body elements (its manual,
+    !> "Convergence criteria").
+    real(dp) :: average_force = 0.0_dp
   end type body_t
 
   !> How often element routines ran, by purpose.
@@ -39,11 +87,15 @@ module assembly
 contains
 
   !> Purpose: f = f + the equivalent nodal loads of the thermal strain of
-  !> every body element at nodal temperature changes dtemp(nn).
-  subroutine thermal_forces(m, dtemp, f)
+  !> every body element at nodal temperature changes dtemp(nn). Under
+  !> NLGEOM (nlgeom) and with a plastic material the element routines
+  !> take the thermal strain into their internal force instead (their
+  !> act_thermal gives zero): the body's dtemp carries it there.
+  subroutine thermal_forces(m, dtemp, f, nlgeom)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: dtemp(:)
     real(dp), intent(inout) :: f(:, :)
+    logical, intent(in) :: nlgeom
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, k, nodes(max_en)
@@ -53,7 +105,7 @@ contains
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
       if (body_alpha(m, e) == 0.0_dp) cycle
-      call body_input(m, e, u0, ein, nodes, dtemp)
+      call body_input(m, e, u0, ein, nodes, dtemp, nlgeom=nlgeom)
       if (all(ein%dtemp(1:ein%nen) == 0.0_dp)) cycle
       call element_routine(act_thermal, ein, eout)
       do k = 1, ein%nen
@@ -96,7 +148,87 @@ contains
         body%kmax = max(body%kmax, abs(eout%ke(j, j)))
       end do
     end do
+    if (nonlinear_model(m)) then
+      allocate(body%hist(max_hist, max_ip, m%ne), body%peeq(max_ip, m%ne))
+      body%hist = 0.0_dp
+      body%peeq = 0.0_dp
+      body%hist_trial = body%hist
+      body%hist_old = body%hist
+      body%peeq_trial = body%peeq
+    end if
   end subroutine body_setup
+
+  !> Purpose: whether some step of model m is nonlinear: NLGEOM, or a
+  !> hyperelastic or plastic material in a section.
+  pure logical function nonlinear_model(m)
+    type(model_t), intent(in) :: m
+    integer :: s
+    nonlinear_model = .false.
+    if (allocated(m%steps)) nonlinear_model = any(m%steps%nlgeom)
+    if (.not. (allocated(m%sections) .and. allocated(m%materials))) return
+    do s = 1, size(m%sections)
+      if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
+      associate(mat => m%materials(m%sections(s)%material))
+        nonlinear_model = nonlinear_model .or. mat%law /= law_elastic .or. mat%nyield > 0
+      end associate
+    end do
+  end function nonlinear_model
+
+  !> Purpose: the trial history of the last evaluation (at the converged
+  !> displacements) becomes the committed one: called once per converged
+  !> increment, by the driver's commit_increment.
+  subroutine commit_history(body)
+    type(body_t), intent(inout) :: body
+    if (.not. allocated(body%hist)) return
+    body%hist_old = body%hist
+    body%hist = body%hist_trial
+    body%peeq = body%peeq_trial
+  end subroutine commit_history
+
+  !> Purpose: internal forces of the bodies at u in a nonlinear step: every
+  !> body element's routine at u with its committed history (act_residual);
+  !> their trial history and plastic strain are kept (body%hist_trial),
+  !> the average force q-bar too. An element that cannot be evaluated at u
+  !> (det F <= 0 or a force that is not finite) sets body%bad_elem.
+  subroutine nonlinear_body_forces(m, body, u, fint, counts)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(inout) :: body
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(out) :: fint(:, :)
+    type(element_counts_t), intent(inout) :: counts
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: e, k, nd, nodes(max_en), ndof_total
+    real(dp) :: fsum, ke_dummy(1, 1)
+    fint = 0.0_dp
+    body%bad_elem = 0
+    fsum = 0.0_dp
+    ndof_total = 0
+    do e = 1, m%ne
+      if (.not. carries_stiffness(m, e)) cycle
+      if (allocated(body%dtemp)) then
+        call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      else
+        call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      end if
+      call element_routine(act_residual, ein, eout)
+      counts%continuum_tangent = counts%continuum_tangent + 1
+      nd = eout%ndof
+      if (.not. (eout%detj_min > 0.0_dp .and. all(abs(eout%fe(1:nd)) <= huge(1.0_dp)))) then
+        if (body%bad_elem == 0) body%bad_elem = e
+        cycle
+      end if
+      body%hist_trial(:, :, e) = eout%hist
+      body%peeq_trial(:, e) = eout%peeq_ip
+      fsum = fsum + sum(abs(eout%fe(1:nd)))
+      ndof_total = ndof_total + nd
+      if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, eout%fe, ke_dummy, .false.)
+      do k = 1, ein%nen
+        fint(:, nodes(k)) = fint(:, nodes(k)) + eout%fe(2 * k - 1:2 * k)
+      end do
+    end do
+    body%average_force = fsum / max(ndof_total, 1)
+  end subroutine nonlinear_body_forces
 
   !> The upper triangle of a symmetric matrix, column by column.
   pure subroutine pack_upper(a, p)
@@ -126,13 +258,95 @@ contains
     end do
   end subroutine unpack_upper
 
+  !> Purpose: the first iteration of a nonlinear increment whose
+  !> prescribed displacements moved by du from the converged u0: the
+  !> bodies' internal forces linearised about u0, f = f_int(u0) + K_T(u0)
+  !> du (overwritten), so that the first solve spreads the prescribed
+  !> motion through the body by the tangent instead of meeting it in the
+  !> elements next to the prescribed nodes only (which a large step could
+  !> invert). Both are those of the last iteration of the increment that
+  !> converged at u0 (from the history before its commit, body%hist_old):
+  !> evaluated from the committed history at u0 itself, a point on the
+  !> yield surface would be elastic or plastic by round-off, and the
+  !> builds would take different first iterations.
+  subroutine body_predictor_forces(m, body, u0, du, f, counts)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    real(dp), intent(in) :: u0(:, :), du(:, :)
+    real(dp), intent(out) :: f(:, :)
+    type(element_counts_t), intent(inout) :: counts
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: e, k, nd, nodes(max_en)
+    real(dp) :: due(2 * max_en), fe(2 * max_en)
+    f = 0.0_dp
+    do e = 1, m%ne
+      if (.not. carries_stiffness(m, e)) cycle
+      if (allocated(body%dtemp0)) then
+        call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
+      else
+        call body_input(m, e, u0, ein, nodes, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
+      end if
+      call element_routine(ior(act_tangent, act_residual), ein, eout)
+      counts%continuum_tangent = counts%continuum_tangent + 1
+      nd = eout%ndof
+      do k = 1, ein%nen
+        due(2 * k - 1:2 * k) = du(:, nodes(k))
+      end do
+      if (allocated(body%fl_ptr)) then
+        call follower_part(m, body, e, u0, eout%fe, eout%ke, .true.)
+        call follower_part(m, body, e, u0, eout%fe, eout%ke, .false.)
+      end if
+      fe(1:nd) = eout%fe(1:nd) + matmul(eout%ke(1:nd, 1:nd), due(1:nd))
+      do k = 1, ein%nen
+        f(:, nodes(k)) = f(:, nodes(k)) + fe(2 * k - 1:2 * k)
+      end do
+    end do
+  end subroutine body_predictor_forces
+
+  !> Purpose: the follower pressures on element e at u (body%fl_*): with
+  !> tangent, ke = ke - sum p dfp/du (the load stiffness); otherwise fe =
+  !> fe - sum p fp(u) (the pressure's forces on the deformed faces, taken
+  !> into the internal force). fp and its stiffness come from
+  !> distributed_loads' follower_pressure_load (per unit pressure).
+  subroutine follower_part(m, body, e, u, fe, ke, tangent)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    integer, intent(in) :: e
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(inout) :: fe(:), ke(:, :)
+    logical, intent(in) :: tangent
+    real(dp) :: fp(2, max_nodes), kl(2 * max_nodes, 2 * max_nodes), xy(2, max_nodes), ue(2, max_nodes)
+    integer :: k, nen, nd, a
+    if (body%fl_ptr(e + 1) == body%fl_ptr(e)) return
+    nen = elem_nodes(m, e)
+    nd = 2 * nen
+    xy(:, 1:nen) = m%x(:, m%conn(1:nen, e))
+    ue(:, 1:nen) = u(:, m%conn(1:nen, e))
+    do k = body%fl_ptr(e), body%fl_ptr(e + 1) - 1
+      call follower_pressure_load(m%etype(e), xy(:, 1:nen), ue(:, 1:nen), elem_thickness(m, e), body%fl_face(k), &
+                                  fp, kl)
+      if (tangent) then
+        ke(1:nd, 1:nd) = ke(1:nd, 1:nd) - body%fl_mag(k) * kl(1:nd, 1:nd)
+      else
+        do a = 1, nen
+          fe(2 * a - 1:2 * a) = fe(2 * a - 1:2 * a) - body%fl_mag(k) * fp(:, a)
+        end do
+      end if
+    end do
+  end subroutine follower_part
+
   !> Purpose: the stiffness of the current contact status into sys: the
-  !> stored body matrices plus the tangent of every CFE.
+  !> stored body matrices (in a nonlinear step the element tangents at u;
+  !> with converged, u is the converged state an increment starts from and
+  !> the tangent that of its last iteration, from body%hist_old) plus the
+  !> tangent of every CFE.
   !> Arguments: kmax returns the largest diagonal entry of any element
-  !> matrix (a stiffness scale for the residual test); dm the numbering
+  !> matrix (a stiffness scale for the residual test; in a nonlinear step
+  !> the largest entry of any, huge if one is not finite); dm the numbering
   !> the system was set up for (its constraints transform the groups that
   !> touch a dependent dof).
-  subroutine assemble_stiffness(m, cs, body, u, sys, kmax, counts, dm)
+  subroutine assemble_stiffness(m, cs, body, u, sys, kmax, counts, dm, converged)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     type(body_t), intent(in) :: body
@@ -141,18 +355,40 @@ contains
     real(dp), intent(out) :: kmax
     type(element_counts_t), intent(inout) :: counts
     type(dofmap_t), intent(in) :: dm
+    logical, intent(in), optional :: converged
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, j, nd, nodes(max_en)
-    real(dp) :: ke(2 * max_en, 2 * max_en)
+    real(dp) :: ke(2 * max_en, 2 * max_en), fe_dummy(2 * max_en)
+    logical :: at_converged
+    at_converged = .false.
+    if (present(converged)) at_converged = converged
     call sys_zero(sys)
+    kmax = body%kmax
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
       nd = 2 * elem_nodes(m, e)
-      call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
+      if (body%nonlinear) then
+        ! the consistent tangent at u with the committed history
+        if (allocated(body%dtemp)) then
+          call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+        else
+          call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+        end if
+        ! at the converged state the increment starts from: its last iteration's tangent
+        if (at_converged) ein%hist = body%hist_old(:, :, e)
+        call element_routine(act_tangent, ein, eout)
+        counts%continuum_tangent = counts%continuum_tangent + 1
+        ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd)
+        if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, fe_dummy, ke, .true.)
+        ! every entry (a tangent that overflows is caught by the iteration)
+        kmax = max(kmax, maxval(abs(ke(1:nd, 1:nd))))
+        if (.not. kmax <= huge(1.0_dp)) kmax = huge(1.0_dp)
+      else
+        call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
+      end if
       call add_group(sys, dm, e, m%conn(1:nd / 2, e), ke(1:nd, 1:nd))
     end do
-    kmax = body%kmax
     do e = 1, cs%n
       call cfe_input(m, cs%c(e), u, cs%stabilised, ein, nodes)
       call element_routine(act_tangent, ein, eout)
@@ -239,11 +475,16 @@ contains
   !> elements that share the node (nodes are never shared across bodies,
   !> so this is an average per body).
   !> Arguments: nip(ne), sig_ip(4, max_ip, ne), eps_ip(3, max_ip, ne),
-  !> sig_node(4, nn); dtemp(nn) the nodal temperature changes if any.
-  subroutine stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node, counts, dtemp)
+  !> sig_node(4, nn); dtemp(nn) the nodal temperature changes if any;
+  !> body, in a nonlinear step, gives NLGEOM and the committed history
+  !> (the stresses are then Cauchy stresses); peeq_ip(max_ip, ne) returns
+  !> the equivalent plastic strain.
+  subroutine stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node, counts, dtemp, body, peeq_ip)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(in), optional :: dtemp(:)
+    type(body_t), intent(in), optional :: body
+    real(dp), intent(out), optional :: peeq_ip(:, :)
     integer, intent(out) :: nip(:)
     real(dp), intent(out) :: sig_ip(:, :, :), eps_ip(:, :, :), sig_node(:, :)
     type(element_counts_t), intent(inout) :: counts
@@ -259,9 +500,14 @@ contains
     sig_node = 0.0_dp
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
-      call body_input(m, e, u, ein, nodes, dtemp)
+      if (present(body)) then
+        call body_input(m, e, u, ein, nodes, dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+      else
+        call body_input(m, e, u, ein, nodes, dtemp)
+      end if
       call element_routine(act_stresses, ein, eout)
       counts%continuum_stresses = counts%continuum_stresses + 1
+      if (present(peeq_ip)) peeq_ip(:, e) = eout%peeq_ip
       nip(e) = eout%nip
       sig_ip(:, 1:eout%nip, e) = eout%sig_ip(:, 1:eout%nip)
       eps_ip(:, 1:eout%nip, e) = eout%eps_ip(:, 1:eout%nip)

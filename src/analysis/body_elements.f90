@@ -8,7 +8,8 @@ module body_elements
   use kinds, only: dp
   use model, only: model_t, elem_nodes, elem_thickness, is_truss
   use element_catalogue, only: catalogue
-  use element_interface, only: elem_in_t
+  use element_interface, only: elem_in_t, max_hist
+  use element_catalogue, only: max_ip
   implicit none
   private
   public :: body_input, body_alpha
@@ -17,12 +18,19 @@ contains
 
   !> Purpose: element data of body element e at displacements u and, if
   !> given, nodal temperature changes dtemp(nn) from the initial state.
-  !> Arguments: nodes returns the element's nodes (ein%nen of them).
-  pure subroutine body_input(m, e, u, ein, nodes, dtemp)
+  !> The material's law, hyperelastic constants and hardening curve are
+  !> always passed (a linear elastic material has law_elastic and no
+  !> curve, and its element routine takes the linear path).
+  !> Arguments: nodes returns the element's nodes (ein%nen of them);
+  !> nlgeom, if given, the step's large-deformation switch and hist the
+  !> element's committed history at its integration points.
+  pure subroutine body_input(m, e, u, ein, nodes, dtemp, nlgeom, hist)
     type(model_t), intent(in) :: m
     integer, intent(in) :: e
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(in), optional :: dtemp(:)
+    logical, intent(in), optional :: nlgeom
+    real(dp), intent(in), optional :: hist(max_hist, max_ip)
     type(elem_in_t), intent(out) :: ein
     integer, intent(out) :: nodes(:)
     integer :: k, nen
@@ -44,6 +52,21 @@ contains
       end if
       ein%e = m%materials(sec%material)%e
       ein%nu = m%materials(sec%material)%nu
+      associate(mat => m%materials(sec%material))
+        ein%law = mat%law
+        ein%c10 = mat%c10
+        ein%c01 = mat%c01
+        ein%d1 = mat%d1
+        ein%nyield = mat%nyield
+        if (mat%nyield > 0) ein%yield(:, 1:mat%nyield) = mat%yield(:, 1:mat%nyield)
+      end associate
+      if (present(nlgeom)) ein%nlgeom = nlgeom
+      ! (elem_in_t's history has no default: a plastic law reads it)
+      if (present(hist)) then
+        ein%hist = hist
+      else if (m%materials(sec%material)%nyield > 0) then
+        ein%hist = 0.0_dp
+      end if
       if (is_truss(m, e)) then
         ein%area = sec%thickness
       else

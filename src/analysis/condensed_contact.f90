@@ -91,8 +91,12 @@ contains
   !> sparse one of the whole (m comparable to n).
   !> Arguments: mpc the linear constraints (their dependent dofs
   !> eliminated); t_analyse returns the wall time of the symbolic analysis
-  !> done here to decide (0 when none was needed).
-  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse)
+  !> done here to decide (0 when none was needed); nonlinear, if true,
+  !> asks for the full solve with UMFPACK (a nonlinear step: the bodies'
+  !> stiffness changes with u, so there is no factor of them to condense
+  !> with, and their tangent may be unsymmetric, F-bar and follower
+  !> pressures, or indefinite).
+  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse, nonlinear)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
@@ -101,14 +105,19 @@ contains
     type(linear_system_t), intent(inout) :: sys
     type(condensed_t), intent(inout) :: cd
     real(dp), intent(out) :: t_analyse
+    logical, intent(in), optional :: nonlinear
     logical, allocatable :: mask(:, :)
     integer :: mc, solver
     real(dp) :: flops
     integer(kind=8) :: c0, c1, rate
+    logical :: want_full, nl
     t_analyse = 0.0_dp
     cd%active = .false.
     cd%m = 0
-    if (m%contact_solve /= contact_solve_full .and. m%solver == solver_cholmod .and. cs%n > 0) then
+    nl = .false.
+    if (present(nonlinear)) nl = nonlinear
+    want_full = m%contact_solve == contact_solve_full .or. nl
+    if (.not. want_full .and. m%solver == solver_cholmod .and. cs%n > 0) then
       call contact_dof_mask(m, cs, prescribed, mpc, mask)
       mc = count(mask)
       if (mc > 0) then
@@ -132,7 +141,7 @@ contains
     ! symmetric backends (CHOLMOD, skyline) keep one triangle, so the full
     ! solve of a frictional model takes UMFPACK, which keeps both.
     solver = m%solver
-    if (frictional_set(cs)) solver = solver_umfpack
+    if (frictional_set(cs) .or. nl) solver = solver_umfpack
     call number_dofs(m, cs, prescribed, solver, m%ordering, dm, sys, constraints=mpc)
   end subroutine number_equations
 

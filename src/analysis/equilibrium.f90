@@ -10,16 +10,19 @@
 !> stabilise a body held only by open contact the same way and tell the
 !> observers the same events.
 module equilibrium
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
-  use model, only: model_t
-  use contact, only: contact_set_t, status_codes
+  use strings, only: itoa
+  use model, only: model_t, elem_label, node_label
+  use contact, only: contact_set_t, status_codes, contact_forces
   use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
-  use assembly, only: body_t, assemble_stiffness, free_residual
+  use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
                                 report_iteration, describe, singular, contact_force_scale, take_back, &
-                                stabilise_open, set_aside_or_stop
+                                stabilise_open, set_aside_or_stop, newton_begin, newton_test, newton_converged, &
+                                newton_failed
   use condensed_equilibrium, only: solve_condensed
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
   use messages, only: warn
@@ -27,18 +30,23 @@ module equilibrium
   private
   public :: equilibrium_t, begin_equilibrium, solve_increment
 
+  !> The largest element tangent entry a nonlinear step accepts.
+  real(dp), parameter :: tangent_limit = 1.0e250_dp
+
 contains
 
   !> Purpose: equilibrium at the prescribed values and loads already in u
   !> and fext (the dependent dofs of constraints are set from them here).
   !> On return u holds the solution, rf = T^T (f_int - f_ext) (the
   !> reactions at prescribed dofs; zero at dependent dofs), ok whether it converged and iters the
-  !> iterations used.
-  subroutine solve_increment(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
+  !> iterations used. u_from, in a nonlinear step, is the converged state
+  !> the increment starts from (u has its free dofs and the new prescribed
+  !> values): the first iteration is linearised about it.
+  subroutine solve_increment(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc
-    type(body_t), intent(in) :: body
+    type(body_t), intent(inout) :: body
     type(contact_set_t), intent(inout) :: cs
     type(dofmap_t), intent(in) :: dm
     type(linear_system_t), intent(inout) :: sys
@@ -48,6 +56,7 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: ok
     integer, intent(out) :: iters
+    real(dp), intent(in), optional :: u_from(:, :)
     real(dp) :: t0, parts
     t0 = wall_time()
     parts = timed_parts(eq%timing)
@@ -55,7 +64,7 @@ contains
       call solve_condensed(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
       eq%timing%condensed = eq%timing%condensed + (wall_time() - t0) - (timed_parts(eq%timing) - parts)
     else
-      call solve_full(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
+      call solve_full(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from)
       eq%timing%solve = eq%timing%solve + (wall_time() - t0) - (timed_parts(eq%timing) - parts)
     end if
   end subroutine solve_increment
@@ -67,11 +76,21 @@ contains
   end function timed_parts
 
   !> solve_increment by factoring the whole stiffness of every status.
-  subroutine solve_full(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
+  !> In a nonlinear step (body%nonlinear) the same loop is Newton's method:
+  !> the tangent of the bodies at u is assembled and factored in every
+  !> iteration (full Newton: the consistent tangent converges
+  !> quadratically, and a factorisation costs little next to the element
+  !> evaluations in 2D), the contact status search goes on inside it, and
+  !> the increment has converged when no status changes and CalculiX's
+  !> force and displacement tests pass (newton_test). It fails (ok false,
+  !> eq%newton%cut and reason say how and why) on divergence, on too slow
+  !> a convergence, on an element that cannot be evaluated at u or on a
+  !> displacement that is not finite; the driver then cuts the increment.
+  subroutine solve_full(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc       ! step, and the increment being solved
-    type(body_t), intent(in) :: body
+    type(body_t), intent(inout) :: body
     type(contact_set_t), intent(inout) :: cs
     type(dofmap_t), intent(in) :: dm
     type(linear_system_t), intent(inout) :: sys
@@ -81,23 +100,67 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: ok
     integer, intent(out) :: iters
-    real(dp), allocatable :: fint(:, :)
+    real(dp), intent(in), optional :: u_from(:, :)
+    real(dp), allocatable :: fint(:, :), u_start(:, :)
     integer :: it, a, d, nchanged, naug
-    logical :: restabilised, usable
-    real(dp) :: scale, energy
+    logical :: restabilised, usable, converged, predict
+    real(dp) :: scale, energy, c_max
     allocate(fint(2, m%nn))
     ok = .false.
     cs%stabilised = .false.
     eq%stabilisation_used = .false.
     call expand_dependent(dm, u)
-    call internal_forces(m, body, cs, u, fint, eq%counts)
+    predict = .false.
+    if (body%nonlinear) then
+      call newton_begin(eq%newton)
+      if (present(u_from)) then
+        u_start = u_from
+        predict = any(u /= u_from)
+      else
+        u_start = u
+      end if
+    end if
+    if (predict) then
+      ! f_int linearised about the converged state (body_predictor_forces)
+      call body_predictor_forces(m, body, u_from, u - u_from, fint, eq%counts)
+      call contact_forces(m, cs, u, fint, eq%counts%coupling)
+      body%bad_elem = 0
+    else
+      call internal_forces(m, body, cs, u, fint, eq%counts)
+    end if
     call begin_status_search(eq%search)
     it = 0
     naug = 0
     ! MAXIT counts the iterations of each status search
     do while (eq%search%iterations < m%contact_max_iter)
       it = it + 1
-      call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable)
+      if (body%nonlinear) then
+        if (body%bad_elem > 0) then
+          call newton_failed(eq%newton, eq%newton%ctl%df, 'element ' // elem_label(m, body%bad_elem) // &
+                             ' is inverted or cannot be evaluated at the displacements of the iteration')
+          exit
+        end if
+        ! the tangent at the current displacements
+        eq%factor_valid = .false.
+      end if
+      if (predict .and. it == 1) then
+        call factor_if_needed(eq, m, is, body, cs, dm, u_from, sys, obs, restabilised, usable, .true.)
+      else
+        ! (the first iteration of a load-controlled increment is at the converged state)
+        call factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable, &
+                              body%nonlinear .and. it == 1 .and. present(u_from))
+      end if
+      if (body%nonlinear .and. eq%kmax > tangent_limit) then
+        ! entries this large sum to overflow in the assembled matrix
+        call newton_failed(eq%newton, eq%newton%ctl%df, 'the tangent stiffness overflows (an element entry ' // &
+                           'beyond 1e250: a thickness, modulus or displacement out of range?)')
+        exit
+      end if
+      if (.not. usable .and. eq%newton%singular) then
+        call newton_failed(eq%newton, eq%newton%ctl%df, 'the tangent stiffness is singular' // &
+                           singular_where(m, dm, eq%bad) // ' (a limit load, or a missing support)')
+        exit
+      end if
       if (.not. usable) then
         call take_back(eq, m, cs, dm, obs)
         call internal_forces(m, body, cs, u, fint, eq%counts)
@@ -106,13 +169,24 @@ contains
       if (restabilised) call internal_forces(m, body, cs, u, fint, eq%counts)
       call free_residual(dm, fext, fint, eq%rhs)
       call sys_solve(sys, eq%rhs)
+      c_max = 0.0_dp
       do a = 1, m%nn
         do d = 1, 2
-          if (dm%eq(d, a) > 0) u(d, a) = u(d, a) + eq%rhs(dm%eq(d, a))
+          if (dm%eq(d, a) > 0) then
+            u(d, a) = u(d, a) + eq%rhs(dm%eq(d, a))
+            c_max = max(c_max, abs(eq%rhs(dm%eq(d, a))))
+          end if
         end do
       end do
       call expand_dependent(dm, u)
-      call check_finite(m, is, inc, u)
+      if (body%nonlinear) then
+        if (.not. all(ieee_is_finite(u))) then
+          call newton_failed(eq%newton, eq%newton%ctl%df, 'the displacements are not finite numbers')
+          exit
+        end if
+      else
+        call check_finite(m, is, inc, u)
+      end if
       call internal_forces(m, body, cs, u, fint, eq%counts, energy)
       ! the potential energy of this status's solution, eqs. (1) and (9)
       energy = energy - sum(fext * u) + contact_energy(cs)
@@ -123,6 +197,23 @@ contains
       call reduce_dependent(dm, rf)
       eq%residual = relative_residual(dm, cs, fext, u, rf, eq%kmax, eq%force_history, scale)
       eq%iterations = eq%iterations + 1
+      if (body%nonlinear) then
+        eq%newton%it = eq%newton%it + 1
+        eq%newton%attempt = eq%newton%attempt + 1
+        eq%newton%total = eq%newton%total + 1
+        if (nchanged > 0) then
+          eq%newton%it = 0
+          eq%newton%changes = eq%newton%changes + 1
+        end if
+        if (body%bad_elem == 0) then
+          call newton_test(eq%newton, body%average_force, max_free(dm, rf), c_max, maxval(abs(u - u_start)), &
+                           converged, eq%residual)
+          if (eq%newton%cut < 1.0_dp .and. (nchanged == 0 .or. &
+              eq%newton%attempt >= eq%newton%ctl%ic + eq%newton%changes)) exit
+        else
+          converged = .false.
+        end if
+      end if
       call report_iteration(eq, cs, obs, it, nchanged)
       if (nchanged == 0 .and. cs%stabilised) then
         ! settled while stabilised: a new search with the nominal open penalty
@@ -131,6 +222,26 @@ contains
         call internal_forces(m, body, cs, u, fint, eq%counts)
         call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
                             'iterating on with the nominal one')
+        cycle
+      end if
+      if (body%nonlinear) then
+        if (nchanged == 0 .and. converged .and. naug < max_augmentations) then
+          ! exact enforcement under Newton: the multipliers updated at the
+          ! converged state, the iteration on
+          if (augment_multipliers(cs, contact_force_scale(eq, cs, norm2(fext)))) then
+            naug = naug + 1
+            call internal_forces(m, body, cs, u, fint, eq%counts)
+            call begin_status_search(eq%search)
+            cycle
+          end if
+        end if
+        if (nchanged == 0 .and. converged) then
+          ok = .true.
+          iters = it
+          eq%force_history = max(eq%force_history, scale)
+          call newton_converged(eq%newton)
+          return
+        end if
         cycle
       end if
       if (nchanged == 0 .and. eq%residual < m%contact_tolerance .and. naug < max_augmentations) then
@@ -150,7 +261,29 @@ contains
       end if
     end do
     iters = it
+    if (body%nonlinear .and. eq%newton%cut >= 1.0_dp) call newton_failed(eq%newton, eq%newton%ctl%dc, &
+      'the contact status did not settle in ' // itoa(m%contact_max_iter) // ' iterations')
   end subroutine solve_full
+
+  !> ' at node N, dof D' for equation bad of the numbering (empty if none).
+  function singular_where(m, dm, bad) result(s)
+    type(model_t), intent(in) :: m
+    type(dofmap_t), intent(in) :: dm
+    integer, intent(in) :: bad
+    character(len=:), allocatable :: s
+    s = ''
+    if (bad > 0 .and. bad <= dm%neq) s = ' at node ' // node_label(m, dm%node_of_eq(bad)) // ', dof ' // &
+                                         itoa(dm%dof_of_eq(bad))
+  end function singular_where
+
+  !> The largest residual force on a free dof (r_max): rf holds f_int -
+  !> f_ext reduced to the independent dofs.
+  pure real(dp) function max_free(dm, rf) result(r)
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: rf(:, :)
+    r = maxval(abs(rf), mask=dm%eq > 0)
+    r = max(r, 0.0_dp)
+  end function max_free
 
   !> Assembles and factors the stiffness unless the factor in hand was made
   !> for the current contact status. A singular stiffness with open CFEs
@@ -159,28 +292,41 @@ contains
   !> the stabilisation was used already and the status comes from a pivot
   !> of the search, usable is false (the pivot is to be taken back);
   !> otherwise a singular stiffness stops the run.
-  subroutine factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable)
+  subroutine factor_if_needed(eq, m, is, body, cs, dm, u, sys, obs, restabilised, usable, converged)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
-    type(body_t), intent(in) :: body
+    type(body_t), intent(inout) :: body
     type(contact_set_t), intent(inout) :: cs
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: u(:, :)
     type(linear_system_t), intent(inout) :: sys
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: restabilised, usable
+    logical, intent(in), optional :: converged
     integer :: status, bad
+    logical :: at_converged
+    at_converged = .false.
+    if (present(converged)) at_converged = converged
     restabilised = .false.
     usable = .true.
     ! (with every CFE closed, stabilising changes no penalty)
     if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
       if (all(eq%factor_states == status_codes(cs))) return
     end if
-    call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+    call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad, at_converged)
     if (status == factor_singular) then
       restabilised = stabilise_open(eq, cs, obs)
-      if (restabilised) call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+      if (restabilised) call assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad, at_converged)
+    end if
+    if (status == factor_singular .and. body%nonlinear .and. .not. eq%search%pivoted) then
+      ! a singular tangent of a nonlinear body (a limit load, a buckling
+      ! state, or a missing support): the increment fails and is cut back
+      usable = .false.
+      eq%factor_valid = .false.
+      eq%bad = bad
+      eq%newton%singular = .true.
+      return
     end if
     if (status == factor_singular) then
       call set_aside_or_stop(eq, m, cs, dm, bad, usable)
@@ -198,18 +344,19 @@ contains
 
   !> The stiffness of the current status, assembled and factored (timed,
   !> counted).
-  subroutine assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad)
+  subroutine assemble_and_factor(eq, m, body, cs, dm, u, sys, status, bad, converged)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
-    type(body_t), intent(in) :: body
+    type(body_t), intent(inout) :: body
     type(contact_set_t), intent(in) :: cs
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: u(:, :)
     type(linear_system_t), intent(inout) :: sys
     integer, intent(out) :: status, bad
+    logical, intent(in) :: converged          ! u is the converged state (assemble_stiffness)
     real(dp) :: t0, t1
     t0 = wall_time()
-    call assemble_stiffness(m, cs, body, u, sys, eq%kmax, eq%counts, dm)
+    call assemble_stiffness(m, cs, body, u, sys, eq%kmax, eq%counts, dm, converged)
     t1 = wall_time()
     call sys_analyse(sys)
     eq%timing%assembly = eq%timing%assembly + (t1 - t0)

@@ -11,7 +11,7 @@ module increment_results
   use model
   use contact, only: contact_set_t
   use contact_results, only: contact_results_t, compute_contact_results
-  use assembly, only: stress_recovery, element_counts_t
+  use assembly, only: stress_recovery, element_counts_t, body_t
   implicit none
   private
   public :: increment_results_t, compute_increment_results
@@ -31,6 +31,15 @@ module increment_results
     real(dp), allocatable :: sig_elem(:, :)           ! (4, ne) element averages
     type(contact_results_t) :: contact
     integer :: nclosed = 0
+    !> A nonlinear step: its increment size (step time); the stresses are
+    !> Cauchy stresses (NLGEOM); has_peeq: peeq_ip(max_ip, ne) holds the
+    !> equivalent plastic strain at the integration points (asked for by
+    !> PEEQ; empty otherwise).
+    logical :: nonlinear = .false.
+    real(dp) :: dt = 0.0_dp
+    logical :: has_peeq = .false.
+    real(dp), allocatable :: peeq_ip(:, :)
+    real(dp), allocatable :: peeq_elem(:)             ! (ne) element averages when has_peeq
   end type increment_results_t
 
 contains
@@ -41,7 +50,8 @@ contains
   !> Arguments: set_ids node sets whose reactions are summed; counts
   !> counts the element routine calls of the stress recovery; dtemp(nn)
   !> the nodal temperature changes at t, given when there is thermal strain.
-  subroutine compute_increment_results(m, is, inc, t, total_time, iters, u, rf, cs, set_ids, res, counts, dtemp)
+  subroutine compute_increment_results(m, is, inc, t, total_time, iters, u, rf, cs, set_ids, res, counts, dtemp, &
+                                       body, dt)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc, iters
     real(dp), intent(in) :: t, total_time
@@ -51,8 +61,12 @@ contains
     type(increment_results_t), intent(out) :: res
     type(element_counts_t), intent(inout) :: counts
     real(dp), intent(in), optional :: dtemp(:)
+    type(body_t), intent(in), optional :: body
+    real(dp), intent(in), optional :: dt
     integer :: s, q, e, a
     res%step = is
+    if (present(body)) res%nonlinear = body%nonlinear
+    if (present(dt)) res%dt = dt
     res%increment = inc
     res%iterations = iters
     res%time = t
@@ -76,20 +90,32 @@ contains
         res%set_sums(:, s) = res%set_sums(:, s) + res%rf(:, m%nsets(set_ids(s))%items(q))
       end do
     end do
-    res%has_stresses = any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e)
+    res%has_stresses = any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e) .or. &
+                       any(m%steps(is)%requests%peeq)
+    res%has_peeq = any(m%steps(is)%requests%peeq)
     if (res%has_stresses) then
       allocate(res%nip(m%ne), res%sig_ip(4, max_ip, m%ne), res%eps_ip(3, max_ip, m%ne), res%sig_node(4, m%nn), &
-               res%sig_elem(4, m%ne))
-      call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp)
+               res%sig_elem(4, m%ne), res%peeq_ip(max_ip, merge(m%ne, 0, res%has_peeq .or. res%nonlinear)))
+      res%peeq_ip = 0.0_dp
+      if (res%nonlinear) then
+        call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp, body, res%peeq_ip)
+      else
+        call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp)
+      end if
       do e = 1, m%ne
         res%sig_elem(:, e) = 0.0_dp
         if (res%nip(e) > 0) res%sig_elem(:, e) = sum(res%sig_ip(:, 1:res%nip(e), e), dim=2) / res%nip(e)
+      end do
+      allocate(res%peeq_elem(merge(m%ne, 0, res%has_peeq)))
+      do e = 1, size(res%peeq_elem)
+        res%peeq_elem(e) = 0.0_dp
+        if (res%nip(e) > 0) res%peeq_elem(e) = sum(res%peeq_ip(1:res%nip(e), e)) / res%nip(e)
       end do
     else
       ! nothing asks for stresses: no arrays of the model's size to fill
       ! (on a million elements they would be half a gigabyte of zeros)
       allocate(res%nip(m%ne), res%sig_ip(4, max_ip, 0), res%eps_ip(3, max_ip, 0), res%sig_node(4, 0), &
-               res%sig_elem(4, 0))
+               res%sig_elem(4, 0), res%peeq_ip(max_ip, 0), res%peeq_elem(0))
       res%nip = 0
     end if
     call compute_contact_results(m, cs, u, res%contact)

@@ -26,7 +26,8 @@ module load_state
   use assembly, only: thermal_forces
   implicit none
   private
-  public :: load_state_t, load_pattern_t, begin_step, values_at, temperature_change_at, check_loads_reached
+  public :: load_state_t, load_pattern_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
+            follower_loads
 
   type :: load_pattern_t
     integer :: elem = 0, label = 0, face = 0     ! what it is (dload_t)
@@ -57,6 +58,9 @@ module load_state
     !> Nodes the model keeps (kept_nodes); a *BOUNDARY on a dropped node
     !> is ignored, so that it shows zero displacement and no reaction.
     logical, allocatable :: kept(:)
+    !> NLGEOM of the step: the thermal strain is then in the elements'
+    !> internal force, not a load (assembly's thermal_forces).
+    logical :: nlgeom = .false.
   end type load_state_t
 
 contains
@@ -108,6 +112,8 @@ contains
       call hold_temperatures(m, ls, conc)
     end if
     associate(st => m%steps(is))
+      ! (after hold_temperatures: the last step's loads were taken out as it made them)
+      ls%nlgeom = st%nlgeom
       ls%period = st%period
       ls%total_time = total_time
       ls%bc_start = u
@@ -188,7 +194,7 @@ contains
     ls%temp_amp = 0
     if (.not. ls%thermal) return
     fth = 0.0_dp
-    call thermal_forces(m, dtemp, fth)
+    call thermal_forces(m, dtemp, fth, ls%nlgeom)
     conc = conc - fth
   end subroutine hold_temperatures
 
@@ -346,7 +352,9 @@ contains
     end if
   end function pattern_magnitude
 
-  !> f = f + factor * (the nodal forces of every pattern at step time t).
+  !> f = f + factor * (the nodal forces of every pattern at step time t);
+  !> under NLGEOM (ls%nlgeom) the face pressures follow the deformed faces
+  !> and are the body's (follower_loads), not part of f.
   subroutine add_patterns(m, ls, t, factor, f)
     type(model_t), intent(in) :: m
     type(load_state_t), intent(in) :: ls
@@ -355,6 +363,7 @@ contains
     integer :: j, k
     real(dp) :: mag
     do j = 1, ls%npat
+      if (ls%nlgeom .and. is_follower(m, ls%pat(j))) cycle
       associate(pt => ls%pat(j))
         mag = factor * pattern_magnitude(m, ls, pt, t)
         if (mag == 0.0_dp) cycle
@@ -364,6 +373,48 @@ contains
       end associate
     end do
   end subroutine add_patterns
+
+  !> A face pressure of a continuum element: under NLGEOM a follower load.
+  pure logical function is_follower(m, pt)
+    type(model_t), intent(in) :: m
+    type(load_pattern_t), intent(in) :: pt
+    is_follower = abs(pt%label) == dload_p .and. pt%face > 0 .and. is_continuum(m, pt%elem)
+  end function is_follower
+
+  !> Purpose: the follower pressures of a NLGEOM step at step time t, by
+  !> element (CSR): those on element e are k = ptr(e) .. ptr(e+1)-1, on
+  !> face face(k) with magnitude mag(k) (assembly's body_t%fl_*). Empty
+  !> (ptr all 1) outside NLGEOM.
+  subroutine follower_loads(m, ls, t, ptr, face, mag)
+    type(model_t), intent(in) :: m
+    type(load_state_t), intent(in) :: ls
+    real(dp), intent(in) :: t
+    integer, allocatable, intent(out) :: ptr(:), face(:)
+    real(dp), allocatable, intent(out) :: mag(:)
+    integer :: j, e, n
+    integer, allocatable :: next(:)
+    allocate(ptr(m%ne + 1))
+    ptr = 0
+    n = 0
+    do j = 1, ls%npat
+      if (.not. (ls%nlgeom .and. is_follower(m, ls%pat(j)))) cycle
+      ptr(ls%pat(j)%elem + 1) = ptr(ls%pat(j)%elem + 1) + 1
+      n = n + 1
+    end do
+    ptr(1) = 1
+    do e = 1, m%ne
+      ptr(e + 1) = ptr(e + 1) + ptr(e)
+    end do
+    allocate(face(n), mag(n))
+    next = ptr(1:m%ne)
+    do j = 1, ls%npat
+      if (.not. (ls%nlgeom .and. is_follower(m, ls%pat(j)))) cycle
+      e = ls%pat(j)%elem
+      face(next(e)) = ls%pat(j)%face
+      mag(next(e)) = pattern_magnitude(m, ls, ls%pat(j), t)
+      next(e) = next(e) + 1
+    end do
+  end subroutine follower_loads
 
   subroutine prescribe(ls, bc, immediate)
     type(load_state_t), intent(inout) :: ls
@@ -429,7 +480,7 @@ contains
         real(dp), allocatable :: dtemp(:)
         allocate(dtemp(m%nn))
         call temperature_change_at(m, ls, t, dtemp)
-        call thermal_forces(m, dtemp, fext)
+        call thermal_forces(m, dtemp, fext, ls%nlgeom)
       end block
     end if
   end subroutine values_at

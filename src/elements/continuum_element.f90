@@ -30,7 +30,7 @@ module continuum_element
   use materials, only: elastic_matrix
   implicit none
   private
-  public :: continuum, volume_factor
+  public :: continuum, volume_factor, strain_matrix
 
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
 

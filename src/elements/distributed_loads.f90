@@ -6,14 +6,20 @@
 !> the thickness (interpolated from the element's nodal thicknesses, along
 !> the face for a pressure), or over the whole circumference (2 pi r) for
 !> axisymmetric elements, as the element matrices.
+!>
+!> Under large deformation (NLGEOM) a pressure follows the deformed face:
+!> follower_pressure_load gives its nodal forces on the current
+!> configuration and their derivative, the load stiffness.
 module distributed_loads
   use kinds, only: dp
-  use element_catalogue, only: catalogue, max_nodes, max_ip, edge_node_count, is_line
+  use element_catalogue, only: catalogue, max_nodes, max_ip, edge_node_count, is_line, state_axisymmetric
   use shape_functions, only: shape_at, line_shape, truss_shape, gauss_line, gauss_rule, load_rule
   use continuum_element, only: volume_factor
   implicit none
   private
-  public :: face_pressure_load, body_force_load
+  public :: face_pressure_load, body_force_load, follower_pressure_load
+
+  real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
 
 contains
 
@@ -49,6 +55,63 @@ contains
       end do
     end do
   end subroutine face_pressure_load
+
+  !> Purpose: a unit pressure on face k that follows the deformation: its
+  !> nodal forces f(2, nodes) on the current face (nodes at xy + u) and
+  !> the load stiffness kl = df/du (2 nodes x 2 nodes, dof 2 (a - 1) + i
+  !> for direction i of local node a; unsymmetric in general). A pressure
+  !> p adds p f to the external forces and -p kl to the tangent of the
+  !> residual f_int - f_ext (Bonet and Wood 2008, section 8.5 in 2D).
+  !> Arguments: et catalogue type, xy reference coordinates, u nodal
+  !> displacements, thickness nodal thicknesses (reference values, as the
+  !> linear load; axisymmetric: the whole ring, 2 pi r with the current
+  !> radius r), k the face. At u = 0, f is face_pressure_load's.
+  !> With t = dx/ds along the face and n~ = (t2, -t1) (the outward normal
+  !> times |dx/ds|),
+  !>   f_a = - sum_ip w N_a v(x) n~,  v = thickness or 2 pi x1,
+  !>   df_a/du_b = - sum_ip w N_a (v dn~/du_b + n~ dv/du_b),
+  !> dn~/du_b1 = (0, -dN_b/ds), dn~/du_b2 = (dN_b/ds, 0), dv/du_b1 =
+  !> 2 pi N_b in axisymmetry.
+  pure subroutine follower_pressure_load(et, xy, u, thickness, k, f, kl)
+    integer, intent(in) :: et, k
+    real(dp), intent(in) :: xy(:, :), u(:, :), thickness(:)
+    real(dp), intent(out) :: f(2, max_nodes), kl(2 * max_nodes, 2 * max_nodes)
+    real(dp) :: s(3), w(3), n(3), ds(3), xe(2, 3), te(3), x(2), t(2), v, dv1, nt(2), dnt(2, 2)
+    integer :: nn, ip, a, b, loc(3), nen, ra, cb
+    nen = catalogue(et)%nodes
+    call face_pressure_load(et, xy(:, 1:nen) + u(:, 1:nen), thickness, k, f)
+    kl = 0.0_dp
+    nn = edge_node_count(et, k)
+    loc = catalogue(et)%edge(:, k)
+    xe = 0.0_dp
+    te = 0.0_dp
+    do a = 1, nn
+      xe(:, a) = xy(:, loc(a)) + u(:, loc(a))
+      te(a) = thickness(loc(a))
+    end do
+    call gauss_line(3, s, w)
+    do ip = 1, 3
+      call line_shape(nn, s(ip), n, ds)
+      x = matmul(xe, n)
+      t = matmul(xe, ds)
+      nt = [t(2), -t(1)]
+      v = volume_factor(catalogue(et)%state, 1.0_dp, x(1), dot_product(n(1:nn), te(1:nn)))
+      ! dv/dx1: 2 pi in axisymmetry (v = 2 pi x1), 0 otherwise
+      dv1 = 0.0_dp
+      if (catalogue(et)%state == state_axisymmetric) dv1 = two_pi
+      do b = 1, nn
+        ! columns: d n~ / d u_b1 and d n~ / d u_b2
+        dnt(:, 1) = [0.0_dp, -ds(b)]
+        dnt(:, 2) = [ds(b), 0.0_dp]
+        do a = 1, nn
+          ra = 2 * (loc(a) - 1)
+          cb = 2 * (loc(b) - 1)
+          kl(ra + 1:ra + 2, cb + 1:cb + 2) = kl(ra + 1:ra + 2, cb + 1:cb + 2) - w(ip) * n(a) * v * dnt
+          kl(ra + 1:ra + 2, cb + 1) = kl(ra + 1:ra + 2, cb + 1) - w(ip) * n(a) * dv1 * n(b) * nt
+        end do
+      end do
+    end do
+  end subroutine follower_pressure_load
 
   !> Purpose: nodal forces f(2, nodes) of the body force per unit volume
   !> b(x) = b0 + g (x - xc) over an element of catalogue type et with nodes

@@ -5,6 +5,7 @@ module element_library
   use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, &
                                kind_truss2, kind_truss3, kind_spring1, kind_spring2, kind_springa
   use continuum_element, only: continuum
+  use nonlinear_continuum, only: nonlinear_continuum_element, is_nonlinear
   use cfe_element, only: cfe
   use truss_element, only: truss
   use spring_element, only: spring
@@ -22,7 +23,14 @@ contains
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(out) :: eout
     select case (ein%kind)
-    case (kind_tri3, kind_quad4, kind_tri6, kind_quad8); call continuum(action, ein, eout)
+    case (kind_tri3, kind_quad4, kind_tri6, kind_quad8)
+      ! large deformation, a hyperelastic law or plasticity: the nonlinear
+      ! routine; the linear elastic element otherwise (unchanged)
+      if (is_nonlinear(ein)) then
+        call nonlinear_continuum_element(action, ein, eout)
+      else
+        call continuum(action, ein, eout)
+      end if
     case (kind_truss2, kind_truss3); call truss(action, ein, eout)
     case (kind_spring1, kind_spring2, kind_springa); call spring(action, ein, eout)
     case (kind_cfe); call cfe(action, ein, eout)

@@ -1,5 +1,5 @@
 !> Cards of decks written for CalculiX or Abaqus that cfe2d reads for
-!> what they mean to a static, small-strain, linear elastic 2D analysis:
+!> what they mean to a static 2D analysis:
 !> *NODAL THICKNESS, *EQUATION (linear constraints), and the cards
 !> that would change the physics (other procedures, other material laws),
 !> which stop the run with the reason.
@@ -169,8 +169,8 @@ contains
     end do
   end subroutine read_equation_terms
 
-  !> Purpose: cards that would change the physics of a static small-strain
-  !> elastic analysis and that cfe2d does not implement: stop with the
+  !> Purpose: cards that would change the physics of a static analysis
+  !> and that cfe2d does not implement: stop with the
   !> reason on the card's line.
   module subroutine reject_card(p, kw)
     type(parser_t), intent(inout) :: p
@@ -179,12 +179,11 @@ contains
     case ('DYNAMIC', 'MODAL DYNAMIC', 'STEADY STATE DYNAMICS', 'FREQUENCY', 'BUCKLE', 'COMPLEX FREQUENCY', &
           'VISCO', 'HEAT TRANSFER', 'COUPLED TEMPERATURE-DISPLACEMENT', 'UNCOUPLED TEMPERATURE-DISPLACEMENT', &
           'ELECTROMAGNETICS', 'GREEN', 'SENSITIVITY', 'CFD', 'SOIL')
-      call err(p, 'the procedure *' // kw%name // ' is not implemented: cfe2d runs static (*STATIC), ' // &
-               'small-strain steps')
-    case ('PLASTIC', 'CYCLIC HARDENING', 'CREEP', 'HYPERELASTIC', 'HYPERFOAM', 'DEFORMATION PLASTICITY', &
+      call err(p, 'the procedure *' // kw%name // ' is not implemented: cfe2d runs static (*STATIC) steps')
+    case ('CYCLIC HARDENING', 'CREEP', 'HYPERFOAM', 'DEFORMATION PLASTICITY', &
           'USER MATERIAL', 'DEPVAR', 'ANISOTROPIC HYPERELASTIC', 'VISCOELASTIC', 'MOHR COULOMB')
-      call err(p, 'the material law *' // kw%name // ' is not implemented: cfe2d''s materials are linear ' // &
-               'elastic (*ELASTIC)')
+      call err(p, 'the material law *' // kw%name // ' is not implemented: cfe2d''s materials are *ELASTIC, ' // &
+               '*HYPERELASTIC (NEO HOOKE, MOONEY-RIVLIN) and *PLASTIC (von Mises, isotropic hardening)')
     case ('CHANGE FRICTION', 'CHANGE SURFACE BEHAVIOR', 'CHANGE CONTACT TYPE', 'CONTACT DAMPING', &
           'GAP CONDUCTANCE', 'GAP HEAT GENERATION')
       call err(p, '*' // kw%name // ' is not implemented: cfe2d''s contact is static and keeps the law ' // &

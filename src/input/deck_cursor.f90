@@ -11,7 +11,7 @@ module deck_cursor
   use kinds, only: dp, name_len
   use strings, only: to_upper, parse_real, parse_int, field_t, itoa
   use deck_input, only: deck_t, keyword_t, deck_error, deck_warning, param_value, has_param, is_keyword
-  use model, only: model_t, find_name, has_instances, rigid_t
+  use model, only: model_t, find_name, has_instances, rigid_t, controls_t
   use model_growth, only: grow
   use growable, only: grow
   implicit none
@@ -89,6 +89,8 @@ module deck_cursor
     integer :: nsets = 0, nelsets = 0, nsurf = 0, nmat = 0, nsec = 0, namp = 0
     integer :: nsteps = 0, npairs = 0, nmbc = 0
     integer :: nbc = 0, nload = 0, nreq = 0   ! of the current step
+    logical :: nlgeom = .false.  ! NLGEOM of the last *STEP (a step without the parameter keeps it)
+    type(controls_t) :: controls ! *CONTROLS in force (kept from step to step until RESET)
     ! Cards of decks written for CalculiX/Abaqus:
     type(interaction_t), allocatable :: inter(:)
     integer :: ninter = 0

@@ -1,5 +1,5 @@
-!> Material and property cards: *MATERIAL, *ELASTIC, *EXPANSION, *SOLID
-!> SECTION, *SPRING, *MASS.
+!> Material and property cards: *MATERIAL, *ELASTIC, *EXPANSION,
+!> *HYPERELASTIC, *PLASTIC, *SOLID SECTION, *SPRING, *MASS.
 submodule (deck_parser) deck_material_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
@@ -8,7 +8,8 @@ submodule (deck_parser) deck_material_cards
                          name_param, get_real, get_int, is_int, need_elset, param_real, warn_empty_set
   use element_catalogue, only: catalogue, state_plane_stress, state_plane_strain, state_axisymmetric, &
                                shape_spring1, shape_spring2, is_spring_shape, shape_mass
-  use model, only: material_t, section_t, find_name, elem_label
+  use model, only: material_t, section_t, find_name, elem_label, law_elastic, law_neo_hooke, law_mooney_rivlin, &
+                   max_yield
   use model_growth, only: grow
   implicit none
 
@@ -59,6 +60,143 @@ contains
     end associate
     if (next_data(p)) call err(p, 'temperature-dependent *ELASTIC data is not implemented')
   end subroutine read_elastic
+
+  !> Purpose: *HYPERELASTIC of the current material, with CalculiX's
+  !> strain energy (its manual, *HYPERELASTIC) and constants:
+  !>   NEO HOOKE                 U = C10 (I1bar - 3) + (J - 1)^2 / D1,
+  !>                             data line `C10, D1[, temperature]`;
+  !>   MOONEY-RIVLIN, POLYNOMIAL N=1 (the same energy)
+  !>                             U = C10 (I1bar - 3) + C01 (I2bar - 3)
+  !>                                 + (J - 1)^2 / D1,
+  !>                             data line `C10, C01, D1[, temperature]`.
+  !> CalculiX's default (no model named) is POLYNOMIAL N=1. Other models,
+  !> N > 1 and temperature dependence (a second data line) stop at the
+  !> line. D1 must be positive (a compressible potential: the element
+  !> routines have no pressure unknown), and the initial shear modulus
+  !> 2 (C10 + C01) too; the bulk modulus 2 / D1 at most 1e8 times the
+  !> shear modulus, both at most 1e100. Like CalculiX, a hyperelastic material makes
+  !> every step geometrically nonlinear (deck_model_checks).
+  module subroutine read_hyperelastic(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n, law, k, nmodels
+    character(len=*), parameter :: others = 'ARRUDA-BOYCE,OGDEN,REDUCED POLYNOMIAL,REDUCEDPOLYNOMIAL,YEOH'
+    call allow_params(p, kw, 'NEO HOOKE,NEOHOOKE,MOONEY-RIVLIN,POLYNOMIAL,N,' // others)
+    if (p%material == 0) call err(p, '*HYPERELASTIC outside a *MATERIAL')
+    do k = 1, kw%np
+      if (index(',' // others // ',', ',' // kw%pname(k)%s // ',') > 0) call err(p, 'the hyperelastic model ' // &
+        kw%pname(k)%s // ' is not implemented: NEO HOOKE, MOONEY-RIVLIN and POLYNOMIAL with N=1 are')
+    end do
+    nmodels = count([has_param(kw, 'NEO HOOKE') .or. has_param(kw, 'NEOHOOKE'), has_param(kw, 'MOONEY-RIVLIN'), &
+                     has_param(kw, 'POLYNOMIAL')])
+    if (nmodels > 1) call err(p, '*HYPERELASTIC names more than one model')
+    if (has_param(kw, 'N')) then
+      if (.not. is_int(param_value(kw, 'N'))) call err(p, 'N must be an integer')
+      if (param_value(kw, 'N') /= '1') call err(p, 'only N=1 is implemented on *HYPERELASTIC (the strain ' // &
+                                                   'energy of order 1: neo-Hooke and Mooney-Rivlin)')
+      if (has_param(kw, 'NEO HOOKE') .or. has_param(kw, 'NEOHOOKE') .or. has_param(kw, 'MOONEY-RIVLIN')) &
+        call err(p, 'N= is for the POLYNOMIAL model only')
+    end if
+    law = law_mooney_rivlin
+    if (has_param(kw, 'NEO HOOKE') .or. has_param(kw, 'NEOHOOKE')) law = law_neo_hooke
+    if (m%materials(p%material)%law /= law_elastic) call err(p, 'second *HYPERELASTIC in material ' // &
+                                                             trim(m%materials(p%material)%name))
+    if (m%materials(p%material)%nyield > 0) call err(p, 'plasticity of a hyperelastic material is not implemented')
+    if (law == law_neo_hooke) then
+      call require_data(p, 'C10, D1')
+    else
+      call require_data(p, 'C10, C01, D1')
+    end if
+    call split_fields(line_text(p), f, n)
+    associate(mat => m%materials(p%material))
+      if (law == law_neo_hooke) then
+        if (n < 2) call err(p, '*HYPERELASTIC, NEO HOOKE data line needs: C10, D1')
+        if (n > 3) call err(p, 'too many fields: *HYPERELASTIC, NEO HOOKE data line is C10, D1[, temperature]')
+        mat%c10 = get_real(p, f(1), 'C10')
+        mat%c01 = 0.0_dp
+        mat%d1 = get_real(p, f(2), 'D1')
+      else
+        if (n < 3) call err(p, '*HYPERELASTIC, ' // trim(merge('POLYNOMIAL   ', 'MOONEY-RIVLIN', &
+          has_param(kw, 'POLYNOMIAL'))) // ' data line needs: C10, C01, D1')
+        if (n > 4) call err(p, 'too many fields: the data line is C10, C01, D1[, temperature]')
+        mat%c10 = get_real(p, f(1), 'C10')
+        mat%c01 = get_real(p, f(2), 'C01')
+        mat%d1 = get_real(p, f(3), 'D1')
+      end if
+      if (.not. mat%d1 > 0.0_dp) call err(p, 'D1 must be positive: a fully incompressible material (D1 = 0) ' // &
+        'needs a pressure unknown, which the elements do not have; a small D1 is nearly incompressible')
+      if (.not. mat%c10 + mat%c01 > 0.0_dp) call err(p, 'the initial shear modulus 2 (C10 + C01) must be positive')
+      if (mat%c10 < 0.0_dp .and. law == law_neo_hooke) call err(p, 'C10 must be positive')
+      ! K / mu = 1 / (D1 (C10 + C01)): beyond 1e8 the volumetric stiffness
+      ! drowns the shear stiffness in round-off; moduli beyond 1e100 overflow
+      ! the energy's products
+      if (abs(mat%c10) + abs(mat%c01) > 1.0e100_dp .or. 2.0_dp > 1.0e100_dp * mat%d1) call err(p, &
+        'the hyperelastic moduli 2 (C10 + C01) and 2 / D1 must not exceed 1e100')
+      if (1.0_dp > 1.0e8_dp * mat%d1 * (mat%c10 + mat%c01)) call err(p, 'the bulk modulus 2 / D1 is more ' // &
+        'than 1e8 times the shear modulus 2 (C10 + C01): nearly incompressible beyond what double precision ' // &
+        'resolves (rubber has 1e3 to 1e4)')
+      mat%law = law
+    end associate
+    if (next_data(p)) call err(p, 'temperature-dependent *HYPERELASTIC data is not implemented')
+  end subroutine read_hyperelastic
+
+  !> Purpose: *PLASTIC (von Mises, HARDENING=ISOTROPIC, CalculiX's and
+  !> Abaqus' default) of the current material: data lines `yield stress,
+  !> equivalent plastic strain[, temperature]`, the hardening curve, the
+  !> first at plastic strain 0 and the strains increasing (linear between
+  !> the points, constant beyond the last, as CalculiX). Other hardening
+  !> rules and temperature dependence (a temperature that changes from
+  !> line to line) stop at the line.
+  module subroutine read_plastic(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n, k
+    real(dp) :: temp0, temp
+    call allow_params(p, kw, 'HARDENING')
+    if (has_param(kw, 'HARDENING')) then
+      if (to_upper(param_value(kw, 'HARDENING')) /= 'ISOTROPIC') call err(p, 'HARDENING=' // &
+        to_upper(param_value(kw, 'HARDENING')) // ' is not implemented: only HARDENING=ISOTROPIC is')
+    end if
+    if (p%material == 0) call err(p, '*PLASTIC outside a *MATERIAL')
+    associate(mat => m%materials(p%material))
+      if (mat%nyield > 0) call err(p, 'second *PLASTIC in material ' // trim(mat%name))
+      if (mat%law /= law_elastic) call err(p, 'plasticity of a hyperelastic material is not implemented')
+      call require_data(p, 'yield stress, equivalent plastic strain')
+      k = 0
+      temp0 = 0.0_dp
+      do
+        call split_fields(line_text(p), f, n)
+        if (n < 1) call err(p, '*PLASTIC data line needs: yield stress, equivalent plastic strain')
+        if (n > 3) call err(p, 'too many fields: *PLASTIC data line is yield stress, plastic strain[, temperature]')
+        k = k + 1
+        if (k > max_yield) call err(p, 'more than ' // itoa(max_yield) // ' points in the hardening curve')
+        mat%yield(1, k) = get_real(p, f(1), 'yield stress')
+        mat%yield(2, k) = 0.0_dp
+        if (n >= 2) then
+          if (len(f(2)%s) > 0) mat%yield(2, k) = get_real(p, f(2), 'equivalent plastic strain')
+        end if
+        temp = 0.0_dp
+        if (n == 3) then
+          if (len(f(3)%s) > 0) temp = get_real(p, f(3), 'temperature')
+        end if
+        if (k == 1) temp0 = temp
+        if (temp /= temp0) call err(p, 'temperature-dependent *PLASTIC data is not implemented')
+        if (.not. mat%yield(1, k) > 0.0_dp) call err(p, 'the yield stress must be positive')
+        if (k == 1 .and. mat%yield(2, k) /= 0.0_dp) call err(p, 'the first point of the hardening curve must ' // &
+                                                             'be at equivalent plastic strain 0')
+        if (k > 1) then
+          if (.not. mat%yield(2, k) > mat%yield(2, k - 1)) call err(p, 'the equivalent plastic strains of ' // &
+            'the hardening curve must increase from line to line')
+        end if
+        if (.not. next_data(p)) exit
+      end do
+      mat%nyield = k
+    end associate
+  end subroutine read_plastic
 
   !> Purpose: *EXPANSION (isotropic): `alpha` of the current material,
   !> one data line; ZERO= (the temperature at which alpha was measured,

@@ -9,7 +9,7 @@ submodule (deck_parser) deck_model_checks
   use deck_input, only: deck_warning
   use deck_cursor, only: err
   use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t, kept_nodes, &
-                   node_label, elem_label
+                   node_label, elem_label, law_elastic
   use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
                                state_axisymmetric, shape_springa
@@ -26,6 +26,7 @@ contains
     type(model_t), intent(inout) :: m
     integer :: s
     call check_sections(p, m)
+    call check_nonlinear_materials(p, m)
     call apply_section_states(p, m)
     call apply_nodal_thickness(p, m)
     ! (after the sections: an interaction's out-of-plane thickness is checked against theirs)
@@ -51,6 +52,42 @@ contains
     call check_unused_nodes(p, m)
     call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
   end subroutine check_model
+
+  !> Purpose: a hyperelastic material makes every step geometrically
+  !> nonlinear (CalculiX sets NLGEOM when it reads *HYPERELASTIC); a
+  !> truss of a hyperelastic or plastic material stops at its section
+  !> (the truss is linear elastic), so does the thermal strain of a
+  !> hyperelastic material, and of a plastic one under NLGEOM, at the
+  !> material (the element routines do not have it).
+  subroutine check_nonlinear_materials(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer :: s, k, e, imat
+    logical :: hyper
+    hyper = .false.
+    do s = 1, size(m%sections)
+      if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
+      imat = m%sections(s)%material
+      if (m%materials(imat)%law == law_elastic .and. m%materials(imat)%nyield == 0) cycle
+      hyper = hyper .or. m%materials(imat)%law /= law_elastic
+      ! the element routines have no thermal strain for these laws
+      if (m%materials(imat)%has_expansion .and. m%materials(imat)%alpha /= 0.0_dp) then
+        p%i = m%materials(imat)%src%line
+        if (m%materials(imat)%law /= law_elastic) call err(p, 'material ' // trim(m%materials(imat)%name) // &
+          ': the thermal strain (*EXPANSION) of a hyperelastic material is not implemented')
+        if (any(m%steps%nlgeom)) call err(p, 'material ' // trim(m%materials(imat)%name) // ': the thermal ' // &
+          'strain (*EXPANSION) of a plastic material under NLGEOM is not implemented (it is without NLGEOM)')
+      end if
+      do k = 1, size(m%elsets(m%sections(s)%elset)%items)
+        e = m%elsets(m%sections(s)%elset)%items(k)
+        if (.not. is_truss(m, e)) cycle
+        p%i = m%sections(s)%src%line
+        call err(p, 'element ' // elem_label(m, e) // ' is a truss of material ' // trim(m%materials(imat)%name) // &
+                 ', which is hyperelastic or plastic: the truss is linear elastic')
+      end do
+    end do
+    if (hyper) m%steps(:)%nlgeom = .true.
+  end subroutine check_nonlinear_materials
 
   !> Purpose: nodes that no element, contact surface or constraint uses
   !> (model's kept_nodes: left over from meshing, a gmsh geometry point or
@@ -159,9 +196,13 @@ contains
       if (.not. (m%sections(s)%spring .or. m%sections(s)%point_mass)) then
         imat = find_name(m%materials%name, m%sections(s)%material_name)
         if (imat == 0) call err(p, 'undefined material ' // trim(m%sections(s)%material_name))
-        if (.not. m%materials(imat)%has_elastic) then
+        if (.not. m%materials(imat)%has_elastic .and. m%materials(imat)%law == law_elastic) then
           p%i = m%materials(imat)%src%line
-          call err(p, 'material ' // trim(m%materials(imat)%name) // ' has no *ELASTIC')
+          call err(p, 'material ' // trim(m%materials(imat)%name) // ' has no *ELASTIC (nor *HYPERELASTIC)')
+        end if
+        if (m%materials(imat)%nyield > 0 .and. .not. m%materials(imat)%has_elastic) then
+          p%i = m%materials(imat)%src%line
+          call err(p, 'material ' // trim(m%materials(imat)%name) // ' has *PLASTIC but no *ELASTIC')
         end if
         m%sections(s)%material = imat
       end if

@@ -3,9 +3,9 @@
 !> checks what needs the whole deck. The readers live in submodules, one
 !> file per family of cards:
 !>   deck_mesh_cards      *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE
-!>   deck_material_cards  *MATERIAL, *ELASTIC, *EXPANSION, *SOLID SECTION,
-!>                        *SPRING
-!>   deck_step_cards      *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CLOAD,
+!>   deck_material_cards  *MATERIAL, *ELASTIC, *EXPANSION, *HYPERELASTIC,
+!>                        *PLASTIC, *SOLID SECTION, *SPRING
+!>   deck_step_cards      *AMPLITUDE, *BOUNDARY, *STEP, *STATIC, *CONTROLS, *CLOAD,
 !>                        output requests, *END STEP, *INITIAL CONDITIONS,
 !>                        *TEMPERATURE
 !>   deck_contact_cards   *CONTACT PAIR, *CONTACT CONTROLS, *SOLVER
@@ -80,6 +80,21 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_expansion
+    module subroutine read_controls(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_controls
+    module subroutine read_hyperelastic(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_hyperelastic
+    module subroutine read_plastic(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_plastic
     module subroutine read_initial_conditions(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -386,6 +401,8 @@ contains
     case ('MATERIAL');      call in_step(p, kw, .false.); call read_material(p, m, kw)
     case ('ELASTIC');       call in_step(p, kw, .false.); call read_elastic(p, m, kw)
     case ('EXPANSION');     call in_step(p, kw, .false.); call read_expansion(p, m, kw)
+    case ('HYPERELASTIC');  call in_step(p, kw, .false.); call read_hyperelastic(p, m, kw)
+    case ('PLASTIC');       call in_step(p, kw, .false.); call read_plastic(p, m, kw)
     case ('INITIAL CONDITIONS'); call in_step(p, kw, .false.); call read_initial_conditions(p, m, kw)
     case ('TEMPERATURE');   call in_step(p, kw, .true.); call read_temperature(p, m, kw)
     case ('SOLID SECTION'); call in_step(p, kw, .false.); call read_section(p, m, kw)
@@ -424,8 +441,8 @@ contains
     case ('INSTANCE');      call in_step(p, kw, .false.); call read_instance(p, m, kw)
     case ('END INSTANCE');  call read_end_instance(p, m, kw)
     case ('END ASSEMBLY');  call read_end_assembly(p, kw)
-    case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', &
-          'CONTROLS')
+    case ('CONTROLS');      call read_controls(p, m, kw)
+    case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT')
       call skip_card(p, kw)
     case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', 'CONTACT PRINT', &
           'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &

@@ -11,7 +11,7 @@ submodule (deck_parser) deck_step_cards
                          need_nset, need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
                          note_named, rotation_hint
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
-                   find_name, node_label
+                   find_name, node_label, controls_t
   use growable, only: append
   use model_growth, only: grow
   implicit none
@@ -361,15 +361,20 @@ contains
 
   !> Purpose: *STEP: opens a step (NAME=, INC= the largest number of
   !> increments, 1..max_increments); its cards follow up to *END STEP.
+  !> NLGEOM (or NLGEOM=YES) makes the step geometrically nonlinear and
+  !> NLGEOM=NO linear; without the parameter a step keeps the previous
+  !> step's choice, as CalculiX does.
   module subroutine read_step(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: v
     if (p%step /= 0) call err(p, '*STEP inside a *STEP (missing *END STEP?)')
     call allow_params(p, kw, 'NAME,INC,NLGEOM,PERTURBATION,AMPLITUDE')
     if (has_param(kw, 'NLGEOM')) then
-      if (to_upper(param_value(kw, 'NLGEOM')) /= 'NO') &
-        call err(p, 'geometric nonlinearity (NLGEOM) is not implemented: cfe2d is small-deformation')
+      v = to_upper(param_value(kw, 'NLGEOM'))
+      if (v /= '' .and. v /= 'YES' .and. v /= 'NO') call err(p, 'NLGEOM must be YES or NO (or stand alone)')
+      p%nlgeom = v /= 'NO'
     end if
     if (has_param(kw, 'PERTURBATION')) call err(p, 'PERTURBATION steps are not implemented')
     if (has_param(kw, 'AMPLITUDE')) then
@@ -389,43 +394,64 @@ contains
       s%name = param_value(kw, 'NAME')
       s%src%line = p%i
       s%period = -1.0_dp
+      s%nlgeom = p%nlgeom
+      s%controls = p%controls
       allocate(s%bcs(0), s%loads(0), s%requests(0))
       s%max_inc = param_int(p, kw, 'INC', s%max_inc, 1, max_increments)
     end associate
   end subroutine read_step
 
   !> Purpose: *STATIC: `initial increment, time period[, min, max]`
-  !> (default 1, 1). The step runs period / increment equal increments:
-  !> both must be positive (and finite, as every real), and the count,
-  !> computed in real arithmetic so that it cannot wrap, must not exceed
-  !> max_increments nor INC= of *STEP.
+  !> (default 1, 1). A linear step runs period / increment equal
+  !> increments: both must be positive (and finite, as every real), and the
+  !> count, computed in real arithmetic so that it cannot wrap, must not
+  !> exceed max_increments nor INC= of *STEP. A nonlinear step (NLGEOM, a
+  !> nonlinear material) starts with the initial increment and adapts it
+  !> between the minimum and the maximum (CalculiX's defaults when not
+  !> given: min(initial, 1e-6 period) and the period), unless DIRECT fixes
+  !> it.
   module subroutine read_static(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
-    integer :: n, k
-    real(dp) :: ratio, x
+    integer :: n
+    real(dp) :: ratio
     call allow_params(p, kw, 'DIRECT,SOLVER')
     associate(s => m%steps(p%step))
       if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
+      s%direct = has_param(kw, 'DIRECT')
       s%dt = 1.0_dp
       s%period = 1.0_dp
+      s%dt_min = 0.0_dp
+      s%dt_max = 0.0_dp
       if (next_data(p)) then
         call split_fields(line_text(p), f, n)
-        if (n > 4) call err(p, '*STATIC data line needs: initial increment, time period[, min, max]')
+        if (n > 5) call err(p, '*STATIC data line needs: initial increment, time period[, min, max]')
         if (len(f(1)%s) > 0) s%dt = get_real(p, f(1), 'initial time increment')
         if (n >= 2) then
           if (len(f(2)%s) > 0) s%period = get_real(p, f(2), 'time period')
         end if
-        ! Minimum and maximum increments: fixed increments make them moot,
-        ! but they must still be numbers.
-        do k = 3, n
-          if (len(f(k)%s) > 0) x = get_real(p, f(k), 'minimum or maximum increment')
-        end do
+        if (n >= 3) then
+          if (len(f(3)%s) > 0) s%dt_min = get_real(p, f(3), 'minimum time increment')
+        end if
+        if (n >= 4) then
+          if (len(f(4)%s) > 0) s%dt_max = get_real(p, f(4), 'maximum time increment')
+        end if
+        ! the fifth, CalculiX's initial increment of CFD, has no use here
+        if (n == 5) then
+          if (len(f(5)%s) > 0) ratio = get_real(p, f(5), 'initial CFD time increment')
+        end if
         if (s%dt <= 0.0_dp .or. s%period <= 0.0_dp) call err(p, 'time increment and period must be positive')
+        if (s%dt_min < 0.0_dp .or. s%dt_max < 0.0_dp) call err(p, 'the minimum and maximum time increments ' // &
+                                                                'must not be negative')
         if (s%dt > s%period) s%dt = s%period
+        if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the ' // &
+                                                                   'maximum')
       end if
+      ! (automatic increments of an NLGEOM step grow from the initial
+      ! one: their count is checked as they are made)
+      if (s%nlgeom .and. .not. s%direct) return
       ratio = s%period / s%dt
       if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // count_text(ratio) // &
           ' increments (time period / initial increment); at most ' // itoa(max_increments) // ' are allowed')
@@ -433,6 +459,104 @@ contains
           ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
     end associate
   end subroutine read_static
+
+  !> Purpose: *CONTROLS: the Newton iteration's constants of nonlinear
+  !> steps (CalculiX's, model's controls_t), from this step on until
+  !> RESET. PARAMETERS=FIELD: one line `R_n, C_n, q_0, q_u, R_p,
+  !> epsilon, C_epsilon, R_l` (q_0 is not used); PARAMETERS=TIME
+  !> INCREMENTATION: `I_0, I_R, I_P, I_C, I_L, I_G[, I_S, I_A, I_J, I_T]`
+  !> and a second line `D_f, D_C, D_B[, D_A, D_S, D_H, D_D, W_G]` (the
+  !> entries CalculiX does not use, or that concern what cfe2d has not,
+  !> are read and ignored); empty fields keep their values. The other
+  !> PARAMETERS (LINE SEARCH, CONTACT, NETWORK, CFD) are warned about and
+  !> ignored.
+  module subroutine read_controls(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    character(len=:), allocatable :: what
+    call allow_params(p, kw, 'PARAMETERS,RESET')
+    if (has_param(kw, 'RESET')) then
+      if (has_param(kw, 'PARAMETERS')) call err(p, 'RESET and PARAMETERS= exclude each other')
+      call no_data(p, kw)
+      p%controls = controls_t()
+    else
+      what = to_upper(param_value(kw, 'PARAMETERS'))
+      select case (what)
+      case ('FIELD')
+        call require_data(p, 'R_n, C_n, q_0, q_u, R_p, epsilon, C_epsilon, R_l')
+        call split_fields(line_text(p), f, n)
+        if (n > 8) call err(p, '*CONTROLS, PARAMETERS=FIELD data line has at most 8 fields')
+        associate(c => p%controls)
+          call set_real(1, c%rn, 'R_n')
+          call set_real(2, c%cn, 'C_n')
+          call set_real(4, c%qu, 'q_u')
+          call set_real(5, c%rp, 'R_p')
+          call set_real(6, c%eps, 'epsilon')
+          call set_real(7, c%ceps, 'C_epsilon')
+          call set_real(8, c%rl, 'R_l')
+        end associate
+        if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=FIELD has one data line')
+      case ('TIME INCREMENTATION', 'TIMEINCREMENTATION')
+        call require_data(p, 'I_0, I_R, I_P, I_C, I_L, I_G')
+        call split_fields(line_text(p), f, n)
+        if (n > 10) call err(p, 'the first line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 10 fields')
+        associate(c => p%controls)
+          call set_int(1, c%i0, 'I_0')
+          call set_int(2, c%ir, 'I_R')
+          call set_int(3, c%ip, 'I_P')
+          call set_int(4, c%ic, 'I_C')
+          call set_int(5, c%il, 'I_L')
+          call set_int(6, c%ig, 'I_G')
+          if (next_data(p)) then
+            call split_fields(line_text(p), f, n)
+            if (n > 8) call err(p, 'the second line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 8 fields')
+            call set_real(1, c%df, 'D_f')
+            call set_real(2, c%dc, 'D_C')
+            call set_real(3, c%db, 'D_B')
+            call set_real(7, c%dd, 'D_D')
+            if (c%df >= 1.0_dp .or. c%dc >= 1.0_dp .or. c%db > 1.0_dp) call err(p, 'the cut-back factors ' // &
+              'D_f, D_C and D_B must be below 1')
+            if (c%dd < 1.0_dp) call err(p, 'D_D, the growth factor, must be at least 1')
+            if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=TIME INCREMENTATION has two data lines')
+          end if
+        end associate
+      case ('LINE SEARCH', 'LINESEARCH', 'CONTACT', 'NETWORK', 'CFD')
+        call deck_warning(p%deck, p%i, '*CONTROLS, PARAMETERS=' // what // ' is not implemented and is ignored')
+        do while (next_data(p))
+        end do
+      case ('')
+        call err(p, '*CONTROLS needs PARAMETERS= or RESET')
+      case default
+        call err(p, 'unknown PARAMETERS=' // what // ' on *CONTROLS')
+      end select
+    end if
+    if (p%step > 0) m%steps(p%step)%controls = p%controls
+  contains
+    !> A positive real in field k, if given.
+    subroutine set_real(k, v, name)
+      integer, intent(in) :: k
+      real(dp), intent(inout) :: v
+      character(len=*), intent(in) :: name
+      if (k > n) return
+      if (len(f(k)%s) == 0) return
+      v = get_real(p, f(k), name)
+      if (.not. v > 0.0_dp .and. name /= 'q_u') call err(p, name // ' must be positive')
+      if (v < 0.0_dp) call err(p, name // ' must not be negative')
+    end subroutine set_real
+    !> A positive integer in field k, if given.
+    subroutine set_int(k, v, name)
+      integer, intent(in) :: k
+      integer, intent(inout) :: v
+      character(len=*), intent(in) :: name
+      if (k > n) return
+      if (len(f(k)%s) == 0) return
+      v = get_int(p, f(k), name)
+      if (v < 1) call err(p, name // ' must be a positive integer')
+    end subroutine set_int
+  end subroutine read_controls
 
   !> A number of increments too large for an integer, as text.
   function count_text(ratio) result(s)
@@ -486,6 +610,7 @@ contains
         case ('RF'); r%rf = .true.
         case ('S'); r%s = .true.
         case ('E'); r%e = .true.
+        case ('PEEQ'); r%peeq = .true.
         case ('CSTRESS', 'CDISP', 'CONTACT'); r%cstress = .true.
         case ('')
         case default
@@ -495,6 +620,7 @@ contains
       if (.not. next_data(p)) exit
     end do
     if (r%nodal .and. r%e) call err(p, 'E is an element quantity: ask for it in *EL PRINT or *EL FILE')
+    if (r%nodal .and. r%peeq) call err(p, 'PEEQ is an element quantity: ask for it in *EL PRINT or *EL FILE')
     call grow(m%steps(p%step)%requests, p%nreq + 1)
     p%nreq = p%nreq + 1
     m%steps(p%step)%requests(p%nreq) = r

@@ -20,7 +20,7 @@ module model
             surf_element, surf_node, coupling_nts, coupling_mortar, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
-            law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield
+            law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield, controls_t
   public :: kept_nodes
 
   integer, parameter :: surf_element = 1, surf_node = 2
@@ -169,10 +169,24 @@ module model
     logical :: to_file = .false.
     integer :: set = 0
     logical :: u = .false., rf = .false., s = .false., e = .false., cstress = .false.
+    !> PEEQ: the equivalent plastic strain (element quantity)
+    logical :: peeq = .false.
     !> GLOBAL= of *NODE PRINT: U and RF of a node with *TRANSFORM in global
     !> axes (YES) or in its local ones (NO, CalculiX's default).
     logical :: global = .false.
   end type request_t
+
+  !> *CONTROLS of a nonlinear step (CalculiX's names and defaults, its
+  !> manual "Convergence criteria" and *CONTROLS): PARAMETERS=FIELD gives
+  !> R_n, C_n, (q_0), q_u, R_p, epsilon, C_epsilon, R_l; PARAMETERS=TIME
+  !> INCREMENTATION gives I_0, I_R, I_P, I_C, I_L, I_G and D_f, D_C, D_B,
+  !> (D_A, D_S, D_H), D_D. q_u > 0 replaces the average force.
+  type :: controls_t
+    real(dp) :: rn = 0.005_dp, cn = 0.02_dp, qu = 0.0_dp, rp = 0.02_dp, eps = 1.0e-5_dp, ceps = 1.0e-3_dp, &
+                rl = 1.0e-8_dp
+    integer :: i0 = 4, ir = 8, ip = 9, ic = 16, il = 10, ig = 4
+    real(dp) :: df = 0.25_dp, dc = 0.5_dp, db = 0.75_dp, dd = 1.5_dp
+  end type controls_t
 
   type :: step_t
     character(len=name_len) :: name = ''
@@ -195,6 +209,9 @@ module model
     !> maximum increments (0: CalculiX's defaults).
     logical :: nlgeom = .false., direct = .false.
     real(dp) :: dt_min = 0.0_dp, dt_max = 0.0_dp
+    !> *CONTROLS in force in the step (kept by the later steps until
+    !> *CONTROLS, RESET, as CalculiX)
+    type(controls_t) :: controls
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.

@@ -28,7 +28,7 @@ module listing
     !> Row formats, made once for the digits asked for (not per row):
     !> set + 2 reals, node + 2, 4, 5 or 7 reals, element + point + 3 or 5
     !> reals, and a slave contact row without and with friction.
-    character(len=:), allocatable :: f_set2, f_node2, f_node4, f_node5, f_node7, f_ip3, f_ip5, f_slave, &
+    character(len=:), allocatable :: f_set2, f_node2, f_node4, f_node5, f_node7, f_ip1, f_ip3, f_ip5, f_slave, &
                                      f_slave_fric
   contains
     procedure :: step_started => write_step_header
@@ -53,6 +53,7 @@ contains
     lst%f_node4 = rowfmt(lst, 'i10', 4)
     lst%f_node5 = rowfmt(lst, 'i10', 5)
     lst%f_node7 = rowfmt(lst, 'i10', 7)
+    lst%f_ip1 = rowfmt(lst, 'i10,i4', 1)
     lst%f_ip3 = rowfmt(lst, 'i10,i4', 3)
     lst%f_ip5 = rowfmt(lst, 'i10,i4', 5)
     lst%f_slave = '(i10,3' // efmt(lst) // ',1x,a6,3' // efmt(lst) // ')'
@@ -320,6 +321,10 @@ contains
     write(u, '(a,i0)') 'element_calls_continuum_stiffness ', summary%continuum_tangent
     write(u, '(a,i0)') 'element_calls_continuum_stresses ', summary%continuum_stresses
     write(u, '(a,i0)') 'element_calls_coupling ', summary%coupling
+    if (summary%nonlinear) then
+      write(u, '(a,i0)') 'newton_iterations ', summary%newton_iterations
+      write(u, '(a,i0)') 'cutbacks ', summary%cutbacks
+    end if
     write(u, '(a)') 'wall_seconds ' // ftoa(summary%wall_seconds, 3)
     flush(u)
   end subroutine write_step_summary
@@ -493,7 +498,9 @@ contains
     if (local) s = ' system'
   end function system_column
 
-  !> *EL PRINT: S and E at the integration points of an element set.
+  !> *EL PRINT: S, E and PEEQ at the integration points of an element set
+  !> (under NLGEOM S is the Cauchy stress and E the strain the element
+  !> routine reports).
   subroutine write_element_request(self, m, req, res)
     class(listing_t), intent(in) :: self
     type(model_t), intent(in) :: m
@@ -536,6 +543,21 @@ contains
             write(un, '(1x,a)') elem_label(m, e)
           else
             write(un, self%f_ip3) m%elem_id(e), ip, res%eps_ip(:, ip, e)
+          end if
+        end do
+      end do
+    end if
+    if (req%peeq) then
+      ! the equivalent plastic strain (zero for a material without *PLASTIC)
+      call block_head(self, m, 'ELEMENT PEEQ', req%set, .false., 'element ip PEEQ' // label_column(m))
+      do k = 1, size(sel)
+        e = sel(k)
+        do ip = 1, res%nip(e)
+          if (lab) then
+            write(un, self%f_ip1, advance='no') m%elem_id(e), ip, res%peeq_ip(ip, e)
+            write(un, '(1x,a)') elem_label(m, e)
+          else
+            write(un, self%f_ip1) m%elem_id(e), ip, res%peeq_ip(ip, e)
           end if
         end do
       end do

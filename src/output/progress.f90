@@ -1,5 +1,6 @@
 !> The progress line on standard output: one line per converged increment
-!> and one per finished step, so that a long run shows where it is.
+!> (in a nonlinear step with its size and Newton iterations) and one per
+!> finished step, so that a long run shows where it is.
 module progress
   use, intrinsic :: iso_fortran_env, only: output_unit
   use kinds, only: dp
@@ -24,9 +25,16 @@ contains
     class(progress_t), intent(inout) :: self
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
-    write(output_unit, '(a,i0,a,i0,a,es12.4e3,a,i0,a,i0,a,es13.5e3)') 'step ', res%step, '  increment ', &
-      res%increment, '  time ', res%total_time, '  iterations ', res%iterations, '  closed ', res%nclosed, &
-      '  contact force ', res%contact%total_force
+    if (res%nonlinear) then
+      ! a nonlinear step: the increment size and its Newton iterations
+      write(output_unit, '(a,i0,a,i0,a,es12.4e3,a,es11.3e3,a,i0,a,i0,a,es13.5e3)') 'step ', res%step, &
+        '  increment ', res%increment, '  time ', res%total_time, '  size ', res%dt, '  newton iterations ', &
+        res%iterations, '  closed ', res%nclosed, '  contact force ', res%contact%total_force
+    else
+      write(output_unit, '(a,i0,a,i0,a,es12.4e3,a,i0,a,i0,a,es13.5e3)') 'step ', res%step, '  increment ', &
+        res%increment, '  time ', res%total_time, '  iterations ', res%iterations, '  closed ', res%nclosed, &
+        '  contact force ', res%contact%total_force
+    end if
     flush(output_unit)
   end subroutine progress_increment
 
@@ -37,6 +45,8 @@ contains
       summary%increments, ' increments, ', summary%iterations, ' contact iterations, ', summary%factorisations, &
       ' factorisations, ', summary%condensed_factorisations, ' condensed factorisations, ' // &
       ftoa(summary%wall_seconds, 2) // ' s'
+    if (summary%nonlinear) write(output_unit, '(a,i0,a,i0,a,i0,a)') 'step ', summary%step, ' nonlinear: ', &
+      summary%newton_iterations, ' Newton iterations, ', summary%cutbacks, ' increments cut back'
     flush(output_unit)
   end subroutine progress_step
 

@@ -49,14 +49,15 @@ contains
           fnode%cstress = fnode%cstress .or. r%cstress
         else
           felem%s = felem%s .or. r%s
+          felem%peeq = felem%peeq .or. r%peeq
         end if
       end associate
     end do
     if (.not. self%open) return
-    if (.not. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s)) return
+    if (.not. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s .or. felem%peeq)) return
     call write_result_views(self, m, fnode, felem, res%total_time, res%u, res%rf, res%sig_node, res%sig_elem, &
                             res%contact%pressure, res%contact%has_pressure, res%contact%frictional, &
-                            res%contact%shear)
+                            res%contact%shear, res%peeq_elem)
   end subroutine write_increment_views
 
   !> One text line of the file.
@@ -149,19 +150,21 @@ contains
   end subroutine write_elements
 
   !> The views of one increment. sig_node/sig_elem may be absent when no
-  !> stress was requested; pressure(nn) holds contact pressures (slave and
+  !> stress was requested, peeq_elem(ne) (element averages) when PEEQ was
+  !> not; pressure(nn) holds contact pressures (slave and
   !> master nodes) and has_pressure marks the nodes that carry one;
   !> shear(nn) the contact shear tractions at the same nodes, a view of
   !> its own (CSHEAR) only when the model has friction (frictionless
   !> files stay as they were).
   subroutine write_result_views(rf, m, req_nodal, req_elem, time, u, reac, sig_node, sig_elem, &
-                                pressure, has_pressure, frictional, shear)
+                                pressure, has_pressure, frictional, shear, peeq_elem)
     type(result_file_t), intent(inout) :: rf
     type(model_t), intent(in) :: m
     type(request_t), intent(in) :: req_nodal, req_elem
     real(dp), intent(in) :: time
     real(dp), intent(in) :: u(:, :), reac(:, :), sig_node(:, :), sig_elem(:, :), pressure(:), shear(:)
     logical, intent(in) :: has_pressure(:), frictional
+    real(dp), intent(in) :: peeq_elem(:)
     integer :: k
     logical :: all_nodes(m%nn), solid(m%ne)
     character(len=5), parameter :: names(4) = ['S11  ', 'S22  ', 'S33  ', 'S12  ']
@@ -190,6 +193,9 @@ contains
       call write_view(rf, 'ElementData', 'Mises (element)', time, m%elem_id, solid, &
                       reshape([(von_mises(sig_elem(:, k)), k = 1, m%ne)], [1, m%ne]))
     end if
+    ! PEEQ: the element average of the equivalent plastic strain
+    if (req_elem%peeq .and. size(peeq_elem) == m%ne) call write_view(rf, 'ElementData', 'PEEQ (element)', time, &
+                                                                     m%elem_id, solid, reshape(peeq_elem, [1, m%ne]))
     flush(rf%unit)
   end subroutine write_result_views
 

@@ -80,10 +80,10 @@ contains
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
     type(vtu_array_t), allocatable, intent(out) :: arrays(:)
-    logical :: rf, s_node, cstress, s_elem
+    logical :: rf, s_node, cstress, s_elem, peeq
     integer :: q, k
     integer, allocatable :: cells(:)
-    rf = .false.; s_node = .false.; cstress = .false.; s_elem = .false.
+    rf = .false.; s_node = .false.; cstress = .false.; s_elem = .false.; peeq = .false.
     do q = 1, size(m%steps(res%step)%requests)
       associate(r => m%steps(res%step)%requests(q))
         if (.not. r%to_file) cycle
@@ -91,6 +91,7 @@ contains
         s_node = s_node .or. (r%nodal .and. r%s)
         cstress = cstress .or. (r%nodal .and. r%cstress)
         s_elem = s_elem .or. (.not. r%nodal .and. r%s)
+        peeq = peeq .or. (.not. r%nodal .and. r%peeq)
       end associate
     end do
     cells = pack([(k, k = 1, m%ne)], [(is_drawn(m, k), k = 1, m%ne)])
@@ -109,6 +110,9 @@ contains
     if (s_elem .and. res%has_stresses) arrays = [arrays, &
         tensor_array('S (element)', cell_data, res%sig_elem(:, cells)), &
         real_array('Mises (element)', cell_data, [(von_mises(res%sig_elem(:, cells(k))), k = 1, size(cells))])]
+    ! the element average of the equivalent plastic strain
+    if (peeq .and. size(res%peeq_elem) == m%ne) arrays = [arrays, &
+        real_array('PEEQ (element)', cell_data, res%peeq_elem(cells))]
   end subroutine collect_arrays
 
   !> Points (z = 0) and the elements the model draws (continuum elements,

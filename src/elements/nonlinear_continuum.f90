@@ -1,0 +1,345 @@
+!> The continuum element of every catalogue shape with a nonlinear body:
+!> large deformation (NLGEOM), a hyperelastic law or plasticity. The
+!> linear elastic small-strain element stays continuum_element's, which
+!> element_library calls unless is_nonlinear says otherwise.
+!>
+!> Finite strain (NLGEOM, and always for the hyperelastic laws, whose
+!> energy is one of finite strain): total Lagrangian. ue is the total
+!> displacement from the initial configuration X; at each integration
+!> point
+!>   F = I + sum_a u_a (x) dN_a/dX        (in-plane 2x2 block),
+!>   F33 = 1 (plane strain), 1 + u_r / R (axisymmetry: the hoop stretch
+!>   r / R), or solved from s33 = 0 by the material (plane stress),
+!> and with G the matrix giving the five components (F11, F12, F21, F22,
+!> F33) of dF from the nodal dofs,
+!>   fe = integral G^T P dV0,  ke = integral G^T (dP/dF) G dV0
+!> over the reference volume (thickness t0 dA0, or 2 pi R dA0 for the
+!> whole ring as the linear element), P the first Piola-Kirchhoff
+!> stress. dP/dF holds the material and the geometric (initial stress)
+!> stiffness at once (Bonet and Wood 2008, ch. 8; Wriggers 2008, ch. 4).
+!>
+!> F-bar (de Souza Neto, Peric, Dutko and Owen 1996, Int. J. Solids
+!> Struct. 33, 3277-3296; de Souza Neto et al. 2008, section 15.2) for
+!> the 4-node quadrilateral in plane strain and axisymmetry with a
+!> hyperelastic law or plasticity, whose isochoric response would
+!> otherwise lock: the material sees Fbar = s F, s = (J0 / J)^(1/n), J0 =
+!> det F at the element's centre, n = 2 (plane strain: the in-plane
+!> block is scaled) or 3 (axisymmetry: all of F), and the internal force
+!> is integral sigma(Fbar) : grad_x(du) dv, i.e. P_eff = (J / Jbar) tau(Fbar)
+!> F^-T = s^(1 - n) P(Fbar). Its exact (unsymmetric) tangent:
+!>   dP_eff = c s A dF + (c / n) [(1 - n) Pbar + s A F] (F0^-T : dF0 - F^-T : dF),
+!> c = s^(1 - n), A = dP/dF at Fbar, dF0 the centre's dF.
+!>
+!> Small strain with plasticity (NLGEOM off): fe = integral B^T sig dV,
+!> ke = integral B^T D B dV with the law's consistent tangent D; the
+!> 4-node quadrilateral in plane strain and axisymmetry uses B-bar (the
+!> small-strain F-bar: eps_bar = eps + (1/n) (tr eps0 - tr eps) m, m the
+!> identity over the scaled components; Hughes 1980) against plastic
+!> locking. The thermal strain alpha dT is subtracted from the strain
+!> the law sees (small strain: eps - alpha dT (1, 1, 0, 1); finite strain,
+!> St Venant-Kirchhoff only: the Lagrange strain of F - alpha dT I,
+!> CalculiX 2.20's mechanical strain under NLGEOM; the hyperelastic laws and
+!> finite-strain plasticity ignore it), so fe is the whole internal force
+!> and act_thermal gives zero on this path.
+!>
+!> Stresses (act_stresses): sig_ip the Cauchy stress (s11, s22, s33, s12)
+!> (sigma = tau / det Fbar with F-bar), extrapolated to the nodes;
+!> eps_ip the Green-Lagrange strain (E11, E22, 2 E12) under finite
+!> strain, what CalculiX prints as E under NLGEOM ("total Lagrangian
+!> strain", its manual), the small strain otherwise; peeq_ip the
+!> equivalent plastic strain. Every action returns eout%hist, the
+!> history at ue computed from ein%hist (read for *PLASTIC only: the
+!> elastic laws have no history, zero).
+!>
+!> detj_min: the smallest reference det J (times R in axisymmetry) and,
+!> under finite strain, that times det F, the current one: an element
+!> turned inside out reports a non-positive value, and its points give
+!> no force; so does (zero) a plane-stress point whose thickness stretch
+!> could not be found, or NaN in ue. Arrays that are not finite (the laws
+!> overflow at absurd deformations) are returned as zero with detj_min 0.
+module nonlinear_continuum
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use kinds, only: dp
+  use model, only: law_elastic
+  use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
+  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants, max_hist
+  use shape_functions, only: shape_at, gauss_rule, extrapolation
+  use continuum_element, only: volume_factor, strain_matrix
+  use material_laws, only: material_response, hist_peeq, fc_i, fc_j, det3, inv3
+  implicit none
+  private
+  public :: nonlinear_continuum_element, is_nonlinear
+
+contains
+
+  !> Purpose: does this continuum element need the nonlinear routine
+  !> (large deformation, a hyperelastic law or plasticity)?
+  pure logical function is_nonlinear(ein)
+    type(elem_in_t), intent(in) :: ein
+    is_nonlinear = ein%nlgeom .or. ein%law /= law_elastic .or. ein%nyield > 0
+  end function is_nonlinear
+
+  !> Purpose: element arrays of a nonlinear continuum element.
+  !> Arguments: action (act_* codes), ein (ue the total displacement,
+  !> hist the committed history), eout: ke the consistent tangent and fe
+  !> the internal force at ue, the stresses, strains and PEEQ at the
+  !> integration points, hist the history at ue.
+  pure subroutine nonlinear_continuum_element(action, ein, eout)
+    integer, intent(in) :: action
+    type(elem_in_t), intent(in) :: ein
+    type(elem_out_t), intent(out) :: eout
+    real(dp) :: ex(max_nodes, max_ip)
+    integer :: nen, ip
+    nen = ein%nen
+    eout%ndof = 2 * nen
+    eout%nip = ein%nip
+    if (ein%nlgeom .or. ein%law /= law_elastic) then
+      call finite_strain(ein, wants(action, act_tangent), eout)
+    else
+      call small_strain(ein, eout)
+    end if
+    ! a deformation the laws cannot evaluate (NaN in ue, an overflow at an
+    ! absurd stretch or volume ratio): no arrays, the history unchanged,
+    ! and the element reported bad so that the driver cuts back
+    if (.not. (eout%detj_min <= 0.0_dp .or. eout%detj_min > 0.0_dp) &
+        .or. .not. finite_arrays(eout, 2 * nen, ein%nip)) then
+      eout%detj_min = min(eout%detj_min, 0.0_dp)
+      if (.not. eout%detj_min <= 0.0_dp) eout%detj_min = 0.0_dp
+      eout%ke = 0.0_dp
+      eout%fe = 0.0_dp
+      eout%sig_ip = 0.0_dp
+      eout%eps_ip = 0.0_dp
+      eout%peeq_ip = 0.0_dp
+      do ip = 1, ein%nip
+        eout%hist(:, ip) = committed(ein, ip)
+      end do
+    end if
+    if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
+    if (.not. wants(action, act_residual)) eout%fe = 0.0_dp
+    if (wants(action, act_stresses)) then
+      call extrapolation(ein%kind, nen, ein%nip, ex)
+      eout%sig_node(:, 1:nen) = matmul(eout%sig_ip(:, 1:ein%nip), transpose(ex(1:nen, 1:ein%nip)))
+    else
+      eout%sig_ip = 0.0_dp
+      eout%eps_ip = 0.0_dp
+    end if
+  end subroutine nonlinear_continuum_element
+
+  !> Purpose: are the element's arrays (ke, fe, stresses, strains,
+  !> history at the points) all finite?
+  !> Arguments: eout, nd its dofs, nip its integration points.
+  pure logical function finite_arrays(eout, nd, nip)
+    type(elem_out_t), intent(in) :: eout
+    integer, intent(in) :: nd, nip
+    finite_arrays = all(ieee_is_finite(eout%ke(1:nd, 1:nd))) .and. all(ieee_is_finite(eout%fe(1:nd))) .and. &
+                    all(ieee_is_finite(eout%sig_ip(:, 1:nip))) .and. all(ieee_is_finite(eout%eps_ip(:, 1:nip))) .and. &
+                    all(ieee_is_finite(eout%hist(:, 1:nip)))
+  end function finite_arrays
+
+  !> Purpose: the committed history of integration point ip: ein%hist
+  !> for a law with state (*PLASTIC), zero for the elastic laws, whose
+  !> callers need not define ein%hist (element_interface gives it no
+  !> default, and the stiffness at setup is built without it).
+  pure function committed(ein, ip) result(h)
+    type(elem_in_t), intent(in) :: ein
+    integer, intent(in) :: ip
+    real(dp) :: h(max_hist)
+    h = 0.0_dp
+    if (ein%nyield > 0) h = ein%hist(:, ip)
+  end function committed
+
+  !> Does the element use F-bar / B-bar (see the module header)?
+  pure logical function uses_fbar(ein)
+    type(elem_in_t), intent(in) :: ein
+    uses_fbar = ein%kind == shape_quad4 .and. ein%state /= state_plane_stress &
+                .and. (ein%law /= law_elastic .or. ein%nyield > 0)
+  end function uses_fbar
+
+  !> Purpose: reference geometry at natural point xi: shape functions n,
+  !> their derivatives dndx = dN/dX, det J and the radius R.
+  pure subroutine reference_point(ein, xi, n, dndx, detj, r)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(in) :: xi(2)
+    real(dp), intent(out) :: n(max_nodes), dndx(2, max_nodes), detj, r
+    real(dp) :: dn(2, max_nodes), jac(2, 2), jinv(2, 2)
+    integer :: nen
+    nen = ein%nen
+    call shape_at(ein%kind, xi, n, dn)
+    jac = matmul(dn(:, 1:nen), transpose(ein%xy(:, 1:nen)))
+    detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    jinv = reshape([jac(2, 2), -jac(2, 1), -jac(1, 2), jac(1, 1)], [2, 2]) / detj
+    dndx = 0.0_dp
+    dndx(:, 1:nen) = matmul(jinv, dn(:, 1:nen))
+    r = dot_product(n(1:nen), ein%xy(1, 1:nen))
+  end subroutine reference_point
+
+  !> Purpose: F at a point (F33 = 1 but in axisymmetry, 1 + u_r / R) and
+  !> G(5, nd), dF = G du in the component order (F11, F12, F21, F22, F33).
+  pure subroutine deformation(ein, n, dndx, r, f, g)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(in) :: n(max_nodes), dndx(2, max_nodes), r
+    real(dp), intent(out) :: f(3, 3), g(5, 2 * max_nodes)
+    integer :: a, c
+    f = 0.0_dp
+    f(3, 3) = 1.0_dp
+    g = 0.0_dp
+    do c = 1, 4
+      do a = 1, ein%nen
+        g(c, 2 * (a - 1) + fc_i(c)) = dndx(fc_j(c), a)
+      end do
+    end do
+    if (ein%state == state_axisymmetric) then
+      do a = 1, ein%nen
+        g(5, 2 * a - 1) = n(a) / r
+      end do
+    end if
+    do c = 1, 5
+      f(fc_i(c), fc_j(c)) = f(fc_i(c), fc_j(c)) + dot_product(g(c, 1:2 * ein%nen), ein%ue(1:2 * ein%nen))
+    end do
+    f(1, 1) = f(1, 1) + 1.0_dp
+    f(2, 2) = f(2, 2) + 1.0_dp
+  end subroutine deformation
+
+  !> The five components of a 3x3 tensor.
+  pure function comps(t) result(v)
+    real(dp), intent(in) :: t(3, 3)
+    real(dp) :: v(5)
+    integer :: c
+    do c = 1, 5
+      v(c) = t(fc_i(c), fc_j(c))
+    end do
+  end function comps
+
+  !> Purpose: the total Lagrangian element (module header).
+  !> Arguments: ein, tangent (false: fe, stresses and history only, ke
+  !> left zero; the laws then skip their derivatives), eout.
+  pure subroutine finite_strain(ein, tangent, eout)
+    type(elem_in_t), intent(in) :: ein
+    logical, intent(in) :: tangent
+    type(elem_out_t), intent(inout) :: eout
+    real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol, vinv
+    real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
+    real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth, w0(2 * max_nodes), &
+                wd(2 * max_nodes)
+    integer :: ip, nd, nexp, k
+    logical :: fbar, ok
+    nd = 2 * ein%nen
+    fbar = uses_fbar(ein)
+    j0 = 1.0_dp
+    nexp = 2
+    if (ein%state == state_axisymmetric) nexp = 3
+    if (fbar) then
+      call reference_point(ein, [0.0_dp, 0.0_dp], n, dndx, detj, r)
+      call deformation(ein, n, dndx, r, f0, g0)
+      j0 = det3(f0)
+      ! F0^-T : dF0 as a row over the dofs, the same at every point
+      if (j0 > 0.0_dp) w0(1:nd) = matmul(comps(transpose(inv3(f0))), g0(:, 1:nd))
+    end if
+    call gauss_rule(ein%kind, ein%nip, xg, wg)
+    eout%detj_min = huge(1.0_dp)
+    do ip = 1, ein%nip
+      call reference_point(ein, xg(:, ip), n, dndx, detj, r)
+      vol = detj
+      if (ein%state == state_axisymmetric) vol = detj * r
+      t_ip = dot_product(n(1:ein%nen), ein%thickness(1:ein%nen))
+      if (ein%state /= state_axisymmetric .and. .not. t_ip > 0.0_dp) vol = min(vol, t_ip)
+      eout%detj_min = min(eout%detj_min, vol)
+      dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
+      call deformation(ein, n, dndx, r, f, g)
+      eth = ein%alpha * dot_product(n(1:ein%nen), ein%dtemp(1:ein%nen))
+      eout%hist(:, ip) = committed(ein, ip)
+      jac = (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) * f(3, 3)
+      if (.not. jac > 0.0_dp .or. (fbar .and. .not. j0 > 0.0_dp)) then
+        ! turned inside out (or NaN in ue: reported as zero, which min
+        ! would not do): no force, reported through detj_min
+        vinv = vol * min(jac, merge(j0, jac, fbar))
+        if (.not. vinv <= 0.0_dp) vinv = 0.0_dp
+        eout%detj_min = min(eout%detj_min, vinv)
+        cycle
+      end if
+      if (fbar) then
+        s = (j0 / jac)**(1.0_dp / nexp)
+        fb = f
+        fb(1:2, 1:2) = s * f(1:2, 1:2)
+        if (nexp == 3) fb(3, 3) = s * f(3, 3)
+        call material_response(ein, ein%state, fb, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
+        c = s**(1 - nexp)
+        eout%fe(1:nd) = eout%fe(1:nd) + matmul(c * p, g(:, 1:nd)) * dv
+        if (tangent) then
+          fm = comps(f)
+          if (nexp == 2) fm(5) = 0.0_dp
+          v = (c / nexp) * ((1 - nexp) * p + s * matmul(a, fm))
+          wd(1:nd) = w0(1:nd) - matmul(comps(transpose(inv3(f))), g(:, 1:nd))
+          kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd))
+          do k = 1, nd
+            kmat(:, k) = kmat(:, k) + v * wd(k)
+          end do
+          eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
+        end if
+        jac = det3(fb)
+      else
+        call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
+        eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
+        if (tangent) eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) &
+                                           + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv
+        jac = det3(f)
+      end if
+      ! the current volume element (det F of the point itself, F33 solved
+      ! in plane stress); zero where the plane-stress condition failed
+      eout%detj_min = min(eout%detj_min, vol * det3(f))
+      if (.not. ok) eout%detj_min = min(eout%detj_min, 0.0_dp)
+      eout%peeq_ip(ip) = eout%hist(hist_peeq, ip)
+      eout%sig_ip(:, ip) = [tau(1, 1), tau(2, 2), tau(3, 3), tau(1, 2)] / jac
+      cg = matmul(transpose(f), f)
+      eout%eps_ip(:, ip) = [0.5_dp * (cg(1, 1) - 1.0_dp), 0.5_dp * (cg(2, 2) - 1.0_dp), cg(1, 2)]
+    end do
+  end subroutine finite_strain
+
+  !> Purpose: the small-strain element with a law with state (module
+  !> header), B-bar for the 4-node quadrilateral in plane strain and
+  !> axisymmetry.
+  pure subroutine small_strain(ein, eout)
+    type(elem_in_t), intent(in) :: ein
+    type(elem_out_t), intent(inout) :: eout
+    real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dn(2, max_nodes), b(4, 2 * max_nodes), &
+                b0(4, 2 * max_nodes), bv0(2 * max_nodes), m(4), detj, r, dv, t_ip, eps(4), eps0(4), sig(4), &
+                d(4, 4), vol
+    integer :: ip, nd, nen, nexp
+    logical :: bbar
+    nen = ein%nen
+    nd = 2 * nen
+    bbar = uses_fbar(ein)
+    m = [1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp]
+    nexp = 2
+    if (ein%state == state_axisymmetric) then
+      m(4) = 1.0_dp
+      nexp = 3
+    end if
+    if (bbar) then
+      call shape_at(ein%kind, [0.0_dp, 0.0_dp], n, dn)
+      call strain_matrix(nen, ein%xy(:, 1:nen), n(1:nen), dn(:, 1:nen), ein%state, b0(:, 1:nd), detj, r)
+      bv0(1:nd) = matmul(m, b0(:, 1:nd))
+    end if
+    call gauss_rule(ein%kind, ein%nip, xg, wg)
+    eout%detj_min = huge(1.0_dp)
+    do ip = 1, ein%nip
+      call shape_at(ein%kind, xg(:, ip), n, dn)
+      call strain_matrix(nen, ein%xy(:, 1:nen), n(1:nen), dn(:, 1:nen), ein%state, b(:, 1:nd), detj, r)
+      vol = detj
+      if (ein%state == state_axisymmetric) vol = detj * r
+      t_ip = dot_product(n(1:nen), ein%thickness(1:nen))
+      if (ein%state /= state_axisymmetric .and. .not. t_ip > 0.0_dp) vol = min(vol, t_ip)
+      eout%detj_min = min(eout%detj_min, vol)
+      dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
+      if (bbar) b(:, 1:nd) = b(:, 1:nd) + spread(m, 2, nd) * spread(bv0(1:nd) - matmul(m, b(:, 1:nd)), 1, 4) / nexp
+      eps0 = ein%alpha * dot_product(n(1:nen), ein%dtemp(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
+      eps = matmul(b(:, 1:nd), ein%ue(1:nd))
+      call material_response(ein, ein%state, eps - eps0, committed(ein, ip), sig, d, eout%hist(:, ip))
+      eout%fe(1:nd) = eout%fe(1:nd) + matmul(sig, b(:, 1:nd)) * dv
+      eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(b(:, 1:nd)), matmul(d, b(:, 1:nd))) * dv
+      eout%peeq_ip(ip) = eout%hist(hist_peeq, ip)
+      eout%sig_ip(:, ip) = [sig(1), sig(2), sig(4), sig(3)]
+      eout%eps_ip(:, ip) = eps(1:3)
+    end do
+  end subroutine small_strain
+end module nonlinear_continuum
