@@ -33,6 +33,7 @@ Usage: contact_accuracy.py [--cases default,q8,ccx] [--out results/accuracy]
 import argparse
 import csv
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -55,9 +56,12 @@ RADIUS = 10.0
 ESTAR = effective_modulus(210000.0, 0.3)
 
 
-def write_case(outdir, mesh, pair_params):
-    """The flagship deck on one mesh with the pair's parameters appended;
-    returns the deck's path. The mesh is made once per folder."""
+def write_case(outdir, mesh, pair_params, solve=None):
+    """The flagship deck on one mesh with the pair's parameters appended
+    (and a *SOLVER, CONTACT SOLVE=solve card where solve is given: FULL
+    keeps exact enforcement's augmented Lagrangian, CONDENSED its direct
+    multipliers); returns the deck's path. The mesh is made once per
+    folder."""
     os.makedirs(outdir, exist_ok=True)
     h, order = MESHES[mesh]
     mesh_file = os.path.join(outdir, "hertz_mesh.inp")
@@ -71,6 +75,9 @@ def write_case(outdir, mesh, pair_params):
         deck = f.read()
     assert PAIR + "\n" in deck
     deck = deck.replace(PAIR + "\n", PAIR + pair_params + "\n")
+    if solve is not None:
+        assert "*SOLVER" not in deck
+        deck = deck.replace("*STEP", f"*SOLVER, CONTACT SOLVE={solve}\n*STEP", 1)
     path = os.path.join(outdir, "hertz.inp")
     with open(path, "w") as f:
         f.write(deck)
@@ -106,14 +113,62 @@ def figures(contact_csv, increment=10):
             "points": int(core.sum())}
 
 
-def measure(out, mesh, coupling, pair_params=None, repeats=1):
-    """Runs one case (best wall time of `repeats`) and returns its figures."""
+def master_phases(contact_csv, increment=10, quadratic=False, bins=2):
+    """Where the slave pressures' oscillation sits (docs/contact.md,
+    "Where the rest is"): each slave node's deviation from the fitted
+    ellipse (relative to the fitted p0, |x| < 0.8 a_H), binned by its
+    position on the master face under it (0: over a master corner, 0.5:
+    mid-face); returns the bins' mean and rms deviations and node counts, the rms
+    left after taking out the bins' means, and the master rows' rms
+    deviation about the same ellipse. quadratic: 3-node master faces
+    (every other master node a corner)."""
+    rows = [r for r in csv.DictReader(open(contact_csv)) if int(r["increment"]) == increment]
+    side = {k: sorted((r for r in rows if r["side"] == k), key=lambda r: float(r["x"])) for k in ("slave", "master")}
+    xs = np.array([float(r["x"]) for r in side["slave"]])
+    ps = np.array([float(r["pressure"]) for r in side["slave"]])
+    xm = np.array([float(r["x"]) for r in side["master"]])
+    pm = np.array([float(r["pressure"]) for r in side["master"]])
+    h = HertzLine(float(sum(float(r["force"]) for r in side["slave"])), RADIUS, ESTAR)
+    p0, a = fit_ellipse(xs, ps, 0.8 * h.a)
+
+    def dev(x, p):
+        return (p - p0 * np.sqrt(np.clip(1.0 - x ** 2 / a ** 2, 0.0, None))) / p0
+    core = np.abs(xs) < 0.8 * h.a
+    d = dev(xs, ps)[core]
+    corners = xm[::2] if quadratic else xm
+    k = np.clip(np.searchsorted(corners, xs[core]) - 1, 0, len(corners) - 2)
+    phase = (xs[core] - corners[k]) / (corners[k + 1] - corners[k])
+    b = np.floor(phase * bins + 0.5).astype(int) % bins
+    means = [float(d[b == i].mean()) if (b == i).any() else 0.0 for i in range(bins)]
+    left = d - np.array(means)[b]
+    mcore = np.abs(xm) < 0.8 * h.a
+    rms = [float(np.sqrt(np.mean(d[b == i] ** 2))) if (b == i).any() else 0.0 for i in range(bins)]
+    return {"bin_mean": means, "bin_rms": rms, "bin_n": [int((b == i).sum()) for i in range(bins)],
+            "left": float(np.sqrt(np.mean(left ** 2))), "master_osc": float(np.sqrt(np.mean(dev(xm, pm)[mcore] ** 2)))}
+
+
+def measure(out, mesh, coupling, pair_params=None, repeats=1, solve=None):
+    """Runs one case (best wall time of `repeats`) and returns its figures,
+    with `solves` the direct multiplier solves of each increment (exact
+    enforcement on the condensed path: the listing's notes) and `deck`."""
     params = COUPLINGS[coupling] if pair_params is None else pair_params
-    deck = write_case(os.path.join(out, mesh, coupling if pair_params is None else "custom"), mesh, params)
+    folder = coupling if pair_params is None else "custom"
+    if solve is not None:
+        folder += "_" + solve.lower()
+    deck = write_case(os.path.join(out, mesh, folder), mesh, params, solve)
     wall = min(run(deck) for _ in range(repeats))
     f = figures(os.path.splitext(deck)[0] + "_contact.csv")
     f["wall"] = wall
+    f["deck"] = deck
+    f["solves"] = multiplier_solves(os.path.splitext(deck)[0] + ".out")
     return f
+
+
+def multiplier_solves(listing):
+    """The direct multiplier solves of each increment, from the listing's
+    notes (empty where exact enforcement did not take them)."""
+    pat = re.compile(r"exact contact: (\d+) direct multiplier solves")
+    return [int(mo.group(1)) for mo in pat.finditer(open(listing).read())]
 
 
 def table(cases, out, repeats=1, penalties=False):
@@ -130,6 +185,18 @@ def table(cases, out, repeats=1, penalties=False):
             row = [mesh, coupling, f"{f['P']:.2f}", f"{f['osc']:.2%}", f"{f['node_p0']:+.2%}", f"{f['s-m']:.2%}",
                    f"{f['wall']:.2f}", f"{ratio:.2f}"]
             print(" ".join(f"{c:>10}" for c in row), flush=True)
+            if f["solves"]:
+                print(f"{'':>10} exact: direct multiplier solves per increment {min(f['solves'])}..{max(f['solves'])}, "
+                      f"{sum(f['solves'])} in {len(f['solves'])} increments", flush=True)
+    print("where sts's oscillation sits: slave deviations by position on the master face (0 corner, 0.5 mid-face)")
+    for mesh in cases:
+        quadratic = MESHES[mesh][1] == 2
+        ph = master_phases(os.path.splitext(results[mesh, "sts"]["deck"])[0] + "_contact.csv", quadratic=quadratic,
+                           bins=4 if quadratic else 2)
+        bins = ", ".join(f"{i / len(ph['bin_mean']):.2f}: {v:+.2%} rms {r:.2%} ({n})"
+                         for i, (v, r, n) in enumerate(zip(ph["bin_mean"], ph["bin_rms"], ph["bin_n"])))
+        print(f"  {mesh}: by position {bins}; rms left after the means {ph['left']:.2%}; "
+              f"master rows {ph['master_osc']:.2%}", flush=True)
     if penalties:
         print("sts (EXACT) on the default mesh with PENALTY= over three decades (automatic: about 8e9 per area)")
         for k in ("1e8", "1e9", "1e10", "1e11"):

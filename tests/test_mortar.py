@@ -10,6 +10,8 @@ g0 = 0.01 above it, its top pushed down by d = 0.03. Both are free to
 expand sideways (one x support each), so the stress is uniaxial and the
 interface pressure is exactly p = E (d - g0) / 2 with exact
 non-penetration (plane stress, and the axisymmetric column alike)."""
+import re
+
 import numpy as np
 
 from helpers import run_deck
@@ -45,6 +47,69 @@ def test_mortar_patch_test_exact_one_pass():
         assert abs(total - P_EXACT) < 1e-8 * P_EXACT, total
         # one coupling element per slave node, all of them
         assert len(s["node"]) == (n2 + 1 if upper == "Q4" else 2 * n2 + 1) and all(n > 0 for n in s["node"])
+
+
+def test_exact_patch_test_direct_and_augmented():
+    """The exact patch test (Q8 slave over Q4, 7 over 5, and Q4 13 over 5)
+    on the condensed path, whose multipliers are solved directly (one solve
+    per status, noted in the listing), and on the full path (the augmented
+    Lagrangian): both give p at every node to 1e-8, and the same pressures
+    to 1e-10 of p."""
+    for lower, upper, n1, n2 in (("Q4", "Q8", 5, 7), ("Q4", "Q4", 5, 13)):
+        deck = two_blocks(lower, upper, n1, n2, pair=STS + ", EXACT")
+        pressures = {}
+        for solve in ("CONDENSED", "FULL"):
+            run = run_deck(f"mortar_patch_{solve.lower()}_{upper}_{n2}",
+                           deck.replace("*STEP", f"*SOLVER, CONTACT SOLVE={solve}\n*STEP", 1)).ok()
+            es, em, total, s, _ = patch_errors(run)
+            assert es < 1e-8 and em < 1e-8, (solve, es, em)
+            pressures[solve] = np.array(s["pressure"])
+            notes = re.findall(r"exact contact: (\d+) direct multiplier solves", open(run.listing_path).read())
+            if solve == "CONDENSED":
+                # the first status (all closed from the gap's closure) is the answer
+                assert notes and all(1 <= int(k) <= 3 for k in notes), notes
+            else:
+                assert not notes, notes
+        diff = np.max(np.abs(pressures["CONDENSED"] - pressures["FULL"])) / P_EXACT
+        print(f"  {upper} {n2} over {n1}: direct against augmented {diff:.1e}")
+        assert diff < 1e-10, diff
+
+
+def test_exact_direct_multipliers_through_constraints():
+    """The exact patch test (Q4, 7 over 5) with *EQUATIONs making a master
+    and a slave interface node's y displacement dependent on a neighbour's
+    (consistent with the uniform answer): the direct multipliers take the
+    constraint rows b_c through the constraints' transformation; condensed
+    and full paths give p at every node to 1e-8 and agree to 1e-10."""
+    deck = two_blocks("Q4", "Q4", 5, 7, pair=STS + ", EXACT")
+    deck = deck.replace("*BOUNDARY\nGROUND", "*EQUATION\n2\n25, 2, 1.0, 27, 2, -1.0\n2\n10005, 2, 1.0, 10002, 2, -1.0\n"
+                        "*BOUNDARY\nGROUND", 1)
+    pressures = {}
+    for solve in ("CONDENSED", "FULL"):
+        run = run_deck(f"mortar_patch_equation_{solve.lower()}",
+                       deck.replace("*STEP", f"*SOLVER, CONTACT SOLVE={solve}\n*STEP", 1)).ok()
+        es, em, _, s, _ = patch_errors(run)
+        assert es < 1e-8 and em < 1e-8, (solve, es, em)
+        pressures[solve] = np.array(s["pressure"])
+        notes = re.findall(r"exact contact: (\d+) direct multiplier solves", open(run.listing_path).read())
+        assert bool(notes) == (solve == "CONDENSED"), notes
+    diff = np.max(np.abs(pressures["CONDENSED"] - pressures["FULL"])) / P_EXACT
+    print(f"  with *EQUATIONs at interface nodes: direct against augmented {diff:.1e}")
+    assert diff < 1e-10, diff
+
+
+def test_mortar_coarse_slave_refused_at_the_card():
+    """A slave face spanning 20 master faces (1 element over 20): a
+    segment-to-segment coupling element holds at most 10 master nodes, and
+    the refusal names the *CONTACT PAIR card's line (found only at the
+    contact search, after the deck is read) and quotes it."""
+    deck = two_blocks("Q4", "Q4", 20, 1, pair=STS + ", EXACT")
+    run = run_deck("mortar_coarse_slave", deck)
+    line = next(i for i, t in enumerate(deck.splitlines(), 1) if t.upper().startswith("*CONTACT PAIR"))
+    assert run.rc != 0, run.stderr
+    assert re.search(rf"\.inp:{line}: error: segment-to-segment contact: slave node \d+ of \S+ faces more than 10 "
+                     r"master nodes", run.stderr), run.stderr
+    assert "| *CONTACT PAIR" in run.stderr and "make the finer surface the slave" in run.stderr, run.stderr
 
 
 def test_mortar_patch_test_axisymmetric():

@@ -26,18 +26,19 @@ module condensed_contact
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set
   use element_interface, only: elem_in_t, elem_out_t, max_en, max_edof, act_tangent
   use element_library, only: element_routine
+  use cfe_element, only: cfe_b_matrix
   use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, number_dofs, has_dependent, group_transform, expand_dependent, reduce_dependent
   use constraints, only: mpc_t
   use linear_solver, only: linear_system_t, sys_condensed_factor, sys_trailing_order, sys_forward, sys_backward, &
                            sys_factor_flops, sys_nlast, factor_ok, factor_singular, pivot_ratio_min
-  use dense_cholesky, only: dense_factor, dense_solve, upper_times, lower_gram
+  use dense_cholesky, only: dense_factor, dense_solve, upper_times, lower_gram, lower_solve, transposed_gram
   use dense_lu, only: lu_factor, lu_solve
   implicit none
   private
   public :: condensed_t, number_equations, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
-            condensed_energy
+            condensed_energy, direct_multipliers, condensed_multipliers
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -564,6 +565,103 @@ contains
     call add_contact_part(cd, dm, u)
     if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
   end subroutine condensed_solve
+
+  !> Purpose: does exact enforcement take its multipliers directly
+  !> (condensed_multipliers) in this contact set: some CFE is exact and
+  !> none is frictional (a sliding CFE's force, mu times the normal one,
+  !> moves with its multiplier, which the normal constraint rows alone do
+  !> not carry: friction keeps the augmented Lagrangian,
+  !> contact_status's augment_multipliers).
+  pure logical function direct_multipliers(cs)
+    type(contact_set_t), intent(in) :: cs
+    direct_multipliers = any(cs%c(1:cs%n)%exact) .and. .not. frictional_set(cs)
+  end function direct_multipliers
+
+  !> Purpose: exact enforcement for the current status, solved directly
+  !> after condensed_solve: the multipliers of the closed exact CFEs (the
+  !> active constraints) that make their normal gaps vanish. The gap of
+  !> CFE c is affine in the contact equations' displacements x2,
+  !> g_c = g_c(u0) + b_c . x2 with b_c = B_e^T n (eq. 4; through the
+  !> constraints' transformation where a dof is dependent), and a change
+  !> dlambda of the multipliers adds B^T dlambda to the internal forces,
+  !> so x2 moves by -S^-1 B^T dlambda. The gaps vanish for
+  !>   (B S^-1 B^T) dlambda = g(x2),
+  !> the Schur complement of the bordered (KKT) system of S and the active
+  !> rows B, symmetric positive definite where the rows are independent
+  !> (S is): with S = L L^T it is Z^T Z, Z = L^-1 B^T (one triangular
+  !> solve with the active columns at once, dtrsm, and dsyrk), factored by
+  !> LAPACK (dpotrf): one solve, exact to round-off.
+  !> The closed penalty already in S then carries no force (its gap is
+  !> zero) and the multipliers are the closed forces; open exact CFEs get
+  !> lambda = 0. The status search decides the active set as for the
+  !> penalty (the LCP of contact_status with 1/d = 0): no augmentation.
+  !> Arguments: u as condensed_solve (the contact equations returned
+  !> moved by the multipliers' change); nactive the active constraints
+  !> (0: nothing solved); ok false where B S^-1 B^T is singular to working
+  !> precision (dependent active rows): nothing changed then.
+  subroutine condensed_multipliers(cd, m, cs, dm, u, nactive, ok)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(inout) :: u(:, :)
+    integer, intent(out) :: nactive
+    logical, intent(out) :: ok
+    integer, allocatable :: act(:), geq(:)
+    real(dp), allocatable :: z(:, :), w(:, :), g(:), t(:, :), bn(:), wdiag(:), dx(:, :)
+    type(elem_in_t) :: ein
+    real(dp) :: bm(2, max_edof)
+    integer :: j, k, p, nd, info, nodes(max_en)
+    ok = .true.
+    where (cs%c(1:cs%n)%exact .and. .not. cs%c(1:cs%n)%closed) cs%c(1:cs%n)%lambda = 0.0_dp
+    act = pack([(j, j = 1, cs%n)], cs%c(1:cs%n)%exact .and. cs%c(1:cs%n)%closed)
+    nactive = size(act)
+    if (nactive == 0) return
+    ! B^T on the trailing positions (b_c = B_e^T n of each active CFE, a
+    ! column) and the gaps at x2
+    allocate(z(cd%m, nactive), w(nactive, nactive), g(nactive), dx(cd%m, 1))
+    z = 0.0_dp
+    do k = 1, nactive
+      j = act(k)
+      call cfe_input(m, cs%c(j), cd%u0, cs%stabilised, ein, nodes)
+      nd = 2 * ein%nen
+      call cfe_b_matrix(ein, bm(:, 1:nd))
+      bn = matmul(cs%c(j)%normal, bm(:, 1:nd))
+      if (has_dependent(dm, nodes(1:ein%nen))) then
+        call group_transform(dm, nodes(1:ein%nen), geq, t)
+        bn = matmul(bn, t)
+      end if
+      do p = 1, size(bn)
+        if (cd%cfe_pos(p, j) > 0) z(cd%cfe_pos(p, j), k) = z(cd%cfe_pos(p, j), k) + bn(p)
+      end do
+      g(k) = cd%gap_start(j) + dot_product(z(:, k), cd%x2)
+    end do
+    ! with S = L L^T: Z = L^-1 B^T, B S^-1 B^T = Z^T Z (dtrsm, dsyrk)
+    call lower_solve(cd%s, z, .false.)
+    call transposed_gram(z, w)
+    wdiag = [(w(k, k), k = 1, nactive)]
+    call dense_factor(w, info)
+    if (info == 0) then
+      do k = 1, nactive
+        ! a pivot lost to cancellation: dependent active rows
+        if (.not. (w(k, k)**2 > 1.0e-13_dp * wdiag(k))) info = k
+      end do
+    end if
+    if (info /= 0) then
+      ok = .false.
+      return
+    end if
+    call dense_solve(w, g)
+    ! x2 -= S^-1 B^T dlambda = L^-T (Z dlambda)
+    dx(:, 1) = matmul(z, g)
+    call lower_solve(cd%s, dx, .true.)
+    cd%x2 = cd%x2 - dx(:, 1)
+    do k = 1, nactive
+      cs%c(act(k))%lambda = cs%c(act(k))%lambda + g(k)
+    end do
+    call add_contact_part(cd, dm, u)
+    if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
+  end subroutine condensed_multipliers
 
   !> Purpose: the potential energy of the displacements u relative to
   !> the increment's start (u0), up to a constant of the increment, with

@@ -9,6 +9,7 @@
 !> Work per status iteration is O(m + CFEs): nothing here touches all the
 !> nodes between the increment's start and the recovery.
 module condensed_equilibrium
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use model, only: model_t
   use contact, only: contact_set_t, contact_forces, status_codes
@@ -18,7 +19,7 @@ module condensed_equilibrium
   use linear_solver, only: linear_system_t, sys_analyse, factor_singular
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
-                               condensed_energy
+                               condensed_energy, direct_multipliers, condensed_multipliers
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, report_iteration, describe, singular, &
                                 contact_force_scale, take_back, stabilise_open, set_aside_or_stop
   use analysis_events, only: observer_ref_t, tell_note, wall_time
@@ -51,9 +52,10 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), allocatable :: fold(:)
-    integer :: it, nchanged, naug
+    integer :: it, nchanged, naug, nactive, nsolves
     logical :: whole                    ! u holds every equation's solution
-    logical :: finite, usable
+    logical :: finite, usable, direct, solved
+    character(len=12) :: buf
     real(dp) :: scale, fext_norm, energy
     ok = .false.
     cs%stabilised = .false.
@@ -66,6 +68,10 @@ contains
     whole = .false.
     it = 0
     naug = 0
+    ! exact enforcement by multipliers solved directly per status (no
+    ! augmentation), unless friction needs the augmented Lagrangian
+    direct = direct_multipliers(cs)
+    nsolves = 0
     ! MAXIT counts the iterations of each status search
     do while (eq%search%iterations < m%contact_max_iter)
       it = it + 1
@@ -81,6 +87,13 @@ contains
         end if
         call condensed_solve(eq%cd, m, cs, dm, u, finite, eq%counts%coupling)
         if (.not. finite) call check_finite(m, is, inc, u)
+        if (direct) then
+          call condensed_multipliers(eq%cd, m, cs, dm, u, nactive, solved)
+          if (nactive > 0) nsolves = nsolves + 1
+          ! dependent active rows: the augmented updates instead
+          if (.not. solved) direct = .false.
+          if (.not. all(ieee_is_finite(eq%cd%x2))) call check_finite(m, is, inc, u)
+        end if
       end if
       call contact_part_forces(eq%cd, m, cs, dm, u, fold, eq%counts%coupling)
       ! the potential energy of this status's solution, eqs. (1) and (9)
@@ -105,7 +118,8 @@ contains
                             'iterating on with the nominal one')
         cycle
       end if
-      if (nchanged == 0 .and. eq%residual < m%contact_tolerance .and. naug < max_augmentations) then
+      if (nchanged == 0 .and. eq%residual < m%contact_tolerance .and. naug < max_augmentations .and. &
+          .not. direct) then
         ! exact enforcement: the multipliers updated, the search again
         if (augment_multipliers(cs, contact_force_scale(eq, cs, fext_norm))) then
           naug = naug + 1
@@ -118,6 +132,10 @@ contains
       if (nchanged == 0 .and. eq%residual < m%contact_tolerance) then
         ok = .true.
         iters = it
+        if (nsolves > 0) then
+          write(buf, '(i0)') nsolves
+          call tell_note(obs, 'exact contact: ' // trim(buf) // ' direct multiplier solves in the increment')
+        end if
         eq%force_history = max(eq%force_history, scale)
         eq%u_last = u
         eq%fbody_last = eq%fbody

@@ -18,7 +18,7 @@
 module contact
   use kinds, only: dp
   use strings, only: itoa
-  use messages, only: fatal
+  use messages, only: fatal, fatal_at
   use model
   use growable, only: append
   use element_catalogue, only: catalogue
@@ -93,7 +93,9 @@ module contact
     logical :: closed = .false.
     !> Exact enforcement: the Lagrange multiplier (normal force, <= 0) the
     !> penalty is augmented with, and whether the pair asks for it: a
-    !> closed CFE's force is lambda + k_closed g (contact_status's
+    !> closed CFE's force is lambda + k_closed g (solved for g = 0 per
+    !> status on the condensed path, condensed_contact's
+    !> condensed_multipliers; otherwise contact_status's
     !> augment_multipliers updates lambda until g vanishes).
     logical :: exact = .false.
     real(dp) :: lambda = 0.0_dp
@@ -304,9 +306,11 @@ contains
           call append(uncp, nunc_p, ip)
           cycle
         end if
-        if (mo%nm(k) > max_cfe_master) call fatal('segment-to-segment contact: slave node ' // &
+        if (mo%nm(k) > max_cfe_master) call pair_error(m%pairs(ip), 'segment-to-segment contact: slave node ' // &
           node_label(m, s) // ' of ' // trim(sl%name) // ' faces more than ' // itoa(max_cfe_master) // &
-          ' master nodes; make the finer surface the slave (or refine the slave side)')
+          ' master nodes (its faces span more than ' // itoa(max_cfe_master - 1) // ' linear or ' // &
+          itoa((max_cfe_master - 1) / 2) // ' quadratic master faces); make the finer surface the slave ' // &
+          '(or refine the slave side)')
         c = cfe_t()
         c%pair = ip
         c%ns = 1
@@ -588,6 +592,16 @@ contains
     stick_penalty = k_closed
     if (pr%stick_slope > 0.0_dp) stick_penalty = pr%stick_slope * area
   end function stick_penalty
+
+  !> Purpose: stops with msg at the pair's *CONTACT PAIR card
+  !> (file:line: error: msg and the card quoted), or without a line where
+  !> the pair was not read from a deck.
+  subroutine pair_error(pr, msg)
+    type(contact_pair_t), intent(in) :: pr
+    character(len=*), intent(in) :: msg
+    if (pr%card_line > 0) call fatal_at(pr%card_file, pr%card_line, pr%card_text, msg)
+    call fatal(msg)
+  end subroutine pair_error
 
   !> Purpose: the nodes of a CFE: slave nodes, then the master element's.
   pure subroutine cfe_nodes(m, c, nodes, nen)

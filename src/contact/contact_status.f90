@@ -292,8 +292,11 @@ contains
     end do
   end function contact_energy
 
-  !> Purpose: exact enforcement (pairs with cfe_t%exact), once the status
-  !> search has settled: the augmented Lagrangian update (Powell 1969,
+  !> Purpose: exact enforcement (pairs with cfe_t%exact) where its
+  !> multipliers are not solved directly (the full path, and friction:
+  !> the condensed path solves them per status, condensed_contact's
+  !> condensed_multipliers), once the status search has settled: the
+  !> augmented Lagrangian update (Powell 1969,
   !> Hestenes 1969; for contact Simo & Laursen 1992, "An augmented
   !> Lagrangian treatment of contact problems involving friction",
   !> Computers & Structures 42, 97-116). For a fixed multiplier lambda_c

@@ -39,6 +39,11 @@ contains
     logical :: two_pass, sts
     real(dp) :: ratio
     card = p%i
+    associate(l => p%deck%lines(card))
+      c%card_file = p%deck%files(l%file)%s
+      c%card_line = l%line
+      c%card_text = l%text
+    end associate
     call allow_params(p, kw, 'PENALTY,OPEN PENALTY,NODAL,SEARCH DISTANCE,UPDATE SEARCH,TYPE,SYMMETRIC,' // &
                       'INTERACTION,SMALL SLIDING,ADJUST,FRICTION,STICK SLOPE,EXACT')
     sts = surface_to_surface(p, kw)

@@ -236,10 +236,16 @@ module model
     !> faces: contact_mortar).
     integer :: coupling = coupling_nts
     !> Exact enforcement: non-penetration held by Lagrange multipliers (the
-    !> contact pressures), found by augmenting the penalty until the closed
-    !> gaps vanish; false: the penalty alone.
+    !> contact pressures), solved directly for each contact status on the
+    !> condensed path without friction, otherwise found by augmenting the
+    !> penalty until the closed gaps vanish; false: the penalty alone.
     logical :: exact = .false.
     type(src_t) :: src
+    !> The *CONTACT PAIR card (file, line number, text), for messages once
+    !> the deck's lines are gone (the contact search refuses a pairing
+    !> there); card_line 0 where the pair was not read from a deck.
+    character(len=:), allocatable :: card_file, card_text
+    integer :: card_line = 0
   end type contact_pair_t
 
   !> *EQUATION: sum_k coef(k) * u(dof(k)) of node(k) = 0, one linear

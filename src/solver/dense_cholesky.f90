@@ -6,7 +6,7 @@ module dense_cholesky
   use kinds, only: dp
   implicit none
   private
-  public :: dense_factor, dense_solve, upper_times, lower_gram
+  public :: dense_factor, dense_solve, upper_times, lower_gram, lower_solve, transposed_gram
 
   interface
     subroutine dpotrf(uplo, n, a, lda, info)
@@ -33,6 +33,15 @@ module dense_cholesky
       real(dp), intent(in) :: a(lda, *)
       real(dp), intent(inout) :: x(*)
     end subroutine dtrmv
+
+    subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
+      import :: dp
+      character, intent(in) :: side, uplo, transa, diag
+      integer, intent(in) :: m, n, lda, ldb
+      real(dp), intent(in) :: alpha
+      real(dp), intent(in) :: a(lda, *)
+      real(dp), intent(inout) :: b(ldb, *)
+    end subroutine dtrsm
 
     subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
       import :: dp
@@ -84,4 +93,24 @@ contains
     if (size(l, 1) == 0) return
     call dsyrk('L', 'N', size(l, 1), size(l, 1), 1.0_dp, l, size(l, 1), 0.0_dp, s, size(s, 1))
   end subroutine lower_gram
+
+  !> Purpose: b := L^-1 b (transposed: L^-T b) for the columns of b, L the
+  !> lower triangle of a factor from dense_factor (one half of a solve,
+  !> many right-hand sides at once).
+  subroutine lower_solve(l, b, transposed)
+    real(dp), intent(in) :: l(:, :)
+    real(dp), intent(inout) :: b(:, :)
+    logical, intent(in) :: transposed
+    if (size(l, 1) == 0 .or. size(b, 2) == 0) return
+    call dtrsm('L', 'L', merge('T', 'N', transposed), 'N', size(l, 1), size(b, 2), 1.0_dp, l, size(l, 1), &
+               b, size(b, 1))
+  end subroutine lower_solve
+
+  !> Purpose: the lower triangle of w := z^T z (z: m x k, w: k x k).
+  subroutine transposed_gram(z, w)
+    real(dp), intent(in) :: z(:, :)
+    real(dp), intent(inout) :: w(:, :)
+    if (size(z, 2) == 0) return
+    call dsyrk('L', 'T', size(z, 2), size(z, 1), 1.0_dp, z, size(z, 1), 0.0_dp, w, size(w, 1))
+  end subroutine transposed_gram
 end module dense_cholesky
