@@ -224,27 +224,10 @@ contains
                             'iterating on with the nominal one')
         cycle
       end if
-      if (body%nonlinear) then
-        if (nchanged == 0 .and. converged .and. naug < max_augmentations) then
-          ! exact enforcement under Newton: the multipliers updated at the
-          ! converged state, the iteration on
-          if (augment_multipliers(cs, contact_force_scale(eq, cs, norm2(fext)))) then
-            naug = naug + 1
-            call internal_forces(m, body, cs, u, fint, eq%counts)
-            call begin_status_search(eq%search)
-            cycle
-          end if
-        end if
-        if (nchanged == 0 .and. converged) then
-          ok = .true.
-          iters = it
-          eq%force_history = max(eq%force_history, scale)
-          call newton_converged(eq%newton)
-          return
-        end if
-        cycle
-      end if
-      if (nchanged == 0 .and. eq%residual < m%contact_tolerance .and. naug < max_augmentations) then
+      ! settled: no status changed and the out-of-balance passes the test
+      ! (a nonlinear step: CalculiX's force and correction tests)
+      if (.not. body%nonlinear) converged = eq%residual < m%contact_tolerance
+      if (nchanged == 0 .and. converged .and. naug < max_augmentations) then
         ! exact enforcement: the multipliers updated, the search again
         if (augment_multipliers(cs, contact_force_scale(eq, cs, norm2(fext)))) then
           naug = naug + 1
@@ -253,10 +236,11 @@ contains
           cycle
         end if
       end if
-      if (nchanged == 0 .and. eq%residual < m%contact_tolerance) then
+      if (nchanged == 0 .and. converged) then
         ok = .true.
         iters = it
         eq%force_history = max(eq%force_history, scale)
+        if (body%nonlinear) call newton_converged(eq%newton)
         return
       end if
     end do
