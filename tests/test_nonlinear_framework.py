@@ -158,14 +158,62 @@ def error_at(name, text, line_text, fragment):
     assert run.rc == 1 and f"{name}.inp:{line}: error:" in run.stderr and fragment in run.stderr, run.stderr
 
 
+HYPER_SQUARE = """*NODE, NSET=NALL
+1, 0.0, 0.0
+2, 1.0, 0.0
+3, 1.0, 1.0
+4, 0.0, 1.0
+*ELEMENT, TYPE=CPE4, ELSET=EALL
+1, 1, 2, 3, 4
+*MATERIAL, NAME=M
+*HYPERELASTIC, NEO HOOKE
+150.0, {d1}
+*SOLID SECTION, ELSET=EALL, MATERIAL=M
+1.0
+*BOUNDARY
+1, 1, 2, 0.0
+2, 1, 2, 0.0
+3, 1, 1, 0.4
+3, 2, 2, 0.3
+4, 1, 1, 0.4
+4, 2, 2, 0.3
+*STEP, NLGEOM
+*STATIC
+1.0, 1.0
+*EL PRINT, ELSET=EALL
+S
+*END STEP
+"""
+
+
+def test_hyperelastic_d1_zero_is_calculix_default():
+    """D1 = 0 is CalculiX 2.20's 0.1 / mu0 = 0.1 / (2 C10) = 1/3000 (hyperelastics.f), with a warning at
+    the data line naming the value: the same stresses as D1 = 1/3000 given, and CalculiX's own (ccx 2.20 on
+    this deck with D1 = 0, its .dat: S11 1776.106, S22 1878.787, S33 1745.107, S12 100.7440, 7 digits)."""
+    zero = run_deck("nl_hyper_d1zero", HYPER_SQUARE.format(d1="0.0")).ok()
+    line = HYPER_SQUARE.splitlines().index("150.0, {d1}") + 1
+    assert f"nl_hyper_d1zero.inp:{line}: warning: D1 = 0" in zero.stderr and "3.33333E-04" in zero.stderr, \
+        zero.stderr
+    given = run_deck("nl_hyper_d1given", HYPER_SQUARE.format(d1=repr(1.0 / 3000.0))).ok()
+    assert "warning" not in given.stderr, given.stderr
+    s0 = zero.listing.increments[-1].block("ELEMENT S")
+    s1 = given.listing.increments[-1].block("ELEMENT S")
+    ccx = {"S11": 1776.106, "S22": 1878.787, "S33": 1745.107, "S12": 100.7440}
+    for comp, ref in ccx.items():
+        for a, b in zip(s0[comp], s1[comp]):
+            assert abs(a - b) <= 1e-12 * abs(ref), (comp, a, b)
+            assert abs(a - ref) <= 1e-6 * abs(ref), (comp, a, ref)
+
+
 def test_cards_errors_at_the_line():
     hyper = "*HYPERELASTIC, OGDEN\n1., 2., 0.01\n"
     error_at("nl_card_ogden", block_deck(material=hyper), "*HYPERELASTIC, OGDEN", "OGDEN is not implemented")
     error_at("nl_card_n2", block_deck(material="*HYPERELASTIC, POLYNOMIAL, N=2\n1., 0., 0., 0., 0., 0.1\n"),
              "*HYPERELASTIC, POLYNOMIAL, N=2", "only N=1")
-    error_at("nl_card_d1", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1., 0.\n"), "1., 0.",
-             "D1 must be positive")
-    error_at("nl_card_ratio", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1., 1e-12\n"), "1., 1e-12",
+    error_at("nl_card_d1", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1., -0.1\n"), "1., -0.1",
+             "D1 must not be negative")
+    # 1e-9 is not CalculiX's zero (|D1| < 1e-10): K / mu = 1e9
+    error_at("nl_card_ratio", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1., 1e-9\n"), "1., 1e-9",
              "more than 1e8 times the shear modulus")
     error_at("nl_card_nh_fields", block_deck(material="*HYPERELASTIC, NEO HOOKE\n1.\n"), "1.",
              "needs: C10, D1")

@@ -86,7 +86,13 @@ contains
   !> Purpose: the load state of step `is`, which starts from displacements
   !> u and loads fext (the end of the previous step) at total time
   !> total_time. Dofs held in earlier steps stay where they are unless the
-  !> step says OP=NEW; model-level conditions apply from the start.
+  !> step says OP=NEW. Model-data conditions are prescribed in the first
+  !> step as the step's own: a non-zero value ramps from the start over
+  !> the step (CalculiX 2.20, measured: u = -0.225, -0.45, -0.675, -0.9 in
+  !> four increments for a model-data -0.9), then is held like a step's
+  !> (a step may change it; it stays where that step left it). Unlike
+  !> CalculiX, OP=NEW does not remove them: a model-data dof it releases
+  !> is held where it is.
   subroutine begin_step(m, is, u, fext, total_time, ls)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
@@ -94,8 +100,11 @@ contains
     type(load_state_t), intent(inout) :: ls
     real(dp), allocatable :: conc(:, :)
     integer :: j
+    logical :: first
+    type(bc_t) :: held
     conc = fext
-    if (.not. allocated(ls%presc)) then
+    first = .not. allocated(ls%presc)
+    if (first) then
       allocate(ls%presc(2, m%nn), ls%bc_start(2, m%nn), ls%bc_target(2, m%nn), ls%bc_amp(2, m%nn), &
                ls%bc_set(2, m%nn), ls%ld_start(2, m%nn), ls%ld_target(2, m%nn), ls%ld_amp(2, m%nn), ls%pat(16))
       ls%presc = .false.
@@ -124,7 +133,13 @@ contains
         ls%bc_set = 0
       end if
       do j = 1, size(m%model_bcs)
-        call prescribe(ls, m%model_bcs(j), .true.)
+        if (first) then
+          call prescribe(ls, m%model_bcs(j), .false.)
+        else if (.not. ls%presc(m%model_bcs(j)%dof, m%model_bcs(j)%node)) then
+          held = m%model_bcs(j)
+          held%value = u(held%dof, held%node)
+          call prescribe(ls, held, .true.)
+        end if
       end do
       do j = 1, size(st%bcs)
         call prescribe(ls, st%bcs(j), .false.)

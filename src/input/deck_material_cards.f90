@@ -2,7 +2,7 @@
 !> *HYPERELASTIC, *PLASTIC, *SOLID SECTION, *SPRING, *MASS.
 submodule (deck_parser) deck_material_cards
   use kinds, only: dp
-  use strings, only: split_fields, to_upper, field_t, itoa
+  use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
                          name_param, get_real, get_int, is_int, need_elset, param_real, warn_empty_set
@@ -71,10 +71,12 @@ contains
   !>                             data line `C10, C01, D1[, temperature]`.
   !> CalculiX's default (no model named) is POLYNOMIAL N=1. Other models,
   !> N > 1 and temperature dependence (a second data line) stop at the
-  !> line. D1 must be positive (a compressible potential: the element
-  !> routines have no pressure unknown), and the initial shear modulus
-  !> 2 (C10 + C01) too; the bulk modulus 2 / D1 at most 1e8 times the
-  !> shear modulus, both at most 1e100. Like CalculiX, a hyperelastic material makes
+  !> line. D1 must not be negative; D1 = 0 (|D1| < 1e-10, incompressible:
+  !> the element routines have no pressure unknown) is taken as CalculiX
+  !> 2.20 does as 0.1 / (2 (C10 + C01)), with a warning at the line. The
+  !> initial shear modulus 2 (C10 + C01) must be positive; the bulk
+  !> modulus 2 / D1 at most 1e8 times the shear modulus, both at most
+  !> 1e100. Like CalculiX, a hyperelastic material makes
   !> every step geometrically nonlinear (deck_model_checks).
   module subroutine read_hyperelastic(p, m, kw)
     type(parser_t), intent(inout) :: p
@@ -125,9 +127,18 @@ contains
         mat%c01 = get_real(p, f(2), 'C01')
         mat%d1 = get_real(p, f(3), 'D1')
       end if
-      if (.not. mat%d1 > 0.0_dp) call err(p, 'D1 must be positive: a fully incompressible material (D1 = 0) ' // &
-        'needs a pressure unknown, which the elements do not have; a small D1 is nearly incompressible')
       if (.not. mat%c10 + mat%c01 > 0.0_dp) call err(p, 'the initial shear modulus 2 (C10 + C01) must be positive')
+      ! CalculiX 2.20 (hyperelastics.f) replaces a zero compressibility
+      ! (|D1| < 1e-10) by 0.1 / mu0, mu0 = 2 (C10 + C01): K = 2 / D1 = 20 mu0,
+      ! Poisson's ratio 0.475 at the origin, with a warning; the elements
+      ! have no pressure unknown for a truly incompressible material
+      if (abs(mat%d1) < 1.0e-10_dp) then
+        mat%d1 = 0.1_dp / (2.0_dp * (mat%c10 + mat%c01))
+        call deck_warning(p%deck, p%i, 'D1 = 0 (incompressible) is replaced, as in CalculiX, by 0.1 / (2 (C10 ' // &
+          '+ C01)) = ' // rtoa(mat%d1, 6) // ' (initial Poisson''s ratio 0.475): the elements have no pressure unknown')
+      end if
+      if (.not. mat%d1 > 0.0_dp) call err(p, 'D1 must not be negative (the volumetric energy (J - 1)^2 / D1 ' // &
+        'would have no minimum)')
       if (mat%c10 < 0.0_dp .and. law == law_neo_hooke) call err(p, 'C10 must be positive')
       ! K / mu = 1 / (D1 (C10 + C01)): beyond 1e8 the volumetric stiffness
       ! drowns the shear stiffness in round-off; moduli beyond 1e100 overflow
