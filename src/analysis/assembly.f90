@@ -21,9 +21,9 @@ module assembly
   use contact, only: contact_set_t, cfe_input
   use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses, act_thermal, &
                                act_residual, max_hist
-  use element_catalogue, only: max_ip, max_nodes
+  use element_catalogue, only: max_ip, max_nodes, state_plane_stress
   use distributed_loads, only: follower_pressure_load
-  use element_library, only: element_routine
+  use element_library, only: element_routine, thickness_stretch
   use body_elements, only: body_input, body_alpha
   use linear_solver, only: linear_system_t, sys_zero, sys_add
   use dof_numbering, only: dofmap_t, has_dependent, group_transform, reduce_dependent
@@ -222,7 +222,7 @@ contains
       body%peeq_trial(:, e) = eout%peeq_ip
       fsum = fsum + sum(abs(eout%fe(1:nd)))
       ndof_total = ndof_total + nd
-      if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, eout%fe, ke_dummy, .false.)
+      if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, ein, eout%fe, ke_dummy, .false.)
       do k = 1, ein%nen
         fint(:, nodes(k)) = fint(:, nodes(k)) + eout%fe(2 * k - 1:2 * k)
       end do
@@ -294,8 +294,8 @@ contains
         due(2 * k - 1:2 * k) = du(:, nodes(k))
       end do
       if (allocated(body%fl_ptr)) then
-        call follower_part(m, body, e, u0, eout%fe, eout%ke, .true.)
-        call follower_part(m, body, e, u0, eout%fe, eout%ke, .false.)
+        call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .true.)
+        call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .false.)
       end if
       fe(1:nd) = eout%fe(1:nd) + matmul(eout%ke(1:nd, 1:nd), due(1:nd))
       do k = 1, ein%nen
@@ -308,26 +308,52 @@ contains
   !> tangent, ke = ke - sum p dfp/du (the load stiffness); otherwise fe =
   !> fe - sum p fp(u) (the pressure's forces on the deformed faces, taken
   !> into the internal force). fp and its stiffness come from
-  !> distributed_loads' follower_pressure_load (per unit pressure).
-  subroutine follower_part(m, body, e, u, fe, ke, tangent)
+  !> distributed_loads' follower_pressure_load (per unit pressure). A
+  !> plane-stress face acts on its current thickness t0 lambda3, lambda3
+  !> the element's thickness stretch at u (element_library's
+  !> thickness_stretch, the volume mean of F33 over its points, from
+  !> s33 = 0). The forces are lambda3 times those of t0, so the load
+  !> stiffness is that of t0 lambda3 (lambda3 held) plus
+  !> (fp / lambda3) (x) d lambda3 / du over all the element's dofs.
+  !> Plane strain and axisymmetry: the reference thickness (or 2 pi r)
+  !> unchanged, bit for bit.
+  !> Arguments: ein the element's input at u (body_input, with the
+  !> history of the caller's element call), fe, ke updated.
+  subroutine follower_part(m, body, e, u, ein, fe, ke, tangent)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     integer, intent(in) :: e
     real(dp), intent(in) :: u(:, :)
+    type(elem_in_t), intent(in) :: ein
     real(dp), intent(inout) :: fe(:), ke(:, :)
     logical, intent(in) :: tangent
     real(dp) :: fp(2, max_nodes), kl(2 * max_nodes, 2 * max_nodes), xy(2, max_nodes), ue(2, max_nodes)
-    integer :: k, nen, nd, a
+    real(dp) :: thick(max_nodes), lam, dlam(2 * max_nodes)
+    integer :: k, nen, nd, a, b
+    logical :: ps
     if (body%fl_ptr(e + 1) == body%fl_ptr(e)) return
     nen = elem_nodes(m, e)
     nd = 2 * nen
     xy(:, 1:nen) = m%x(:, m%conn(1:nen, e))
     ue(:, 1:nen) = u(:, m%conn(1:nen, e))
+    thick = elem_thickness(m, e)
+    ps = catalogue(m%etype(e))%state == state_plane_stress
+    if (ps) then
+      call thickness_stretch(ein, lam, dlam)
+      thick = thick * lam
+    end if
     do k = body%fl_ptr(e), body%fl_ptr(e + 1) - 1
-      call follower_pressure_load(m%etype(e), xy(:, 1:nen), ue(:, 1:nen), elem_thickness(m, e), body%fl_face(k), &
+      call follower_pressure_load(m%etype(e), xy(:, 1:nen), ue(:, 1:nen), thick, body%fl_face(k), &
                                   fp, kl)
       if (tangent) then
         ke(1:nd, 1:nd) = ke(1:nd, 1:nd) - body%fl_mag(k) * kl(1:nd, 1:nd)
+        if (ps) then
+          do b = 1, nd
+            do a = 1, nen
+              ke(2 * a - 1:2 * a, b) = ke(2 * a - 1:2 * a, b) - body%fl_mag(k) * fp(:, a) / lam * dlam(b)
+            end do
+          end do
+        end if
       else
         do a = 1, nen
           fe(2 * a - 1:2 * a) = fe(2 * a - 1:2 * a) - body%fl_mag(k) * fp(:, a)
@@ -380,7 +406,7 @@ contains
         call element_routine(act_tangent, ein, eout)
         counts%continuum_tangent = counts%continuum_tangent + 1
         ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd)
-        if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, fe_dummy, ke, .true.)
+        if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, ein, fe_dummy, ke, .true.)
         ! every entry (a tangent that overflows is caught by the iteration)
         kmax = max(kmax, maxval(abs(ke(1:nd, 1:nd))))
         if (.not. kmax <= huge(1.0_dp)) kmax = huge(1.0_dp)

@@ -63,9 +63,12 @@ contains
   !> p adds p f to the external forces and -p kl to the tangent of the
   !> residual f_int - f_ext (Bonet and Wood 2008, section 8.5 in 2D).
   !> Arguments: et catalogue type, xy reference coordinates, u nodal
-  !> displacements, thickness nodal thicknesses (reference values, as the
-  !> linear load; axisymmetric: the whole ring, 2 pi r with the current
-  !> radius r), k the face. At u = 0, f is face_pressure_load's.
+  !> displacements, thickness nodal thicknesses the face acts on (the
+  !> reference ones, as the linear load; in plane stress the driver
+  !> passes the current t0 lambda3, nonlinear_continuum's
+  !> thickness_stretch, and adds the term of d lambda3 / du itself;
+  !> axisymmetric: the whole ring, 2 pi r with the current radius r), k
+  !> the face. At u = 0, f is face_pressure_load's.
   !> With t = dx/ds along the face and n~ = (t2, -t1) (the outward normal
   !> times |dx/ds|),
   !>   f_a = - sum_ip w N_a v(x) n~,  v = thickness or 2 pi x1,

@@ -5,13 +5,13 @@ module element_library
   use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, &
                                kind_truss2, kind_truss3, kind_spring1, kind_spring2, kind_springa
   use continuum_element, only: continuum
-  use nonlinear_continuum, only: nonlinear_continuum_element, is_nonlinear
+  use nonlinear_continuum, only: nonlinear_continuum_element, is_nonlinear, thickness_stretch
   use cfe_element, only: cfe
   use truss_element, only: truss
   use spring_element, only: spring
   implicit none
   private
-  public :: element_routine
+  public :: element_routine, thickness_stretch
 
 contains
 

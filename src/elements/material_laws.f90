@@ -179,7 +179,10 @@ contains
   !> met; tangent (optional, default true): false leaves a zero (the
   !> stress alone costs about half). A non-positive det F gives zero
   !> stress and tangent (the element reports the inverted point).
-  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok, tangent)
+  !> df33df (optional, plane stress with the tangent): dF33/dF_c for the
+  !> four in-plane components, -A(5, c) / A(5, 5) of the uncondensed
+  !> tangent (the implicit function of P33 = 0; zero where A(5, 5) is).
+  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok, tangent, df33df)
     type(elem_in_t), intent(in) :: ein
     integer, intent(in) :: state
     real(dp), intent(inout) :: f(3, 3)
@@ -187,6 +190,7 @@ contains
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
     logical, intent(out) :: ok
     logical, intent(in), optional :: tangent
+    real(dp), intent(out), optional :: df33df(4)
     real(dp) :: e2(4), d(4, 4), e33, df33, j2
     integer :: it
     logical :: want
@@ -226,6 +230,10 @@ contains
         ok = abs(df33) <= 1e-10_dp * f(3, 3)
       end if
       call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out)
+      if (present(df33df)) then
+        df33df = 0.0_dp
+        if (abs(a(5, 5)) > 0.0_dp) df33df = -a(5, 1:4) / a(5, 5)
+      end if
       call condense5(a)
       p(5) = 0.0_dp
     else

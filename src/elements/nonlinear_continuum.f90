@@ -68,7 +68,7 @@ module nonlinear_continuum
   use material_laws, only: material_response, hist_peeq, fc_i, fc_j, det3, inv3
   implicit none
   private
-  public :: nonlinear_continuum_element, is_nonlinear
+  public :: nonlinear_continuum_element, is_nonlinear, thickness_stretch
 
 contains
 
@@ -124,6 +124,53 @@ contains
       eout%eps_ip = 0.0_dp
     end if
   end subroutine nonlinear_continuum_element
+
+  !> Purpose: the thickness stretch lambda3 = F33 of a plane-stress
+  !> element at ue (F33 from s33 = 0 at each integration point, as
+  !> finite_strain finds it), averaged over the element's reference
+  !> volume, lambda3 = sum dV0 F33 / sum dV0, and its derivative
+  !> dlam = d lambda3 / d ue (dF33 = sum_c dF33/dF_c G_c du at each point,
+  !> the implicit derivative of P33 = 0 from material_response). The
+  !> current thickness of the element's faces is t0 lambda3, on which a
+  !> follower pressure acts (CalculiX expands a plane-stress element into
+  !> a layer of 3D elements, whose faces thin with the material).
+  !> lambda3 = 1 and dlam = 0 for any other element, on the small-strain
+  !> path, and where a point has no thickness stretch (turned inside
+  !> out, the local iteration failed, NaN: detj_min of the element
+  !> routine reports these, and the driver cuts back).
+  !> Arguments: ein as for nonlinear_continuum_element (ue, hist, dtemp);
+  !> lam, dlam(2 * max_nodes) out.
+  pure subroutine thickness_stretch(ein, lam, dlam)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(out) :: lam, dlam(2 * max_nodes)
+    real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, eth, sw, swl
+    real(dp) :: f(3, 3), g(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), h(max_hist), d33(4), sdl(2 * max_nodes)
+    integer :: ip, nd
+    logical :: ok
+    lam = 1.0_dp
+    dlam = 0.0_dp
+    if (ein%state /= state_plane_stress .or. .not. (ein%nlgeom .or. ein%law /= law_elastic)) return
+    nd = 2 * ein%nen
+    call gauss_rule(ein%kind, ein%nip, xg, wg)
+    sw = 0.0_dp
+    swl = 0.0_dp
+    sdl = 0.0_dp
+    do ip = 1, ein%nip
+      call reference_point(ein, xg(:, ip), n, dndx, detj, r)
+      dv = volume_factor(ein%state, detj, r, dot_product(n(1:ein%nen), ein%thickness(1:ein%nen))) * wg(ip)
+      call deformation(ein, n, dndx, r, f, g)
+      if (.not. (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) > 0.0_dp) return
+      eth = ein%alpha * dot_product(n(1:ein%nen), ein%dtemp(1:ein%nen))
+      call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, h, ok, .true., d33)
+      if (.not. (ok .and. ieee_is_finite(f(3, 3)) .and. f(3, 3) > 0.0_dp)) return
+      sw = sw + dv
+      swl = swl + dv * f(3, 3)
+      sdl(1:nd) = sdl(1:nd) + dv * matmul(d33, g(1:4, 1:nd))
+    end do
+    if (.not. (sw > 0.0_dp .and. ieee_is_finite(swl / sw) .and. all(ieee_is_finite(sdl(1:nd) / sw)))) return
+    lam = swl / sw
+    dlam(1:nd) = sdl(1:nd) / sw
+  end subroutine thickness_stretch
 
   !> Purpose: are the element's arrays (ke, fe, stresses, strains,
   !> history at the points) all finite?
