@@ -49,7 +49,7 @@ program test_nonlinear
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses
   use element_catalogue, only: max_nodes, find_element_type, catalogue, state_axisymmetric, &
                                state_plane_stress, shape_quad4
-  use element_library, only: element_routine
+  use element_library, only: element_routine, thickness_stretch
   use distributed_loads, only: face_pressure_load, follower_pressure_load
   use model, only: law_neo_hooke, law_mooney_rivlin
   implicit none
@@ -79,6 +79,7 @@ program test_nonlinear
   call check_steep_drop(.true.)
   call check_no_thickness()
   call check_follower()
+  call check_thickness_stretch()
   call check_objectivity('CPE4')
   call check_objectivity('CPS6')
   call check_objectivity('CPE8R')
@@ -496,6 +497,53 @@ contains
       call report('follower pressure turns with the element ' // names(i), err_r < 1e-12_dp, 'relative ' // num(err_r))
     end do
   end subroutine check_follower
+
+  !> thickness_stretch (the plane-stress thickness a follower pressure
+  !> acts on): d lambda3 / du against central differences of lambda3 for
+  !> CPS3, CPS4, CPS6, CPS8, CPS8R and the four finite-strain laws at a
+  !> deformed state (tolerance 1e-6 of the largest entry; lambda3 there
+  !> positive and away from 1), and lambda3 = 1, d lambda3 / du = 0 in
+  !> plane strain and on the small-strain path. Its value is checked by
+  !> tests/test_nonlinear_ps_follower.py (closed form).
+  subroutine check_thickness_stretch()
+    character(len=5), parameter :: names(5) = ['CPS3 ', 'CPS4 ', 'CPS6 ', 'CPS8 ', 'CPS8R']
+    type(elem_in_t) :: ein, ep
+    real(dp) :: lam, dlam(2 * max_nodes), lp, lm, dd(2 * max_nodes), err, h
+    integer :: i, il, j, nd
+    logical :: ok
+    h = 1e-6_dp
+    do i = 1, 5
+      do il = 1, 4
+        ein = element(trim(names(i)), il)
+        call deform(ein, 0.2_dp)
+        nd = 2 * ein%nen
+        call thickness_stretch(ein, lam, dlam)
+        do j = 1, nd
+          ep = ein
+          ep%ue(j) = ein%ue(j) + h
+          call thickness_stretch(ep, lp, dd)
+          ep%ue(j) = ein%ue(j) - h
+          call thickness_stretch(ep, lm, dd)
+          dd(j) = (lp - lm) / (2.0_dp * h)
+          if (j == 1) err = 0.0_dp
+          err = max(err, abs(dd(j) - dlam(j)))
+        end do
+        err = err / maxval(abs(dlam(1:nd)))
+        ok = err < 1e-6_dp .and. abs(lam - 1.0_dp) > 1e-3_dp .and. lam > 0.0_dp
+        call report('plane-stress thickness stretch derivative ' // trim(names(i)) // ' ' // trim(law_name(il)), &
+                    ok, 'relative ' // num(err) // ' lambda3 ' // num(lam))
+      end do
+    end do
+    ein = element('CPE4', 2)
+    call deform(ein, 0.2_dp)
+    call thickness_stretch(ein, lam, dlam)
+    ok = lam == 1.0_dp .and. all(dlam == 0.0_dp)
+    ein = element('CPS4', 5)
+    call deform(ein, 0.2_dp)
+    call thickness_stretch(ein, lam, dlam)
+    ok = ok .and. lam == 1.0_dp .and. all(dlam == 0.0_dp)
+    call report('thickness stretch 1 in plane strain and at small strain', ok, 'lambda3 ' // num(lam))
+  end subroutine check_thickness_stretch
 
   !> A deformed state u (plastic for il = 4, its history committed), then
   !> the same state rotated by 50 degrees, x -> Q x: the Cauchy stress at
