@@ -34,6 +34,7 @@
 !> master: its normal; on a curved one: the normal under the node).
 module contact_mortar
   use kinds, only: dp
+  use small_matrices, only: inv3
   use model, only: model_t, surface_t
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line
@@ -184,17 +185,7 @@ contains
       det = me(1, 1) * me(2, 2) - me(1, 2) * me(2, 1)
       inv(1:2, 1:2) = reshape([me(2, 2), -me(2, 1), -me(1, 2), me(1, 1)], [2, 2]) / det
     else
-      inv(1, 1) = me(2, 2) * me(3, 3) - me(2, 3) * me(3, 2)
-      inv(1, 2) = me(1, 3) * me(3, 2) - me(1, 2) * me(3, 3)
-      inv(1, 3) = me(1, 2) * me(2, 3) - me(1, 3) * me(2, 2)
-      inv(2, 1) = me(2, 3) * me(3, 1) - me(2, 1) * me(3, 3)
-      inv(2, 2) = me(1, 1) * me(3, 3) - me(1, 3) * me(3, 1)
-      inv(2, 3) = me(1, 3) * me(2, 1) - me(1, 1) * me(2, 3)
-      inv(3, 1) = me(2, 1) * me(3, 2) - me(2, 2) * me(3, 1)
-      inv(3, 2) = me(1, 2) * me(3, 1) - me(1, 1) * me(3, 2)
-      inv(3, 3) = me(1, 1) * me(2, 2) - me(1, 2) * me(2, 1)
-      det = me(1, 1) * inv(1, 1) + me(1, 2) * inv(2, 1) + me(1, 3) * inv(3, 1)
-      inv = inv / det
+      inv = inv3(me)
     end if
     a = 0.0_dp
     do i = 1, nn

@@ -45,13 +45,14 @@
 !> implicit function of s33 = 0), exact for the consistent tangent.
 module material_laws
   use kinds, only: dp
+  use small_matrices, only: det3, inv3
   use model, only: law_elastic, law_mooney_rivlin
   use element_catalogue, only: state_plane_stress, state_plane_strain
   use element_interface, only: elem_in_t, max_hist
   use materials, only: elastic_matrix
   implicit none
   private
-  public :: material_response, hist_peeq, fc_i, fc_j, det3, inv3
+  public :: material_response, hist_peeq, fc_i, fc_j
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
   !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
@@ -576,29 +577,6 @@ contains
     real(dp) :: d(3, 3)
     d = t - (t(1, 1) + t(2, 2) + t(3, 3)) / 3.0_dp * eye
   end function deviator
-
-  !> The determinant of a 3x3 matrix.
-  pure real(dp) function det3(a)
-    real(dp), intent(in) :: a(3, 3)
-    det3 = a(1, 1) * (a(2, 2) * a(3, 3) - a(2, 3) * a(3, 2)) - a(1, 2) * (a(2, 1) * a(3, 3) - a(2, 3) * a(3, 1)) &
-           + a(1, 3) * (a(2, 1) * a(3, 2) - a(2, 2) * a(3, 1))
-  end function det3
-
-  !> Inverse of a 3x3 matrix by its cofactors (det assumed non-zero).
-  pure function inv3(a) result(b)
-    real(dp), intent(in) :: a(3, 3)
-    real(dp) :: b(3, 3)
-    b(1, 1) = a(2, 2) * a(3, 3) - a(2, 3) * a(3, 2)
-    b(1, 2) = a(1, 3) * a(3, 2) - a(1, 2) * a(3, 3)
-    b(1, 3) = a(1, 2) * a(2, 3) - a(1, 3) * a(2, 2)
-    b(2, 1) = a(2, 3) * a(3, 1) - a(2, 1) * a(3, 3)
-    b(2, 2) = a(1, 1) * a(3, 3) - a(1, 3) * a(3, 1)
-    b(2, 3) = a(1, 3) * a(2, 1) - a(1, 1) * a(2, 3)
-    b(3, 1) = a(2, 1) * a(3, 2) - a(2, 2) * a(3, 1)
-    b(3, 2) = a(1, 2) * a(3, 1) - a(1, 1) * a(3, 2)
-    b(3, 3) = a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)
-    b = b / det3(a)
-  end function inv3
 
   !> Purpose: eigenvalues lam and eigenvectors q (columns) of a symmetric
   !> tensor with the plane block structure (x13 = x23 = 0): the in-plane

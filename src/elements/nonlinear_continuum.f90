@@ -65,7 +65,8 @@ module nonlinear_continuum
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants, max_hist
   use shape_functions, only: shape_at, gauss_rule, extrapolation
   use continuum_element, only: volume_factor, strain_matrix
-  use material_laws, only: material_response, hist_peeq, fc_i, fc_j, det3, inv3
+  use material_laws, only: material_response, hist_peeq, fc_i, fc_j
+  use small_matrices, only: det3, inv3
   implicit none
   private
   public :: nonlinear_continuum_element, is_nonlinear, thickness_stretch
