@@ -263,14 +263,7 @@ contains
   logical function step_is_nonlinear(m, is) result(nl)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
-    integer :: s
-    nl = m%steps(is)%nlgeom
-    do s = 1, size(m%sections)
-      if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
-      associate(mat => m%materials(m%sections(s)%material))
-        nl = nl .or. mat%law /= law_elastic .or. mat%nyield > 0
-      end associate
-    end do
+    nl = m%steps(is)%nlgeom .or. nonlinear_material(m)
   end function step_is_nonlinear
 
   !> Purpose: a nonlinear step's increments (CalculiX's automatic

@@ -162,16 +162,8 @@ contains
   !> hyperelastic or plastic material in a section.
   pure logical function nonlinear_model(m)
     type(model_t), intent(in) :: m
-    integer :: s
-    nonlinear_model = .false.
-    if (allocated(m%steps)) nonlinear_model = any(m%steps%nlgeom)
-    if (.not. (allocated(m%sections) .and. allocated(m%materials))) return
-    do s = 1, size(m%sections)
-      if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
-      associate(mat => m%materials(m%sections(s)%material))
-        nonlinear_model = nonlinear_model .or. mat%law /= law_elastic .or. mat%nyield > 0
-      end associate
-    end do
+    nonlinear_model = nonlinear_material(m)
+    if (allocated(m%steps)) nonlinear_model = nonlinear_model .or. any(m%steps%nlgeom)
   end function nonlinear_model
 
   !> Purpose: the trial history of the last evaluation (at the converged

@@ -20,7 +20,7 @@ module model
             surf_element, surf_node, coupling_nts, coupling_mortar, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
-            law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield, controls_t
+            law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield, controls_t, nonlinear_material
   public :: kept_nodes
 
   integer, parameter :: surf_element = 1, surf_node = 2
@@ -408,6 +408,21 @@ contains
     integer, intent(in) :: e
     is_continuum = catalogue(m%etype(e))%state /= state_none
   end function is_continuum
+
+  !> Purpose: whether a section of m has a nonlinear material (a
+  !> hyperelastic law or *PLASTIC), which makes every step nonlinear.
+  pure logical function nonlinear_material(m)
+    type(model_t), intent(in) :: m
+    integer :: s
+    nonlinear_material = .false.
+    if (.not. (allocated(m%sections) .and. allocated(m%materials))) return
+    do s = 1, size(m%sections)
+      if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
+      associate(mat => m%materials(m%sections(s)%material))
+        nonlinear_material = nonlinear_material .or. mat%law /= law_elastic .or. mat%nyield > 0
+      end associate
+    end do
+  end function nonlinear_material
 
   !> Does element e carry stiffness: a continuum element, a line element
   !> with a *SOLID SECTION (a truss), a spring with its *SPRING? The
