@@ -198,11 +198,8 @@ contains
     ndof_total = 0
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
-      if (allocated(body%dtemp)) then
-        call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
-      else
-        call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
-      end if
+      ! (an unallocated body%dtemp is an absent argument: no thermal strain)
+      call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
       call element_routine(act_residual, ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
       nd = eout%ndof
@@ -274,11 +271,8 @@ contains
     f = 0.0_dp
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
-      if (allocated(body%dtemp0)) then
-        call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
-      else
-        call body_input(m, e, u0, ein, nodes, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
-      end if
+      ! (an unallocated body%dtemp0 is an absent argument: no thermal strain)
+      call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
       call element_routine(ior(act_tangent, act_residual), ein, eout)
       counts%continuum_tangent = counts%continuum_tangent + 1
       nd = eout%ndof
@@ -388,11 +382,8 @@ contains
       nd = 2 * elem_nodes(m, e)
       if (body%nonlinear) then
         ! the consistent tangent at u with the committed history
-        if (allocated(body%dtemp)) then
-          call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
-        else
-          call body_input(m, e, u, ein, nodes, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
-        end if
+        ! (an unallocated body%dtemp is an absent argument: no thermal strain)
+        call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
         ! at the converged state the increment starts from: its last iteration's tangent
         if (at_converged) ein%hist = body%hist_old(:, :, e)
         call element_routine(act_tangent, ein, eout)
