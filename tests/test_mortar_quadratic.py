@@ -9,9 +9,9 @@ at the peak of the flagship history).
 On the q8 case (gmsh's default recombination into 8-node quadrilaterals
 on both sides) the coupling does not reach the targets (osc 0.84 %, s-m
 4.3 %, tests/test_mortar_hertz.py). docs/contact.md ("Quadratic faces:
-where the CPS8 figures come from") measures why: it is the mesh layout
-(the same nodes split into 6-node triangles give the same figures), not
-the coupling. These tests hold the other half: the same dual mortar
+where the CPS8 figures come from") measures where
+they come from: they follow the mesh layout (the same nodes split into
+6-node triangles give the same figures), not the element type. These tests hold the other half: the same dual mortar
 coupling with exact enforcement on the same geometry, sizes and 3-node
 faces meets the targets (osc < 0.5 %, |node_p0| < 1 %, s-m < 1 % of p0)
 on gmsh's triangle meshes (CPS6 on both sides), with a CPS6 cylinder on
