@@ -14,7 +14,8 @@ module analysis
   use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
                         follower_loads
   use constraints, only: mpc_t, resolve_equations, constraint_label
-  use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment, same_couplings, renumber_couplings
+  use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment, renumber_couplings, note_numbering, &
+                         numbering_fits
   use equilibrium_common, only: newton_new_step
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
@@ -146,6 +147,7 @@ contains
     call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta, rs%nonlinear)
     call check_loads_reached(m, rs%ls, rs%dm%inactive)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .true.)
+    call note_numbering(rs%eq, m, rs%cs)
     rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
     rs%timing%analyse = rs%timing%analyse + ta
     rs%eq%counts = counts
@@ -372,9 +374,9 @@ contains
       end if
       ! nothing of the failed attempt is kept
       if (research_each) then
-        ok = same_couplings(m, saved_cs, rs%cs)
         rs%cs = saved_cs
-        if (.not. ok) call renumber_couplings(rs%eq, m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys)
+        if (.not. numbering_fits(rs%eq, m, rs%cs)) &
+          call renumber_couplings(rs%eq, m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys)
       else
         rs%cs%c(1:rs%cs%n) = saved
       end if
@@ -403,6 +405,7 @@ contains
     call contact_research(m, m%x + rs%u, rs%cs)
     call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta, rs%nonlinear)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .false.)
+    call note_numbering(rs%eq, m, rs%cs)
     rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
     rs%timing%analyse = rs%timing%analyse + ta
   end subroutine research

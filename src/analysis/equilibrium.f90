@@ -28,10 +28,10 @@ module equilibrium
                                 newton_failed
   use condensed_equilibrium, only: solve_condensed
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
-  use messages, only: warn
+  use messages, only: warn, fatal
   implicit none
   private
-  public :: equilibrium_t, begin_equilibrium, solve_increment, same_couplings, renumber_couplings
+  public :: equilibrium_t, begin_equilibrium, solve_increment, renumber_couplings, note_numbering, numbering_fits
 
   !> The largest element tangent entry a nonlinear step accepts.
   real(dp), parameter :: tangent_limit = 1.0e250_dp
@@ -148,6 +148,10 @@ contains
     else
       call internal_forces(m, body, cs, u, fint, eq%counts)
     end if
+    ! the equations must be numbered for the couplings in hand (a cut-back
+    ! restores both: advance_nonlinear)
+    if (present(presc) .and. .not. numbering_fits(eq, m, cs)) call fatal('internal error: the equations are ' // &
+      'not numbered for the contact couplings of the increment')
     call begin_status_search(eq%search)
     it = 0
     naug = 0
@@ -290,23 +294,33 @@ contains
     type(mpc_t), intent(in) :: mpc
     type(dofmap_t), intent(inout) :: dm
     type(linear_system_t), intent(inout) :: sys
-    integer, allocatable :: before(:)
     real(dp) :: t0
     t0 = wall_time()
-    before = coupling_lists(m, cs)
     call contact_research(m, m%x + u, cs, moved=.true.)
     eq%searches = eq%searches + 1
     eq%search_seconds = eq%search_seconds + (wall_time() - t0)
-    if (.not. same_lists(before, coupling_lists(m, cs))) call renumber_couplings(eq, m, cs, presc, mpc, dm, sys)
+    if (.not. numbering_fits(eq, m, cs)) call renumber_couplings(eq, m, cs, presc, mpc, dm, sys)
   end subroutine search_in_iteration
 
-  !> Purpose: do contact sets a and b couple the same nodes in the same
-  !> CFEs (the same equation structure), whatever their geometry?
-  logical function same_couplings(m, a, b)
+  !> Purpose: were the equations (eq%numbered_for, note_numbering) numbered
+  !> for the couplings of cs: the same CFEs with the same node lists,
+  !> whatever their geometry?
+  logical function numbering_fits(eq, m, cs)
+    type(equilibrium_t), intent(in) :: eq
     type(model_t), intent(in) :: m
-    type(contact_set_t), intent(in) :: a, b
-    same_couplings = same_lists(coupling_lists(m, a), coupling_lists(m, b))
-  end function same_couplings
+    type(contact_set_t), intent(in) :: cs
+    numbering_fits = .false.
+    if (allocated(eq%numbered_for)) numbering_fits = same_lists(eq%numbered_for, coupling_lists(m, cs))
+  end function numbering_fits
+
+  !> Purpose: the equations have just been numbered for the couplings of
+  !> cs (number_equations): remembered for numbering_fits.
+  subroutine note_numbering(eq, m, cs)
+    type(equilibrium_t), intent(inout) :: eq
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    eq%numbered_for = coupling_lists(m, cs)
+  end subroutine note_numbering
 
   !> Purpose: the equations numbered again for the couplings of cs
   !> (number_equations of a nonlinear step: the full solve) and the
@@ -323,6 +337,7 @@ contains
     call number_equations(m, cs, presc, mpc, dm, sys, eq%cd, ta, .true.)
     eq%timing%analyse = eq%timing%analyse + ta
     call begin_equilibrium(eq, dm%neq, cs%n, .false.)
+    call note_numbering(eq, m, cs)
     eq%renumberings = eq%renumberings + 1
   end subroutine renumber_couplings
 

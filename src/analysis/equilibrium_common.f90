@@ -97,6 +97,9 @@ module equilibrium_common
     !> over the step.
     integer :: searches = 0, renumberings = 0
     real(dp) :: search_seconds = 0.0_dp
+    !> The couplings the equations were numbered for (equilibrium's
+    !> note_numbering: every CFE's node list).
+    integer, allocatable :: numbered_for(:)
   end type equilibrium_t
 
 contains
