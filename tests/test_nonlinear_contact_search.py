@@ -29,17 +29,20 @@ frictionless. Closed forms:
     displacements to 1e-7 of the slide).
 
 With the contact searched once per increment (at its start) the block is
-measured against the extension of the lowest edge: the nodes end a
-sagitta R (1 - cos theta) = 0.15 off the polygon, and the force is
-vertical (atan = 0 instead of theta): (a) and (b) fail.
+measured against the extension of the lowest edge, the horizontal line
+y = 0, which lies below the bowl's surface there (by R (1 - cos theta),
+0.15): the coupling elements open, the block sinks by D through the
+polygon (gap 1.1e-2 of an edge) and carries no contact force: (a) and
+(b) fail. With friction (the last test) the frozen pairing is off by 0.4
+to 1 degree even in ten increments of one edge each.
 
 Both couplings are checked: node-to-segment (the default) and the
 segment-to-segment mortar (TYPE=SURFACE TO SURFACE). A last case cuts an
 increment back (automatic increments, *CONTROLS I_C small): the restore
 of the couplings the increment started with (their number and the
-equation numbering) must give the same answer."""
+equation numbering; a numbering that does not fit the couplings stops
+the run with an internal error) must give the same answer."""
 import math
-import re
 
 from helpers import run_deck
 
@@ -182,8 +185,9 @@ def end_state(run, b=0):
     return pos, (sum(rf["RF1"]), sum(rf["RF2"])), inc
 
 
-def check_on_polygon_and_normal(run, label, b=0):
-    """(a) and (b) on block b of a run; returns its bottom nodes' positions."""
+def check_on_polygon_and_normal(run, label, b=0, expected=THETA):
+    """(a) and (b) on block b of a run (expected: the angle of the top's reaction); returns its
+    bottom nodes' positions."""
     pos, (f1, f2), inc = end_state(run, b)
     assert abs(inc.time - 1.0) < 1e-12
     worst = 0.0
@@ -194,9 +198,9 @@ def check_on_polygon_and_normal(run, label, b=0):
         worst = max(worst, abs(g))
     angle = math.atan2(f1, -f2)
     print(f"  {label}: |gap| max {worst / EDGE:.1e} of the edge, force angle {math.degrees(angle):.9f} deg "
-          f"(theta {math.degrees(THETA):.1f}), {inc.attrs['iterations']} iterations in the last increment")
+          f"(off by {abs(angle - expected):.1e} rad), {inc.attrs['iterations']} iterations in the last increment")
     assert worst < 1e-8 * EDGE, (label, worst)
-    assert f2 < 0 and abs(angle - THETA) < 1e-7, (label, math.degrees(angle))
+    assert f2 < 0 and abs(angle - expected) < 1e-7, (label, math.degrees(angle))
     return pos
 
 
@@ -245,3 +249,21 @@ def test_cut_back_restores_the_couplings():
         p_ref = check_on_polygon_and_normal(ref, NAMES[coupling] + ", 1 increment", b)
         p_cut = check_on_polygon_and_normal(run, NAMES[coupling] + ", after a cut-back", b)
         same_state(p_ref, p_cut, NAMES[coupling] + ": cut back against 1 increment")
+
+
+def test_coulomb_friction_carried_through_the_searches():
+    """FRICTION=0.2, both couplings in one deck: the bottom slides all the way (its slide of ten
+    edges dwarfs the Poisson spreading), so each closed point carries mu times its normal force
+    against the slip (+t = (cos theta, sin theta)): the reaction at the top is at theta + atan(mu)
+    (to 1e-7 rad). Automatic increments from the whole step (the first attempts stick and
+    invert an element: cut back) and ten DIRECT increments; with the search once per increment
+    the nodes end off the polygon and the angle is off by 0.4 to 1 degree."""
+    mu = 0.2
+    couplings = (NTS + f", FRICTION={mu}", MORTAR + f", FRICTION={mu}")
+    auto = run_case("nl_search_fric_auto", couplings, "*STATIC\n1., 1.\n")
+    ten = run_case("nl_search_fric_10", couplings, "*STATIC, DIRECT\n0.1, 1.\n")
+    expected = THETA + math.atan(mu)
+    for b, coupling in enumerate(BOTH):
+        pa = check_on_polygon_and_normal(auto, NAMES[coupling] + ", friction, automatic", b, expected)
+        p10 = check_on_polygon_and_normal(ten, NAMES[coupling] + ", friction, 10 increments", b, expected)
+        same_state(pa, p10, NAMES[coupling] + ", friction: automatic against 10 increments")
