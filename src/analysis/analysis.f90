@@ -169,8 +169,7 @@ contains
     if (rs%nonlinear) then
       call advance_nonlinear(m, is, rs, obs)
       if (rs%eq%searches > 0) call tell_note(obs, 'contact searched again in ' // itoa(rs%eq%searches) // &
-        ' Newton iterations (' // rtoa(rs%eq%search_seconds, 3) // ' s); equations renumbered ' // &
-        itoa(rs%eq%renumberings) // ' times for changed couplings')
+        ' Newton iterations; equations renumbered ' // itoa(rs%eq%renumberings) // ' times for changed couplings')
     else
       do i = 1, ninc
         call advance(m, is, rs, obs, m%steps(is)%period * (i - 1) / ninc, m%steps(is)%period * i / ninc)

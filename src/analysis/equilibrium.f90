@@ -294,11 +294,8 @@ contains
     type(mpc_t), intent(in) :: mpc
     type(dofmap_t), intent(inout) :: dm
     type(linear_system_t), intent(inout) :: sys
-    real(dp) :: t0
-    t0 = wall_time()
     call contact_research(m, m%x + u, cs, moved=.true.)
     eq%searches = eq%searches + 1
-    eq%search_seconds = eq%search_seconds + (wall_time() - t0)
     if (.not. numbering_fits(eq, m, cs)) call renumber_couplings(eq, m, cs, presc, mpc, dm, sys)
   end subroutine search_in_iteration
 

@@ -92,11 +92,9 @@ module equilibrium_common
     !> and divergence tests, as CalculiX makes them.
     type(newton_t) :: newton
     !> Under NLGEOM with contact: the searches made in Newton iterations
-    !> (equilibrium's search_in_iteration), their wall time, and the
-    !> renumberings of the equations they (or a cut-back's restore) needed,
-    !> over the step.
+    !> (equilibrium's search_in_iteration) and the renumberings of the
+    !> equations they (or a cut-back's restore) needed, over the step.
     integer :: searches = 0, renumberings = 0
-    real(dp) :: search_seconds = 0.0_dp
     !> The couplings the equations were numbered for (equilibrium's
     !> note_numbering: every CFE's node list).
     integer, allocatable :: numbered_for(:)
@@ -124,7 +122,6 @@ contains
       eq%search = status_search_t()
       eq%searches = 0
       eq%renumberings = 0
-      eq%search_seconds = 0.0_dp
     end if
   end subroutine begin_equilibrium
 
