@@ -503,8 +503,9 @@ contains
   !> Gauss point of the same slave face), its exact multiplier and its
   !> friction history. The old couplings are found per slave node (a
   !> chain of the old CFEs of each first slave node, in their order), so
-  !> the matching costs O(n_old + n_new) instead of the O(n_old n_new) of
-  !> comparing every pair, and finds the same (first) match.
+  !> the matching costs O(n_old + n_new + nodes) instead of the
+  !> O(n_old n_new) of comparing every pair, and finds the same (first)
+  !> match.
   !> Arguments: x the configuration searched (m%x + u); moved, if present
   !> and true, says that u is not where the CFEs were last evaluated (a
   !> search after a displacement update of an iteration): the old
