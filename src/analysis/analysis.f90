@@ -14,7 +14,8 @@ module analysis
   use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
                         follower_loads
   use constraints, only: mpc_t, resolve_equations, constraint_label
-  use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment
+  use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment, renumber_couplings, note_numbering, &
+                         numbering_fits
   use equilibrium_common, only: newton_new_step
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
@@ -146,6 +147,7 @@ contains
     call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta, rs%nonlinear)
     call check_loads_reached(m, rs%ls, rs%dm%inactive)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .true.)
+    call note_numbering(rs%eq, m, rs%cs)
     rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
     rs%timing%analyse = rs%timing%analyse + ta
     rs%eq%counts = counts
@@ -166,6 +168,8 @@ contains
     rs%inc = 0
     if (rs%nonlinear) then
       call advance_nonlinear(m, is, rs, obs)
+      if (rs%eq%searches > 0) call tell_note(obs, 'contact searched again in ' // itoa(rs%eq%searches) // &
+        ' Newton iterations; equations renumbered ' // itoa(rs%eq%renumberings) // ' times for changed couplings')
     else
       do i = 1, ninc
         call advance(m, is, rs, obs, m%steps(is)%period * (i - 1) / ninc, m%steps(is)%period * i / ninc)
@@ -281,15 +285,24 @@ contains
   !> the increments done are written already. With DIRECT the increments
   !> are fixed, and a failure stops the run. Under NLGEOM a face pressure
   !> (*DLOAD P) follows the deformed face, its load stiffness in the
-  !> tangent (load_state's follower_loads, the body's fl_*). Under NLGEOM with contact
-  !> the pairs are searched again on the deformed configuration at the
-  !> start of every increment (as UPDATE SEARCH does).
+  !> tangent (load_state's follower_loads, the body's fl_*). Under NLGEOM
+  !> with contact the pairs are searched again on the current
+  !> configuration in every Newton iteration (equilibrium's
+  !> search_in_iteration), so a converged increment ends with the
+  !> couplings of its own configuration and the next starts from them; a
+  !> cut-back restores the couplings the increment started with (the
+  !> whole contact set: their number, geometry, statuses and friction
+  !> state) and, where the failed attempt had renumbered the equations
+  !> for other couplings, numbers them again for the restored ones.
+  !> Without NLGEOM, UPDATE SEARCH searches at the start of every
+  !> increment, as in a linear step.
   subroutine advance_nonlinear(m, is, rs, obs)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
     type(run_state_t), intent(inout) :: rs
     type(observer_ref_t), intent(in) :: obs(:)
     type(cfe_t), allocatable :: saved(:)
+    type(contact_set_t) :: saved_cs
     real(dp), allocatable :: u_saved(:, :)
     real(dp) :: t, dt, dt_try, dt_min, dt_max, period
     integer :: iters, fast
@@ -307,8 +320,12 @@ contains
       dt_try = min(dt, period - t)
       ! a last sliver of the step joins this increment
       if (period - (t + dt_try) < 1.0e-6_dp * dt_try) dt_try = period - t
-      if ((research_each .or. rs%update_search) .and. rs%inc > 0) call research(m, rs)
-      saved = rs%cs%c(1:rs%cs%n)
+      if (research_each) then
+        saved_cs = rs%cs
+      else
+        if (rs%update_search .and. rs%inc > 0) call research(m, rs)
+        saved = rs%cs%c(1:rs%cs%n)
+      end if
       u_saved = rs%u
       call values_at(m, rs%ls, t + dt_try, rs%u, rs%fext)
       ! the free dofs start where the last increment left them
@@ -321,8 +338,13 @@ contains
         call temperature_change_at(m, rs%ls, t + dt_try, rs%body%dtemp)
         call temperature_change_at(m, rs%ls, t, rs%body%dtemp0)
       end if
-      call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, &
-                           ok, iters, u_saved)
+      if (research_each) then
+        call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, &
+                             ok, iters, u_saved, rs%ls%presc, rs%mpc)
+      else
+        call solve_increment(rs%eq, m, is, rs%inc + 1, rs%body, rs%cs, rs%dm, rs%sys, rs%fext, rs%u, rs%rf, obs, &
+                             ok, iters, u_saved)
+      end if
       if (ok) then
         call commit_increment(rs)
         rs%inc = rs%inc + 1
@@ -350,7 +372,13 @@ contains
         cycle
       end if
       ! nothing of the failed attempt is kept
-      rs%cs%c(1:rs%cs%n) = saved
+      if (research_each) then
+        rs%cs = saved_cs
+        if (.not. numbering_fits(rs%eq, m, rs%cs)) &
+          call renumber_couplings(rs%eq, m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys)
+      else
+        rs%cs%c(1:rs%cs%n) = saved
+      end if
       rs%u = u_saved
       fast = 0
       rs%cutbacks = rs%cutbacks + 1
@@ -376,6 +404,7 @@ contains
     call contact_research(m, m%x + rs%u, rs%cs)
     call number_equations(m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys, rs%eq%cd, ta, rs%nonlinear)
     call begin_equilibrium(rs%eq, rs%dm%neq, rs%cs%n, .false.)
+    call note_numbering(rs%eq, m, rs%cs)
     rs%timing%setup = rs%timing%setup + (wall_time() - t0 - ta)
     rs%timing%analyse = rs%timing%analyse + ta
   end subroutine research

@@ -14,21 +14,24 @@ module equilibrium
   use kinds, only: dp
   use strings, only: itoa
   use model, only: model_t, elem_label, node_label
-  use contact, only: contact_set_t, status_codes, contact_forces
+  use contact, only: contact_set_t, status_codes, contact_forces, contact_research, cfe_nodes
   use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
   use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
+  use constraints, only: mpc_t
+  use condensed_contact, only: number_equations
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
+  use element_interface, only: max_en
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
                                 report_iteration, describe, singular, contact_force_scale, take_back, &
                                 stabilise_open, set_aside_or_stop, newton_begin, newton_test, newton_converged, &
                                 newton_failed
   use condensed_equilibrium, only: solve_condensed
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
-  use messages, only: warn
+  use messages, only: warn, fatal
   implicit none
   private
-  public :: equilibrium_t, begin_equilibrium, solve_increment
+  public :: equilibrium_t, begin_equilibrium, solve_increment, renumber_couplings, note_numbering, numbering_fits
 
   !> The largest element tangent entry a nonlinear step accepts.
   real(dp), parameter :: tangent_limit = 1.0e250_dp
@@ -41,14 +44,18 @@ contains
   !> reactions at prescribed dofs; zero at dependent dofs), ok whether it converged and iters the
   !> iterations used. u_from, in a nonlinear step, is the converged state
   !> the increment starts from (u has its free dofs and the new prescribed
-  !> values): the first iteration is linearised about it.
-  subroutine solve_increment(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from)
+  !> values): the first iteration is linearised about it. presc and mpc,
+  !> in a nonlinear step under NLGEOM with contact, ask for the contact
+  !> to be searched again after every displacement update (solve_full:
+  !> search_in_iteration); they are the step's prescribed dofs and the
+  !> constraints that a renumbering of dm and sys needs.
+  subroutine solve_increment(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from, presc, mpc)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc
     type(body_t), intent(inout) :: body
     type(contact_set_t), intent(inout) :: cs
-    type(dofmap_t), intent(in) :: dm
+    type(dofmap_t), intent(inout) :: dm
     type(linear_system_t), intent(inout) :: sys
     real(dp), intent(in) :: fext(:, :)
     real(dp), intent(inout) :: u(:, :)
@@ -57,6 +64,8 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), intent(in), optional :: u_from(:, :)
+    logical, intent(in), optional :: presc(:, :)
+    type(mpc_t), intent(in), optional :: mpc
     real(dp) :: t0, parts
     t0 = wall_time()
     parts = timed_parts(eq%timing)
@@ -64,7 +73,7 @@ contains
       call solve_condensed(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
       eq%timing%condensed = eq%timing%condensed + (wall_time() - t0) - (timed_parts(eq%timing) - parts)
     else
-      call solve_full(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from)
+      call solve_full(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from, presc, mpc)
       eq%timing%solve = eq%timing%solve + (wall_time() - t0) - (timed_parts(eq%timing) - parts)
     end if
   end subroutine solve_increment
@@ -86,13 +95,22 @@ contains
   !> eq%newton%cut and reason say how and why) on divergence, on too slow
   !> a convergence, on an element that cannot be evaluated at u or on a
   !> displacement that is not finite; the driver then cuts the increment.
-  subroutine solve_full(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from)
+  !> With presc and mpc (NLGEOM with contact) the contact is searched and
+  !> evaluated again on the current configuration after every
+  !> displacement update, before that iteration's status switch and
+  !> residual test (search_in_iteration): the master edge, projection,
+  !> normal and initial gap of every CFE follow the bodies, so that a
+  !> slave point sliding past its master edge within the increment meets
+  !> the next edge, not the extension of the old one. The tangent holds
+  !> the CFEs' geometry fixed (no variation of the normal or projection:
+  !> docs/nonlinear.md).
+  subroutine solve_full(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters, u_from, presc, mpc)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc       ! step, and the increment being solved
     type(body_t), intent(inout) :: body
     type(contact_set_t), intent(inout) :: cs
-    type(dofmap_t), intent(in) :: dm
+    type(dofmap_t), intent(inout) :: dm
     type(linear_system_t), intent(inout) :: sys
     real(dp), intent(in) :: fext(:, :)
     real(dp), intent(inout) :: u(:, :)
@@ -101,6 +119,8 @@ contains
     logical, intent(out) :: ok
     integer, intent(out) :: iters
     real(dp), intent(in), optional :: u_from(:, :)
+    logical, intent(in), optional :: presc(:, :)
+    type(mpc_t), intent(in), optional :: mpc
     real(dp), allocatable :: fint(:, :), u_start(:, :)
     integer :: it, a, d, nchanged, naug
     logical :: restabilised, usable, converged, predict
@@ -128,6 +148,10 @@ contains
     else
       call internal_forces(m, body, cs, u, fint, eq%counts)
     end if
+    ! the equations must be numbered for the couplings in hand (a cut-back
+    ! restores both: advance_nonlinear)
+    if (present(presc) .and. .not. numbering_fits(eq, m, cs)) call fatal('internal error: the equations are ' // &
+      'not numbered for the contact couplings of the increment')
     call begin_status_search(eq%search)
     it = 0
     naug = 0
@@ -187,6 +211,7 @@ contains
       else
         call check_finite(m, is, inc, u)
       end if
+      if (present(presc) .and. present(mpc)) call search_in_iteration(eq, m, cs, u, presc, mpc, dm, sys)
       call internal_forces(m, body, cs, u, fint, eq%counts, energy)
       ! the potential energy of this status's solution, eqs. (1) and (9)
       energy = energy - sum(fext * u) + contact_energy(cs)
@@ -248,6 +273,95 @@ contains
     if (body%nonlinear .and. eq%newton%cut >= 1.0_dp) call newton_failed(eq%newton, eq%newton%ctl%dc, &
       'the contact status did not settle in ' // itoa(m%contact_max_iter) // ' iterations')
   end subroutine solve_full
+
+  !> Purpose: the contact of the configuration m%x + u within a Newton
+  !> iteration (NLGEOM): contact_research pairs every slave point again
+  !> (master edge, projection, normal, initial gap; the status, the exact
+  !> multiplier and the friction state carried over per slave point), and
+  !> the equations are numbered again only where the couplings' node lists
+  !> changed (renumber_couplings): a point moved on to another master
+  !> element, or was coupled or uncoupled. Where only the geometry of the
+  !> couplings moved, the numbering, the sparse structure and its symbolic
+  !> analysis stay.
+  !> Arguments: presc, mpc the step's prescribed dofs and constraints;
+  !> dm, sys renumbered where needed.
+  subroutine search_in_iteration(eq, m, cs, u, presc, mpc, dm, sys)
+    type(equilibrium_t), intent(inout) :: eq
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    real(dp), intent(in) :: u(:, :)
+    logical, intent(in) :: presc(:, :)
+    type(mpc_t), intent(in) :: mpc
+    type(dofmap_t), intent(inout) :: dm
+    type(linear_system_t), intent(inout) :: sys
+    call contact_research(m, m%x + u, cs, moved=.true.)
+    eq%searches = eq%searches + 1
+    if (.not. numbering_fits(eq, m, cs)) call renumber_couplings(eq, m, cs, presc, mpc, dm, sys)
+  end subroutine search_in_iteration
+
+  !> Purpose: were the equations (eq%numbered_for, note_numbering) numbered
+  !> for the couplings of cs: the same CFEs with the same node lists,
+  !> whatever their geometry?
+  logical function numbering_fits(eq, m, cs)
+    type(equilibrium_t), intent(in) :: eq
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    numbering_fits = .false.
+    if (allocated(eq%numbered_for)) numbering_fits = same_lists(eq%numbered_for, coupling_lists(m, cs))
+  end function numbering_fits
+
+  !> Purpose: the equations have just been numbered for the couplings of
+  !> cs (number_equations): remembered for numbering_fits.
+  subroutine note_numbering(eq, m, cs)
+    type(equilibrium_t), intent(inout) :: eq
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    eq%numbered_for = coupling_lists(m, cs)
+  end subroutine note_numbering
+
+  !> Purpose: the equations numbered again for the couplings of cs
+  !> (number_equations of a nonlinear step: the full solve) and the
+  !> iteration's arrays sized for them; the analysis time is timed.
+  subroutine renumber_couplings(eq, m, cs, presc, mpc, dm, sys)
+    type(equilibrium_t), intent(inout) :: eq
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    logical, intent(in) :: presc(:, :)
+    type(mpc_t), intent(in) :: mpc
+    type(dofmap_t), intent(inout) :: dm
+    type(linear_system_t), intent(inout) :: sys
+    real(dp) :: ta
+    call number_equations(m, cs, presc, mpc, dm, sys, eq%cd, ta, .true.)
+    eq%timing%analyse = eq%timing%analyse + ta
+    call begin_equilibrium(eq, dm%neq, cs%n, .false.)
+    call note_numbering(eq, m, cs)
+    eq%renumberings = eq%renumberings + 1
+  end subroutine renumber_couplings
+
+  !> The node lists of every CFE of cs in order, each preceded by its
+  !> length: what the equation structure depends on.
+  function coupling_lists(m, cs) result(l)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, allocatable :: l(:)
+    integer :: j, nen, k, nodes(max_en)
+    allocate(l(cs%n * (max_en + 1)))
+    k = 0
+    do j = 1, cs%n
+      call cfe_nodes(m, cs%c(j), nodes, nen)
+      l(k + 1) = nen
+      l(k + 2:k + 1 + nen) = nodes(1:nen)
+      k = k + 1 + nen
+    end do
+    l = l(1:k)
+  end function coupling_lists
+
+  !> Are the integer lists a and b equal (length and entries)?
+  pure logical function same_lists(a, b)
+    integer, intent(in) :: a(:), b(:)
+    same_lists = size(a) == size(b)
+    if (same_lists) same_lists = all(a == b)
+  end function same_lists
 
   !> ' at node N, dof D' for equation bad of the numbering (empty if none).
   function singular_where(m, dm, bad) result(s)

@@ -91,6 +91,13 @@ module equilibrium_common
     !> Nonlinear steps (newton_t): the Newton iteration's convergence
     !> and divergence tests, as CalculiX makes them.
     type(newton_t) :: newton
+    !> Under NLGEOM with contact: the searches made in Newton iterations
+    !> (equilibrium's search_in_iteration) and the renumberings of the
+    !> equations they (or a cut-back's restore) needed, over the step.
+    integer :: searches = 0, renumberings = 0
+    !> The couplings the equations were numbered for (equilibrium's
+    !> note_numbering: every CFE's node list).
+    integer, allocatable :: numbered_for(:)
   end type equilibrium_t
 
 contains
@@ -113,6 +120,8 @@ contains
       eq%condensed_factorisations = 0
       eq%iterations = 0
       eq%search = status_search_t()
+      eq%searches = 0
+      eq%renumberings = 0
     end if
   end subroutine begin_equilibrium
 

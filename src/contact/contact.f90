@@ -497,37 +497,66 @@ contains
     end associate
   end subroutine blend_vertex_normal
 
-  !> Purpose: UPDATE SEARCH: pair again on the deformed configuration x. A
-  !> slave point keeps the status it had in the same pair (the same node,
-  !> or the same Gauss point of the same slave face), and its friction
-  !> history.
-  subroutine contact_research(m, x, cs)
+  !> Purpose: UPDATE SEARCH, and under NLGEOM the search of every Newton
+  !> iteration: pair again on the deformed configuration x. A slave point
+  !> keeps the status it had in the same pair (the same node, or the same
+  !> Gauss point of the same slave face), its exact multiplier and its
+  !> friction history. The old couplings are found per slave node (a
+  !> chain of the old CFEs of each first slave node, in their order), so
+  !> the matching costs O(n_old + n_new + nodes) instead of the
+  !> O(n_old n_new) of comparing every pair, and finds the same (first)
+  !> match.
+  !> Arguments: x the configuration searched (m%x + u); moved, if present
+  !> and true, says that u is not where the CFEs were last evaluated (a
+  !> search after a displacement update of an iteration): the old
+  !> couplings' t.[[U]] is then evaluated again at u for their elastic
+  !> tangential offset (otherwise their last evaluation serves, as at the
+  !> start of an increment). The stabilised open penalty (contact_set_t)
+  !> stays as it was.
+  subroutine contact_research(m, x, cs, moved)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
     type(contact_set_t), intent(inout) :: cs
+    logical, intent(in), optional :: moved
     type(contact_set_t) :: old
+    integer, allocatable :: head(:), next(:)
     integer :: j, q
+    logical :: stabilised, reevaluate
+    real(dp) :: old_slide
+    reevaluate = .false.
+    if (present(moved)) reevaluate = moved
+    stabilised = cs%stabilised
     call move_alloc(cs%c, old%c)
     old%n = cs%n
     call contact_search(m, x, cs)
+    cs%stabilised = stabilised
+    allocate(head(m%nn), next(old%n))
+    head = 0
+    do q = old%n, 1, -1
+      next(q) = head(old%c(q)%snode(1))
+      head(old%c(q)%snode(1)) = q
+    end do
     do j = 1, cs%n
-      do q = 1, old%n
-        if (old%c(q)%snode(1) == cs%c(j)%snode(1) .and. old%c(q)%pair == cs%c(j)%pair .and. &
-            old%c(q)%selem == cs%c(j)%selem .and. old%c(q)%sedge == cs%c(j)%sedge .and. &
-            old%c(q)%sip == cs%c(j)%sip) then
-          cs%c(j)%closed = old%c(q)%closed
-          cs%c(j)%lambda = old%c(q)%lambda
-          ! friction: the elastic tangential offset carries over to the
-          ! new coupling, whose t.[[U]] is evaluated where the point is now
-          ! (zero on a straight edge; not at a blended corner normal)
-          cs%c(j)%sliding = old%c(q)%sliding
-          cs%c(j)%slip_sign = old%c(q)%slip_sign
-          cs%c(j)%slip_total = old%c(q)%slip_total
-          if (cs%c(j)%mu > 0.0_dp) cs%c(j)%anchor = current_slide(m, cs%c(j), x - m%x) - &
-                                                    (old%c(q)%slide - old%c(q)%anchor)
-          exit
-        end if
+      q = head(cs%c(j)%snode(1))
+      do while (q > 0)
+        if (old%c(q)%pair == cs%c(j)%pair .and. old%c(q)%selem == cs%c(j)%selem .and. &
+            old%c(q)%sedge == cs%c(j)%sedge .and. old%c(q)%sip == cs%c(j)%sip) exit
+        q = next(q)
       end do
+      if (q == 0) cycle
+      cs%c(j)%closed = old%c(q)%closed
+      cs%c(j)%lambda = old%c(q)%lambda
+      ! friction: the elastic tangential offset carries over to the
+      ! new coupling, whose t.[[U]] is evaluated where the point is now
+      ! (zero on a straight edge; not at a blended corner normal)
+      cs%c(j)%sliding = old%c(q)%sliding
+      cs%c(j)%slip_sign = old%c(q)%slip_sign
+      cs%c(j)%slip_total = old%c(q)%slip_total
+      if (cs%c(j)%mu > 0.0_dp) then
+        old_slide = old%c(q)%slide
+        if (reevaluate) old_slide = current_slide(m, old%c(q), x - m%x)
+        cs%c(j)%anchor = current_slide(m, cs%c(j), x - m%x) - (old_slide - old%c(q)%anchor)
+      end if
     end do
   end subroutine contact_research
 
