@@ -515,9 +515,19 @@ def _mortar_tie():
 
 
 # Segment-to-segment contact, exact enforcement and the mortar tie (issue 21).
+def _nl_contact_slide():
+    """A block pressed into a polygonal bowl and slid ten edges in one
+    NLGEOM increment, node-to-segment and mortar blocks in one deck
+    (test_nonlinear_contact_search): the contact searched in every Newton
+    iteration, renumbered where the couplings change."""
+    import test_nonlinear_contact_search as tn
+    return "nl_slide.inp", {"nl_slide.inp": tn.deck(couplings=(tn.NTS, tn.MORTAR))}
+
+
 MORTAR_MAKERS = [("tests/mortar_exact", _mortar_exact), ("tests/mortar_quadratic", _mortar_quadratic),
                  ("tests/mortar_axisymmetric", _mortar_axisymmetric), ("tests/mortar_friction", _mortar_friction),
-                 ("tests/mortar_hard_cards", _mortar_hard_cards), ("tests/mortar_tie", _mortar_tie)]
+                 ("tests/mortar_hard_cards", _mortar_hard_cards), ("tests/mortar_tie", _mortar_tie),
+                 ("tests/nl_contact_slide", _nl_contact_slide)]
 
 
 def load_seeds(tmp, log):
