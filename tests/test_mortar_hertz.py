@@ -42,7 +42,8 @@ def test_flagship_default_mesh_smooth_pressures():
     # The master-mesh multipliers hold the finer slave in the mean over
     # each master node's hat, not at every slave node: the force is 1.9e-4
     # below node-to-segment's (13 919.27 against 13 921.87 N), towards the
-    # finer mesh's (h = 0.025: 13 918.40 either way; docs/contact.md).
+    # finer mesh's (h = 0.025: node-to-segment 13 918.40, this coupling
+    # 13 918.16; docs/contact.md).
     assert abs(sts["P"] - nts["P"]) < 3e-4 * nts["P"], (sts["P"], nts["P"])
 
 

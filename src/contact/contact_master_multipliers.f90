@@ -150,8 +150,9 @@ contains
   !> each slave face is cut where the master corners project onto it (psi_m
   !> and N_j are then linear on each piece), three Gauss points per piece
   !> (exact for the product of two linear functions and the radius). A
-  !> slave Gauss point on which no master face lies adds nothing; so does
-  !> a slave node that projects onto none for the field psi_m there.
+  !> slave Gauss point on which no master face lies adds nothing. The
+  !> field psi_m at a slave node is taken at the closest point of the
+  !> master surface (closest_master_point).
   !> Arguments: dmax the search distance; sp returns them.
   subroutine master_space_integrals(m, x, sl, ms, dmax, sp)
     type(model_t), intent(in) :: m
@@ -226,7 +227,7 @@ contains
     ! psi_m at the slave nodes: the master face under each slave node
     do k = 1, sp%n
       do j = 1, sp%ns(k)
-        call nearest_edge(m, x, ms, x(:, sp%snode(j, k)), sp%snode(j, k), 0, dmax, best, tbest)
+        call closest_master_point(m, x, ms, x(:, sp%snode(j, k)), sp%snode(j, k), dmax, best, tbest)
         if (best == 0) cycle
         mt = get_edge(m, x, ms%elem(best), ms%edge(best))
         wmst = edge_weights(mt, tbest)
@@ -236,6 +237,46 @@ contains
       end do
     end do
   end subroutine master_space_integrals
+
+  !> Purpose: the point of the master surface closest to point xs: the
+  !> master edge (index into ms) and the position on it, the orthogonal
+  !> projection clamped to the edge; 0 if none within the search distance
+  !> dmax, or behind an edge by more than half its length (the far side
+  !> of the master body), as nearest_edge. Unlike nearest_edge's
+  !> projection this finds a point for every xs near the surface: behind
+  !> a corner of a concave master polygon (a slave node pressed into it)
+  !> no edge's projection falls inside [0, 1], and the closest point is
+  !> the corner. Arguments: skip_node a slave node whose edges are not
+  !> searched.
+  subroutine closest_master_point(m, x, ms, xs, skip_node, dmax, best, tbest)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), xs(2), dmax
+    type(surface_t), intent(in) :: ms
+    integer, intent(in) :: skip_node
+    integer, intent(out) :: best
+    real(dp), intent(out) :: tbest
+    type(edge_t) :: ed
+    real(dp) :: t, nvec(2), d, p(2), dpdt(2), dist, dbest
+    integer :: j
+    best = 0
+    tbest = 0.0_dp
+    dbest = huge(1.0_dp)
+    do j = 1, size(ms%elem)
+      ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+      if (any(ed%node(1:ed%nn) == skip_node)) cycle
+      call project_to_edge(ed, xs, t, nvec, d)
+      if (d < -0.5_dp * edge_length(ed) .or. d > dmax) cycle
+      t = min(max(t, 0.0_dp), 1.0_dp)
+      call edge_at(ed, t, p, dpdt)
+      dist = norm2(xs - p)
+      if (dist > dmax) cycle
+      if (dist < dbest) then
+        dbest = dist
+        best = j
+        tbest = t
+      end if
+    end do
+  end subroutine closest_master_point
 
   !> S(k, node) += v in master node k's short list of slave nodes.
   subroutine add_node(sp, k, node, v)
