@@ -389,20 +389,20 @@ contains
     logical, intent(out) :: done
     type(master_space_t) :: sp
     type(cfe_t) :: c
-    logical, allocatable :: use(:), reached(:)
+    logical, allocatable :: taken(:), reached(:)
     real(dp) :: em, rel(2)
     integer :: k, q, e, nn
     done = .false.
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
       call master_space_integrals(m, x, sl, ms, dmax, sp)
       if (sp%overflow) return
-      use = sp%ns > 0 .and. sp%d > min_mortar_cover * sp%full .and. norm2(sp%nsum, dim=1) > 0.0_dp
-      if (any(use .and. sp%ns + 1 > max_cfe_master)) return
+      taken = sp%ns > 0 .and. sp%d > min_mortar_cover * sp%full .and. norm2(sp%nsum, dim=1) > 0.0_dp
+      if (any(taken .and. sp%ns + 1 > max_cfe_master)) return
       done = .true.
       allocate(reached(m%nn))
       reached = .false.
       do k = 1, sp%n
-        if (.not. use(k)) cycle
+        if (.not. taken(k)) cycle
         c = cfe_t()
         c%pair = ip
         c%ns = 0

@@ -70,13 +70,13 @@ module contact_master_multipliers
   private
   public :: master_space_t, master_space_integrals, master_space_wanted, max_space_nodes
 
-  !> Slave or master nodes one master node's integrals may reach while
-  !> they are gathered (a coupling element holds fewer).
+  !> Slave nodes one master node's integrals may reach while they are
+  !> gathered (a coupling element holds fewer).
   integer, parameter :: max_space_nodes = 32
-  !> The master-mesh multipliers are taken where the slave faces are at
-  !> most this share of the master faces under them (length-weighted
-  !> mean): the slave clearly the finer side (docs/contact.md, "Which
-  !> multiplier space").
+  !> The master-mesh multipliers are taken where the slave faces are
+  !> less than this share of the master faces under them (the mean over
+  !> the slave faces, master_space_wanted): the slave clearly the finer
+  !> side (docs/contact.md, "Which multiplier space").
   real(dp), parameter :: finer_ratio = 0.75_dp
 
   !> The integrals of every node of a master surface (in the order of the
@@ -105,9 +105,12 @@ contains
   !> Purpose: does pair (sl, ms) take the master-mesh multipliers? Both
   !> surfaces of straight (2-node) faces and the slave the finer: the
   !> mean over the slave faces of (slave face length / length of the
-  !> master face under its midpoint), weighted with the slave face
-  !> lengths, below finer_ratio. Reference configuration; slave faces
-  !> whose midpoint faces no master face (within dmax) do not count.
+  !> master face under its midpoint) below finer_ratio. Each face counts
+  !> once, so that a finely meshed contact zone decides, not the long
+  !> faces far from it where both sides are coarse (the Hertz meshes: 0.57
+  !> per face, 0.79 weighted with the lengths). Reference configuration;
+  !> slave faces whose midpoint faces no master face (within dmax) do not
+  !> count.
   logical function master_space_wanted(m, sl, ms, dmax)
     type(model_t), intent(in) :: m
     type(surface_t), intent(in) :: sl, ms
@@ -135,6 +138,7 @@ contains
     master_space_wanted = den > 0.0_dp .and. num < finer_ratio * den
   end function master_space_wanted
 
+  !> Purpose: the node count of face f of surface s (2 or 3).
   integer function get_edge_nn(m, s, f)
     type(model_t), intent(in) :: m
     type(surface_t), intent(in) :: s

@@ -1,7 +1,8 @@
 !> Contact results of an increment, computed once and read by every
 !> writer: per reported pair the slave rows (one per CFE: coupling point,
 !> gap, status, normal force, area, pressure; node 0 for a Gauss point of
-!> a slave face), the master rows (the CFE forces taken to the master edge
+!> a slave face; with the multiplier on the master mesh one per slave
+!> node, the multiplier field there: field_rows), the master rows (the CFE forces taken to the master edge
 !> nodes with the weights N_i(X_C), their consistent areas, pressures) and
 !> the pair's totals; and the nodal contact pressure field of the whole
 !> model (slave nodes: their CFE's, or for Gauss points of slave faces the
