@@ -158,7 +158,9 @@ def measure(out, mesh, coupling, pair_params=None, repeats=1, solve=None):
     with `solves` the direct multiplier solves of each increment (exact
     enforcement on the condensed path: the listing's notes) and `deck`."""
     params = COUPLINGS[coupling] if pair_params is None else pair_params
-    folder = coupling if pair_params is None else "custom"
+    # a folder of its own per parameter set: a cached result's deck and
+    # tables stay its own
+    folder = coupling if pair_params is None else "custom_" + re.sub(r"[^a-z0-9]+", "_", params.lower()).strip("_")
     if solve is not None:
         folder += "_" + solve.lower()
     deck = write_case(os.path.join(out, mesh, folder), mesh, params, solve)

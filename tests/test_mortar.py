@@ -183,7 +183,10 @@ def test_mortar_frictional_patch_test_condensed_and_full():
     the segment-to-segment coupling, penalty and EXACT, on the condensed
     and the full path: every point sticks, stresses, pressures, shear
     tractions and reactions uniform to 1e-8 of p (single-pass
-    node-to-segment is 9.4 % off on these meshes), and the paths agree."""
+    node-to-segment is 9.4 % off on these meshes), and the paths agree.
+    The slave is the finer side: the multiplier on the master mesh, with
+    the consistent master side (a frictional pair), one coupling element
+    per master node."""
     from test_friction import MU, patch_deck, patch_errors
     pressures = {}
     for exact in ("", ", EXACT"):
@@ -196,6 +199,7 @@ def test_mortar_frictional_patch_test_condensed_and_full():
             print(f"  7 over 5, mortar{exact}, {solve}: " + ", ".join(f"{k} {v:.1e}" for k, v in err.items()))
             assert states == {"STICK"}, states
             assert max(err.values()) < 1e-8 and ratio < MU, (exact, solve, err, ratio)
+            assert re.search(r"coupling_elements 6\n", open(run.listing_path).read())
             pressures[exact, solve] = np.array(run.listing.increments[-1].block("CONTACT SLAVE", pair=1)["pressure"])
         assert np.max(np.abs(pressures[exact, "CONDENSED"] - pressures[exact, "FULL"])) < 1e-9 * pressures[exact, "FULL"].max()
 

@@ -311,9 +311,8 @@ contains
       if (sl%kind /= surf_element) call fatal('segment-to-segment contact (TYPE=SURFACE TO SURFACE) needs ' // &
         'an element-based slave surface: ' // trim(sl%name) // ' is a node set')
       ! the master-mesh multipliers where the slave is the finer side of
-      ! straight faces, without friction: their lumped master side is
-      ! consistent for the normal gap only (contact_master_multipliers)
-      if (m%pairs(ip)%mu <= 0.0_dp .and. master_space_wanted(m, sl, ms, dmax)) then
+      ! straight faces (contact_master_multipliers)
+      if (master_space_wanted(m, sl, ms, dmax)) then
         call couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p, done)
         if (done) return
       end if
@@ -374,8 +373,11 @@ contains
   !> of straight faces): one CFE per master node m whose hat function
   !> faces the slave surface over more than min_mortar_cover of its int
   !> N_m da; its slave side the slave nodes with the weights S_mj / D_m,
-  !> its master side node m (weight one), its area D_m, its normal the
-  !> mean master normal under psi_m, its initial gap the weighted one.
+  !> its master side node m (weight one: the lumped master side), or for
+  !> a frictional pair the master nodes k with M_mk / D_m (the consistent
+  !> one, whose tangential component is consistent too), its area D_m, its
+  !> normal the mean master normal under psi_m, its initial gap the
+  !> weighted one.
   !> done: .false. (nothing added) where a CFE would hold more nodes than
   !> an element may (the caller then takes the dual mortar). Slave nodes
   !> that no multiplier's field reaches are reported uncoupled.
@@ -390,6 +392,7 @@ contains
     type(master_space_t) :: sp
     type(cfe_t) :: c
     logical, allocatable :: taken(:), reached(:)
+    logical :: lumped
     real(dp) :: em, rel(2)
     integer :: k, q, e, nn
     done = .false.
@@ -397,7 +400,9 @@ contains
       call master_space_integrals(m, x, sl, ms, dmax, sp)
       if (sp%overflow) return
       taken = sp%ns > 0 .and. sp%d > min_mortar_cover * sp%full .and. norm2(sp%nsum, dim=1) > 0.0_dp
-      if (any(taken .and. sp%ns + 1 > max_cfe_master)) return
+      lumped = m%pairs(ip)%mu <= 0.0_dp
+      if (lumped .and. any(taken .and. sp%ns + 1 > max_cfe_master)) return
+      if (.not. lumped .and. any(taken .and. sp%ns + sp%nm > max_cfe_master)) return
       done = .true.
       allocate(reached(m%nn))
       reached = .false.
@@ -407,10 +412,16 @@ contains
         c%pair = ip
         c%ns = 0
         c%nsl = sp%ns(k)
-        nn = sp%ns(k) + 1
+        if (lumped) then
+          nn = sp%ns(k) + 1
+          c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), ms%nodes(k)]
+          c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k) / sp%d(k), 1.0_dp]
+        else
+          nn = sp%ns(k) + sp%nm(k)
+          c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), sp%mnode(1:sp%nm(k), k)]
+          c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k), sp%mval(1:sp%nm(k), k)] / sp%d(k)
+        end if
         c%nm = nn
-        c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), ms%nodes(k)]
-        c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k) / sp%d(k), 1.0_dp]
         c%psi(1:c%nsl) = sp%psi(1:sp%ns(k), k)
         reached(sp%snode(1:sp%ns(k), k)) = reached(sp%snode(1:sp%ns(k), k)) .or. sp%psi(1:sp%ns(k), k) > 0.0_dp
         c%lnode = ms%nodes(k)
