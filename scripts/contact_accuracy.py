@@ -12,7 +12,11 @@ table (<job>_contact.csv):
   node_p0   the largest nodal pressure against the fitted p0
   s-m       max |p_slave - p_master(x_slave)| / p0_H over |x| < 0.8 a_H
             (compare_hertz's s-m)
-  P         the contact force
+  P         the contact force (the master rows' sum: the pair's total
+            for every coupling; with the master-mesh multipliers the slave
+            rows hold the pressure field at the slave nodes times their
+            consistent areas, whose sum differs from the total by the
+            field's interpolation)
 
 Cases (scripts/run_hertz.py meshes the geometry with gmsh):
   default   the flagship's default mesh (CPS4, h = 0.05; the cylinder meshed
@@ -24,8 +28,10 @@ Cases (scripts/run_hertz.py meshes the geometry with gmsh):
 and couplings
   nts       the flagship deck as it is: node-to-segment, automatic penalty
             (Gauss points of the slave faces on CPS8)
-  sts       TYPE=SURFACE TO SURFACE, EXACT: segment-to-segment (dual
-            mortar), exact enforcement
+  sts       TYPE=SURFACE TO SURFACE, EXACT: segment-to-segment, exact
+            enforcement; on the 4-node meshes (the cylinder's slave faces
+            finer than the plate's) the multiplier on the master mesh
+            (contact_master_multipliers), on CPS8 the dual mortar
 
 Usage: contact_accuracy.py [--cases default,q8,ccx] [--out results/accuracy]
        [--penalties]   (also: the sts figures with PENALTY= over three decades)
@@ -102,7 +108,7 @@ def figures(contact_csv, increment=10):
     pm = np.array([float(r["pressure"]) for r in side["master"]])
     order = np.argsort(xm)
     xm, pm = xm[order], pm[order]
-    force = float(sum(float(r["force"]) for r in side["slave"]))
+    force = float(sum(float(r["force"]) for r in side["master"]))
     h = HertzLine(force, RADIUS, ESTAR)
     p0, a = fit_ellipse(xs, ps, 0.8 * h.a)
     core = np.abs(xs) < 0.8 * h.a
@@ -128,7 +134,7 @@ def master_phases(contact_csv, increment=10, quadratic=False, bins=2):
     ps = np.array([float(r["pressure"]) for r in side["slave"]])
     xm = np.array([float(r["x"]) for r in side["master"]])
     pm = np.array([float(r["pressure"]) for r in side["master"]])
-    h = HertzLine(float(sum(float(r["force"]) for r in side["slave"])), RADIUS, ESTAR)
+    h = HertzLine(float(sum(float(r["force"]) for r in side["master"])), RADIUS, ESTAR)
     p0, a = fit_ellipse(xs, ps, 0.8 * h.a)
 
     def dev(x, p):
@@ -152,7 +158,9 @@ def measure(out, mesh, coupling, pair_params=None, repeats=1, solve=None):
     with `solves` the direct multiplier solves of each increment (exact
     enforcement on the condensed path: the listing's notes) and `deck`."""
     params = COUPLINGS[coupling] if pair_params is None else pair_params
-    folder = coupling if pair_params is None else "custom"
+    # a folder of its own per parameter set: a cached result's deck and
+    # tables stay its own
+    folder = coupling if pair_params is None else "custom_" + re.sub(r"[^a-z0-9]+", "_", params.lower()).strip("_")
     if solve is not None:
         folder += "_" + solve.lower()
     deck = write_case(os.path.join(out, mesh, folder), mesh, params, solve)

@@ -183,7 +183,10 @@ def test_mortar_frictional_patch_test_condensed_and_full():
     the segment-to-segment coupling, penalty and EXACT, on the condensed
     and the full path: every point sticks, stresses, pressures, shear
     tractions and reactions uniform to 1e-8 of p (single-pass
-    node-to-segment is 9.4 % off on these meshes), and the paths agree."""
+    node-to-segment is 9.4 % off on these meshes), and the paths agree.
+    The slave is the finer side: the multiplier on the master mesh, with
+    the consistent master side (a frictional pair), one coupling element
+    per master node."""
     from test_friction import MU, patch_deck, patch_errors
     pressures = {}
     for exact in ("", ", EXACT"):
@@ -196,6 +199,7 @@ def test_mortar_frictional_patch_test_condensed_and_full():
             print(f"  7 over 5, mortar{exact}, {solve}: " + ", ".join(f"{k} {v:.1e}" for k, v in err.items()))
             assert states == {"STICK"}, states
             assert max(err.values()) < 1e-8 and ratio < MU, (exact, solve, err, ratio)
+            assert re.search(r"coupling_elements 6\n", open(run.listing_path).read())
             pressures[exact, solve] = np.array(run.listing.increments[-1].block("CONTACT SLAVE", pair=1)["pressure"])
         assert np.max(np.abs(pressures[exact, "CONDENSED"] - pressures[exact, "FULL"])) < 1e-9 * pressures[exact, "FULL"].max()
 
@@ -264,3 +268,46 @@ def test_mortar_cards_refused_at_their_line():
              "*CONTACT PAIR, INTERACTION=SI1, EXACT", "PRESSURE-OVERCLOSURE=HARD")
     error_at("mortar_node_slave", blocks("*CONTACT PAIR, TYPE=SURFACE TO SURFACE\nSLAVE, MASTER\n"),
              "SLAVE, MASTER", "element-based slave surface")
+
+
+def graded(deck, warp_lower, warp_upper):
+    """The two blocks' deck with every node's x moved by a warp of [0, 1]
+    onto itself (columns stay vertical: the elements stay rectangles of
+    graded widths), the lower block (nodes below 10001) and the upper one
+    each by its own."""
+    lines = deck.splitlines()
+    start = lines.index("*NODE, NSET=ALLN") + 1
+    for i in range(start, len(lines)):
+        if lines[i].startswith("*"):
+            break
+        nid, x, y = lines[i].split(",")
+        warp = warp_lower if int(nid) < 10001 else warp_upper
+        lines[i] = f"{nid}, {float(warp(float(x)))!r}, {y.strip()}"
+    return "\n".join(lines) + "\n"
+
+
+def test_mortar_master_multipliers_patch_test_graded():
+    """The multiplier on the master mesh (a slave finer than its master,
+    straight faces, no friction: contact_master_multipliers) on graded
+    meshes with no common refinement (master x + 0.12 sin(pi x), slave
+    x - 0.1 sin(2 pi x)), 13 and 9 slave faces over 5 and 4 master faces,
+    EXACT: every slave and master node's pressure is p to 1e-8 (the
+    lumped master side is consistent for the normal gap of straight
+    faces: the psi_m-weighted mean of the slave surface lies on the line,
+    however far off node m along it), the total p times the width; one
+    coupling element per master node, one slave row per slave node (the
+    field at the node). The selection: 3 over 5 (a coarser slave) keeps
+    the dual mortar's one element per slave node (so does a frictional
+    pair: test_mortar_frictional_patch_test_condensed_and_full)."""
+    lower = lambda x: x + 0.12 * np.sin(np.pi * x)  # noqa: E731
+    upper = lambda x: x - 0.1 * np.sin(2.0 * np.pi * x)  # noqa: E731
+    for n1, n2 in ((5, 13), (4, 9)):
+        deck = graded(two_blocks("Q4", "Q4", n1, n2, pair=STS + ", EXACT"), lower, upper)
+        run = run_deck(f"mortar_master_graded_{n1}_{n2}", deck).ok()
+        es, em, total, s, mst = patch_errors(run)
+        ncfe = int(re.search(r"coupling_elements (\d+)", open(run.listing_path).read()).group(1))
+        print(f"  graded Q4 {n2} over {n1}: slave {es:.1e}, master {em:.1e}, {ncfe} coupling elements")
+        assert es < 1e-8 and em < 1e-8 and abs(total - P_EXACT) < 1e-8 * P_EXACT, (n1, n2, es, em, total)
+        assert ncfe == n1 + 1 and len(s["node"]) == n2 + 1 and all(n > 0 for n in s["node"]), (ncfe, s["node"])
+    run = run_deck("mortar_master_coarser_slave", two_blocks("Q4", "Q4", 5, 3, pair=STS + ", EXACT")).ok()
+    assert int(re.search(r"coupling_elements (\d+)", open(run.listing_path).read()).group(1)) == 4

@@ -1,15 +1,19 @@
 """The figures of issue 21 on the flagship (scripts/contact_accuracy.py):
 the segment-to-segment coupling with exact enforcement against node-to-
 segment on the cylinder-on-plate history, at the peak load. Measured
-(docs/contact.md, "Accuracy on the Hertz case"): on the default CPS4 mesh
-the oscillation about the fitted ellipse is 0.36 % of p0 (node-to-
-segment 0.30 %), the largest nodal pressure +0.43 % above the fitted p0
-(+0.39 %), the slave-master difference 0.58 % (0.95 %); on CPS8 the
+(docs/contact.md, "Accuracy on the Hertz case"): on the 4-node meshes the
+cylinder's slave faces are finer than the plate's, and segment-to-segment
+takes the multiplier on the master mesh (contact_master_multipliers):
+on the default CPS4 mesh the oscillation about the fitted ellipse is
+0.06 % of p0 (node-to-segment 0.30 %), the largest nodal pressure +0.05 %
+above the fitted p0 (+0.39 %), the slave-master difference 0.18 %
+(0.95 %); on a coarse mesh of 5 300 nodes 0.20 % (1.59 %), +0.27 %
+(+1.26 %), 0.10 % (2.63 %): the dual mortar (the multiplier on the slave
+mesh) oscillated there by 1.82 % with the plate's period (the cylinder's
+finer surface held to the plate's chords). On CPS8 (dual mortar) the
 oscillation 0.84 % (2.10 %), the largest nodal pressure +0.08 % (+0.86 %),
 the slave-master difference 4.3 % (12.8 %: the face points' force mode
-is gone, the 1 % of the issue is not reached); on a coarse mesh of 5 300
-nodes both couplings oscillate by 1.6-1.8 % (the cylinder's finer
-surface follows the plate's coarser polygon: its chords' sagitta)."""
+is gone, the 1 % of the issue is not reached)."""
 import os
 import shutil
 
@@ -34,9 +38,48 @@ def test_flagship_default_mesh_smooth_pressures():
           f"(nts {nts['node_p0']:+.2%}), s-m {sts['s-m']:.2%} (nts {nts['s-m']:.2%}), P {sts['P']:.2f} "
           f"(nts {nts['P']:.2f})")
     assert sts["osc"] < 0.005 and abs(sts["node_p0"]) < 0.01, sts
-    assert sts["s-m"] < nts["s-m"], (sts, nts)
-    # exact enforcement against the automatic penalty: the same force to 1e-5
-    assert abs(sts["P"] - nts["P"]) < 1e-5 * nts["P"], (sts["P"], nts["P"])
+    assert sts["osc"] < nts["osc"] and sts["s-m"] < nts["s-m"], (sts, nts)
+    # The master-mesh multipliers hold the finer slave in the mean over
+    # each master node's hat, not at every slave node: the force is 1.9e-4
+    # below node-to-segment's (13 919.27 against 13 921.87 N), towards the
+    # finer mesh's (h = 0.025: node-to-segment 13 918.40, this coupling
+    # 13 918.16; docs/contact.md).
+    assert abs(sts["P"] - nts["P"]) < 3e-4 * nts["P"], (sts["P"], nts["P"])
+
+
+def test_coarse_mesh_master_multipliers_meet_the_targets():
+    """The coarse (5 300-node) flagship, the cylinder (slave) about twice
+    as fine as the plate: with the multiplier on the master mesh the slave
+    nodal pressures (the multiplier field at the slave nodes) oscillate
+    about the fitted ellipse by less than 0.5 % of p0 (measured 0.20 %;
+    node-to-segment 1.59 %, the dual mortar 1.82 %) and the largest is
+    within 1 % of the fitted p0 (+0.27 %), the targets of issue 21; the
+    slave-master difference below 0.5 % (0.10 %); the plate's period is
+    gone: the mean deviations of the slave nodes over master corners and
+    mid-face are below 0.15 % (+0.06 %, -0.06 %; dual mortar -1.75 %,
+    +1.78 %)."""
+    import contact_accuracy
+    sts, nts = fig("ccx", "sts"), fig("ccx", "nts")
+    ph = contact_accuracy.master_phases(os.path.splitext(sts["deck"])[0] + "_contact.csv")
+    print(f"  coarse mesh: osc {sts['osc']:.2%} (nts {nts['osc']:.2%}), node_p0 {sts['node_p0']:+.2%} "
+          f"(nts {nts['node_p0']:+.2%}), s-m {sts['s-m']:.2%} (nts {nts['s-m']:.2%}); by position on the master "
+          f"face {ph['bin_mean'][0]:+.2%} / {ph['bin_mean'][1]:+.2%}, master rows {ph['master_osc']:.2%}")
+    assert sts["osc"] < 0.005 and abs(sts["node_p0"]) < 0.01 and sts["s-m"] < 0.005, sts
+    assert max(abs(v) for v in ph["bin_mean"]) < 0.0015, ph
+
+
+def test_coarse_mesh_master_multipliers_with_friction():
+    """The coarse flagship with FRICTION=0.3: segment-to-segment takes the
+    multiplier on the master mesh with the consistent master side (int
+    psi_m N_k da, whose tangential component is consistent): the
+    oscillation below 1 % of p0 (measured 0.81 %; the dual mortar 1.97 %,
+    node-to-segment 1.73 %) and the largest nodal pressure within 0.5 % of
+    the fitted p0 (+0.03 %; dual +1.31 %)."""
+    sts = fig("ccx", "sts", ", FRICTION=0.3, TYPE=SURFACE TO SURFACE, EXACT")
+    nts = fig("ccx", "nts", ", FRICTION=0.3")
+    print(f"  coarse mesh, friction 0.3: osc {sts['osc']:.2%} (nts {nts['osc']:.2%}), node_p0 {sts['node_p0']:+.2%} "
+          f"(nts {nts['node_p0']:+.2%})")
+    assert sts["osc"] < 0.01 and sts["osc"] < 0.6 * nts["osc"] and abs(sts["node_p0"]) < 0.005, (sts, nts)
 
 
 def test_flagship_cps8_force_mode_gone():
@@ -87,3 +130,35 @@ def test_exact_direct_multipliers_against_augmented():
     diff = max(abs(a[k] - b[k]) for k in b) / fmax
     print(f"  every contact force, direct against augmented: {diff:.1e} of the largest")
     assert diff < 1e-7, diff
+
+
+def test_axisymmetric_sphere_master_multipliers():
+    """Hertz's sphere on a flat in axisymmetry (input/hertz/hertz_point,
+    CAX4, the sphere (slave) finer than the flat): segment-to-segment with
+    EXACT takes the multiplier on the master mesh (the r weight in S_mj and
+    D_m); at every loaded increment of the load-unload history the contact
+    radius within 1.2 % of Hertz's and the peak pressure within 0.5 %
+    (measured 0.81 % and 0.29 %; node-to-segment 1.96 % and 0.94 %, the
+    dual mortar 1.81 % and 0.86 %), P the ring's contact force."""
+    if shutil.which("gmsh") is None:
+        raise Skip("gmsh is not installed")
+    import subprocess
+    import compare_hertz
+    import run_hertz_point
+    from hertz import point_modulus
+    from helpers import CFE2D
+    out = os.path.join(WORK, "hertz_point_cax4_sts")
+    path = run_hertz_point.write_case(out, 1, 0.04)
+    deck = open(path).read()
+    pair = "*CONTACT PAIR, SEARCH DISTANCE=1.0\n"
+    assert pair in deck
+    with open(path, "w") as f:
+        f.write(deck.replace(pair, pair[:-1] + ", TYPE=SURFACE TO SURFACE, EXACT\n"))
+    subprocess.run([CFE2D, "-q", "--digits", "10", "-o", out, path], check=True, stdout=subprocess.DEVNULL)
+    table = compare_hertz.read_contact_table(os.path.join(out, "hertz_point_contact.csv"))
+    loaded = [r for r in compare_hertz.compare_point(table, 10.0, point_modulus(210000.0, 0.3)) if r["closed"] >= 3]
+    worst_a = max(abs(r["err_a"]) for r in loaded)
+    worst_p = max(abs(r["err_p0"]) for r in loaded)
+    print(f"  CAX4 sphere, master-mesh multipliers: {len(loaded)} loaded increments, a within {worst_a:.2%}, "
+          f"p0 within {worst_p:.2%}")
+    assert len(loaded) == 15 and worst_a < 0.012 and worst_p < 0.005, (len(loaded), worst_a, worst_p)

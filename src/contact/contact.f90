@@ -27,6 +27,7 @@ module contact
                               edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line
   use contact_mortar, only: nearest_edge, face_cuts, edge_tol, mortar_t, mortar_integrals
+  use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted
   use element_interface, only: elem_in_t, elem_out_t, kind_cfe, max_slave, max_en, act_residual
   use element_library, only: element_routine
   implicit none
@@ -79,6 +80,14 @@ module contact
     integer :: nm = 0
     integer :: mnode(max_cfe_master) = 0
     real(dp) :: mw(max_cfe_master) = 0.0_dp
+    !> Segment-to-segment with the multiplier on the master mesh
+    !> (contact_master_multipliers; ns = 0): mnode(1:nsl) are the slave
+    !> nodes, with the weights -S_mj / D_m in mw (the element subtracts
+    !> the master side), psi(1:nsl) the multiplier's hat function at them
+    !> (the pressure field there), and lnode the master node that carries
+    !> the multiplier (also in sip, which the re-search matches).
+    integer :: nsl = 0, lnode = 0
+    real(dp) :: psi(max_cfe_master) = 0.0_dp
     real(dp) :: t = 0.0_dp           ! position of X_C along the edge, 0..1
     real(dp) :: xi(2) = 0.0_dp       ! natural coordinates of X_C in the master
     real(dp) :: normal(2) = 0.0_dp   ! outward unit normal of the master edge
@@ -153,6 +162,8 @@ contains
     character(len=:), allocatable :: s
     if (c%ns == 1) then
       s = node_label(m, c%snode(1))
+    else if (c%ns == 0) then
+      s = 'master node ' // node_label(m, c%lnode)
     else
       s = elem_label(m, c%selem) // ':S' // itoa(c%sedge) // ':' // itoa(c%sip)
     end if
@@ -295,9 +306,16 @@ contains
     type(cfe_t) :: c
     real(dp) :: em, xm(2), xm_ref(2)
     integer :: k, s, q, e
+    logical :: done
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
       if (sl%kind /= surf_element) call fatal('segment-to-segment contact (TYPE=SURFACE TO SURFACE) needs ' // &
         'an element-based slave surface: ' // trim(sl%name) // ' is a node set')
+      ! the master-mesh multipliers where the slave is the finer side of
+      ! straight faces (contact_master_multipliers)
+      if (master_space_wanted(m, sl, ms, dmax)) then
+        call couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p, done)
+        if (done) return
+      end if
       call mortar_integrals(m, x, sl, ms, dmax, mo)
       do k = 1, mo%n
         s = sl%nodes(k)
@@ -349,6 +367,103 @@ contains
       end do
     end associate
   end subroutine couple_mortar
+
+  !> Purpose: segment-to-segment with the multiplier on the master mesh
+  !> (contact_master_multipliers; taken where the slave is the finer side
+  !> of straight faces): one CFE per master node m whose hat function
+  !> faces the slave surface over more than min_mortar_cover of its int
+  !> N_m da; its slave side the slave nodes with the weights S_mj / D_m,
+  !> its master side node m (weight one: the lumped master side), or for
+  !> a frictional pair the master nodes k with M_mk / D_m (the consistent
+  !> one, whose tangential component is consistent too), its area D_m, its
+  !> normal the mean master normal under psi_m, its initial gap the
+  !> weighted one.
+  !> done: .false. (nothing added) where a CFE would hold more nodes than
+  !> an element may (the caller then takes the dual mortar). Slave nodes
+  !> that no multiplier's field reaches are reported uncoupled.
+  subroutine couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p, done)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), dmax
+    integer, intent(in) :: ip
+    type(contact_set_t), intent(inout) :: cs
+    integer, allocatable, intent(inout) :: unc(:), uncp(:)
+    integer, intent(inout) :: nunc, nunc_p
+    logical, intent(out) :: done
+    type(master_space_t) :: sp
+    type(cfe_t) :: c
+    logical, allocatable :: taken(:), reached(:)
+    logical :: lumped
+    real(dp) :: em, rel(2)
+    integer :: k, q, e, nn
+    done = .false.
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
+      call master_space_integrals(m, x, sl, ms, dmax, sp)
+      if (sp%overflow) return
+      taken = sp%ns > 0 .and. sp%d > min_mortar_cover * sp%full .and. norm2(sp%nsum, dim=1) > 0.0_dp
+      lumped = m%pairs(ip)%mu <= 0.0_dp
+      if (lumped .and. any(taken .and. sp%ns + 1 > max_cfe_master)) return
+      if (.not. lumped .and. any(taken .and. sp%ns + sp%nm > max_cfe_master)) return
+      done = .true.
+      allocate(reached(m%nn))
+      reached = .false.
+      do k = 1, sp%n
+        if (.not. taken(k)) cycle
+        c = cfe_t()
+        c%pair = ip
+        c%ns = 0
+        c%nsl = sp%ns(k)
+        if (lumped) then
+          nn = sp%ns(k) + 1
+          c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), ms%nodes(k)]
+          c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k) / sp%d(k), 1.0_dp]
+        else
+          nn = sp%ns(k) + sp%nm(k)
+          c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), sp%mnode(1:sp%nm(k), k)]
+          c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k), sp%mval(1:sp%nm(k), k)] / sp%d(k)
+        end if
+        c%nm = nn
+        c%psi(1:c%nsl) = sp%psi(1:sp%ns(k), k)
+        reached(sp%snode(1:sp%ns(k), k)) = reached(sp%snode(1:sp%ns(k), k)) .or. sp%psi(1:sp%ns(k), k) > 0.0_dp
+        c%lnode = ms%nodes(k)
+        c%sip = c%lnode
+        c%elem = sp%melem(k)
+        c%edge = sp%medge(k)
+        c%t = sp%mt(k)
+        c%xi = edge_natural(m%etype(c%elem), c%edge, c%t)
+        c%normal = sp%nsum(:, k) / norm2(sp%nsum(:, k))
+        c%area = sp%d(k)
+        c%h = sp%h(k)
+        em = 0.0_dp
+        do q = 1, nn
+          do e = 1, size(sl%elem)
+            if (any(m%conn(1:elem_nodes(m, sl%elem(e)), sl%elem(e)) == c%mnode(q))) &
+              em = max(em, section_e(m, sl%elem(e)))
+          end do
+          do e = 1, size(ms%elem)
+            if (any(m%conn(1:elem_nodes(m, ms%elem(e)), ms%elem(e)) == c%mnode(q))) &
+              em = max(em, section_e(m, ms%elem(e)))
+          end do
+        end do
+        ! the weighted gap vector sum_j S_mj / D_m x_j - x_m (the element
+        ! subtracts the weights mw)
+        rel = -matmul(x(:, c%mnode(1:nn)), c%mw(1:nn))
+        c%gap0 = -matmul(m%x(:, c%mnode(1:nn)), c%mw(1:nn))
+        c%gap_round = gap_round_off * (maxval(norm2(x(:, c%mnode(1:nn)), dim=1)) + c%h)
+        c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
+        c%exact = m%pairs(ip)%exact
+        c%k_open = open_stiffness(m%pairs(ip), c%area, em, c%h, .false., c%k_closed)
+        c%mu = m%pairs(ip)%mu
+        if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
+        c%closed = dot_product(c%normal, rel) <= c%gap_round
+        call add_cfe(cs, c)
+      end do
+      do k = 1, size(sl%nodes)
+        if (reached(sl%nodes(k))) cycle
+        call append(unc, nunc, sl%nodes(k))
+        call append(uncp, nunc_p, ip)
+      end do
+    end associate
+  end subroutine couple_master_space
 
   !> Gauss points of 3-node slave faces: each face is cut where the ends
   !> of the master edges project onto it, each piece gets two points, each

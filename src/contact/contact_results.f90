@@ -1,7 +1,8 @@
 !> Contact results of an increment, computed once and read by every
 !> writer: per reported pair the slave rows (one per CFE: coupling point,
 !> gap, status, normal force, area, pressure; node 0 for a Gauss point of
-!> a slave face), the master rows (the CFE forces taken to the master edge
+!> a slave face; with the multiplier on the master mesh one per slave
+!> node, the multiplier field there: field_rows), the master rows (the CFE forces taken to the master edge
 !> nodes with the weights N_i(X_C), their consistent areas, pressures) and
 !> the pair's totals; and the nodal contact pressure field of the whole
 !> model (slave nodes: their CFE's, or for Gauss points of slave faces the
@@ -324,10 +325,11 @@ contains
         ! the master's tangential force on the point along t
         shear = -c%tforce
         if (c%nm > 0) then
-          ! segment-to-segment: the master nodes' mortar weights
-          nw = c%nm
-          wn(1:nw) = c%mnode(1:nw)
-          ww(1:nw) = c%mw(1:nw)
+          ! segment-to-segment: the master nodes' mortar weights (after
+          ! the slave nodes, with the multiplier on the master mesh)
+          nw = c%nm - c%nsl
+          wn(1:nw) = c%mnode(c%nsl + 1:c%nm)
+          ww(1:nw) = c%mw(c%nsl + 1:c%nm)
         else
           ed = get_edge(m, m%x, c%elem, c%edge)
           if (ed%nn == 2) then
@@ -359,5 +361,88 @@ contains
         r%max_pen = max(r%max_pen, -c%gap)
       end associate
     end do
+    if (any(cs%c(sel)%ns == 0)) call field_rows(m, cs, u, ip, sel, r)
   end subroutine pass_results
+
+  !> Purpose: the slave rows of a pass whose multiplier lives on the
+  !> master mesh (contact_master_multipliers: CFEs sel, one per master
+  !> node): one row per slave node the field reaches, its pressure the
+  !> field sum_m psi_m lambda_m at the node (lambda_m the CFE's pressure,
+  !> closed CFEs only), its area the node's consistent area int N_j da,
+  !> its force the two's product, its gap the weighted gaps interpolated
+  !> the same way; closed (and sliding) where a closed (sliding) CFE
+  !> reaches it; the shear and the slips interpolated as the pressure.
+  subroutine field_rows(m, cs, u, ip, sel, r)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: u(:, :)
+    integer, intent(in) :: ip, sel(:)
+    type(pair_results_t), intent(inout) :: r
+    real(dp), allocatable :: p(:), tau(:), g(:), wsum(:), slip(:), slip_inc(:), area(:)
+    logical, allocatable :: closed(:), sliding(:)
+    integer, allocatable :: rows(:)
+    real(dp) :: lam, ta, ps, ae(3)
+    type(edge_t) :: ed
+    integer :: k, q, j, n
+    allocate(p(m%nn), tau(m%nn), g(m%nn), wsum(m%nn), slip(m%nn), slip_inc(m%nn), area(m%nn), closed(m%nn), &
+             sliding(m%nn))
+    p = 0.0_dp
+    tau = 0.0_dp
+    g = 0.0_dp
+    wsum = 0.0_dp
+    slip = 0.0_dp
+    slip_inc = 0.0_dp
+    area = 0.0_dp
+    closed = .false.
+    sliding = .false.
+    do k = 1, size(sel)
+      associate(c => cs%c(sel(k)))
+        lam = 0.0_dp
+        ta = 0.0_dp
+        if (c%closed) then
+          lam = -c%force / c%area
+          ta = -c%tforce / c%area
+        end if
+        do q = 1, c%nsl
+          j = c%mnode(q)
+          ps = c%psi(q)
+          if (ps <= 0.0_dp) cycle
+          p(j) = p(j) + ps * lam
+          tau(j) = tau(j) + ps * ta
+          g(j) = g(j) + ps * c%gap
+          wsum(j) = wsum(j) + ps
+          slip(j) = slip(j) + ps * c%slip_total
+          slip_inc(j) = slip_inc(j) + ps * c%slip_inc
+          closed(j) = closed(j) .or. c%closed
+          sliding(j) = sliding(j) .or. (c%closed .and. c%sliding)
+        end do
+      end associate
+    end do
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
+      do k = 1, size(sl%elem)
+        ed = get_edge(m, m%x, sl%elem(k), sl%edge(k))
+        ae = edge_areas(ed)
+        area(ed%node(1:ed%nn)) = area(ed%node(1:ed%nn)) + ae(1:ed%nn)
+      end do
+      rows = pack(sl%nodes, wsum(sl%nodes) > 0.0_dp)
+    end associate
+    n = size(rows)
+    deallocate(r%slave_node, r%slave_x, r%slave_gap, r%slave_closed, r%slave_force, r%slave_area, r%slave_sliding, &
+               r%slave_shear, r%slave_slip, r%slave_slip_inc)
+    r%slave_node = rows
+    r%slave_x = m%x(:, rows) + u(:, rows)
+    r%slave_gap = g(rows) / wsum(rows)
+    r%slave_closed = closed(rows)
+    r%slave_area = area(rows)
+    r%slave_force = p(rows) * area(rows)
+    r%slave_sliding = sliding(rows)
+    r%slave_shear = 0.0_dp * area(rows)
+    r%slave_slip = 0.0_dp * area(rows)
+    r%slave_slip_inc = 0.0_dp * area(rows)
+    if (r%frictional) then
+      r%slave_shear = tau(rows) * area(rows)
+      r%slave_slip = slip(rows) / wsum(rows)
+      r%slave_slip_inc = slip_inc(rows) / wsum(rows)
+    end if
+  end subroutine field_rows
 end module contact_results

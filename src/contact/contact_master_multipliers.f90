@@ -1,0 +1,324 @@
+!> Segment-to-segment (mortar) contact with the Lagrange multiplier on
+!> the master mesh, for a slave surface finer than its master (straight,
+!> 2-node faces on both sides): the contact pressure is the continuous
+!> piecewise-linear field lambda_h = sum_m lambda_m psi_m over the master
+!> surface (psi_m the master nodes' hat functions, carried onto the slave
+!> surface by the projection X_C(s)), and the non-penetration condition is
+!> tested with the same psi_m, integrated over the slave segments:
+!>   G_m = n_m . (sum_j S_mj x_j - D_m x_m) = 0,
+!>   S_mj = int psi_m(X_C(s)) N_j(s) da,   D_m = int psi_m(X_C(s)) da,
+!> over the part of the slave surface that faces the master (da: length
+!> times thickness, or 2 pi r ds in axisymmetry; N_j the slave faces'
+!> shape functions). The master-side matrix of the standard mortar method,
+!> int psi_m N_k da, is taken with the nodal (trapezoidal) rule of the
+!> master mesh, that is row-sum lumped to D_m delta_mk: the master node
+!> itself stands against the psi_m-weighted mean of the slave surface.
+!> One coupling element (the paper's CFE, eqs. (3)-(10)) per master node
+!> m: its slave side the slave nodes j with the weights S_mj / D_m (they
+!> sum to one), its master side node m with weight one, its area D_m, its
+!> normal force lambda_m D_m. Slave node j then receives int lambda_h N_j
+!> da, a continuous traction, and master node m lambda_m D_m; the pressure
+!> at a slave node is the field lambda_h at its projection. Since the
+!> psi_m sum to one on the covered part, a uniform pressure p puts p int
+!> N_j da on slave node j and p int N_m da on master node m: the
+!> consistent forces on both sides; and any configuration in which both
+!> surfaces lie on one straight line has G_m = 0 (the weighted mean of
+!> points of a line lies on it): the contact patch test is passed exactly.
+!> On a curved interface the psi_m-weighted mean lies off the surface by
+!> about kappa <s^2> / 2 (kappa its curvature, <s^2> about h_m^2 / 6): a
+!> shift of the gap that varies smoothly along the surface, of the order
+!> of the chord error any piecewise-linear master has. The tangential
+!> component is not consistent: the psi_m-weighted mean of the slave
+!> surface lies off node m along the surface by (h_r - h_l) / 3 (h_l,
+!> h_r the master faces at m; h / 3 at an end of the master surface), so
+!> a sticking CFE would be anchored off its node and a uniform shear not
+!> passed. A frictional pair therefore takes the consistent master side
+!> M_mk = int psi_m N_k da (the standard mortar method's; its CFE's master
+!> side the master nodes k with M_mk / D_m): the psi_m-weighted means of
+!> both surfaces then coincide wherever the surfaces do, in both
+!> directions (contact's couple_master_space).
+!>
+!> Why (docs/contact.md, "Which multiplier space"): with the multiplier
+!> on the slave mesh (contact_mortar's dual mortar) every slave node is
+!> held on the master's polygon; where the slave is the finer side, its
+!> nodes between two master corners are forced onto the master's chords,
+!> and the slave body answers the chords' sagitta with a pressure wave of
+!> the master's period (1.8 % of p0 on the coarse Hertz mesh). A
+!> multiplier no richer than the coarser side is the mortar method's
+!> choice of the multiplier ("non-mortar") side: McDevitt & Laursen 2000,
+!> "A mortar-finite element formulation for frictional contact problems",
+!> IJNME 48, 1525-1547 (multipliers on the non-mortar side's nodes, the
+!> weighted gaps integrated over segments); Akula, Vignollet & Yastrebov
+!> 2019, "MorteX method for contact along real and embedded surfaces:
+!> coupling X-FEM with the mortar method", CMAME 354, 1113-1147 (the
+!> mortar method's interface oscillations at a mesh-density contrast,
+!> removed by interpolating the multipliers on a coarser set of nodes).
+!> The lumped master-side matrix is what makes the multipliers local: with
+!> the consistent one (int psi_m N_k da, tridiagonal) lambda is the L2
+!> projection of the master's nodal forces, which rings near the edge of
+!> contact (measured: 0.80 % instead of 0.20 % on the coarse Hertz mesh,
+!> still below the dual mortar's 1.82 %; with friction 0.81 % against
+!> 1.97 %);
+!> lumped, lambda_m is master node m's force over D_m, as the dual basis
+!> of Wohlmuth 2000 (SIAM J. Numer. Anal. 38, 989-1012) makes the slave
+!> side's matrix diagonal. The dual basis itself is not taken on the
+!> master side: its discontinuous functions would put a sawtooth traction
+!> sum_m lambda_m Phi_m on the finer slave body.
+module contact_master_multipliers
+  use kinds, only: dp
+  use model, only: model_t, surface_t
+  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_weights, area_factor, edge_length, &
+                              edge_areas
+  use contact_mortar, only: nearest_edge, face_cuts
+  use shape_functions, only: gauss_line
+  implicit none
+  private
+  public :: master_space_t, master_space_integrals, master_space_wanted, max_space_nodes
+
+  !> Slave nodes one master node's integrals may reach while they are
+  !> gathered (a coupling element holds fewer).
+  integer, parameter :: max_space_nodes = 32
+  !> The master-mesh multipliers are taken where the slave faces are
+  !> less than this share of the master faces under them (the mean over
+  !> the slave faces, master_space_wanted): the slave clearly the finer
+  !> side (docs/contact.md, "Which multiplier space").
+  real(dp), parameter :: finer_ratio = 0.75_dp
+
+  !> The integrals of every node of a master surface (in the order of the
+  !> surface's node list).
+  type :: master_space_t
+    integer :: n = 0
+    real(dp), allocatable :: d(:)               ! D_m, over the covered part
+    real(dp), allocatable :: full(:)            ! int N_m da over the master surface
+    real(dp), allocatable :: nsum(:, :)         ! int psi_m n da (the normal, not normalised)
+    real(dp), allocatable :: h(:)               ! shortest master face length at the node
+    integer, allocatable :: ns(:)               ! slave nodes reached
+    integer, allocatable :: snode(:, :)         ! (max_space_nodes, n)
+    real(dp), allocatable :: sval(:, :)         ! S_mj
+    !> The consistent master side M_mk = int psi_m N_k da (master nodes
+    !> mnode(1:nm(m), m)), which a frictional pair takes (module comment).
+    integer, allocatable :: nm(:), mnode(:, :)
+    real(dp), allocatable :: mval(:, :)
+    !> psi_m at the slave nodes snode(:, m) (at their projections on the
+    !> master surface): the pressure field there is sum_m psi_m lambda_m.
+    real(dp), allocatable :: psi(:, :)
+    integer, allocatable :: melem(:), medge(:)  ! a master face at the node
+    real(dp), allocatable :: mt(:)              ! and the node's position on it (0 or 1)
+    !> A node reached more than max_space_nodes slave nodes (its list is
+    !> then incomplete).
+    logical :: overflow = .false.
+  end type master_space_t
+
+contains
+
+  !> Purpose: does pair (sl, ms) take the master-mesh multipliers? Both
+  !> surfaces of straight (2-node) faces and the slave the finer: the
+  !> mean over the slave faces of (slave face length / length of the
+  !> master face under its midpoint) below finer_ratio. Each face counts
+  !> once, so that a finely meshed contact zone decides, not the long
+  !> faces far from it where both sides are coarse (the Hertz meshes: 0.57
+  !> per face, 0.79 weighted with the lengths). Reference configuration;
+  !> slave faces whose midpoint faces no master face (within dmax) do not
+  !> count.
+  logical function master_space_wanted(m, sl, ms, dmax)
+    type(model_t), intent(in) :: m
+    type(surface_t), intent(in) :: sl, ms
+    real(dp), intent(in) :: dmax
+    type(edge_t) :: ed, mt
+    real(dp) :: p(2), dpdt(2), tbest, len, num, den
+    integer :: f, best
+    master_space_wanted = .false.
+    do f = 1, size(ms%elem)
+      if (get_edge_nn(m, ms, f) /= 2) return
+    end do
+    num = 0.0_dp
+    den = 0.0_dp
+    do f = 1, size(sl%elem)
+      ed = get_edge(m, m%x, sl%elem(f), sl%edge(f))
+      if (ed%nn /= 2) return
+      call edge_at(ed, 0.5_dp, p, dpdt)
+      call nearest_edge(m, m%x, ms, p, 0, sl%elem(f), dmax, best, tbest)
+      if (best == 0) cycle
+      mt = get_edge(m, m%x, ms%elem(best), ms%edge(best))
+      len = edge_length(ed)
+      num = num + len / edge_length(mt)
+      den = den + 1.0_dp
+    end do
+    master_space_wanted = den > 0.0_dp .and. num < finer_ratio * den
+  end function master_space_wanted
+
+  !> Purpose: the node count of face f of surface s (2 or 3).
+  integer function get_edge_nn(m, s, f)
+    type(model_t), intent(in) :: m
+    type(surface_t), intent(in) :: s
+    integer, intent(in) :: f
+    type(edge_t) :: ed
+    ed = get_edge(m, m%x, s%elem(f), s%edge(f))
+    get_edge_nn = ed%nn
+  end function get_edge_nn
+
+  !> Purpose: the integrals of the module comment for every node of the
+  !> master surface ms against the slave surface sl (straight faces), the
+  !> projection searched on configuration x (areas on the reference one):
+  !> each slave face is cut where the master corners project onto it (psi_m
+  !> and N_j are then linear on each piece), three Gauss points per piece
+  !> (exact for the product of two linear functions and the radius). A
+  !> slave Gauss point on which no master face lies adds nothing. The
+  !> field psi_m at a slave node is taken at the closest point of the
+  !> master surface (closest_master_point).
+  !> Arguments: dmax the search distance; sp returns them.
+  subroutine master_space_integrals(m, x, sl, ms, dmax, sp)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), dmax
+    type(surface_t), intent(in) :: sl, ms
+    type(master_space_t), intent(out) :: sp
+    integer, parameter :: max_cuts = 64
+    type(edge_t) :: ed, ref, mt
+    integer, allocatable :: pos(:)
+    real(dp) :: cuts(max_cuts), tg(3), wg(3), t, nsl(3), wmst(3), p(2), pref(2), dpdt(2), mdp(2), nrm(2), tbest, &
+                da, a(3)
+    integer :: f, ncut, iv, ig, best, q, r, k, j
+    sp%n = size(ms%nodes)
+    allocate(pos(m%nn), sp%d(sp%n), sp%full(sp%n), sp%nsum(2, sp%n), sp%h(sp%n), sp%ns(sp%n), &
+             sp%snode(max_space_nodes, sp%n), sp%sval(max_space_nodes, sp%n), sp%psi(max_space_nodes, sp%n), &
+             sp%nm(sp%n), sp%mnode(max_space_nodes, sp%n), sp%mval(max_space_nodes, sp%n), &
+             sp%melem(sp%n), sp%medge(sp%n), sp%mt(sp%n))
+    pos = 0
+    pos(ms%nodes) = [(k, k = 1, sp%n)]
+    sp%d = 0.0_dp
+    sp%full = 0.0_dp
+    sp%nsum = 0.0_dp
+    sp%h = huge(1.0_dp)
+    sp%ns = 0
+    sp%snode = 0
+    sp%sval = 0.0_dp
+    sp%nm = 0
+    sp%mnode = 0
+    sp%mval = 0.0_dp
+    sp%psi = 0.0_dp
+    sp%melem = 0
+    sp%medge = 0
+    sp%mt = 0.0_dp
+    ! each master node's whole int N_m da, shortest face and a face at it
+    do f = 1, size(ms%elem)
+      ref = get_edge(m, m%x, ms%elem(f), ms%edge(f))
+      a = edge_areas(ref)
+      do q = 1, 2
+        k = pos(ref%node(q))
+        sp%full(k) = sp%full(k) + a(q)
+        sp%h(k) = min(sp%h(k), edge_length(ref))
+        sp%melem(k) = ms%elem(f)
+        sp%medge(k) = ms%edge(f)
+        sp%mt(k) = real(q - 1, dp)
+      end do
+    end do
+    call gauss_line(3, tg, wg)
+    do f = 1, size(sl%elem)
+      ed = get_edge(m, x, sl%elem(f), sl%edge(f))
+      ref = get_edge(m, m%x, sl%elem(f), sl%edge(f))
+      call face_cuts(m, x, ed, ms, dmax, cuts, ncut)
+      do iv = 1, ncut - 1
+        do ig = 1, 3
+          t = cuts(iv) + (cuts(iv + 1) - cuts(iv)) * 0.5_dp * (tg(ig) + 1.0_dp)
+          call edge_at(ref, t, pref, dpdt)
+          da = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
+          nsl = edge_weights(ref, t)
+          call edge_at(ed, t, p, dpdt)
+          call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest)
+          if (best == 0) cycle
+          mt = get_edge(m, x, ms%elem(best), ms%edge(best))
+          wmst = edge_weights(mt, tbest)
+          call edge_at(mt, tbest, p, mdp)
+          nrm = [mdp(2), -mdp(1)] / norm2(mdp)
+          do r = 1, 2
+            k = pos(mt%node(r))
+            sp%d(k) = sp%d(k) + da * wmst(r)
+            sp%nsum(:, k) = sp%nsum(:, k) + da * wmst(r) * nrm
+            do q = 1, 2
+              call add_entry(sp%ns(k), sp%snode(:, k), sp%sval(:, k), sp%overflow, ed%node(q), &
+                             da * wmst(r) * nsl(q))
+              call add_entry(sp%nm(k), sp%mnode(:, k), sp%mval(:, k), sp%overflow, mt%node(q), &
+                             da * wmst(r) * wmst(q))
+            end do
+          end do
+        end do
+      end do
+    end do
+    ! psi_m at the slave nodes: the master face under each slave node
+    do k = 1, sp%n
+      do j = 1, sp%ns(k)
+        call closest_master_point(m, x, ms, x(:, sp%snode(j, k)), sp%snode(j, k), dmax, best, tbest)
+        if (best == 0) cycle
+        mt = get_edge(m, x, ms%elem(best), ms%edge(best))
+        wmst = edge_weights(mt, tbest)
+        do r = 1, 2
+          if (mt%node(r) == ms%nodes(k)) sp%psi(j, k) = wmst(r)
+        end do
+      end do
+    end do
+  end subroutine master_space_integrals
+
+  !> Purpose: the point of the master surface closest to point xs: the
+  !> master edge (index into ms) and the position on it, the orthogonal
+  !> projection clamped to the edge; 0 if none within the search distance
+  !> dmax, or behind an edge by more than half its length (the far side
+  !> of the master body), as nearest_edge. Unlike nearest_edge's
+  !> projection this finds a point for every xs near the surface: behind
+  !> a corner of a concave master polygon (a slave node pressed into it)
+  !> no edge's projection falls inside [0, 1], and the closest point is
+  !> the corner. Arguments: skip_node a slave node whose edges are not
+  !> searched.
+  subroutine closest_master_point(m, x, ms, xs, skip_node, dmax, best, tbest)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), xs(2), dmax
+    type(surface_t), intent(in) :: ms
+    integer, intent(in) :: skip_node
+    integer, intent(out) :: best
+    real(dp), intent(out) :: tbest
+    type(edge_t) :: ed
+    real(dp) :: t, nvec(2), d, p(2), dpdt(2), dist, dbest
+    integer :: j
+    best = 0
+    tbest = 0.0_dp
+    dbest = huge(1.0_dp)
+    do j = 1, size(ms%elem)
+      ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+      if (any(ed%node(1:ed%nn) == skip_node)) cycle
+      call project_to_edge(ed, xs, t, nvec, d)
+      if (d < -0.5_dp * edge_length(ed) .or. d > dmax) cycle
+      t = min(max(t, 0.0_dp), 1.0_dp)
+      call edge_at(ed, t, p, dpdt)
+      dist = norm2(xs - p)
+      if (dist > dmax) cycle
+      if (dist < dbest) then
+        dbest = dist
+        best = j
+        tbest = t
+      end if
+    end do
+  end subroutine closest_master_point
+
+  !> Purpose: vals(node) += v in a short list of n (node, value) pairs;
+  !> overflow is set (and v dropped) when the list is full.
+  subroutine add_entry(n, nodes, vals, overflow, node, v)
+    integer, intent(inout) :: n, nodes(:)
+    real(dp), intent(inout) :: vals(:)
+    logical, intent(inout) :: overflow
+    integer, intent(in) :: node
+    real(dp), intent(in) :: v
+    integer :: i
+    do i = 1, n
+      if (nodes(i) == node) then
+        vals(i) = vals(i) + v
+        return
+      end if
+    end do
+    if (n == size(nodes)) then
+      overflow = .true.
+      return
+    end if
+    n = n + 1
+    nodes(n) = node
+    vals(n) = v
+  end subroutine add_entry
+end module contact_master_multipliers
