@@ -173,6 +173,18 @@ def polygon_distance(p):
 NTS, MORTAR = "", ", TYPE=SURFACE TO SURFACE"
 BOTH = (NTS, MORTAR)
 NAMES = {NTS: "node-to-segment", MORTAR: "mortar"}
+# (a)'s tolerance per coupling, relative to the edge. Node-to-segment puts
+# every closed slave node on its master edge (measured 1e-15). The mortar
+# pair here has the slave faces finer than the bowl's edges (0.05 against
+# 0.17), so it takes the master-mesh multipliers (contact_master_multipliers):
+# one constraint per master node, on the hat-weighted mean of the slave
+# surface, so a slave node may sit off the edge by the bending of the block's
+# face between those constraints (measured 6.2e-5 of the edge); the search
+# once per increment leaves them 1.1e-2 of an edge off. A frictional pair
+# searched again keeps the dual mortar (contact.f90's couple_mortar), whose
+# slave nodes sit on the polygon (measured 1e-15 before the master-mesh
+# multipliers came).
+GAP_TOL = {"node-to-segment": 1e-8, "mortar": 1e-4}
 
 
 def end_state(run, b=0):
@@ -199,7 +211,7 @@ def check_on_polygon_and_normal(run, label, b=0, expected=THETA):
     angle = math.atan2(f1, -f2)
     print(f"  {label}: |gap| max {worst / EDGE:.1e} of the edge, force angle {math.degrees(angle):.9f} deg "
           f"(off by {abs(angle - expected):.1e} rad), {inc.attrs['iterations']} iterations in the last increment")
-    assert worst < 1e-8 * EDGE, (label, worst)
+    assert worst < GAP_TOL[label.split(",")[0]] * EDGE, (label, worst)
     assert f2 < 0 and abs(angle - expected) < 1e-7, (label, math.degrees(angle))
     return pos
 
