@@ -248,13 +248,13 @@ def test_one_and_ten_increments_give_the_same_answer_both_couplings():
 
 
 def test_cut_back_restores_the_couplings():
-    """Automatic increments starting with the whole step: I_C = 4 iterations (plus one per status
-    change) are too few for the slide of ten edges at once (13 needed), so the first attempt
+    """Automatic increments starting with the whole step: I_C = 2 iterations (plus one per status
+    change, the search's own included) are too few for the slide of ten edges at once (13 needed), so the first attempt
     fails and is cut back (D_C = 0.5) from couplings and a numbering it changed; the halves must
     converge to the one-increment answer, for both couplings in one deck."""
     ref = run_case("nl_search_cut_ref", BOTH)
     run = run_case("nl_search_cut", BOTH, static="*STATIC\n1., 1.\n",
-                   controls="*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8, 9, 4, 10, 4\n")
+                   controls="*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8, 9, 2, 10, 4\n")
     assert "increment cut back" in open(run.listing_path).read()
     assert len(run.listing.increments) > 1
     for b, coupling in enumerate(BOTH):
@@ -279,3 +279,26 @@ def test_coulomb_friction_carried_through_the_searches():
         pa = check_on_polygon_and_normal(auto, NAMES[coupling] + ", friction, automatic", b, expected)
         p10 = check_on_polygon_and_normal(ten, NAMES[coupling] + ", friction, 10 increments", b, expected)
         same_state(pa, p10, NAMES[coupling] + ", friction: automatic against 10 increments")
+
+
+def test_force_driven_body_under_nlgeom_settles():
+    """test_contact's force-driven upper block (1e-3 above the lower one, held by nothing but the
+    contact; its end slave node sits at the end of the master surface, which the block's Poisson
+    spreading pushes a little past) under NLGEOM, with OPEN PENALTY=1e-6 and the default: every
+    slave node closes, the contact force equals the load (1e-5: the normals follow the deformed
+    master face, whose tilt of order 1e-3 takes 1e-6 off the load's direction; measured 1.7e-6)
+    and the pressure is the uniform one (0.5 %), as in the small-strain test. Without the search's hysteresis (a closed coupling
+    kept while its point is within half an edge of its master edge) and without counting the
+    search's own status changes, that end node lost and regained its coupling from iteration to
+    iteration (closed 10, 11, 10, ...) and the run stopped on divergence after cutting the
+    increment to 1e-6."""
+    import test_contact as tc
+    for tag, params in (("open", ", OPEN PENALTY=1e-6"), ("default", "")):
+        deck, load = tc.force_driven_deck(params)
+        assert deck.count("*STEP\n") == 1
+        run = run_deck("nl_search_force_driven_" + tag, deck.replace("*STEP\n", "*STEP, NLGEOM\n")).ok()
+        slave, _, summ = tc.contact_blocks(run.listing.increments[-1])
+        print(f"  {tag}: {len(run.listing.increments)} increments, total force {summ['total_force'][0]:.9f}")
+        assert all(s == "CLOSED" for s in slave["state"]), tag
+        assert abs(summ["total_force"][0] - load) < 1e-5 * load, (tag, summ["total_force"])
+        assert max(abs(slave["pressure"] - load / tc.W)) / (load / tc.W) < 0.005, tag

@@ -122,7 +122,7 @@ contains
     logical, intent(in), optional :: presc(:, :)
     type(mpc_t), intent(in), optional :: mpc
     real(dp), allocatable :: fint(:, :), u_start(:, :)
-    integer :: it, a, d, nchanged, naug
+    integer :: it, a, d, nchanged, naug, nsearched
     logical :: restabilised, usable, converged, predict
     real(dp) :: scale, energy, c_max
     allocate(fint(2, m%nn))
@@ -211,11 +211,15 @@ contains
       else
         call check_finite(m, is, inc, u)
       end if
-      if (present(presc) .and. present(mpc)) call search_in_iteration(eq, m, cs, u, presc, mpc, dm, sys)
+      nsearched = 0
+      if (present(presc) .and. present(mpc)) call search_in_iteration(eq, m, cs, u, presc, mpc, dm, sys, nsearched)
       call internal_forces(m, body, cs, u, fint, eq%counts, energy)
       ! the potential energy of this status's solution, eqs. (1) and (9)
       energy = energy - sum(fext * u) + contact_energy(cs)
       call contact_switch(m, cs, eq%search, contact_force_scale(eq, cs, norm2(fext)), energy, nchanged, eq%changed)
+      ! statuses the search itself changed (couplings that came closed or
+      ! were lost): the increment has not settled either
+      nchanged = nchanged + nsearched
       ! the residual of the new status
       if (nchanged > 0) call internal_forces(m, body, cs, u, fint, eq%counts)
       rf = fint - fext
@@ -284,8 +288,9 @@ contains
   !> couplings moved, the numbering, the sparse structure and its symbolic
   !> analysis stay.
   !> Arguments: presc, mpc the step's prescribed dofs and constraints;
-  !> dm, sys renumbered where needed.
-  subroutine search_in_iteration(eq, m, cs, u, presc, mpc, dm, sys)
+  !> dm, sys renumbered where needed; changed the statuses the search
+  !> changed (contact_research), counted as status changes of the iteration.
+  subroutine search_in_iteration(eq, m, cs, u, presc, mpc, dm, sys, changed)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(inout) :: cs
@@ -294,7 +299,8 @@ contains
     type(mpc_t), intent(in) :: mpc
     type(dofmap_t), intent(inout) :: dm
     type(linear_system_t), intent(inout) :: sys
-    call contact_research(m, m%x + u, cs, moved=.true.)
+    integer, intent(out) :: changed
+    call contact_research(m, m%x + u, cs, moved=.true., changed=changed)
     eq%searches = eq%searches + 1
     if (.not. numbering_fits(eq, m, cs)) call renumber_couplings(eq, m, cs, presc, mpc, dm, sys)
   end subroutine search_in_iteration

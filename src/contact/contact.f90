@@ -633,27 +633,34 @@ contains
   !> search after a displacement update of an iteration): the old
   !> couplings' t.[[U]] is then evaluated again at u for their elastic
   !> tangential offset (otherwise their last evaluation serves, as at the
-  !> start of an increment). The stabilised open penalty (contact_set_t)
-  !> stays as it was.
-  subroutine contact_research(m, x, cs, moved)
+  !> start of an increment); it also keeps, within an iteration, a closed
+  !> coupling whose point the search lost just past its master edge (see
+  !> the end of the routine). changed, if present, returns the statuses
+  !> the search changed: new couplings that start closed, and closed ones
+  !> lost. The stabilised open penalty (contact_set_t) stays as it was.
+  subroutine contact_research(m, x, cs, moved, changed)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
     type(contact_set_t), intent(inout) :: cs
     logical, intent(in), optional :: moved
+    integer, intent(out), optional :: changed
     type(contact_set_t) :: old
     integer, allocatable :: head(:), next(:)
-    integer :: j, q
+    logical, allocatable :: matched(:)
+    integer :: j, q, nchg
     logical :: stabilised, reevaluate
     real(dp) :: old_slide
     reevaluate = .false.
     if (present(moved)) reevaluate = moved
+    nchg = 0
     stabilised = cs%stabilised
     call move_alloc(cs%c, old%c)
     old%n = cs%n
     call contact_search(m, x, cs)
     cs%stabilised = stabilised
-    allocate(head(m%nn), next(old%n))
+    allocate(head(m%nn), next(old%n), matched(old%n))
     head = 0
+    matched = .false.
     do q = old%n, 1, -1
       next(q) = head(key_node(old%c(q)))
       head(key_node(old%c(q))) = q
@@ -665,7 +672,12 @@ contains
             old%c(q)%sedge == cs%c(j)%sedge .and. old%c(q)%sip == cs%c(j)%sip) exit
         q = next(q)
       end do
-      if (q == 0) cycle
+      if (q == 0) then
+        ! a new coupling, its status from the geometry (contact_search)
+        if (cs%c(j)%closed) nchg = nchg + 1
+        cycle
+      end if
+      matched(q) = .true.
       cs%c(j)%closed = old%c(q)%closed
       cs%c(j)%lambda = old%c(q)%lambda
       ! friction: the elastic tangential offset carries over to the
@@ -680,7 +692,55 @@ contains
         cs%c(j)%anchor = current_slide(m, cs%c(j), x - m%x) - (old_slide - old%c(q)%anchor)
       end if
     end do
+    ! A closed coupling of a slave point that the search finds no master
+    ! edge for: within an iteration (moved) it is kept while the point
+    ! projects within keep_band of its edge's ends (a hysteresis: a point
+    ! at the end of the master surface, pushed a little past it by an
+    ! iterate, would otherwise lose and regain its coupling from iteration
+    ! to iteration and the status never settle); otherwise its loss is a
+    ! status change. Couplings of the master-mesh multiplier (ns = 0)
+    ! belong to master nodes and are not kept.
+    do q = 1, old%n
+      if (matched(q) .or. .not. old%c(q)%closed) cycle
+      if (reevaluate .and. old%c(q)%ns > 0) then
+        if (within_band(m, x, old%c(q))) then
+          call add_cfe(cs, old%c(q))
+          call drop_uncoupled(cs, old%c(q)%snode(1), old%c(q)%pair)
+          cycle
+        end if
+      end if
+      nchg = nchg + 1
+    end do
+    if (present(changed)) changed = nchg
   end subroutine contact_research
+
+  !> Does the coupling point of c (configuration x) project onto its
+  !> master edge's line within keep_band edge lengths of the edge's ends?
+  logical function within_band(m, x, c)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    type(cfe_t), intent(in) :: c
+    real(dp), parameter :: keep_band = 0.5_dp
+    type(edge_t) :: ed
+    real(dp) :: p(2), chord(2), t
+    ed = get_edge(m, x, c%elem, c%edge)
+    p = matmul(x(:, c%snode(1:c%ns)), c%sw(1:c%ns))
+    chord = ed%x(:, 2) - ed%x(:, 1)
+    t = dot_product(p - ed%x(:, 1), chord) / max(dot_product(chord, chord), tiny(1.0_dp))
+    within_band = t >= -keep_band .and. t <= 1.0_dp + keep_band
+  end function within_band
+
+  !> Slave node s of pair ip off the list of uncoupled nodes (its coupling
+  !> was kept).
+  subroutine drop_uncoupled(cs, s, ip)
+    type(contact_set_t), intent(inout) :: cs
+    integer, intent(in) :: s, ip
+    logical, allocatable :: keep(:)
+    if (.not. allocated(cs%uncoupled)) return
+    keep = .not. (cs%uncoupled == s .and. cs%uncoupled_pair == ip)
+    cs%uncoupled = pack(cs%uncoupled, keep)
+    cs%uncoupled_pair = pack(cs%uncoupled_pair, keep)
+  end subroutine drop_uncoupled
 
   !> The node a CFE is filed under when old and new couplings are matched:
   !> its first slave node, or for a coupling of the master-mesh multiplier
