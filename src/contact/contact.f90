@@ -343,13 +343,7 @@ contains
         c%nm = mo%nm(k)
         c%mnode(1:c%nm) = mo%mnode(1:c%nm, k)
         c%mw(1:c%nm) = mo%mval(1:c%nm, k) / mo%d(k)
-        c%elem = mo%melem(k)
-        c%edge = mo%medge(k)
-        c%t = mo%mt(k)
-        c%xi = edge_natural(m%etype(c%elem), c%edge, c%t)
-        c%normal = mo%nsum(:, k) / norm2(mo%nsum(:, k))
-        c%area = mo%d(k)
-        c%h = mo%h(k)
+        call place_on_master(m, mo%melem(k), mo%medge(k), mo%mt(k), mo%nsum(:, k), mo%d(k), mo%h(k), c)
         em = 0.0_dp
         do q = 1, size(sl%elem)
           if (any(m%conn(1:elem_nodes(m, sl%elem(q)), sl%elem(q)) == s)) em = max(em, section_e(m, sl%elem(q)))
@@ -433,13 +427,7 @@ contains
         reached(sp%snode(1:sp%ns(k), k)) = reached(sp%snode(1:sp%ns(k), k)) .or. sp%psi(1:sp%ns(k), k) > 0.0_dp
         c%lnode = ms%nodes(k)
         c%sip = c%lnode
-        c%elem = sp%melem(k)
-        c%edge = sp%medge(k)
-        c%t = sp%mt(k)
-        c%xi = edge_natural(m%etype(c%elem), c%edge, c%t)
-        c%normal = sp%nsum(:, k) / norm2(sp%nsum(:, k))
-        c%area = sp%d(k)
-        c%h = sp%h(k)
+        call place_on_master(m, sp%melem(k), sp%medge(k), sp%mt(k), sp%nsum(:, k), sp%d(k), sp%h(k), c)
         em = 0.0_dp
         do q = 1, nn
           do e = 1, size(sl%elem)
@@ -471,6 +459,25 @@ contains
       end do
     end associate
   end subroutine couple_master_space
+
+  !> Purpose: the master face, normal and size of a segment-to-segment
+  !> CFE (dual mortar or master-mesh multipliers): face edge of element
+  !> elem with the point at t on it (named for messages and the contact
+  !> table), the normal the normalised weighted sum nsum of the master
+  !> normals under the multiplier's support, the area and mesh length.
+  subroutine place_on_master(m, elem, edge, t, nsum, area, h, c)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: elem, edge
+    real(dp), intent(in) :: t, nsum(2), area, h
+    type(cfe_t), intent(inout) :: c
+    c%elem = elem
+    c%edge = edge
+    c%t = t
+    c%xi = edge_natural(m%etype(elem), edge, t)
+    c%normal = nsum / norm2(nsum)
+    c%area = area
+    c%h = h
+  end subroutine place_on_master
 
   !> Gauss points of 3-node slave faces: each face is cut where the ends
   !> of the master edges project onto it, each piece gets two points, each
