@@ -289,8 +289,10 @@ contains
   !> with contact the pairs are searched again on the current
   !> configuration in every Newton iteration (equilibrium's
   !> search_in_iteration), so a converged increment ends with the
-  !> couplings of its own configuration and the next starts from them; a
-  !> cut-back restores the couplings the increment started with (the
+  !> couplings of its own configuration; the next starts with a search on
+  !> that configuration that drops the couplings the iterations kept for
+  !> points that found no master edge (contact_research); a cut-back
+  !> restores the couplings the increment started with (the
   !> whole contact set: their number, geometry, statuses and friction
   !> state) and, where the failed attempt had renumbered the equations
   !> for other couplings, numbers them again for the restored ones.
@@ -321,6 +323,14 @@ contains
       ! a last sliver of the step joins this increment
       if (period - (t + dt_try) < 1.0e-6_dp * dt_try) dt_try = period - t
       if (research_each) then
+        ! the pairing of the converged configuration, without the closed
+        ! couplings the last increment's iterations kept for points that
+        ! found no master edge (contact_research)
+        if (rs%inc > 0) then
+          call contact_research(m, m%x + rs%u, rs%cs)
+          if (.not. numbering_fits(rs%eq, m, rs%cs)) &
+            call renumber_couplings(rs%eq, m, rs%cs, rs%ls%presc, rs%mpc, rs%dm, rs%sys)
+        end if
         saved_cs = rs%cs
       else
         if (rs%update_search .and. rs%inc > 0) call research(m, rs)

@@ -123,7 +123,7 @@ contains
     type(mpc_t), intent(in), optional :: mpc
     real(dp), allocatable :: fint(:, :), u_start(:, :)
     integer :: it, a, d, nchanged, naug, nsearched
-    logical :: restabilised, usable, converged, predict
+    logical :: restabilised, usable, converged, predict, searched
     real(dp) :: scale, energy, c_max
     allocate(fint(2, m%nn))
     ok = .false.
@@ -211,8 +211,20 @@ contains
       else
         call check_finite(m, is, inc, u)
       end if
+      ! The search follows an iterate whose correction is smaller than the
+      ! couplings' mesh length; a larger one (an iterate far from
+      ! equilibrium: a body falling through under a stabilised open
+      ! penalty, a wild first iterate of a soft body) keeps the pairing,
+      ! whose master normals would otherwise come from a wildly deformed
+      ! master. An increment converges only in an iteration that searched.
       nsearched = 0
-      if (present(presc) .and. present(mpc)) call search_in_iteration(eq, m, cs, u, presc, mpc, dm, sys, nsearched)
+      searched = .false.
+      if (present(presc) .and. present(mpc)) then
+        if (c_max < coupling_length(cs)) then
+          call search_in_iteration(eq, m, cs, u, presc, mpc, dm, sys, nsearched)
+          searched = .true.
+        end if
+      end if
       call internal_forces(m, body, cs, u, fint, eq%counts, energy)
       ! the potential energy of this status's solution, eqs. (1) and (9)
       energy = energy - sum(fext * u) + contact_energy(cs)
@@ -237,6 +249,7 @@ contains
         if (body%bad_elem == 0) then
           call newton_test(eq%newton, body%average_force, max_free(dm, rf), c_max, maxval(abs(u - u_start)), &
                            converged, eq%residual)
+          if (present(presc) .and. .not. searched) converged = .false.
           if (eq%newton%cut < 1.0_dp .and. (nchanged == 0 .or. &
               eq%newton%attempt >= eq%newton%ctl%ic + eq%newton%changes)) exit
         else
@@ -304,6 +317,13 @@ contains
     eq%searches = eq%searches + 1
     if (.not. numbering_fits(eq, m, cs)) call renumber_couplings(eq, m, cs, presc, mpc, dm, sys)
   end subroutine search_in_iteration
+
+  !> The shortest mesh length of the couplings of cs (huge without any).
+  pure real(dp) function coupling_length(cs) result(h)
+    type(contact_set_t), intent(in) :: cs
+    h = huge(1.0_dp)
+    if (cs%n > 0) h = minval(cs%c(1:cs%n)%h)
+  end function coupling_length
 
   !> Purpose: were the equations (eq%numbered_for, note_numbering) numbered
   !> for the couplings of cs: the same CFEs with the same node lists,

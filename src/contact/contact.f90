@@ -534,7 +534,7 @@ contains
     type(cfe_t), intent(in) :: c
     type(cfe_t), allocatable :: tmp(:)
     if (cs%n == size(cs%c)) then
-      allocate(tmp(2 * size(cs%c)))
+      allocate(tmp(max(2 * size(cs%c), 16)))
       tmp(1:cs%n) = cs%c(1:cs%n)
       call move_alloc(tmp, cs%c)
     end if
@@ -640,9 +640,8 @@ contains
   !> search after a displacement update of an iteration): the old
   !> couplings' t.[[U]] is then evaluated again at u for their elastic
   !> tangential offset (otherwise their last evaluation serves, as at the
-  !> start of an increment); it also keeps, within an iteration, a closed
-  !> coupling whose point the search lost just past its master edge (see
-  !> the end of the routine). changed, if present, returns the statuses
+  !> start of an increment); it also keeps, within an iteration, a
+  !> coupling whose point the search lost (see the end of the routine). changed, if present, returns the statuses
   !> the search changed: new couplings that start closed, and closed ones
   !> lost. The stabilised open penalty (contact_set_t) stays as it was.
   subroutine contact_research(m, x, cs, moved, changed)
@@ -699,43 +698,28 @@ contains
         cs%c(j)%anchor = current_slide(m, cs%c(j), x - m%x) - (old_slide - old%c(q)%anchor)
       end if
     end do
-    ! A closed coupling of a slave point that the search finds no master
-    ! edge for: within an iteration (moved) it is kept while the point
-    ! projects within keep_band of its edge's ends (a hysteresis: a point
-    ! at the end of the master surface, pushed a little past it by an
-    ! iterate, would otherwise lose and regain its coupling from iteration
-    ! to iteration and the status never settle); otherwise its loss is a
-    ! status change. Couplings of the master-mesh multiplier (ns = 0)
-    ! belong to master nodes and are not kept.
+    ! A coupling of a slave point that the search finds no master edge for
+    ! (a point pushed past the end of the master surface) is kept within
+    ! the iterations of an increment (moved), its geometry and status as
+    ! they were, as the pairing of the increment's start would have them;
+    ! the search at the start of the next increment (not moved) decides on
+    ! the converged configuration. Otherwise a point at the master's end,
+    ! just past it in one iterate and not in the next, loses its coupling
+    ! and comes back with a new one whose status the geometry decides,
+    ! from iteration to iteration, and the status never settles.
+    ! Couplings of the master-mesh multiplier (ns = 0) belong to master
+    ! nodes and are not kept; a closed one lost is a status change.
     do q = 1, old%n
-      if (matched(q) .or. .not. old%c(q)%closed) cycle
+      if (matched(q)) cycle
       if (reevaluate .and. old%c(q)%ns > 0) then
-        if (within_band(m, x, old%c(q))) then
-          call add_cfe(cs, old%c(q))
-          call drop_uncoupled(cs, old%c(q)%snode(1), old%c(q)%pair)
-          cycle
-        end if
+        call add_cfe(cs, old%c(q))
+        call drop_uncoupled(cs, old%c(q)%snode(1), old%c(q)%pair)
+      else if (old%c(q)%closed) then
+        nchg = nchg + 1
       end if
-      nchg = nchg + 1
     end do
     if (present(changed)) changed = nchg
   end subroutine contact_research
-
-  !> Does the coupling point of c (configuration x) project onto its
-  !> master edge's line within keep_band edge lengths of the edge's ends?
-  logical function within_band(m, x, c)
-    type(model_t), intent(in) :: m
-    real(dp), intent(in) :: x(:, :)
-    type(cfe_t), intent(in) :: c
-    real(dp), parameter :: keep_band = 0.5_dp
-    type(edge_t) :: ed
-    real(dp) :: p(2), chord(2), t
-    ed = get_edge(m, x, c%elem, c%edge)
-    p = matmul(x(:, c%snode(1:c%ns)), c%sw(1:c%ns))
-    chord = ed%x(:, 2) - ed%x(:, 1)
-    t = dot_product(p - ed%x(:, 1), chord) / max(dot_product(chord, chord), tiny(1.0_dp))
-    within_band = t >= -keep_band .and. t <= 1.0_dp + keep_band
-  end function within_band
 
   !> Slave node s of pair ip off the list of uncoupled nodes (its coupling
   !> was kept).
