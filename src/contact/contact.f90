@@ -21,7 +21,7 @@ module contact
   use messages, only: fatal, fatal_at
   use model
   use growable, only: append
-  use element_catalogue, only: catalogue
+  use element_catalogue, only: catalogue, max_nodes
   use mesh_topology, only: is_boundary_edge
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, &
                               edge_weights, area_factor, edge_length
@@ -58,6 +58,10 @@ module contact
   !> Master nodes of a segment-to-segment CFE (one slave node and these
   !> fill an element's node list).
   integer, parameter :: max_cfe_master = max_en - 1
+  !> The same for the dual mortar and the master-mesh multipliers on
+  !> 2-node faces (an element's nodes and its slave nodes; element
+  !> arrays hold max_en for the master-mesh multipliers on 3-node faces).
+  integer, parameter :: max_mortar_master = max_nodes + max_slave - 1
   !> A segment-to-segment CFE whose covered dual weight D_j is below this
   !> share of its node's whole int N_j da is not made: its support hardly
   !> faces the master, and its weights M_jm / D_j would be large.
@@ -311,7 +315,8 @@ contains
       if (sl%kind /= surf_element) call fatal('segment-to-segment contact (TYPE=SURFACE TO SURFACE) needs ' // &
         'an element-based slave surface: ' // trim(sl%name) // ' is a node set')
       ! the master-mesh multipliers where the slave is the finer side of
-      ! straight faces (contact_master_multipliers). Not for a frictional
+      ! straight faces, or of a straight master surface of 3-node faces
+      ! (contact_master_multipliers). Not for a frictional
       ! pair that is searched again (UPDATE SEARCH, or any NLGEOM step):
       ! its couplings belong to master nodes, so a slave surface sliding
       ! past them meets new couplings without its friction history (a
@@ -331,10 +336,10 @@ contains
           call append(uncp, nunc_p, ip)
           cycle
         end if
-        if (mo%nm(k) > max_cfe_master) call pair_error(m%pairs(ip), 'segment-to-segment contact: slave node ' // &
-          node_label(m, s) // ' of ' // trim(sl%name) // ' faces more than ' // itoa(max_cfe_master) // &
-          ' master nodes (its faces span more than ' // itoa(max_cfe_master - 1) // ' linear or ' // &
-          itoa((max_cfe_master - 1) / 2) // ' quadratic master faces); make the finer surface the slave ' // &
+        if (mo%nm(k) > max_mortar_master) call pair_error(m%pairs(ip), 'segment-to-segment contact: slave node ' // &
+          node_label(m, s) // ' of ' // trim(sl%name) // ' faces more than ' // itoa(max_mortar_master) // &
+          ' master nodes (its faces span more than ' // itoa(max_mortar_master - 1) // ' linear or ' // &
+          itoa((max_mortar_master - 1) / 2) // ' quadratic master faces); make the finer surface the slave ' // &
           '(or refine the slave side)')
         c = cfe_t()
         c%pair = ip
@@ -375,12 +380,16 @@ contains
   !> faces the slave surface over more than min_mortar_cover of its int
   !> N_m da; its slave side the slave nodes with the weights S_mj / D_m,
   !> its master side node m (weight one: the lumped master side), or for
-  !> a frictional pair the master nodes k with M_mk / D_m (the consistent
-  !> one, whose tangential component is consistent too), its area D_m, its
+  !> a frictional pair or 3-node master faces the master nodes k with
+  !> M_mk / D_m (the consistent one, whose tangential component is
+  !> consistent too; 3-node faces: their mid-side nodes carry no
+  !> multiplier to lump onto), its area D_m, its
   !> normal the mean master normal under psi_m, its initial gap the
   !> weighted one.
   !> done: .false. (nothing added) where a CFE would hold more nodes than
-  !> an element may (the caller then takes the dual mortar). Slave nodes
+  !> an element may (max_mortar_master on 2-node faces, as before the
+  !> 3-node ones needed max_cfe_master; the caller then takes the dual
+  !> mortar). Slave nodes
   !> that no multiplier's field reaches are reported uncoupled.
   subroutine couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p, done)
     type(model_t), intent(in) :: m
@@ -395,15 +404,16 @@ contains
     logical, allocatable :: taken(:), reached(:)
     logical :: lumped
     real(dp) :: em, rel(2)
-    integer :: k, q, e, nn
+    integer :: k, q, e, nn, limit
     done = .false.
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
       call master_space_integrals(m, x, sl, ms, dmax, sp)
       if (sp%overflow) return
       taken = sp%ns > 0 .and. sp%d > min_mortar_cover * sp%full .and. norm2(sp%nsum, dim=1) > 0.0_dp
-      lumped = m%pairs(ip)%mu <= 0.0_dp
-      if (lumped .and. any(taken .and. sp%ns + 1 > max_cfe_master)) return
-      if (.not. lumped .and. any(taken .and. sp%ns + sp%nm > max_cfe_master)) return
+      lumped = m%pairs(ip)%mu <= 0.0_dp .and. .not. sp%quadratic
+      limit = merge(max_cfe_master, max_mortar_master, sp%quadratic)
+      if (lumped .and. any(taken .and. sp%ns + 1 > limit)) return
+      if (.not. lumped .and. any(taken .and. sp%ns + sp%nm > limit)) return
       done = .true.
       allocate(reached(m%nn))
       reached = .false.

@@ -64,6 +64,32 @@
 !> side's matrix diagonal. The dual basis itself is not taken on the
 !> master side: its discontinuous functions would put a sawtooth traction
 !> sum_m lambda_m Phi_m on the finer slave body.
+!>
+!> 3-node (quadratic) master faces, taken where the master surface is
+!> straight and the slave the finer (master_space_wanted; CalculiX's
+!> plate and ring1 decks, one slave face on one master face, were 5e-2
+!> and 1.1e-3 off its references with them against 9e-5 and 2e-5 with
+!> the dual mortar): psi_m the hat functions of the master
+!> CORNERS (1 - t, t on each face, none at the mid-side nodes: N_q + N_3
+!> / 2 of the face's shape functions), the master side consistent, M_mk
+!> = int psi_m N_k da over the master's 3-node N_k (a lumped one would
+!> leave the mid-side nodes unheld), and the integrals taken over the
+!> MASTER faces: each cut where the slave corners project onto it, three
+!> Gauss points per piece, each point's slave functions N_j at its
+!> closest point on the slave surface, da the master's. G_m is then the
+!> psi_m-weighted mean of the pointwise gap along the master surface.
+!> Measured on the flagship's CPS8 mesh (docs/contact.md, "Quadratic
+!> faces"): the master's quadratic N_m as psi_m, lumped, oscillate
+!> between corner and mid-side rows (osc 1.03 %, s-m 2.6 %); the corner
+!> hats integrated over the slave faces meet the oscillation target
+!> (0.26 %) but not s-m (2.7 %: the master rows alternate by +-3 % with
+!> the slave/master node offset, as the slave's reference measure per
+!> master length varies within its quadratic faces); over the master
+!> faces 0.19 %, +0.11 %, 0.47 %. On a curved master the single normal
+!> of a coupling element over a hat two faces wide costs about
+!> (h / R)^2 / 12 of the normal force (measured 1e-3 on the quarter
+!> shrink fit of 14 faces, whose total force the dual mortar gets to
+!> 2e-5): there the dual mortar stays.
 module contact_master_multipliers
   use kinds, only: dp
   use model, only: model_t, surface_t
@@ -83,6 +109,13 @@ module contact_master_multipliers
   !> the slave faces, master_space_wanted): the slave clearly the finer
   !> side (docs/contact.md, "Which multiplier space").
   real(dp), parameter :: finer_ratio = 0.75_dp
+  !> The position t along a face of its nodes (first corner, second
+  !> corner, mid-side node: contact_geometry's order).
+  real(dp), parameter :: node_position(3) = [0.0_dp, 1.0_dp, 0.5_dp]
+  !> 3-node master faces take the master-mesh multipliers only where the
+  !> master surface is straight: its tangents within this angle (radians)
+  !> of each other (master_space_wanted).
+  real(dp), parameter :: max_turn = 1.0e-3_dp
 
   !> The integrals of every node of a master surface (in the order of the
   !> surface's node list).
@@ -107,12 +140,17 @@ module contact_master_multipliers
     !> A node reached more than max_space_nodes slave nodes (its list is
     !> then incomplete).
     logical :: overflow = .false.
+    !> 3-node master faces: the multiplier is linear between the master
+    !> corners, integrated over the master faces (module comment).
+    logical :: quadratic = .false.
   end type master_space_t
 
 contains
 
   !> Purpose: does pair (sl, ms) take the master-mesh multipliers? Both
-  !> surfaces of straight (2-node) faces and the slave the finer: the
+  !> surfaces of straight (2-node) faces, or a straight master surface of
+  !> 3-node faces (straight_surface; module comment), and the slave the
+  !> finer: the
   !> mean over the slave faces of (slave face length / length of the
   !> master face under its midpoint) below finer_ratio. Each face counts
   !> once, so that a finely meshed contact zone decides, not the long
@@ -127,15 +165,21 @@ contains
     type(edge_t) :: ed, mt
     real(dp) :: p(2), dpdt(2), tbest, len, num, den
     integer :: f, best
+    logical :: quadratic
     master_space_wanted = .false.
-    do f = 1, size(ms%elem)
-      if (get_edge_nn(m, ms, f) /= 2) return
-    end do
+    quadratic = size(ms%elem) > 0 .and. all([(get_edge_nn(m, ms, f), f = 1, size(ms%elem))] == 3)
+    if (quadratic) then
+      if (.not. straight_surface(m, ms)) return
+    else
+      do f = 1, size(ms%elem)
+        if (get_edge_nn(m, ms, f) /= 2) return
+      end do
+    end if
     num = 0.0_dp
     den = 0.0_dp
     do f = 1, size(sl%elem)
       ed = get_edge(m, m%x, sl%elem(f), sl%edge(f))
-      if (ed%nn /= 2) return
+      if (ed%nn /= 2 .and. .not. quadratic) return
       call edge_at(ed, 0.5_dp, p, dpdt)
       call nearest_edge(m, m%x, ms, p, 0, sl%elem(f), dmax, best, tbest)
       if (best == 0) cycle
@@ -146,6 +190,45 @@ contains
     end do
     master_space_wanted = den > 0.0_dp .and. num < finer_ratio * den
   end function master_space_wanted
+
+  !> Purpose: the multipliers' functions psi of the nodes of master face
+  !> mt at t: its shape functions on a 2-node face, the corners' hat
+  !> functions (linear between the corners, zero at the mid-side node) on
+  !> a 3-node face (module comment).
+  pure function psi_weights(mt, t) result(w)
+    type(edge_t), intent(in) :: mt
+    real(dp), intent(in) :: t
+    real(dp) :: w(3)
+    if (mt%nn == 3) then
+      w = [1.0_dp - t, t, 0.0_dp]
+    else
+      w = edge_weights(mt, t)
+    end if
+  end function psi_weights
+
+  !> Purpose: is surface s straight? The tangents of its faces at their
+  !> ends and middles (reference configuration) within max_turn of the
+  !> first face's.
+  logical function straight_surface(m, s)
+    type(model_t), intent(in) :: m
+    type(surface_t), intent(in) :: s
+    type(edge_t) :: ed
+    real(dp) :: p(2), dpdt(2), t0(2), tt(2)
+    integer :: f, i
+    straight_surface = .false.
+    ed = get_edge(m, m%x, s%elem(1), s%edge(1))
+    call edge_at(ed, 0.0_dp, p, dpdt)
+    t0 = dpdt / norm2(dpdt)
+    do f = 1, size(s%elem)
+      ed = get_edge(m, m%x, s%elem(f), s%edge(f))
+      do i = 0, 2
+        call edge_at(ed, 0.5_dp * i, p, dpdt)
+        tt = dpdt / norm2(dpdt)
+        if (abs(t0(1) * tt(2) - t0(2) * tt(1)) > sin(max_turn) .or. dot_product(t0, tt) <= 0.0_dp) return
+      end do
+    end do
+    straight_surface = .true.
+  end function straight_surface
 
   !> Purpose: the node count of face f of surface s (2 or 3).
   integer function get_edge_nn(m, s, f)
@@ -158,14 +241,19 @@ contains
   end function get_edge_nn
 
   !> Purpose: the integrals of the module comment for every node of the
-  !> master surface ms against the slave surface sl (straight faces), the
+  !> master surface ms against the slave surface sl (2-node faces; for
+  !> 3-node master faces see below and the module comment), the
   !> projection searched on configuration x (areas on the reference one):
   !> each slave face is cut where the master corners project onto it (psi_m
   !> and N_j are then linear on each piece), three Gauss points per piece
   !> (exact for the product of two linear functions and the radius). A
   !> slave Gauss point on which no master face lies adds nothing. The
   !> field psi_m at a slave node is taken at the closest point of the
-  !> master surface (closest_master_point).
+  !> master surface (closest_master_point). 3-node master faces: each
+  !> master face is cut where the slave corners project onto it, three
+  !> Gauss points per piece (the corner hats, the master's N_k and the
+  !> slave's N_j at the point's closest slave point), da the master's; a
+  !> master Gauss point that faces no slave face adds nothing.
   !> Arguments: dmax the search distance; sp returns them.
   subroutine master_space_integrals(m, x, sl, ms, dmax, sp)
     type(model_t), intent(in) :: m
@@ -175,7 +263,7 @@ contains
     integer, parameter :: max_cuts = 64
     type(edge_t) :: ed, ref, mt
     integer, allocatable :: pos(:)
-    real(dp) :: cuts(max_cuts), tg(3), wg(3), t, nsl(3), wmst(3), p(2), pref(2), dpdt(2), mdp(2), nrm(2), tbest, &
+    real(dp) :: cuts(max_cuts), tg(3), wg(3), t, nsl(3), wmst(3), psiw(3), p(2), pref(2), dpdt(2), mdp(2), nrm(2), tbest, &
                 da, a(3)
     integer :: f, ncut, iv, ig, best, q, r, k, j
     sp%n = size(ms%nodes)
@@ -185,6 +273,7 @@ contains
              sp%melem(sp%n), sp%medge(sp%n), sp%mt(sp%n))
     pos = 0
     pos(ms%nodes) = [(k, k = 1, sp%n)]
+    sp%quadratic = size(ms%elem) > 0 .and. all([(get_edge_nn(m, ms, f), f = 1, size(ms%elem))] == 3)
     sp%d = 0.0_dp
     sp%full = 0.0_dp
     sp%nsum = 0.0_dp
@@ -203,55 +292,99 @@ contains
     do f = 1, size(ms%elem)
       ref = get_edge(m, m%x, ms%elem(f), ms%edge(f))
       a = edge_areas(ref)
-      do q = 1, 2
+      do q = 1, ref%nn
         k = pos(ref%node(q))
-        sp%full(k) = sp%full(k) + a(q)
+        ! int psi_m da: on a 3-node face the corner's hat 1 - t (or t) is
+        ! N_q + N_3 / 2, the mid-side node carries no multiplier
+        if (ref%nn == 3) then
+          if (q < 3) sp%full(k) = sp%full(k) + a(q) + 0.5_dp * a(3)
+        else
+          sp%full(k) = sp%full(k) + a(q)
+        end if
         sp%h(k) = min(sp%h(k), edge_length(ref))
         sp%melem(k) = ms%elem(f)
         sp%medge(k) = ms%edge(f)
-        sp%mt(k) = real(q - 1, dp)
+        sp%mt(k) = node_position(q)
       end do
     end do
     call gauss_line(3, tg, wg)
-    do f = 1, size(sl%elem)
-      ed = get_edge(m, x, sl%elem(f), sl%edge(f))
-      ref = get_edge(m, m%x, sl%elem(f), sl%edge(f))
-      call face_cuts(m, x, ed, ms, dmax, cuts, ncut)
-      do iv = 1, ncut - 1
-        do ig = 1, 3
-          t = cuts(iv) + (cuts(iv + 1) - cuts(iv)) * 0.5_dp * (tg(ig) + 1.0_dp)
-          call edge_at(ref, t, pref, dpdt)
-          da = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
-          nsl = edge_weights(ref, t)
-          call edge_at(ed, t, p, dpdt)
-          call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest)
-          if (best == 0) cycle
-          mt = get_edge(m, x, ms%elem(best), ms%edge(best))
-          wmst = edge_weights(mt, tbest)
-          call edge_at(mt, tbest, p, mdp)
-          nrm = [mdp(2), -mdp(1)] / norm2(mdp)
-          do r = 1, 2
-            k = pos(mt%node(r))
-            sp%d(k) = sp%d(k) + da * wmst(r)
-            sp%nsum(:, k) = sp%nsum(:, k) + da * wmst(r) * nrm
-            do q = 1, 2
-              call add_entry(sp%ns(k), sp%snode(:, k), sp%sval(:, k), sp%overflow, ed%node(q), &
-                             da * wmst(r) * nsl(q))
-              call add_entry(sp%nm(k), sp%mnode(:, k), sp%mval(:, k), sp%overflow, mt%node(q), &
-                             da * wmst(r) * wmst(q))
+    if (sp%quadratic) then
+      ! 3-node master faces: integrated over the master faces, each cut
+      ! where the slave corners project onto it (module comment)
+      do f = 1, size(ms%elem)
+        mt = get_edge(m, x, ms%elem(f), ms%edge(f))
+        ref = get_edge(m, m%x, ms%elem(f), ms%edge(f))
+        call face_cuts(m, x, mt, sl, dmax, cuts, ncut)
+        do iv = 1, ncut - 1
+          do ig = 1, 3
+            t = cuts(iv) + (cuts(iv + 1) - cuts(iv)) * 0.5_dp * (tg(ig) + 1.0_dp)
+            call edge_at(ref, t, pref, dpdt)
+            da = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
+            wmst = edge_weights(mt, t)
+            psiw = psi_weights(mt, t)
+            call edge_at(mt, t, p, mdp)
+            nrm = [mdp(2), -mdp(1)] / norm2(mdp)
+            call nearest_edge(m, x, sl, p, 0, ms%elem(f), dmax, best, tbest)
+            if (best == 0) cycle
+            ed = get_edge(m, x, sl%elem(best), sl%edge(best))
+            nsl = edge_weights(ed, tbest)
+            do r = 1, mt%nn
+              k = pos(mt%node(r))
+              sp%d(k) = sp%d(k) + da * psiw(r)
+              sp%nsum(:, k) = sp%nsum(:, k) + da * psiw(r) * nrm
+              do q = 1, ed%nn
+                call add_entry(sp%ns(k), sp%snode(:, k), sp%sval(:, k), sp%overflow, ed%node(q), &
+                               da * psiw(r) * nsl(q))
+              end do
+              do q = 1, mt%nn
+                call add_entry(sp%nm(k), sp%mnode(:, k), sp%mval(:, k), sp%overflow, mt%node(q), &
+                               da * psiw(r) * wmst(q))
+              end do
             end do
           end do
         end do
       end do
-    end do
+    else
+      do f = 1, size(sl%elem)
+        ed = get_edge(m, x, sl%elem(f), sl%edge(f))
+        ref = get_edge(m, m%x, sl%elem(f), sl%edge(f))
+        call face_cuts(m, x, ed, ms, dmax, cuts, ncut)
+        do iv = 1, ncut - 1
+          do ig = 1, 3
+            t = cuts(iv) + (cuts(iv + 1) - cuts(iv)) * 0.5_dp * (tg(ig) + 1.0_dp)
+            call edge_at(ref, t, pref, dpdt)
+            da = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
+            nsl = edge_weights(ref, t)
+            call edge_at(ed, t, p, dpdt)
+            call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest)
+            if (best == 0) cycle
+            mt = get_edge(m, x, ms%elem(best), ms%edge(best))
+            wmst = edge_weights(mt, tbest)
+            call edge_at(mt, tbest, p, mdp)
+            nrm = [mdp(2), -mdp(1)] / norm2(mdp)
+            do r = 1, 2
+              k = pos(mt%node(r))
+              sp%d(k) = sp%d(k) + da * wmst(r)
+              sp%nsum(:, k) = sp%nsum(:, k) + da * wmst(r) * nrm
+              do q = 1, 2
+                call add_entry(sp%ns(k), sp%snode(:, k), sp%sval(:, k), sp%overflow, ed%node(q), &
+                               da * wmst(r) * nsl(q))
+                call add_entry(sp%nm(k), sp%mnode(:, k), sp%mval(:, k), sp%overflow, mt%node(q), &
+                               da * wmst(r) * wmst(q))
+              end do
+            end do
+          end do
+        end do
+      end do
+    end if
     ! psi_m at the slave nodes: the master face under each slave node
     do k = 1, sp%n
       do j = 1, sp%ns(k)
         call closest_master_point(m, x, ms, x(:, sp%snode(j, k)), sp%snode(j, k), dmax, best, tbest)
         if (best == 0) cycle
         mt = get_edge(m, x, ms%elem(best), ms%edge(best))
-        wmst = edge_weights(mt, tbest)
-        do r = 1, 2
+        wmst = psi_weights(mt, tbest)
+        do r = 1, mt%nn
           if (mt%node(r) == ms%nodes(k)) sp%psi(j, k) = wmst(r)
         end do
       end do

@@ -24,7 +24,11 @@ module element_interface
   !> Slave-side nodes of a coupling element (its coupling point is a
   !> weighted combination of them, section 5 of the paper).
   integer, parameter :: max_slave = 3
-  integer, parameter :: max_en = max_nodes + max_slave, max_edof = 2 * max_en
+  !> Nodes of the largest coupling element: a master-mesh multiplier on
+  !> 3-node faces holds the slave nodes its hat function reaches and the
+  !> master nodes of its two master faces (contact_master_multipliers).
+  integer, parameter :: max_cfe_nodes = 20
+  integer, parameter :: max_en = max(max_nodes + max_slave, max_cfe_nodes), max_edof = 2 * max_en
   !> Actions, combined with ior: tangent stiffness ke, internal force fe
   !> (and, for a coupling element, its gap and normal force), stresses and
   !> strains at the integration points and extrapolated to the nodes; the
