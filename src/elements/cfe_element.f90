@@ -62,6 +62,7 @@ contains
     integer :: nd, i, j
     nd = 2 * ein%nen
     eout%ndof = nd
+    eout%ke(1:nd, 1:nd) = 0.0_dp
     eout%nip = 0
     call cfe_b_matrix(ein, b)
     t = [-ein%normal(2), ein%normal(1)]

@@ -97,6 +97,7 @@ contains
     need_k = wants(action, act_tangent) .or. wants(action, act_residual)
     d = elastic_matrix(ein%e, ein%nu, ein%state)
     eout%ndof = nd
+    eout%ke(1:nd, 1:nd) = 0.0_dp
     eout%nip = ein%nip
     call gauss_rule(ein%kind, ein%nip, xg, wg)
     eout%detj_min = huge(1.0_dp)
@@ -138,7 +139,7 @@ contains
       end do
     end if
     if (wants(action, act_residual)) eout%fe(1:nd) = matmul(eout%ke(1:nd, 1:nd), ein%ue(1:nd))
-    if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
+    if (.not. wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = 0.0_dp
     if (wants(action, act_stresses)) then
       call extrapolation(ein%kind, nen, ein%nip, ex)
       eout%sig_node(:, 1:nen) = matmul(eout%sig_ip(:, 1:ein%nip), transpose(ex(1:nen, 1:ein%nip)))

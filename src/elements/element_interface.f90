@@ -104,7 +104,11 @@ module element_interface
 
   type :: elem_out_t
     integer :: ndof = 0
-    real(dp) :: ke(max_edof, max_edof) = 0.0_dp
+    !> No default: each element routine zeroes ke(1:ndof, 1:ndof), the part
+    !> it defines and its callers read; a default would clear the whole
+    !> max_edof square (sized for the largest coupling element) on every
+    !> element call.
+    real(dp) :: ke(max_edof, max_edof)
     real(dp) :: fe(max_edof) = 0.0_dp          ! internal force
     integer :: nip = 0
     real(dp) :: sig_ip(4, max_ip) = 0.0_dp     ! s11, s22, s33, s12

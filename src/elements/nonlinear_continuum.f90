@@ -93,6 +93,7 @@ contains
     integer :: nen, ip
     nen = ein%nen
     eout%ndof = 2 * nen
+    eout%ke(1:eout%ndof, 1:eout%ndof) = 0.0_dp
     eout%nip = ein%nip
     if (ein%nlgeom .or. ein%law /= law_elastic) then
       call finite_strain(ein, wants(action, act_tangent), eout)
@@ -106,7 +107,7 @@ contains
         .or. .not. finite_arrays(eout, 2 * nen, ein%nip)) then
       eout%detj_min = min(eout%detj_min, 0.0_dp)
       if (.not. eout%detj_min <= 0.0_dp) eout%detj_min = 0.0_dp
-      eout%ke = 0.0_dp
+      eout%ke(1:eout%ndof, 1:eout%ndof) = 0.0_dp
       eout%fe = 0.0_dp
       eout%sig_ip = 0.0_dp
       eout%eps_ip = 0.0_dp
@@ -115,7 +116,7 @@ contains
         eout%hist(:, ip) = committed(ein, ip)
       end do
     end if
-    if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
+    if (.not. wants(action, act_tangent)) eout%ke(1:eout%ndof, 1:eout%ndof) = 0.0_dp
     if (.not. wants(action, act_residual)) eout%fe = 0.0_dp
     if (wants(action, act_stresses)) then
       call extrapolation(ein%kind, nen, ein%nip, ex)

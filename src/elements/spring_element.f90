@@ -45,6 +45,7 @@ contains
       g = [-dir, dir]
     end select
     eout%ndof = nd
+    eout%ke(1:nd, 1:nd) = 0.0_dp
     if (wants(action, act_stresses)) then
       eout%nip = 1
       eout%eps_ip(:, 1) = [dot_product(g(1:nd), ein%ue(1:nd)), 0.0_dp, 0.0_dp]
@@ -55,6 +56,6 @@ contains
       eout%ke(1:nd, i) = ein%stiffness * g(i) * g(1:nd)
     end do
     if (wants(action, act_residual)) eout%fe(1:nd) = matmul(eout%ke(1:nd, 1:nd), ein%ue(1:nd))
-    if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
+    if (.not. wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = 0.0_dp
   end subroutine spring
 end module spring_element

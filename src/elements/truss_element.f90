@@ -52,6 +52,7 @@ contains
     nen = ein%nen
     nd = 2 * nen
     eout%ndof = nd
+    eout%ke(1:nd, 1:nd) = 0.0_dp
     eout%nip = ein%nip
     eout%detj_min = huge(1.0_dp)
     ea = ein%e * ein%area
@@ -73,6 +74,6 @@ contains
       end if
     end do
     if (wants(action, act_residual)) eout%fe(1:nd) = matmul(eout%ke(1:nd, 1:nd), ein%ue(1:nd))
-    if (.not. wants(action, act_tangent)) eout%ke = 0.0_dp
+    if (.not. wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = 0.0_dp
   end subroutine truss
 end module truss_element

@@ -64,7 +64,7 @@ contains
     ein%xy(:, 1) = xc + ein%gap0
     call element_routine(ior(act_tangent, act_residual), ein, eout)
 
-    err = maxval(abs(eout%ke(1:nd, 1:nd) - transpose(eout%ke(1:nd, 1:nd)))) / maxval(abs(eout%ke))
+    err = maxval(abs(eout%ke(1:nd, 1:nd) - transpose(eout%ke(1:nd, 1:nd)))) / maxval(abs(eout%ke(1:nd, 1:nd)))
     write(msg, '(a,es9.2)') 'relative asymmetry ', err
     call report(name // ': K_e symmetric (eq. 10)', err < 1.0e-15_dp, msg)
 
@@ -91,7 +91,7 @@ contains
       call element_routine(ior(act_tangent, act_residual), em, om)
       kfd(1:nd, j) = (op%fe(1:nd) - om%fe(1:nd)) / (2.0_dp * h)
     end do
-    err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / maxval(abs(eout%ke))
+    err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / maxval(abs(eout%ke(1:nd, 1:nd)))
     write(msg, '(a,es9.2)') 'relative difference ', err
     call report(name // ': K_e equals dF_int/dD_e by finite differences', err < 1.0e-6_dp, msg)
 
@@ -163,10 +163,10 @@ contains
       call element_routine(act_residual, em, om)
       kfd(1:nd, j) = (op%fe(1:nd) - om%fe(1:nd)) / (2.0_dp * h)
     end do
-    err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / maxval(abs(eout%ke))
+    err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / maxval(abs(eout%ke(1:nd, 1:nd)))
     write(msg, '(a,es9.2)') 'relative difference ', err
     call report('friction, ' // what // ': K_e equals dF_int/dD_e by finite differences', err < 1.0e-6_dp, msg)
-    asym = maxval(abs(eout%ke(1:nd, 1:nd) - transpose(eout%ke(1:nd, 1:nd)))) / maxval(abs(eout%ke))
+    asym = maxval(abs(eout%ke(1:nd, 1:nd) - transpose(eout%ke(1:nd, 1:nd)))) / maxval(abs(eout%ke(1:nd, 1:nd)))
     write(msg, '(a,es9.2)') 'relative asymmetry ', asym
     if (sliding) then
       call report('friction, ' // what // ': K_e unsymmetric', asym > 1.0e-3_dp, msg)

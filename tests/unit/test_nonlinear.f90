@@ -206,7 +206,7 @@ contains
     call element_routine(act_residual, ein, eplus)
     call report('residual without the tangent identical ' // name // ' ' // lname, &
                 all(eplus%fe(1:nd) == eout%fe(1:nd)) .and. all(eplus%hist == eout%hist) &
-                .and. all(eplus%ke == 0.0_dp), 'differs by ' // num(maxval(abs(eplus%fe(1:nd) - eout%fe(1:nd)))))
+                .and. all(eplus%ke(1:nd, 1:nd) == 0.0_dp), 'differs by ' // num(maxval(abs(eplus%fe(1:nd) - eout%fe(1:nd)))))
   end subroutine check_tangent
 
   !> Rigid motion: a rotation by 40 degrees and a translation (plane), a
