@@ -235,7 +235,7 @@ contains
         df33df = 0.0_dp
         if (abs(a(5, 5)) > 0.0_dp) df33df = -a(5, 1:4) / a(5, 5)
       end if
-      call condense5(a)
+      call condense(a)
       p(5) = 0.0_dp
     else
       call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out)
@@ -650,31 +650,21 @@ contains
     log_divided = 2.0_dp * r / (a + b)
   end function log_divided
 
-  !> Purpose: static condensation of the fourth (out-of-plane) row of a
-  !> tangent under s33 = 0: d_ij - d_i4 d_4j / d_44, row and column 4 zero.
-  pure subroutine condense(d)
-    real(dp), intent(inout) :: d(4, 4)
-    integer :: i, j
-    do j = 1, 3
-      do i = 1, 3
-        d(i, j) = d(i, j) - d(i, 4) * d(4, j) / d(4, 4)
+  !> Purpose: static condensation of the last (out-of-plane) row of a
+  !> tangent under a zero last stress (s33 = 0, d of order 4; P33 = 0, dP/dF
+  !> of order 5 with F33 last): a_ij - a_in a_nj / a_nn, row and column n
+  !> zero. A zero (or not finite) a_nn leaves a as it is.
+  pure subroutine condense(a)
+    real(dp), intent(inout) :: a(:, :)
+    integer :: i, j, n
+    n = size(a, 1)
+    if (.not. abs(a(n, n)) > 0.0_dp) return
+    do j = 1, n - 1
+      do i = 1, n - 1
+        a(i, j) = a(i, j) - a(i, n) * a(n, j) / a(n, n)
       end do
     end do
-    d(4, :) = 0.0_dp
-    d(:, 4) = 0.0_dp
+    a(n, :) = 0.0_dp
+    a(:, n) = 0.0_dp
   end subroutine condense
-
-  !> Purpose: the same for dP/dF under P33 = 0 (fifth component F33).
-  pure subroutine condense5(a)
-    real(dp), intent(inout) :: a(5, 5)
-    integer :: i, j
-    if (.not. abs(a(5, 5)) > 0.0_dp) return
-    do j = 1, 4
-      do i = 1, 4
-        a(i, j) = a(i, j) - a(i, 5) * a(5, j) / a(5, 5)
-      end do
-    end do
-    a(5, :) = 0.0_dp
-    a(:, 5) = 0.0_dp
-  end subroutine condense5
 end module material_laws
