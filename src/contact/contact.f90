@@ -23,7 +23,7 @@ module contact
   use growable, only: append
   use element_catalogue, only: catalogue, max_nodes
   use mesh_topology, only: is_boundary_edge
-  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, &
+  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, piece_point, edge_areas, edge_natural, &
                               edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line
   use contact_mortar, only: nearest_edge, face_cuts, edge_tol, mortar_t, mortar_integrals
@@ -518,14 +518,12 @@ contains
         do iv = 1, ncut - 1
           do ig = 1, 2
             npts = npts + 1
-            t = cuts(iv) + (cuts(iv + 1) - cuts(iv)) * 0.5_dp * (tg(ig) + 1.0_dp)
+            call piece_point(ref, cuts(iv), cuts(iv + 1), tg(ig), wg(ig), t, pref, area)
             call edge_at(ed, t, p, dpdt)
             call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest)
             if (best == 0) cycle
             ncoupled = ncoupled + 1
             w = edge_weights(ed, t)
-            call edge_at(ref, t, pref, dpdt)
-            area = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
             c = cfe_t(ns=3, snode=ed%node, sw=w, selem=sl%elem(f), sedge=sl%edge(f), sip=npts)
             call make_cfe(m, x, ip, pref, p, ms%elem(best), ms%edge(best), tbest, area, h, em, c)
             call add_cfe(cs, c)
@@ -749,21 +747,18 @@ contains
     if (present(changed)) changed = nchg
   end subroutine contact_research
 
-  !> Does the coupling point of c (configuration x) project onto the line
-  !> of its master edge within switch_band edge lengths of the edge?
+  !> Does the coupling point of c (configuration x) project onto its
+  !> master edge (project_to_edge, t not clamped) within switch_band edge
+  !> lengths of the edge's ends?
   logical function near_old_edge(m, x, c)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
     type(cfe_t), intent(in) :: c
     real(dp), parameter :: switch_band = 0.05_dp
-    type(edge_t) :: ed
-    real(dp) :: p(2), chord(2), t
+    real(dp) :: nvec(2), d, t
     near_old_edge = .false.
     if (c%nm > 0) return           ! a mortar coupling's support: re-paired
-    ed = get_edge(m, x, c%elem, c%edge)
-    p = matmul(x(:, c%snode(1:c%ns)), c%sw(1:c%ns))
-    chord = ed%x(:, 2) - ed%x(:, 1)
-    t = dot_product(p - ed%x(:, 1), chord) / max(dot_product(chord, chord), tiny(1.0_dp))
+    call project_to_edge(get_edge(m, x, c%elem, c%edge), matmul(x(:, c%snode(1:c%ns)), c%sw(1:c%ns)), t, nvec, d)
     near_old_edge = t >= -switch_band .and. t <= 1.0_dp + switch_band
   end function near_old_edge
 

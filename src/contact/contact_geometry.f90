@@ -12,7 +12,7 @@ module contact_geometry
   use shape_functions, only: line_shape, gauss_line
   implicit none
   private
-  public :: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, edge_weights, &
+  public :: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, edge_weights, piece_point, &
             area_factor, edge_length
 
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
@@ -113,6 +113,21 @@ contains
     nvec = [dp1(2), -dp1(1)] / norm2(dp1)
     d = dot_product(xs - p, nvec)
   end subroutine project_to_edge
+
+  !> Purpose: Gauss point xg (weight wg, on [-1, 1]) of the piece [t0, t1]
+  !> of edge ref (the reference configuration): its position t on the
+  !> edge, the point pref there and the area da it stands for (the piece's
+  !> length share times area_factor). The segment-to-segment integrals cut
+  !> faces into such pieces.
+  pure subroutine piece_point(ref, t0, t1, xg, wg, t, pref, da)
+    type(edge_t), intent(in) :: ref
+    real(dp), intent(in) :: t0, t1, xg, wg
+    real(dp), intent(out) :: t, pref(2), da
+    real(dp) :: dpdt(2)
+    t = t0 + (t1 - t0) * 0.5_dp * (xg + 1.0_dp)
+    call edge_at(ref, t, pref, dpdt)
+    da = 0.5_dp * wg * (t1 - t0) * norm2(dpdt) * area_factor(ref, t, pref(1))
+  end subroutine piece_point
 
   !> Purpose: area per unit length at position t of the edge, at radius
   !> r: the thickness there, or 2 pi r in axisymmetry (whole ring).

@@ -93,7 +93,7 @@
 module contact_master_multipliers
   use kinds, only: dp
   use model, only: model_t, surface_t
-  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_weights, area_factor, edge_length, &
+  use contact_geometry, only: edge_t, get_edge, edge_at, piece_point, project_to_edge, edge_weights, area_factor, edge_length, &
                               edge_areas
   use contact_mortar, only: nearest_edge, face_cuts
   use shape_functions, only: gauss_line
@@ -317,9 +317,7 @@ contains
         call face_cuts(m, x, mt, sl, dmax, cuts, ncut)
         do iv = 1, ncut - 1
           do ig = 1, 3
-            t = cuts(iv) + (cuts(iv + 1) - cuts(iv)) * 0.5_dp * (tg(ig) + 1.0_dp)
-            call edge_at(ref, t, pref, dpdt)
-            da = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
+            call piece_point(ref, cuts(iv), cuts(iv + 1), tg(ig), wg(ig), t, pref, da)
             wmst = edge_weights(mt, t)
             psiw = psi_weights(mt, t)
             call edge_at(mt, t, p, mdp)
@@ -351,9 +349,7 @@ contains
         call face_cuts(m, x, ed, ms, dmax, cuts, ncut)
         do iv = 1, ncut - 1
           do ig = 1, 3
-            t = cuts(iv) + (cuts(iv + 1) - cuts(iv)) * 0.5_dp * (tg(ig) + 1.0_dp)
-            call edge_at(ref, t, pref, dpdt)
-            da = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
+            call piece_point(ref, cuts(iv), cuts(iv + 1), tg(ig), wg(ig), t, pref, da)
             nsl = edge_weights(ref, t)
             call edge_at(ed, t, p, dpdt)
             call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest)

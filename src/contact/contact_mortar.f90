@@ -36,7 +36,7 @@ module contact_mortar
   use kinds, only: dp
   use small_matrices, only: inv3
   use model, only: model_t, surface_t
-  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_weights, area_factor, edge_length
+  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_weights, area_factor, edge_length, piece_point
   use shape_functions, only: gauss_line
   implicit none
   private
@@ -233,9 +233,7 @@ contains
       call face_cuts(m, x, ed, ms, dmax, cuts, ncut)
       do iv = 1, ncut - 1
         do ig = 1, 3
-          t = cuts(iv) + (cuts(iv + 1) - cuts(iv)) * 0.5_dp * (tg(ig) + 1.0_dp)
-          call edge_at(ref, t, pref, dpdt)
-          da = 0.5_dp * wg(ig) * (cuts(iv + 1) - cuts(iv)) * norm2(dpdt) * area_factor(ref, t, pref(1))
+          call piece_point(ref, cuts(iv), cuts(iv + 1), tg(ig), wg(ig), t, pref, da)
           nsl = edge_weights(ref, t)
           do q = 1, ed%nn
             k = pos(ed%node(q))
