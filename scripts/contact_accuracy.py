@@ -57,7 +57,7 @@ from hertz import HertzLine, effective_modulus  # noqa: E402
 CFE2D = os.path.join(ROOT, "bin", "cfe2d")
 MESHES = {"default": (0.05, 1), "q8": (0.1, 2), "ccx": (0.14, 1)}
 PAIR = "*CONTACT PAIR, SEARCH DISTANCE=1.0"
-COUPLINGS = {"nts": "", "sts": ", TYPE=SURFACE TO SURFACE, EXACT"}
+COUPLINGS = {"nts": ", TYPE=NODE TO SURFACE", "sts": ", TYPE=SURFACE TO SURFACE, EXACT"}
 RADIUS = 10.0
 ESTAR = effective_modulus(210000.0, 0.3)
 

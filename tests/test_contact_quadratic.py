@@ -19,6 +19,13 @@ E, NU = 1000.0, 0.3
 FACE_FACTOR = 3.0
 
 
+def coupling(pair):
+    """The pair's options: this file checks the paper's node-to-segment
+    coupling (Gauss points of 3-node faces), which the pair names since
+    segment-to-segment became the default; SYMMETRIC is node-to-segment."""
+    return pair if "SYMMETRIC" in pair or "TYPE=" in pair else ", TYPE=NODE TO SURFACE" + pair
+
+
 def two_blocks(lower, upper, nx1, nx2, state="S", d=0.03, g0=0.01, slave_kind="element", x0=0.0, pair=""):
     """Lower block [x0, x0+1] x [0, 1] (master, nx1 across), upper block
     g0 above it (slave, nx2 across), the upper top pushed down by d."""
@@ -40,7 +47,7 @@ def two_blocks(lower, upper, nx1, nx2, state="S", d=0.03, g0=0.01, slave_kind="e
 {E}, {NU}
 *SOLID SECTION, ELSET=LOWER, MATERIAL=M
 *SOLID SECTION, ELSET=UPPER, MATERIAL=M
-*CONTACT PAIR{pair}
+*CONTACT PAIR{coupling(pair)}
 SLAVE, MASTER
 *BOUNDARY
 GROUND, 2, 2
@@ -201,7 +208,7 @@ def shrink_deck(inner, outer, state, n_inner=28, n_outer=14, pair=""):
 {E}, {NU}
 *SOLID SECTION, ELSET=INNER, MATERIAL=M
 *SOLID SECTION, ELSET=OUTER, MATERIAL=M
-*CONTACT PAIR{pair}
+*CONTACT PAIR{coupling(pair)}
 SLAVE, MASTER
 *BOUNDARY
 {bcs}*STEP

@@ -76,7 +76,7 @@ def test_nafems1_cfe2d_contact_pair_gives_the_same_answer():
         deck = deck.replace("*SURFACE INTERACTION, NAME=FRICTIONLESS\n", "")
         deck = deck.replace("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n", "")
         return deck.replace("*CONTACT PAIR, INTERACTION=FRICTIONLESS, TYPE=NODE TO SURFACE, SMALL SLIDING",
-                            "*CONTACT PAIR, EXACT")
+                            "*CONTACT PAIR, EXACT, TYPE=NODE TO SURFACE")
     _, ccx = run_case("nafems1")
     _, rows = run_case("nafems1_own", edit=own)
     for key in ("P", "a_FE", "p0_FE"):

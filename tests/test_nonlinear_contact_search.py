@@ -88,8 +88,9 @@ def target(x, y):
     return (mx + c * x - s * (y - D), my + s * x + c * (y - D))
 
 
-def deck(couplings=("",), static="*STATIC, DIRECT\n1., 1.\n", controls=""):
-    """One block per entry of couplings (the *CONTACT PAIR options of its pair: "" node-to-segment,
+def deck(couplings=(", TYPE=NODE TO SURFACE",), static="*STATIC, DIRECT\n1., 1.\n", controls=""):
+    """One block per entry of couplings (the *CONTACT PAIR options of its pair: ", TYPE=NODE TO SURFACE"
+    node-to-segment,
     ", TYPE=SURFACE TO SURFACE" mortar), all in the same place: blocks do not touch each other
     (no pair between them), so each is a model of its own in the same deck."""
     lines, elems, sets, pairs, bc = [], [], [], [], []
@@ -170,7 +171,7 @@ def polygon_distance(p):
     return best
 
 
-NTS, MORTAR = "", ", TYPE=SURFACE TO SURFACE"
+NTS, MORTAR = ", TYPE=NODE TO SURFACE", ", TYPE=SURFACE TO SURFACE"
 BOTH = (NTS, MORTAR)
 NAMES = {NTS: "node-to-segment", MORTAR: "mortar"}
 # (a)'s tolerance per coupling, relative to the edge. Node-to-segment puts

@@ -24,7 +24,10 @@ contains
   !> surface or a node set, the master an element surface; the parameters
   !> (penalty, search) apply to every pair of the card. SYMMETRIC adds the
   !> pair with the roles swapped (two-pass contact); TYPE=SURFACE TO
-  !> SURFACE is the segment-to-segment coupling, EXACT exact enforcement.
+  !> SURFACE is the segment-to-segment coupling, TYPE=NODE TO SURFACE the
+  !> paper's node-to-segment one, and without TYPE= the first where the
+  !> slave is an element surface (the second for INTERACTION=, as in
+  !> CalculiX and Abaqus); EXACT exact enforcement.
   !> The CalculiX/Abaqus form names a *SURFACE INTERACTION (INTERACTION=)
   !> for the penalty (HARD: exact enforcement); SMALL SLIDING keeps the first
   !> pairing (without it, CalculiX's large sliding, the pairing is searched
@@ -36,7 +39,7 @@ contains
     type(field_t), allocatable :: f(:)
     type(contact_pair_t) :: c
     integer :: n, npair, first, card
-    logical :: two_pass, sts
+    logical :: two_pass, sts, default_sts
     real(dp) :: ratio
     card = p%i
     associate(l => p%deck%lines(card))
@@ -50,8 +53,13 @@ contains
     two_pass = has_param(kw, 'SYMMETRIC')
     if (sts .and. two_pass) call err(p, 'SYMMETRIC (two-pass node-to-segment) and TYPE=SURFACE TO SURFACE ' // &
                                         '(segment-to-segment) exclude each other')
-    c%coupling = coupling_nts
-    if (sts) c%coupling = coupling_mortar
+    ! Without TYPE=, cfe2d's own pair (no INTERACTION=) is segment-to-
+    ! segment where it can be (an element slave surface, one pass): the
+    ! smoother, consistent coupling (docs/contact.md, "Which coupling is
+    ! the default"). A pair in CalculiX's and Abaqus's form (INTERACTION=)
+    ! keeps their default, node to surface, so that their decks mean here
+    ! what they mean there.
+    default_sts = .not. (has_param(kw, 'TYPE') .or. has_param(kw, 'INTERACTION') .or. two_pass)
     call pair_penalty(p, kw, c)
     ! exact enforcement: cfe2d's EXACT, or (INTERACTION=) a HARD behaviour,
     ! set once the deck is read (interaction_penalties)
@@ -80,6 +88,9 @@ contains
       c%twin = 0
       if (sts .and. m%surfaces(c%slave_surface)%kind /= surf_element) &
         call err(p, 'TYPE=SURFACE TO SURFACE (segment-to-segment) needs an element-based slave surface')
+      c%coupling = coupling_nts
+      if (sts .or. (default_sts .and. m%surfaces(c%slave_surface)%kind == surf_element)) &
+        c%coupling = coupling_mortar
       if (has_param(kw, 'ADJUST')) call adjust_slave_nodes(p, m, param_value(kw, 'ADJUST'), c)
       call add_pair(p, m, c)
       if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
@@ -142,8 +153,9 @@ contains
     mean_edge_length = mean_edge_length / max(size(s%elem), 1)
   end function mean_edge_length
 
-  !> TYPE= of *CONTACT PAIR: NODE TO SURFACE (cfe2d's own, one pass) or
-  !> SURFACE TO SURFACE (true: segment-to-segment, see docs/contact.md).
+  !> TYPE= of *CONTACT PAIR: NODE TO SURFACE (the paper's node-to-segment
+  !> coupling) or SURFACE TO SURFACE (true: segment-to-segment, see
+  !> docs/contact.md); absent: false (the caller picks the default).
   logical function surface_to_surface(p, kw)
     type(parser_t), intent(in) :: p
     type(keyword_t), intent(in) :: kw
