@@ -42,6 +42,11 @@ module contact_results
     logical :: frictional = .false.              ! the pair has a friction coefficient
     logical, allocatable :: slave_sliding(:)
     real(dp), allocatable :: slave_shear(:), slave_slip(:), slave_slip_inc(:)
+    ! the pressure and the shear traction at the row's point: force over
+    ! area, or with the multiplier on the master mesh the field at the
+    ! slave node (field_rows; the row's force is then the node's
+    ! consistent force, which sums to the total)
+    real(dp), allocatable :: slave_pressure(:), slave_traction(:)
     ! master rows
     integer, allocatable :: master_node(:)
     real(dp), allocatable :: master_force(:), master_area(:)
@@ -118,8 +123,8 @@ contains
         r%total_force = r%total_force + pr%total
         do j = 1, size(pr%slave_node)
           if (pr%slave_node(j) == 0) cycle
-          r%pressure(pr%slave_node(j)) = pr%slave_force(j) / pr%slave_area(j)
-          r%shear(pr%slave_node(j)) = pr%slave_shear(j) / pr%slave_area(j)
+          r%pressure(pr%slave_node(j)) = pr%slave_pressure(j)
+          r%shear(pr%slave_node(j)) = pr%slave_traction(j)
           r%has_pressure(pr%slave_node(j)) = .true.
         end do
         do j = 1, size(pr%master_node)
@@ -214,7 +219,10 @@ contains
     twin_tau = 0.0_dp
     call pass_results(m, cs, u, ip, r)
     it = m%pairs(ip)%twin
-    if (it == 0) return
+    if (it == 0) then
+      call row_tractions(r)
+      return
+    end if
     call pass_results(m, cs, u, it, rt)
     twin_force(rt%master_node) = rt%master_force
     twin_shear(rt%master_node) = rt%master_shear
@@ -252,7 +260,17 @@ contains
     r%resultant = r%resultant - rt%resultant
     r%nclosed = r%nclosed + rt%nclosed
     r%max_pen = max(r%max_pen, rt%max_pen)
+    call row_tractions(r)
   end subroutine pair_results
+
+  !> Purpose: the slave rows' pressure and shear traction, force over
+  !> area, where field_rows has not given them (the field's values).
+  subroutine row_tractions(r)
+    type(pair_results_t), intent(inout) :: r
+    if (allocated(r%slave_pressure)) return
+    r%slave_pressure = r%slave_force / r%slave_area
+    r%slave_traction = r%slave_shear / r%slave_area
+  end subroutine row_tractions
 
   !> Purpose: one pass: slave rows and the master-side forces its CFEs
   !> produce (each CFE force, normal and tangential, goes to the master
@@ -369,23 +387,29 @@ contains
   !> node): one row per slave node the field reaches, its pressure the
   !> field sum_m psi_m lambda_m at the node (lambda_m the CFE's pressure,
   !> closed CFEs only), its area the node's consistent area int N_j da,
-  !> its force the two's product, its gap the weighted gaps interpolated
-  !> the same way; closed (and sliding) where a closed (sliding) CFE
-  !> reaches it; the shear and the slips interpolated as the pressure.
+  !> its force the force the couplings put on it, sum_m lambda_m S_mj =
+  !> int lambda_h N_j da (so the rows sum to the pair's total), its gap
+  !> the weighted gaps interpolated as the pressure; closed (and sliding)
+  !> where a closed (sliding) CFE reaches it; the shear traction and the
+  !> slips interpolated as the pressure, the shear force as the force.
   subroutine field_rows(m, cs, u, ip, sel, r)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     real(dp), intent(in) :: u(:, :)
     integer, intent(in) :: ip, sel(:)
     type(pair_results_t), intent(inout) :: r
-    real(dp), allocatable :: p(:), tau(:), g(:), wsum(:), slip(:), slip_inc(:), area(:)
+    real(dp), allocatable :: p(:), tau(:), g(:), wsum(:), slip(:), slip_inc(:), area(:), fn(:), ft(:), gs(:), ws(:)
     logical, allocatable :: closed(:), sliding(:)
     integer, allocatable :: rows(:)
     real(dp) :: lam, ta, ps, ae(3)
     type(edge_t) :: ed
     integer :: k, q, j, n
     allocate(p(m%nn), tau(m%nn), g(m%nn), wsum(m%nn), slip(m%nn), slip_inc(m%nn), area(m%nn), closed(m%nn), &
-             sliding(m%nn))
+             sliding(m%nn), fn(m%nn), ft(m%nn), gs(m%nn), ws(m%nn))
+    fn = 0.0_dp
+    ft = 0.0_dp
+    gs = 0.0_dp
+    ws = 0.0_dp
     p = 0.0_dp
     tau = 0.0_dp
     g = 0.0_dp
@@ -405,6 +429,16 @@ contains
         end if
         do q = 1, c%nsl
           j = c%mnode(q)
+          ! the slave weights S_mj / D_m are -mw (the CFE's slave side);
+          ! an open CFE's force is not contact pressure (pass_results). A
+          ! node may have S_mj > 0 and psi_m = 0 at its own projection
+          ! (past the master's end): its row then has the force only.
+          if (c%closed) then
+            fn(j) = fn(j) + c%force * c%mw(q)
+            ft(j) = ft(j) + c%tforce * c%mw(q)
+          end if
+          gs(j) = gs(j) - c%mw(q) * c%gap
+          ws(j) = ws(j) - c%mw(q)
           ps = c%psi(q)
           if (ps <= 0.0_dp) cycle
           p(j) = p(j) + ps * lam
@@ -424,23 +458,34 @@ contains
         ae = edge_areas(ed)
         area(ed%node(1:ed%nn)) = area(ed%node(1:ed%nn)) + ae(1:ed%nn)
       end do
-      rows = pack(sl%nodes, wsum(sl%nodes) > 0.0_dp)
+      rows = pack(sl%nodes, wsum(sl%nodes) > 0.0_dp .or. fn(sl%nodes) /= 0.0_dp)
     end associate
     n = size(rows)
     deallocate(r%slave_node, r%slave_x, r%slave_gap, r%slave_closed, r%slave_force, r%slave_area, r%slave_sliding, &
                r%slave_shear, r%slave_slip, r%slave_slip_inc)
+    ! a row with no hat at its node: the S-weighted gap, no slip
+    where (.not. wsum > 0.0_dp)
+      g = gs
+      wsum = ws
+      slip = 0.0_dp
+      slip_inc = 0.0_dp
+      closed = fn /= 0.0_dp
+    end where
     r%slave_node = rows
     r%slave_x = m%x(:, rows) + u(:, rows)
     r%slave_gap = g(rows) / wsum(rows)
     r%slave_closed = closed(rows)
     r%slave_area = area(rows)
-    r%slave_force = p(rows) * area(rows)
+    r%slave_force = fn(rows)
+    r%slave_pressure = p(rows)
     r%slave_sliding = sliding(rows)
     r%slave_shear = 0.0_dp * area(rows)
+    r%slave_traction = 0.0_dp * area(rows)
     r%slave_slip = 0.0_dp * area(rows)
     r%slave_slip_inc = 0.0_dp * area(rows)
     if (r%frictional) then
-      r%slave_shear = tau(rows) * area(rows)
+      r%slave_shear = ft(rows)
+      r%slave_traction = tau(rows)
       r%slave_slip = slip(rows) / wsum(rows)
       r%slave_slip_inc = slip_inc(rows) / wsum(rows)
     end if

@@ -600,21 +600,21 @@ contains
       st = slave_state(r, j)
       if (r%frictional) then
         write(un, self%f_slave_fric, advance='no') nid, r%slave_x(:, j), r%slave_gap(j), st, r%slave_force(j), &
-          r%slave_area(j), r%slave_force(j) / r%slave_area(j), r%slave_shear(j), r%slave_shear(j) / r%slave_area(j), &
+          r%slave_area(j), r%slave_pressure(j), r%slave_shear(j), r%slave_traction(j), &
           r%slave_slip(j), r%slave_slip_inc(j)
       else
         write(un, self%f_slave, advance='no') nid, r%slave_x(:, j), &
-          r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_force(j) / r%slave_area(j)
+          r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_pressure(j)
       end if
       call end_row(un, m, r%slave_node(j))
       if (.not. self%has_csv) cycle
       if (res%contact%frictional) then
         write(self%csv, csv_slave_fric) res%step, res%increment, res%total_time, r%pair, nid, r%slave_x(:, j), &
-          r%slave_gap(j), trim(st), r%slave_force(j), r%slave_force(j) / r%slave_area(j), r%slave_shear(j), &
-          r%slave_shear(j) / r%slave_area(j), r%slave_slip(j), r%slave_slip_inc(j)
+          r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j), r%slave_shear(j), &
+          r%slave_traction(j), r%slave_slip(j), r%slave_slip_inc(j)
       else
         write(self%csv, csv_slave) res%step, res%increment, res%total_time, r%pair, nid, &
-          r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_force(j) / r%slave_area(j)
+          r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j)
       end if
     end do
     write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', r%pair, ' surface=' // &
