@@ -296,7 +296,8 @@ def test_mortar_master_multipliers_patch_test_graded():
     faces: the psi_m-weighted mean of the slave surface lies on the line,
     however far off node m along it), the total p times the width; one
     coupling element per master node, one slave row per slave node (the
-    field at the node). The selection: 3 over 5 (a coarser slave) keeps
+    field at the node; its force the node's, the rows summing to the total
+    to 1e-12). The selection: 3 over 5 (a coarser slave) keeps
     the dual mortar's one element per slave node (so does a frictional
     pair: test_mortar_frictional_patch_test_condensed_and_full)."""
     lower = lambda x: x + 0.12 * np.sin(np.pi * x)  # noqa: E731
@@ -309,5 +310,11 @@ def test_mortar_master_multipliers_patch_test_graded():
         print(f"  graded Q4 {n2} over {n1}: slave {es:.1e}, master {em:.1e}, {ncfe} coupling elements")
         assert es < 1e-8 and em < 1e-8 and abs(total - P_EXACT) < 1e-8 * P_EXACT, (n1, n2, es, em, total)
         assert ncfe == n1 + 1 and len(s["node"]) == n2 + 1 and all(n > 0 for n in s["node"]), (ncfe, s["node"])
+        # a row's force is the force on its node, int lambda_h N_j da: the
+        # rows sum to the total, and under a uniform p it is p times the
+        # node's consistent area
+        fs, area, ps = (np.array(s[k]) for k in ("force", "area", "pressure"))
+        assert abs(fs.sum() - total) < 1e-12 * total, (fs.sum(), total)
+        assert np.max(np.abs(fs - ps * area)) < 1e-8 * total, np.max(np.abs(fs - ps * area))
     run = run_deck("mortar_master_coarser_slave", two_blocks("Q4", "Q4", 5, 3, pair=STS + ", EXACT")).ok()
     assert int(re.search(r"coupling_elements (\d+)", open(run.listing_path).read()).group(1)) == 4
