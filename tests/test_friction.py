@@ -582,12 +582,12 @@ def test_cattaneo_mindlin_partial_slip_segment_to_segment():
 
     Where the premise of a node-to-segment check differs, the check is
     adapted (measured numbers in brackets):
-    * force balance: a slave row is the field at the node times its
-      consistent area, so the rows do not sum to the pair's force (+9.2e-5
-      of P, +5.6e-5 of Q* at Q*); the CONTACT SUMMARY's total_force and
-      shear_total, the master rows' sums, are the pair's forces, and they
-      meet node-to-segment's tolerances: P within 1e-6 (-2.9e-7, the open
-      multipliers' penalty) and Q within 1e-9 of Q* (4e-11);
+    * force balance: a slave row's force is the force the couplings put on
+      its node, so the rows sum to the CONTACT SUMMARY's total_force and
+      shear_total (the master rows' sums) to 1e-12 (when a row was the
+      field times the area they missed by +9.2e-5 of P, +5.6e-5 of Q*);
+      those meet node-to-segment's tolerances: P within 1e-6 (-2.9e-7,
+      the open multipliers' penalty) and Q within 1e-9 of Q* (4e-11);
     * Coulomb's law holds for each multiplier: each is within the cone
       (|tau_m| <= mu lambda_m + 1e-9 mu p0; measured 5e-16), hence so is
       every row (the hats are non-negative), and every STICK row is below
@@ -712,11 +712,14 @@ def check_cattaneo(coupling):
         big_p = np.sum(f["force"])
         big_q = np.sum(f["shear_force"])
         if field:
-            # the rows are the field times the consistent areas: the
-            # pair's forces are the summary's (the master rows' sums)
+            # a row's force is the force the couplings put on its node:
+            # the rows sum to the pair's forces, the summary's (the master
+            # rows' sums)
             summary = incs[step, inc].block("CONTACT SUMMARY", pair=1)
             rows_p, rows_q = big_p, big_q
             big_p, big_q = float(summary["total_force"][0]), float(summary["shear_total"][0])
+            assert abs(rows_p - big_p) < 1e-12 * CM_P and abs(rows_q - big_q) < 1e-12 * CM_QSTAR, \
+                (step, inc, rows_p - big_p, rows_q - big_q)
         q_applied = CM_QSTAR * (inc / CM_INCS[1] if step == 2 else 1.0 - inc / CM_INCS[2])
         h = HertzLine(big_p, CM_R, estar)
         p0, a = compare_hertz.fit_ellipse(x, p, 0.8 * h.a)
