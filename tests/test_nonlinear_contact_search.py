@@ -43,6 +43,7 @@ of the couplings the increment started with (their number and the
 equation numbering; a numbering that does not fit the couplings stops
 the run with an internal error) must give the same answer."""
 import math
+import os
 
 from helpers import run_deck
 
@@ -304,3 +305,20 @@ def test_force_driven_body_under_nlgeom_settles():
         assert all(s == "CLOSED" for s in slave["state"]), tag
         assert abs(summ["total_force"][0] - load) < 1e-3 * load, (tag, summ["total_force"])
         assert max(abs(slave["pressure"] - load / tc.W)) / (load / tc.W) < 0.01, tag
+
+
+def test_status_cycle_cut_back_at_once():
+    """A coupling that closes and opens in turn with the same out-of-
+    balance every second Newton iteration (tests/decks/soft_first_touch:
+    the fuzzer's Hertz seed with a neo-Hooke body a hundred thousand times
+    softer than the automatic penalty assumes; the plate node first
+    touched alternates between 1.26e7 closed and 2.8e-2 open) cuts the
+    increment back at once instead of after MAXIT = 100 iterations: the
+    run stops with the cycle named, at increment 4 as before, after 224
+    listed contact iterations (406 without the test; measured)."""
+    from helpers import HERE
+    run = run_deck("nl_status_cycle", path=os.path.join(HERE, "decks", "soft_first_touch", "hertz.inp"))
+    assert run.rc == 1, (run.rc, run.stderr[-500:])
+    assert "the contact status cycles" in run.stderr and "increment 4" in run.stderr, run.stderr[-500:]
+    iterations = open(run.listing_path).read().count("contact iteration")
+    assert iterations < 300, iterations

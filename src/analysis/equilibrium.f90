@@ -122,10 +122,13 @@ contains
     logical, intent(in), optional :: presc(:, :)
     type(mpc_t), intent(in), optional :: mpc
     real(dp), allocatable :: fint(:, :), u_start(:, :)
+    logical, allocatable :: closed1(:), closed2(:)
     integer :: it, a, d, nchanged, naug, nsearched
     logical :: restabilised, usable, converged, predict, searched
-    real(dp) :: scale, energy, c_max
-    allocate(fint(2, m%nn))
+    real(dp) :: scale, energy, c_max, res1, res2
+    allocate(fint(2, m%nn), closed1(0), closed2(0))
+    res1 = -1.0_dp
+    res2 = -1.0_dp
     ok = .false.
     cs%stabilised = .false.
     eq%stabilisation_used = .false.
@@ -257,6 +260,21 @@ contains
         end if
       end if
       call report_iteration(eq, cs, obs, it, nchanged)
+      if (body%nonlinear .and. nchanged > 0) then
+        ! The statuses and the out-of-balance of two iterations back again:
+        ! the Newton iterates cycle (a coupling closing and opening in
+        ! turn, as under a penalty far stiffer than a soft body) and would
+        ! do so until MAXIT; the increment is cut back now.
+        if (status_cycles(cs, closed2, res2, eq%residual)) then
+          call newton_failed(eq%newton, eq%newton%ctl%dc, 'the contact status cycles (the same statuses and ' // &
+                             'out-of-balance every second iteration)')
+          exit
+        end if
+        closed2 = closed1
+        res2 = res1
+        closed1 = cs%c(1:cs%n)%closed
+        res1 = eq%residual
+      end if
       if (nchanged == 0 .and. cs%stabilised) then
         ! settled while stabilised: a new search with the nominal open penalty
         cs%stabilised = .false.
@@ -290,6 +308,21 @@ contains
     if (body%nonlinear .and. eq%newton%cut >= 1.0_dp) call newton_failed(eq%newton, eq%newton%ctl%dc, &
       'the contact status did not settle in ' // itoa(m%contact_max_iter) // ' iterations')
   end subroutine solve_full
+
+  !> Purpose: are the couplings' statuses those of `closed` (two
+  !> iterations back) and the relative out-of-balance `res` that of then,
+  !> `res_was`, to 1e-6? (A repeat of both is a cycle of the iterates;
+  !> the coupling set must be the same one: a search that renumbered it
+  !> is no repeat.)
+  pure logical function status_cycles(cs, closed, res_was, res)
+    type(contact_set_t), intent(in) :: cs
+    logical, intent(in) :: closed(:)
+    real(dp), intent(in) :: res_was, res
+    status_cycles = .false.
+    if (size(closed) /= cs%n .or. res_was < 0.0_dp) return
+    if (any(cs%c(1:cs%n)%closed .neqv. closed)) return
+    status_cycles = abs(res - res_was) <= 1.0e-6_dp * max(abs(res), abs(res_was))
+  end function status_cycles
 
   !> Purpose: the contact of the configuration m%x + u within a Newton
   !> iteration (NLGEOM): contact_research pairs every slave point again
