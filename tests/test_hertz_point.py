@@ -41,7 +41,7 @@ def check_history(rs, what, face):
     between the master's corner nodes (contact_master_multipliers), and the
     fitted ellipse's radius is resolved to a fraction of a master face, more
     than 2 % while a spans a few of them (measured: CAX8 increment 1, a
-    over 4.9 faces, +3.95 % = 0.19 of a face; node-to-segment -0.59 %)."""
+    over 4.9 faces, +3.98 % = 0.19 of a face; node-to-segment -0.59 %)."""
     loaded = [r for r in rs if r["closed"] >= 3]
     assert len(loaded) == 15, f"{what}: {len(loaded)} increments in contact, expected 15 (1..15)"
     worst_a = max(abs(r["err_a"]) for r in loaded)

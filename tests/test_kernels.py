@@ -321,8 +321,8 @@ def plastic_cylinder():
 # name, what it covers, builder(dir) -> deck path
 DECKS = [
     ("hertz_point_cax4", "sphere on a flat, CAX4, h = 0.03 (tests/test_hertz_point.py): axisymmetric "
-     "node-to-segment, initial gap, loading and unloading", hertz_point(1, 0.03)),
-    ("hertz_point_cax8", "sphere on a flat, CAX8, h = 0.08: axisymmetric quadratic faces, Gauss points",
+     "segment-to-segment (the default), initial gap, loading and unloading", hertz_point(1, 0.03)),
+    ("hertz_point_cax8", "sphere on a flat, CAX8, h = 0.08: axisymmetric quadratic faces, segment-to-segment",
      hertz_point(2, 0.08)),
     ("hertz_coarse", "the flagship on its coarse mesh: plane stress line contact, gap, loading and unloading",
      hertz_coarse),
