@@ -7,13 +7,13 @@
 !> its first corner to its second (counter-clockwise around the element).
 module contact_geometry
   use kinds, only: dp
-  use model, only: model_t, edge_nodes, elem_thickness
+  use model, only: model_t, surface_t, edge_nodes, elem_thickness
   use element_catalogue, only: catalogue, max_nodes, is_triangle, state_axisymmetric, edge_node_count
   use shape_functions, only: line_shape, gauss_line
   implicit none
   private
   public :: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, edge_weights, piece_point, &
-            area_factor, edge_length
+            area_factor, edge_length, surface_areas
 
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
 
@@ -165,6 +165,25 @@ contains
       a = a + n * (0.5_dp * w(ig) * norm2(dpdt) * area_factor(ed, t, p(1)))
     end do
   end function edge_areas
+
+  !> Purpose: the consistent areas of the nodes of element surface s on
+  !> the reference configuration, sum over its faces of edge_areas
+  !> (a(nn): zero at the nodes not on s).
+  function surface_areas(m, s) result(a)
+    type(model_t), intent(in) :: m
+    type(surface_t), intent(in) :: s
+    real(dp), allocatable :: a(:)
+    real(dp) :: ae(3)
+    type(edge_t) :: ed
+    integer :: k
+    allocate(a(m%nn))
+    a = 0.0_dp
+    do k = 1, size(s%elem)
+      ed = get_edge(m, m%x, s%elem(k), s%edge(k))
+      ae = edge_areas(ed)
+      a(ed%node(1:ed%nn)) = a(ed%node(1:ed%nn)) + ae(1:ed%nn)
+    end do
+  end function surface_areas
 
   !> Purpose: natural coordinates of the point at position t along local
   !> edge k of an element of catalogue type et (the edge's parameter is

@@ -22,7 +22,7 @@ module contact_results
   use kinds, only: dp
   use model
   use contact, only: contact_set_t, coupling_node, max_cfe_master
-  use contact_geometry, only: edge_t, get_edge, edge_areas, edge_weights
+  use contact_geometry, only: edge_t, get_edge, edge_weights, surface_areas
   implicit none
   private
   public :: pair_results_t, contact_results_t, compute_contact_results, model_has_friction, slave_state
@@ -154,21 +154,11 @@ contains
     real(dp), intent(inout) :: pressure(:), shear(:)
     logical, intent(inout) :: has_pressure(:)
     real(dp), allocatable :: f(:), fs(:), a(:)
-    real(dp) :: ae(3)
-    type(edge_t) :: ed
     integer :: j, q
     if (.not. any(cs%c(1:cs%n)%pair == ip .and. cs%c(1:cs%n)%ns > 1)) return
-    allocate(a(m%nn))
     f = twin_force
     fs = twin_shear
-    a = 0.0_dp
-    associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
-      do j = 1, size(sl%elem)
-        ed = get_edge(m, m%x, sl%elem(j), sl%edge(j))
-        ae = edge_areas(ed)
-        a(ed%node(1:ed%nn)) = a(ed%node(1:ed%nn)) + ae(1:ed%nn)
-      end do
-    end associate
+    a = surface_areas(m, m%surfaces(m%pairs(ip)%slave_surface))
     do j = 1, cs%n
       associate(c => cs%c(j))
         ! open points carry no contact pressure (see pass_results)
@@ -284,7 +274,8 @@ contains
     type(pair_results_t), intent(out) :: r
     integer :: k, j, nm, ns, n, q
     integer, allocatable :: pos(:), sel(:)
-    real(dp) :: a(3), w(3), shear, ww(max_cfe_master)
+    real(dp), allocatable :: area(:)
+    real(dp) :: w(3), shear, ww(max_cfe_master)
     integer :: nw, wn(max_cfe_master)
     type(edge_t) :: ed
     r%pair = ip
@@ -307,15 +298,9 @@ contains
       end do
       r%master_force = 0.0_dp
       r%master_shear = 0.0_dp
-      r%master_area = 0.0_dp
       ! consistent areas: the integral of N_i over the master faces
-      do j = 1, size(ms%elem)
-        ed = get_edge(m, m%x, ms%elem(j), ms%edge(j))
-        a = edge_areas(ed)
-        do q = 1, ed%nn
-          r%master_area(pos(ed%node(q))) = r%master_area(pos(ed%node(q))) + a(q)
-        end do
-      end do
+      area = surface_areas(m, ms)
+      r%master_area = area(ms%nodes)
     end associate
     do j = 1, n
       associate(c => cs%c(sel(j)))
@@ -401,10 +386,9 @@ contains
     real(dp), allocatable :: p(:), tau(:), g(:), wsum(:), slip(:), slip_inc(:), area(:), fn(:), ft(:), gs(:), ws(:)
     logical, allocatable :: closed(:), sliding(:)
     integer, allocatable :: rows(:)
-    real(dp) :: lam, ta, ps, ae(3)
-    type(edge_t) :: ed
+    real(dp) :: lam, ta, ps
     integer :: k, q, j, n
-    allocate(p(m%nn), tau(m%nn), g(m%nn), wsum(m%nn), slip(m%nn), slip_inc(m%nn), area(m%nn), closed(m%nn), &
+    allocate(p(m%nn), tau(m%nn), g(m%nn), wsum(m%nn), slip(m%nn), slip_inc(m%nn), closed(m%nn), &
              sliding(m%nn), fn(m%nn), ft(m%nn), gs(m%nn), ws(m%nn))
     fn = 0.0_dp
     ft = 0.0_dp
@@ -416,7 +400,6 @@ contains
     wsum = 0.0_dp
     slip = 0.0_dp
     slip_inc = 0.0_dp
-    area = 0.0_dp
     closed = .false.
     sliding = .false.
     do k = 1, size(sel)
@@ -453,11 +436,7 @@ contains
       end associate
     end do
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
-      do k = 1, size(sl%elem)
-        ed = get_edge(m, m%x, sl%elem(k), sl%edge(k))
-        ae = edge_areas(ed)
-        area(ed%node(1:ed%nn)) = area(ed%node(1:ed%nn)) + ae(1:ed%nn)
-      end do
+      area = surface_areas(m, sl)
       rows = pack(sl%nodes, wsum(sl%nodes) > 0.0_dp .or. fn(sl%nodes) /= 0.0_dp)
     end associate
     n = size(rows)
