@@ -123,7 +123,12 @@ BENCH_ARGS ?=
 bench: $(BUILD)/bench bin/cfe2d
 	$(PYTHON) scripts/bench.py --exe $(BUILD)/bench $(BENCH_ARGS)
 
-run: deps bin/cfe2d
+# MUMPS is decided when make reads this file, before deps installs it: the
+# program is built by a second make, which reads the file after the install
+# (a fresh machine's `make run` would otherwise build without MUMPS, and the
+# `make check` after it build everything again).
+run: deps
+	$(MAKE) bin/cfe2d
 	$(PYTHON) scripts/run_hertz.py
 
 check: deps
