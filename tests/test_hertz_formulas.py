@@ -38,3 +38,13 @@ def test_half_width_scales_with_square_root_of_load():
     assert abs(a4 / a1 - 2.0) < 1e-12
     # a = sqrt(4 P R / (pi E*)) for P = 13921.87 N/mm: 1.2993 mm
     assert abs(HertzLine(13921.87, 10.0, estar).a - math.sqrt(4 * 13921.87 * 10 / (math.pi * estar))) < 1e-12
+
+
+def test_plots_draw_round_off_as_zero():
+    """The sigma_y contours of scripts/plots_hertz.py: values below 1e-9 of
+    the largest plotted magnitude (round-off of an unloaded increment) are
+    drawn as exact zeros; real stresses are kept."""
+    from plots_hertz import round_off_to_zero
+    v = round_off_to_zero([3.0e-9, -2.0e-7, -1500.0, 0.0, 4.0e-5], 7000.0)
+    assert list(v) == [0.0, 0.0, -1500.0, 0.0, 4.0e-5]
+    assert list(round_off_to_zero([1e-12, -1e-12], 0.0)) == [1e-12, -1e-12]
