@@ -1,6 +1,6 @@
 """The flagship verification: the paper's cylinder on a plate (default
 mesh, automatic penalty) against Hertz, for every increment in contact with
-P taken from the FE contact force. See README.md, "The flagship run"."""
+P taken from the FE contact force. See docs/flagship.md."""
 import os
 
 import numpy as np

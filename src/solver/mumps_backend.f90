@@ -87,7 +87,7 @@ contains
     integer, intent(in) :: n, ordering, xeq(:), eqs(:)
     call self%free()
     if (.not. solver_in_build(solver_mumps)) call fatal('MUMPS is not in this build of cfe2d (built without MPI or ' // &
-                                           'libmumps-dev; see README, "Several machines")')
+                                           'libmumps-dev; see docs/running.md, "Several machines")')
     call self%keep_structure(n, ordering, xeq, eqs)
     call csc_build(self%a, n, xeq, eqs, upper=.true.)
     self%sym = sym_symmetric
