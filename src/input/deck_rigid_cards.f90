@@ -296,6 +296,8 @@ contains
           eqs(ne)%dof = [d, d]
           eqs(ne)%coef = [1.0_dp, -1.0_dp]
         end if
+        eqs(ne)%rigid_ref = r%ref_node
+        eqs(ne)%rigid_rot = r%rot_node
       end do
     end do
     call append_equations(p, m, r, eqs(1:ne))

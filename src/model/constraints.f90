@@ -29,6 +29,15 @@ module constraints
     integer, allocatable :: xt(:)               ! (ndep + 1)
     integer, allocatable :: tnode(:), tdof(:)
     real(dp), allocatable :: tcoef(:)
+    !> (ndep) Rigid followers: a dependent dof made by a *RIGID BODY or
+    !> *KINEMATIC coupling whose terms are the reference node's dof
+    !> (rref) and the rotation (dof 1 of rrot), both independent, and that
+    !> no other constraint names, so that it can follow the exact rotation
+    !> u = u_ref + (R(theta) - I) roff of an NLGEOM step; rref 0 for the
+    !> other dependent dofs (their constraint stays linear). roff(2, ndep)
+    !> is the node's position relative to the reference node.
+    integer, allocatable :: rref(:), rrot(:)
+    real(dp), allocatable :: roff(:, :)
   end type mpc_t
 
   !> The equations' own terms (duplicates summed, the dependent dof's
@@ -58,14 +67,51 @@ contains
     allocate(mpc%dep(2, m%nn), mpc%xt(1))
     mpc%dep = 0
     mpc%xt(1) = 1
-    allocate(mpc%node(0), mpc%dof(0), mpc%tnode(0), mpc%tdof(0), mpc%tcoef(0))
+    allocate(mpc%node(0), mpc%dof(0), mpc%tnode(0), mpc%tdof(0), mpc%tcoef(0), mpc%rref(0), mpc%rrot(0), &
+             mpc%roff(2, 0))
     msg = ''
     bad = 0
     if (neqs == 0) return
     call raw_terms(m, mpc, raw, bad, msg)
     if (bad > 0) return
+    call rigid_followers(m, raw, mpc)
     call substitute(m, raw, mpc, bad, msg)
   end subroutine resolve_equations
+
+  !> Marks the rigid followers (mpc_t: rref, rrot, roff): equations made
+  !> by a rigid card (equation_t%rigid_ref) whose reference dof and
+  !> rotation are independent and whose dependent dof is no term of
+  !> another equation. A chain through a rigid card (its reference node
+  !> constrained or transformed, its node named by an *EQUATION) keeps
+  !> the linear, small-rotation form.
+  subroutine rigid_followers(m, raw, mpc)
+    type(model_t), intent(in) :: m
+    type(raw_t), intent(in) :: raw
+    type(mpc_t), intent(inout) :: mpc
+    logical, allocatable :: named(:)
+    integer :: k, j, i, a, r
+    deallocate(mpc%rref, mpc%rrot, mpc%roff)
+    allocate(named(mpc%ndep), mpc%rref(mpc%ndep), mpc%rrot(mpc%ndep), mpc%roff(2, mpc%ndep))
+    named = .false.
+    do k = 1, mpc%ndep
+      do j = raw%xr(k), raw%xr(k + 1) - 1
+        i = mpc%dep(raw%rdof(j), raw%rnode(j))
+        if (i > 0) named(i) = .true.
+      end do
+    end do
+    mpc%rref = 0
+    mpc%rrot = 0
+    mpc%roff = 0.0_dp
+    do k = 1, mpc%ndep
+      a = m%equations(k)%rigid_ref
+      r = m%equations(k)%rigid_rot
+      if (a == 0 .or. r == 0 .or. named(k)) cycle
+      if (mpc%dep(mpc%dof(k), a) > 0 .or. mpc%dep(1, r) > 0) cycle
+      mpc%rref(k) = a
+      mpc%rrot(k) = r
+      mpc%roff(:, k) = m%x(:, mpc%node(k)) - m%x(:, a)
+    end do
+  end subroutine rigid_followers
 
   !> Marks every equation's dependent dof and collects its other terms,
   !> duplicates summed, as coefficients of u_d = sum c u.
