@@ -384,6 +384,32 @@ def test_load_in_local_axes_equals_its_global_components():
     assert max(np.abs(ua[n] - ub[n]).max() for n in ub) < 1e-12 * scale
 
 
+def test_transform_with_a_point_out_of_the_plane_uses_its_in_plane_part():
+    """A rectangular *TRANSFORM whose points lie out of the x-y plane (b
+    lifted by 1.7 above the incline's system, a by 0.4, both scaled) is
+    read as its in-plane projection, with a warning quoting the data line:
+    the incline's results are those of the in-plane system (1e-14).
+    (CalculiX 2.20 keeps the tilted system and holds the node along its
+    tilted local z axis: in a plane-strain model the node then moves out
+    of the plane, by 1.56e-3 for a local 0.01 along a = (1, 1, 0) with b =
+    (-1, 1, 1); no reference.)"""
+    plain, _ = incline_deck()
+    flat = f"{C30!r}, {S30!r}, 0., {-S30!r}, {C30!r}, 0."
+    lifted = f"{2 * C30!r}, {2 * S30!r}, 0.4, {-3 * S30!r}, {3 * C30!r}, 1.7"
+    deck = plain.replace(f"*TRANSFORM, NSET=BASE, TYPE=R\n{flat}\n", f"*TRANSFORM, NSET=BASE, TYPE=R\n{lifted}\n")
+    assert deck != plain
+    run = run_deck("incline_lifted", deck).ok()
+    line = deck.splitlines().index(lifted) + 1
+    assert f"incline_lifted.inp:{line}: warning: *TRANSFORM: a 2D model's local z axis is the global one" in \
+        run.stderr and "the in-plane parts (a1, a2) and (b1, b2) are used" in run.stderr, run.stderr
+    ref = run_deck("incline_flat", plain).ok()
+    assert "warning" not in ref.stderr, ref.stderr
+    ua, _ = node_values(run)
+    ub, _ = node_values(ref)
+    scale = max(np.abs(v).max() for v in ub.values())
+    assert max(np.abs(ua[n] - ub[n]).max() for n in ub) < 1e-14 * scale
+
+
 def test_cylindrical_system_turns_a_plate_rigidly():
     """TYPE=C about the z axis through the origin: every node of a plate
     held radially (local dof 1 = 0) and moved tangentially by r theta
@@ -578,8 +604,10 @@ BAD = (
          "11, 1, 1, 0.1", "rotation about the x axis"),
         ("ref_dof4", "*RIGID BODY, ELSET=ALL, REF NODE=10\n*BOUNDARY\n10, 4, 4, 0.1\n", "10, 4, 4, 0.1",
          "rotation about the x axis"),
-        ("tr_tilted", "*TRANSFORM, NSET=LEFT\n1., 0., 1., 0., 1., 0.\n", "1., 0., 1., 0., 1., 0.",
-         "must lie in the x-y plane"),
+        ("tr_axis_z", "*TRANSFORM, NSET=LEFT\n0., 0., 1., 0., 1., 0.\n", "0., 0., 1., 0., 1., 0.",
+         "lies on the z axis"),
+        ("tr_b_above_a", "*TRANSFORM, NSET=LEFT\n1., 0., 0., 2., 0., 1.\n", "1., 0., 0., 2., 0., 1.",
+         "its in-plane part does"),
         ("tr_line", "*TRANSFORM, NSET=LEFT\n1., 1., 0., 2., 2., 0.\n", "1., 1., 0., 2., 2., 0.",
          "lies on the local x axis"),
         ("tr_cyl_axis", "*TRANSFORM, NSET=LEFT, TYPE=C\n0., 0., 0., 1., 0., 0.\n", "0., 0., 0., 1., 0., 0.",

@@ -18,7 +18,7 @@
 !> redirected, and its own (global) dofs are made dependent on them.
 submodule (deck_parser) deck_rigid_cards
   use kinds, only: dp
-  use strings, only: split_fields, to_upper, field_t, itoa
+  use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: line_text, err, next_data, allow_params, get_real, get_int, is_label, node_ref, &
                          need_nset, need_elset, warn_empty_set, check_name_length, max_id
@@ -547,8 +547,9 @@ contains
 
   !> Purpose: *TRANSFORM, NSET=, TYPE=R (default) or C; one data line
   !> `a1, a2, a3, b1, b2, b3`. R: x' along a, y' in the plane of a and b
-  !> (towards b); both must lie in the x-y plane (CalculiX: the local z
-  !> axis of a plane model is the global one). C: a and b on the
+  !> (towards b), in the x-y plane (the local z axis of a plane model is
+  !> the global one): a point out of the plane is taken by its in-plane
+  !> part, with a warning (rectangular_axes). C: a and b on the
   !> cylinder's axis, which must be parallel to z (a and b differ only in
   !> z): x' radial from the axis through the node, y' tangential (z' x x',
   !> z' from a to b); a node on the axis has no radial direction. The
@@ -561,7 +562,7 @@ contains
     type(transform_t) :: t
     type(field_t), allocatable :: f(:)
     character(len=:), allocatable :: kind
-    real(dp) :: e1(2), e2(2), scale, d(2)
+    real(dp) :: scale, d(2)
     integer :: n, k, a
     call allow_params(p, kw, 'NSET,TYPE')
     if (.not. has_param(kw, 'NSET')) call err(p, 'missing parameter NSET')
@@ -583,17 +584,7 @@ contains
       t%b(k) = get_real(p, f(k + 3), 'coordinate of point b')
     end do
     if (t%kind == transform_rectangular) then
-      if (norm2(t%a) == 0.0_dp) call err(p, 'point a is the origin: it gives no direction for the local x axis')
-      if (abs(t%a(3)) > small * norm2(t%a) .or. abs(t%b(3)) > small * max(norm2(t%b), norm2(t%a))) &
-        call err(p, 'a and b must lie in the x-y plane (a3 = b3 = 0): a 2D model''s local z axis is the ' // &
-                 'global one')
-      e1 = t%a(1:2) / norm2(t%a(1:2))
-      e2 = t%b(1:2) - dot_product(t%b(1:2), e1) * e1
-      if (norm2(e2) <= small * max(norm2(t%b), norm2(t%a))) call err(p, 'point b lies on the local x axis ' // &
-        '(the line through the origin and a): it does not fix the local y axis')
-      e2 = e2 / norm2(e2)
-      t%axes(:, 1) = e1
-      t%axes(:, 2) = e2
+      call rectangular_axes(p, t)
     else
       scale = max(norm2(t%a), norm2(t%b), 1.0_dp)
       if (norm2(t%a(1:2) - t%b(1:2)) > small * scale .or. t%a(3) == t%b(3)) call err(p, 'TYPE=C in a 2D ' // &
@@ -611,6 +602,37 @@ contains
     call grow(m%node_transform, m%nn, fill=0)
     m%node_transform(m%nsets(t%nset)%items) = size(m%transforms)
   end subroutine read_transform
+
+  !> The axes of a rectangular *TRANSFORM (its data line current): x'
+  !> along a, y' perpendicular to it in the x-y plane, on the side of b.
+  !> A 2D model's local z axis is the global one, so a point out of the
+  !> plane (a3 or b3 not 0) is taken by its in-plane part, (a1, a2) and
+  !> (b1, b2): the in-plane projection of the 3D system (x' along a, y' in
+  !> the plane of a and b), with a warning at the line. (CalculiX 2.20
+  !> keeps the tilted 3D system and holds the node's displacement along
+  !> its tilted local z axis: in a plane model that moves the node out of
+  !> the plane and shifts it in the plane; measured.) An error where the
+  !> in-plane parts give no axes: a on the z axis, or b's in-plane part
+  !> on the line of a (then y' would be the global z axis).
+  subroutine rectangular_axes(p, t)
+    type(parser_t), intent(inout) :: p
+    type(transform_t), intent(inout) :: t
+    real(dp) :: e1(2), e2(2), scale
+    scale = max(norm2(t%a), norm2(t%b))
+    if (norm2(t%a) == 0.0_dp) call err(p, 'point a is the origin: it gives no direction for the local x axis')
+    if (norm2(t%a(1:2)) <= small * norm2(t%a)) call err(p, 'point a lies on the z axis: its in-plane part ' // &
+      'gives no direction for the local x axis of a 2D model')
+    e1 = t%a(1:2) / norm2(t%a(1:2))
+    e2 = t%b(1:2) - dot_product(t%b(1:2), e1) * e1
+    if (norm2(e2) <= small * scale) call err(p, 'point b lies on the local x axis (the line through the ' // &
+      'origin and a), or its in-plane part does: it does not fix a local y axis in the x-y plane')
+    if (abs(t%a(3)) > small * scale .or. abs(t%b(3)) > small * scale) call deck_warning(p%deck, p%i, &
+      '*TRANSFORM: a 2D model''s local z axis is the global one; point a or b lies out of the x-y plane ' // &
+      '(a3 = ' // rtoa(t%a(3), 6) // ', b3 = ' // rtoa(t%b(3), 6) // '): the in-plane parts (a1, a2) and ' // &
+      '(b1, b2) are used')
+    t%axes(:, 1) = e1
+    t%axes(:, 2) = e2 / norm2(e2)
+  end subroutine rectangular_axes
 
   ! ------------------------------------------------ once the deck is read
 
