@@ -133,6 +133,7 @@ contains
     cs%stabilised = .false.
     eq%stabilisation_used = .false.
     call expand_dependent(dm, u)
+    if (body%nlgeom) call follow_rotations(dm, u)
     predict = .false.
     if (body%nonlinear) then
       call newton_begin(eq%newton)
