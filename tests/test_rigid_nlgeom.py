@@ -329,3 +329,22 @@ def test_moment_on_a_rigid_body_held_by_a_spring_turns_it_finitely():
     small = MOMENT / (SPRING_K * OFF[0] ** 2)
     assert abs(linear - small) < 1e-12 * small, (linear, small)
     assert linear - theta > 0.03, (theta, linear)
+
+
+def test_rotation_carried_over_two_nlgeom_steps():
+    """The rigid element and its free neighbour turned by 1.25 rad in a
+    first NLGEOM step and on to 2.5 rad in a second (the reference node
+    moved in the first): the second step starts from the turned state and
+    ends at the rigid motion of 2.5 rad, every node to 1e-9."""
+    ref, uref, theta = (0.5, 0.5), (0.5, -0.25), 2.5
+    deck = neighbour_deck(theta, uref).replace(f"10, 3, 3, {theta!r}\n", "")
+    first = deck[deck.index("*STEP"):]
+    steps = first.replace("*STATIC", f"*BOUNDARY\n10, 3, 3, {theta / 2!r}\n*STATIC") + \
+        first.replace("*STATIC", f"*BOUNDARY\n10, 3, 3, {theta!r}\n*STATIC")
+    run = run_deck("rigid_nl_two_steps", deck.replace(first, steps)).ok()
+    assert len(run.listing.increments) == 8
+    u = displacements(run)
+    xs = {1: (0, 0), 2: (1, 0), 3: (1, 1), 4: (0, 1), 5: (2, 0), 6: (2, 1)}
+    for nid, x in xs.items():
+        exact = rigid_u(x, ref, uref, theta)
+        assert np.abs(u[nid] - exact).max() < 1e-9, (nid, u[nid], exact)
