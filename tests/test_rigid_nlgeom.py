@@ -348,3 +348,40 @@ def test_rotation_carried_over_two_nlgeom_steps():
     for nid, x in xs.items():
         exact = rigid_u(x, ref, uref, theta)
         assert np.abs(u[nid] - exact).max() < 1e-9, (nid, u[nid], exact)
+
+
+def test_kinematic_coupling_in_nlgeom_contact_equals_the_prescribed_motion():
+    """The NLGEOM contact search decks (tests/test_nonlinear_contact_search:
+    a block slid ten edges along a bowl, turned by 10 degrees, node-to-
+    segment and mortar) with the block's top driven through a kinematic
+    coupling to a reference node (moved and turned by 10 degrees) instead
+    of prescribed node by node: the same rigid motion of the top, so the
+    same answer: the bottom nodes' displacements and the top's resultant
+    (the reference node's reaction) to 1e-12. The small-rotation coupling
+    stretched the top by theta^2/2 and moved the bottom by 1.5e-4."""
+    from test_nonlinear_contact_search import deck, target, THETA, H, BLOCK_NODE_OFFSET
+    both = (", TYPE=NODE TO SURFACE", ", TYPE=SURFACE TO SURFACE")
+    text = deck(both)
+    prescribed = run_deck("kinematic_nl_contact_prescribed", text).ok()
+    tx, ty = target(0.0, H)
+    refs, couplings = "", ""
+    for b in range(2):
+        o = BLOCK_NODE_OFFSET * b
+        for n in (o + 7, o + 8, o + 9):
+            text = "\n".join(line for line in text.split("\n") if not line.startswith(f"{n}, 1, 1, ")
+                             and not line.startswith(f"{n}, 2, 2, "))
+        refs += f"{300 + b}, 0.0, {H!r}\n"
+        couplings += f"*SURFACE, NAME=T{b}, TYPE=NODE\nTOP{b}\n*COUPLING, REF NODE={300 + b}, SURFACE=T{b}\n*KINEMATIC\n"
+        text = text.replace("*NODE PRINT, NSET=BOTTOM0", f"{300 + b}, 1, 1, {tx!r}\n{300 + b}, 2, 2, {ty - H!r}\n"
+                            f"{300 + b}, 6, 6, {THETA!r}\n*NODE PRINT, NSET=BOTTOM0")
+    text = text.replace("*MATERIAL, NAME=M", f"*NODE, NSET=REFS\n{refs}{couplings}*MATERIAL, NAME=M", 1)
+    text = text.replace("*END STEP", "*NODE PRINT, NSET=REFS\nRF\n*END STEP")
+    coupled = run_deck("kinematic_nl_contact_coupled", text).ok()
+    a, c = prescribed.listing.increments[-1], coupled.listing.increments[-1]
+    for b in range(2):
+        ua = np.array([r[1:3] for r in a.block("NODE U", set=f"BOTTOM{b}").rows], dtype=float)
+        uc = np.array([r[1:3] for r in c.block("NODE U", set=f"BOTTOM{b}").rows], dtype=float)
+        assert np.abs(ua - uc).max() < 1e-12, (b, ua, uc)
+        top = np.array([r[1:3] for r in a.block("NODE RF", set=f"TOP{b}").rows], dtype=float).sum(axis=0)
+        ref = {int(r[0]): np.array(r[1:3], dtype=float) for r in c.block("NODE RF", set="REFS").rows}[300 + b]
+        assert np.abs(top - ref).max() < 1e-12 * np.abs(top).max(), (b, top, ref)
