@@ -385,3 +385,22 @@ def test_kinematic_coupling_in_nlgeom_contact_equals_the_prescribed_motion():
         top = np.array([r[1:3] for r in a.block("NODE RF", set=f"TOP{b}").rows], dtype=float).sum(axis=0)
         ref = {int(r[0]): np.array(r[1:3], dtype=float) for r in c.block("NODE RF", set="REFS").rows}[300 + b]
         assert np.abs(top - ref).max() < 1e-12 * np.abs(top).max(), (b, top, ref)
+
+
+def test_chained_rigid_body_warns_and_keeps_the_small_rotation():
+    """A reference node under a *TRANSFORM (its dofs follow a node of
+    local displacements: a chain of constraints) keeps the body at the
+    small rotation even under NLGEOM: a warning at the *RIGID BODY line
+    counts its constraints (8), and node (1, 0) moves by (0, theta) as in
+    a linear step. The unchained square gives no warning."""
+    theta = 0.3
+    deck = square_deck(theta).replace("*RIGID BODY", "*NSET, NSET=R9\n9\n*TRANSFORM, NSET=R9\n1., 1., 0., -1., 1., 0.\n"
+                                                      "*RIGID BODY")
+    run = run_deck("rigid_nl_chained", deck).ok()
+    line = deck.splitlines().index("*RIGID BODY, NSET=BODY, REF NODE=9, ROT NODE=10") + 1
+    assert f"rigid_nl_chained.inp:{line}: warning: 8 constraint(s) of this card keep the small rotation" in \
+        run.stderr, run.stderr
+    u = displacements(run)
+    assert np.abs(u[2] - [0.0, theta]).max() < 1e-12, u[2]
+    plain = run_deck("rigid_nl_unchained", square_deck(theta)).ok()
+    assert "warning" not in plain.stderr, plain.stderr

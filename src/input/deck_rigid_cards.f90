@@ -27,6 +27,7 @@ submodule (deck_parser) deck_rigid_cards
                    transform_rectangular, transform_cylindrical, node_axes
   use model_growth, only: grow
   use growable, only: grow
+  use constraints, only: rigid_chains
   implicit none
 
   !> Relative size below which a coordinate counts as zero (a direction
@@ -664,7 +665,31 @@ contains
       end do
     end do
     if (size(m%transforms) > 0) call apply_transforms(p, m, next_id)
+    call warn_chained_rigids(p, m)
   end subroutine finish_kinematic_cards
+
+  !> In a model with an NLGEOM step, a rigid card whose nodes a chain of
+  !> constraints keeps at the small rotation (constraints: rigid_chains;
+  !> its reference node constrained or transformed, its nodes named by an
+  !> *EQUATION) is told so at its line, with the count: never a small
+  !> rotation in silence where the others turn exactly.
+  subroutine warn_chained_rigids(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    logical, allocatable :: chained(:)
+    integer :: j, n
+    if (size(m%rigids) == 0 .or. p%nequations == 0 .or. .not. allocated(m%steps)) return
+    if (.not. any(m%steps%nlgeom)) return
+    chained = rigid_chains(m%equations(1:p%nequations), m%nn)
+    do j = 1, size(m%rigids)
+      n = count(chained .and. m%equations(1:p%nequations)%src%line == m%rigids(j)%src%line)
+      if (n == 0) cycle
+      call deck_warning(p%deck, m%rigids(j)%src%line, itoa(n) // ' constraint(s) of this card keep the small ' // &
+        'rotation in NLGEOM steps: its reference node or rotation is itself constrained (another card, an ' // &
+        '*EQUATION, a *TRANSFORM on the reference node), or an *EQUATION names its nodes; the other nodes ' // &
+        'follow the exact rotation')
+    end do
+  end subroutine warn_chained_rigids
 
   !> Gives node a (made while reading, id 0) the id next_id.
   subroutine give_id(p, m, a, next_id)
