@@ -13,7 +13,9 @@
 !> T_g^T k T_g, forces on dependent dofs go to their independent dofs
 !> (reduce_dependent: f_r = T^T f), and displacements of dependent dofs
 !> follow from the independent ones (expand_dependent). The system stays
-!> symmetric positive definite.
+!> symmetric positive definite. Under NLGEOM the nodes of rigid cards
+!> turn exactly (follow_rotations: their motion and their rows of T at the
+!> current rotation, updated in every Newton iteration).
 module dof_numbering
   use kinds, only: dp
   use strings, only: itoa

@@ -1,7 +1,10 @@
 !> Cards that tie nodes to a reference node or turn the axes of their
 !> dofs, all imposed as linear constraints (equation_t, the form of
 !> *EQUATION) with small rotations: *RIGID BODY, *COUPLING with
-!> *KINEMATIC or *DISTRIBUTING, and *TRANSFORM.
+!> *KINEMATIC or *DISTRIBUTING, and *TRANSFORM. The equations of *RIGID
+!> BODY and *KINEMATIC name their reference and rotation nodes
+!> (equation_t%rigid_ref, rigid_rot), by which an NLGEOM step turns
+!> their nodes exactly (dof_numbering: follow_rotations).
 !>
 !> A reference node's in-plane rotation theta is dof 1 of a rotation
 !> node: the user's ROT NODE (CalculiX; in the deck its dof 3, the
