@@ -384,6 +384,32 @@ def test_load_in_local_axes_equals_its_global_components():
     assert max(np.abs(ua[n] - ub[n]).max() for n in ub) < 1e-12 * scale
 
 
+def test_transform_with_a_point_out_of_the_plane_uses_its_in_plane_part():
+    """A rectangular *TRANSFORM whose points lie out of the x-y plane (b
+    lifted by 1.7 above the incline's system, a by 0.4, both scaled) is
+    read as its in-plane projection, with a warning quoting the data line:
+    the incline's results are those of the in-plane system (1e-14).
+    (CalculiX 2.20 keeps the tilted system and holds the node along its
+    tilted local z axis: in a plane-strain model the node then moves out
+    of the plane, by 1.56e-3 for a local 0.01 along a = (1, 1, 0) with b =
+    (-1, 1, 1); no reference.)"""
+    plain, _ = incline_deck()
+    flat = f"{C30!r}, {S30!r}, 0., {-S30!r}, {C30!r}, 0."
+    lifted = f"{2 * C30!r}, {2 * S30!r}, 0.4, {-3 * S30!r}, {3 * C30!r}, 1.7"
+    deck = plain.replace(f"*TRANSFORM, NSET=BASE, TYPE=R\n{flat}\n", f"*TRANSFORM, NSET=BASE, TYPE=R\n{lifted}\n")
+    assert deck != plain
+    run = run_deck("incline_lifted", deck).ok()
+    line = deck.splitlines().index(lifted) + 1
+    assert f"incline_lifted.inp:{line}: warning: *TRANSFORM: a 2D model's local z axis is the global one" in \
+        run.stderr and "the in-plane parts (a1, a2) and (b1, b2) are used" in run.stderr, run.stderr
+    ref = run_deck("incline_flat", plain).ok()
+    assert "warning" not in ref.stderr, ref.stderr
+    ua, _ = node_values(run)
+    ub, _ = node_values(ref)
+    scale = max(np.abs(v).max() for v in ub.values())
+    assert max(np.abs(ua[n] - ub[n]).max() for n in ub) < 1e-14 * scale
+
+
 def test_cylindrical_system_turns_a_plate_rigidly():
     """TYPE=C about the z axis through the origin: every node of a plate
     held radially (local dof 1 = 0) and moved tangentially by r theta
@@ -578,8 +604,10 @@ BAD = (
          "11, 1, 1, 0.1", "rotation about the x axis"),
         ("ref_dof4", "*RIGID BODY, ELSET=ALL, REF NODE=10\n*BOUNDARY\n10, 4, 4, 0.1\n", "10, 4, 4, 0.1",
          "rotation about the x axis"),
-        ("tr_tilted", "*TRANSFORM, NSET=LEFT\n1., 0., 1., 0., 1., 0.\n", "1., 0., 1., 0., 1., 0.",
-         "must lie in the x-y plane"),
+        ("tr_axis_z", "*TRANSFORM, NSET=LEFT\n0., 0., 1., 0., 1., 0.\n", "0., 0., 1., 0., 1., 0.",
+         "lies on the z axis"),
+        ("tr_b_above_a", "*TRANSFORM, NSET=LEFT\n1., 0., 0., 2., 0., 1.\n", "1., 0., 0., 2., 0., 1.",
+         "its in-plane part does"),
         ("tr_line", "*TRANSFORM, NSET=LEFT\n1., 1., 0., 2., 2., 0.\n", "1., 1., 0., 2., 2., 0.",
          "lies on the local x axis"),
         ("tr_cyl_axis", "*TRANSFORM, NSET=LEFT, TYPE=C\n0., 0., 0., 1., 0., 0.\n", "0., 0., 0., 1., 0., 0.",
@@ -598,3 +626,114 @@ def test_rigid_cards_without_blanks():
     run = run_deck("rigid_noblanks", deck).ok()
     u, _ = node_values(run)
     assert abs(u[1][0] - (0.004 + 0.002 * REF[1])) < 1e-15
+
+
+# ------------------------------------------------ *RIGID BODY inside *PART
+
+CAE_PUNCH = """*Heading
+rigid punch part (as Abaqus/CAE writes it), two instances
+*Part, name=Base
+*Node
+1, 0., 0.
+2, 1., 0.
+3, 2., 0.
+4, 0., 1.
+5, 1., 1.
+6, 2., 1.
+*Element, type=CPE4
+1, 1, 2, 5, 4
+2, 2, 3, 6, 5
+*Elset, elset=All
+1, 2
+*Nset, nset=Bottom
+1, 2, 3
+*Solid Section, elset=All, material=Steel
+1.
+*End Part
+*Part, name=Punch
+*Node
+1, 0., 0.
+2, 0.5, 0.
+3, 0.5, 0.5
+4, 0., 0.5
+*Element, type=CPE4
+1, 1, 2, 3, 4
+*Node
+9, 0.25, 0.8
+*Nset, nset=_PickedSet4, internal
+9,
+*Elset, elset=_PickedSet5, internal
+1,
+*Solid Section, elset=_PickedSet5, material=Steel
+1.
+*Rigid Body, ref node=_PickedSet4, elset=_PickedSet5
+*End Part
+*Assembly, name=Assembly
+*Instance, name=Base-1, part=Base
+*End Instance
+*Instance, name=Punch-1, part=Punch
+0.2, 1.5, 0.
+*End Instance
+*Instance, name=Punch-2, part=Punch
+1.2, 1.5, 0.
+1.2, 1.5, 0., 1.2, 1.5, 1., 30.
+*End Instance
+*Nset, nset=RP1, instance=Punch-1
+9,
+*Nset, nset=RP2, instance=Punch-2
+9,
+*End Assembly
+*Material, name=Steel
+*Elastic
+1000., 0.3
+*Boundary
+Base-1.Bottom, 1, 2
+*Step
+*Static
+*Boundary
+RP1, 1, 1, 0.01
+RP1, 2, 2, -0.02
+RP1, 6, 6, 0.003
+RP2, 1, 2, 0.
+RP2, 6, 6, -0.004
+*Node print
+U
+*End Step
+"""
+
+
+def test_rigid_body_inside_a_part_is_instanced():
+    """Abaqus/CAE writes a rigid part's *RIGID BODY inside *PART, naming the
+    part's reference point and element set: each instance gets its own
+    rigid body (the sets and the reference node of that instance), placed
+    with it. Punch-1 (translated) and Punch-2 (translated and turned by 30
+    degrees) follow their own reference nodes, moved and turned by their
+    dof 6, by the small-rotation formula about the placed reference point
+    (to 1e-15); the listing names both bodies."""
+    run = run_deck("rigid_in_part", CAE_PUNCH).ok()
+    rows = run.listing.increments[-1].block("NODE U", set="ALL").rows
+    u = {r[3]: np.array(r[1:3], dtype=float) for r in rows}
+    part = {1: (0.0, 0.0), 2: (0.5, 0.0), 3: (0.5, 0.5), 4: (0.0, 0.5), 9: (0.25, 0.8)}
+    c, s = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
+    for inst, place, uref, theta in (("PUNCH-1", lambda x, y: (x + 0.2, y + 1.5), (0.01, -0.02), 0.003),
+                                     ("PUNCH-2", lambda x, y: (1.2 + c * x - s * y, 1.5 + s * x + c * y),
+                                      (0.0, 0.0), -0.004)):
+        xr = place(*part[9])
+        for label, xy in part.items():
+            x = place(*xy)
+            exact = np.array([uref[0] - theta * (x[1] - xr[1]), uref[1] + theta * (x[0] - xr[0])])
+            assert np.abs(u[f"{inst}.{label}"] - exact).max() < 1e-15, (inst, label, u[f"{inst}.{label}"], exact)
+    rb = header_block(run, "RIGID BODIES")
+    assert rb["name"] == ["PUNCH-1._PICKEDSET5", "PUNCH-2._PICKEDSET5"], rb.rows
+    assert rb["ref_node"] == ["PUNCH-1.9", "PUNCH-2.9"], rb.rows
+    assert all(abs(v) < 1e-15 for r in rows if str(r[3]).startswith("BASE") for v in r[1:3])
+
+
+def test_rigid_body_inside_a_part_naming_an_unknown_set_stops_at_its_line():
+    """A part's *RIGID BODY is read for each instance; a set the part does
+    not define stops the run at the card's line in the part."""
+    deck = CAE_PUNCH.replace("*Rigid Body, ref node=_PickedSet4, elset=_PickedSet5",
+                             "*Rigid Body, ref node=_PickedSet4, elset=NOSUCH")
+    run = run_deck("rigid_in_part_bad", deck)
+    line = deck.split("\n").index("*Rigid Body, ref node=_PickedSet4, elset=NOSUCH") + 1
+    assert run.rc != 0 and f"rigid_in_part_bad.inp:{line}: error: undefined element set" in run.stderr, run.stderr

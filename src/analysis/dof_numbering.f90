@@ -13,7 +13,9 @@
 !> T_g^T k T_g, forces on dependent dofs go to their independent dofs
 !> (reduce_dependent: f_r = T^T f), and displacements of dependent dofs
 !> follow from the independent ones (expand_dependent). The system stays
-!> symmetric positive definite.
+!> symmetric positive definite. Under NLGEOM the nodes of rigid cards
+!> turn exactly (follow_rotations: their motion and their rows of T at the
+!> current rotation, updated in every Newton iteration).
 module dof_numbering
   use kinds, only: dp
   use strings, only: itoa
@@ -27,7 +29,8 @@ module dof_numbering
   use growable, only: grow
   implicit none
   private
-  public :: dofmap_t, number_dofs, group_transform, has_dependent, expand_dependent, reduce_dependent
+  public :: dofmap_t, number_dofs, group_transform, has_dependent, expand_dependent, reduce_dependent, &
+            follow_rotations
 
   type :: dofmap_t
     integer :: neq = 0
@@ -38,6 +41,16 @@ module dof_numbering
     !> (2, nn) dofs without an equation because nothing reaches them: the
     !> unused dof of a node that only a constraint names (a reference node).
     logical, allocatable :: inactive(:, :)
+    !> Finite rotations (an NLGEOM step, once follow_rotations was called):
+    !> the rigid followers of the constraints (mpc_t%rref) move exactly,
+    !> u = u_ref + (R(theta) - I) roff, and their rows of T are the
+    !> derivatives at the current theta. rot_term(k) is the index of the
+    !> rotation's term of dependent dof k (0: not a rigid follower, or no
+    !> NLGEOM step in the model); it exists, with coefficient zero where the
+    !> linear constraint has none, in every numbering of a model with an
+    !> NLGEOM step, so that the equation structure holds for any theta.
+    logical :: finite = .false.
+    integer, allocatable :: rot_term(:)
   end type dofmap_t
 
 contains
@@ -151,9 +164,14 @@ contains
       dm%mpc = constraints
     else
       allocate(dm%mpc%dep(2, m%nn), dm%mpc%xt(1), dm%mpc%node(0), dm%mpc%dof(0), dm%mpc%tnode(0), &
-               dm%mpc%tdof(0), dm%mpc%tcoef(0))
+               dm%mpc%tdof(0), dm%mpc%tcoef(0), dm%mpc%rref(0), dm%mpc%rrot(0), dm%mpc%roff(2, 0))
       dm%mpc%dep = 0
       dm%mpc%xt = 1
+    end if
+    allocate(dm%rot_term(dm%mpc%ndep))
+    dm%rot_term = 0
+    if (allocated(m%steps) .and. allocated(dm%mpc%rref)) then
+      if (any(m%steps%nlgeom)) call rotation_terms(dm)
     end if
     call active_dofs(m, cs, prescribed, dm, numbered)
     allocate(perm(m%nn), dm%eq(2, m%nn))
@@ -334,12 +352,14 @@ contains
 
   !> Purpose: u at the dependent dofs from the independent ones: all of
   !> them, or the dependent dofs listed in only (indices into dm%mpc).
+  !> With finite rotations (dm%finite) the rigid followers take their
+  !> exact rigid motion (rigid_motion), the others their linear terms.
   pure subroutine expand_dependent(dm, u, only)
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(inout) :: u(:, :)
     integer, intent(in), optional :: only(:)
     integer :: q, k, j, n
-    real(dp) :: v
+    real(dp) :: v, g, dg
     n = dm%mpc%ndep
     if (present(only)) n = size(only)
     do q = 1, n
@@ -349,9 +369,110 @@ contains
       do j = dm%mpc%xt(k), dm%mpc%xt(k + 1) - 1
         v = v + dm%mpc%tcoef(j) * u(dm%mpc%tdof(j), dm%mpc%tnode(j))
       end do
+      if (dm%finite) then
+        if (dm%rot_term(k) > 0) then
+          call rigid_motion(dm%mpc, k, u(1, dm%mpc%rrot(k)), g, dg)
+          v = u(dm%mpc%dof(k), dm%mpc%rref(k)) + g
+        end if
+      end if
       u(dm%mpc%dof(k), dm%mpc%node(k)) = v
     end do
   end subroutine expand_dependent
+
+  !> Purpose: finite rotations for the Newton iteration of an NLGEOM step,
+  !> called after every update of u (and after a renumbering): each rigid
+  !> follower k (a node of a *RIGID BODY or *KINEMATIC coupling) is put at
+  !> its exact rigid motion, component d of
+  !>   u_j = u_ref + (R(theta) - I) (X_j - X_ref),
+  !> and the coefficient of theta in its row of T becomes the derivative
+  !> d/dtheta of that component at the current theta, so that the
+  !> assembled T^T K T and the residual T^T (f_int - f_ext) are those of
+  !> the current configuration. This is CalculiX's treatment of a rigid
+  !> body under NLGEOM (nonlinear MPCs whose coefficients are updated in
+  !> each iteration); the term (dT^T/dtheta) f of the constraint's
+  !> curvature is left out of the tangent, which stays convergent
+  !> (exact where theta is prescribed: the term acts on theta alone).
+  !> Arguments: dm the numbering, finite rotations switched on (dm%finite);
+  !> u the displacements, the rigid followers' dofs set.
+  pure subroutine follow_rotations(dm, u)
+    type(dofmap_t), intent(inout) :: dm
+    real(dp), intent(inout) :: u(:, :)
+    integer :: k
+    real(dp) :: g, dg
+    dm%finite = .true.
+    do k = 1, dm%mpc%ndep
+      if (dm%rot_term(k) == 0) cycle
+      call rigid_motion(dm%mpc, k, u(1, dm%mpc%rrot(k)), g, dg)
+      u(dm%mpc%dof(k), dm%mpc%node(k)) = u(dm%mpc%dof(k), dm%mpc%rref(k)) + g
+      dm%mpc%tcoef(dm%rot_term(k)) = dg
+    end do
+  end subroutine follow_rotations
+
+  !> Component d (= mpc%dof(k)) of the rigid motion of follower k turned
+  !> by theta about its reference node, g = ((R(theta) - I) r)_d with r =
+  !> mpc%roff(:, k), and its derivative dg/dtheta = (R'(theta) r)_d:
+  !>   g_1 = (cos - 1) r_1 - sin r_2,   g_2 = sin r_1 + (cos - 1) r_2,
+  !> cos - 1 written -2 sin^2(theta/2), exact to round-off for small theta.
+  pure subroutine rigid_motion(mpc, k, theta, g, dg)
+    type(mpc_t), intent(in) :: mpc
+    integer, intent(in) :: k
+    real(dp), intent(in) :: theta
+    real(dp), intent(out) :: g, dg
+    real(dp) :: c1, s, c, r(2)
+    r = mpc%roff(:, k)
+    s = sin(theta)
+    c = cos(theta)
+    c1 = -2.0_dp * sin(0.5_dp * theta)**2
+    if (mpc%dof(k) == 1) then
+      g = c1 * r(1) - s * r(2)
+      dg = -s * r(1) - c * r(2)
+    else
+      g = s * r(1) + c1 * r(2)
+      dg = c * r(1) - s * r(2)
+    end if
+  end subroutine rigid_motion
+
+  !> The term of the rotation (dof 1 of mpc%rrot) in the row of every
+  !> rigid follower, dm%rot_term; a follower whose linear row has none (a
+  !> node level with its reference node: zero coefficient at theta = 0)
+  !> gets one with coefficient zero, so that the numbering's structure
+  !> reaches theta for any rotation. The linear rows are otherwise kept.
+  pure subroutine rotation_terms(dm)
+    type(dofmap_t), intent(inout) :: dm
+    integer, allocatable :: xt(:), tn(:), td(:)
+    real(dp), allocatable :: tc(:)
+    integer :: k, j, n, nt
+    logical :: has
+    n = dm%mpc%ndep
+    allocate(xt(n + 1), tn(size(dm%mpc%tnode) + n), td(size(dm%mpc%tnode) + n), tc(size(dm%mpc%tnode) + n))
+    xt(1) = 1
+    nt = 0
+    do k = 1, n
+      has = .false.
+      do j = dm%mpc%xt(k), dm%mpc%xt(k + 1) - 1
+        nt = nt + 1
+        tn(nt) = dm%mpc%tnode(j)
+        td(nt) = dm%mpc%tdof(j)
+        tc(nt) = dm%mpc%tcoef(j)
+        if (dm%mpc%rref(k) == 0) cycle
+        if (tn(nt) /= dm%mpc%rrot(k) .or. td(nt) /= 1) cycle
+        has = .true.
+        dm%rot_term(k) = nt
+      end do
+      if (dm%mpc%rref(k) > 0 .and. .not. has) then
+        nt = nt + 1
+        tn(nt) = dm%mpc%rrot(k)
+        td(nt) = 1
+        tc(nt) = 0.0_dp
+        dm%rot_term(k) = nt
+      end if
+      xt(k + 1) = nt + 1
+    end do
+    dm%mpc%xt = xt
+    dm%mpc%tnode = tn(1:nt)
+    dm%mpc%tdof = td(1:nt)
+    dm%mpc%tcoef = tc(1:nt)
+  end subroutine rotation_terms
 
   !> Purpose: f := T^T f in place: each force on a dependent dof moves to
   !> its independent dofs (times their coefficients) and is zeroed there;

@@ -17,7 +17,7 @@ module equilibrium
   use contact, only: contact_set_t, status_codes, contact_forces, contact_research, cfe_nodes
   use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
   use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces
-  use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
+  use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent, follow_rotations
   use constraints, only: mpc_t
   use condensed_contact, only: number_equations
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
@@ -133,6 +133,7 @@ contains
     cs%stabilised = .false.
     eq%stabilisation_used = .false.
     call expand_dependent(dm, u)
+    if (body%nlgeom) call follow_rotations(dm, u)
     predict = .false.
     if (body%nonlinear) then
       call newton_begin(eq%newton)
@@ -228,6 +229,8 @@ contains
           searched = .true.
         end if
       end if
+      ! rigid bodies and kinematic couplings turn exactly under NLGEOM, T at the current theta
+      if (body%nlgeom) call follow_rotations(dm, u)
       call internal_forces(m, body, cs, u, fint, eq%counts, energy)
       ! the potential energy of this status's solution, eqs. (1) and (9)
       energy = energy - sum(fext * u) + contact_energy(cs)

@@ -23,9 +23,12 @@ submodule (deck_parser) deck_part_cards
   implicit none
 
   !> The cards a part (or an instance) may hold: its mesh, its sets and
-  !> surfaces, what gives its elements stiffness, and its own constraints.
+  !> surfaces, what gives its elements stiffness, and its own constraints
+  !> (*RIGID BODY: Abaqus/CAE writes a rigid part's, e.g. an indenter's,
+  !> inside the part, naming the part's sets and reference point; each
+  !> instance then has its own rigid body).
   character(len=16), parameter :: part_cards(*) = [character(len=16) :: 'NODE', 'ELEMENT', 'NSET', 'ELSET', &
-    'SURFACE', 'SOLID SECTION', 'SPRING', 'MASS', 'NODAL THICKNESS', 'EQUATION']
+    'SURFACE', 'SOLID SECTION', 'SPRING', 'MASS', 'NODAL THICKNESS', 'EQUATION', 'RIGID BODY']
 
 contains
 

@@ -1,7 +1,10 @@
 !> Cards that tie nodes to a reference node or turn the axes of their
 !> dofs, all imposed as linear constraints (equation_t, the form of
 !> *EQUATION) with small rotations: *RIGID BODY, *COUPLING with
-!> *KINEMATIC or *DISTRIBUTING, and *TRANSFORM.
+!> *KINEMATIC or *DISTRIBUTING, and *TRANSFORM. The equations of *RIGID
+!> BODY and *KINEMATIC name their reference and rotation nodes
+!> (equation_t%rigid_ref, rigid_rot), by which an NLGEOM step turns
+!> their nodes exactly (dof_numbering: follow_rotations).
 !>
 !> A reference node's in-plane rotation theta is dof 1 of a rotation
 !> node: the user's ROT NODE (CalculiX; in the deck its dof 3, the
@@ -18,7 +21,7 @@
 !> redirected, and its own (global) dofs are made dependent on them.
 submodule (deck_parser) deck_rigid_cards
   use kinds, only: dp
-  use strings, only: split_fields, to_upper, field_t, itoa
+  use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: line_text, err, next_data, allow_params, get_real, get_int, is_label, node_ref, &
                          need_nset, need_elset, warn_empty_set, check_name_length, max_id
@@ -27,6 +30,7 @@ submodule (deck_parser) deck_rigid_cards
                    transform_rectangular, transform_cylindrical, node_axes
   use model_growth, only: grow
   use growable, only: grow
+  use constraints, only: rigid_chains
   implicit none
 
   !> Relative size below which a coordinate counts as zero (a direction
@@ -296,6 +300,8 @@ contains
           eqs(ne)%dof = [d, d]
           eqs(ne)%coef = [1.0_dp, -1.0_dp]
         end if
+        eqs(ne)%rigid_ref = r%ref_node
+        eqs(ne)%rigid_rot = r%rot_node
       end do
     end do
     call append_equations(p, m, r, eqs(1:ne))
@@ -545,8 +551,9 @@ contains
 
   !> Purpose: *TRANSFORM, NSET=, TYPE=R (default) or C; one data line
   !> `a1, a2, a3, b1, b2, b3`. R: x' along a, y' in the plane of a and b
-  !> (towards b); both must lie in the x-y plane (CalculiX: the local z
-  !> axis of a plane model is the global one). C: a and b on the
+  !> (towards b), in the x-y plane (the local z axis of a plane model is
+  !> the global one): a point out of the plane is taken by its in-plane
+  !> part, with a warning (rectangular_axes). C: a and b on the
   !> cylinder's axis, which must be parallel to z (a and b differ only in
   !> z): x' radial from the axis through the node, y' tangential (z' x x',
   !> z' from a to b); a node on the axis has no radial direction. The
@@ -559,7 +566,7 @@ contains
     type(transform_t) :: t
     type(field_t), allocatable :: f(:)
     character(len=:), allocatable :: kind
-    real(dp) :: e1(2), e2(2), scale, d(2)
+    real(dp) :: scale, d(2)
     integer :: n, k, a
     call allow_params(p, kw, 'NSET,TYPE')
     if (.not. has_param(kw, 'NSET')) call err(p, 'missing parameter NSET')
@@ -581,17 +588,7 @@ contains
       t%b(k) = get_real(p, f(k + 3), 'coordinate of point b')
     end do
     if (t%kind == transform_rectangular) then
-      if (norm2(t%a) == 0.0_dp) call err(p, 'point a is the origin: it gives no direction for the local x axis')
-      if (abs(t%a(3)) > small * norm2(t%a) .or. abs(t%b(3)) > small * max(norm2(t%b), norm2(t%a))) &
-        call err(p, 'a and b must lie in the x-y plane (a3 = b3 = 0): a 2D model''s local z axis is the ' // &
-                 'global one')
-      e1 = t%a(1:2) / norm2(t%a(1:2))
-      e2 = t%b(1:2) - dot_product(t%b(1:2), e1) * e1
-      if (norm2(e2) <= small * max(norm2(t%b), norm2(t%a))) call err(p, 'point b lies on the local x axis ' // &
-        '(the line through the origin and a): it does not fix the local y axis')
-      e2 = e2 / norm2(e2)
-      t%axes(:, 1) = e1
-      t%axes(:, 2) = e2
+      call rectangular_axes(p, t)
     else
       scale = max(norm2(t%a), norm2(t%b), 1.0_dp)
       if (norm2(t%a(1:2) - t%b(1:2)) > small * scale .or. t%a(3) == t%b(3)) call err(p, 'TYPE=C in a 2D ' // &
@@ -609,6 +606,37 @@ contains
     call grow(m%node_transform, m%nn, fill=0)
     m%node_transform(m%nsets(t%nset)%items) = size(m%transforms)
   end subroutine read_transform
+
+  !> The axes of a rectangular *TRANSFORM (its data line current): x'
+  !> along a, y' perpendicular to it in the x-y plane, on the side of b.
+  !> A 2D model's local z axis is the global one, so a point out of the
+  !> plane (a3 or b3 not 0) is taken by its in-plane part, (a1, a2) and
+  !> (b1, b2): the in-plane projection of the 3D system (x' along a, y' in
+  !> the plane of a and b), with a warning at the line. (CalculiX 2.20
+  !> keeps the tilted 3D system and holds the node's displacement along
+  !> its tilted local z axis: in a plane model that moves the node out of
+  !> the plane and shifts it in the plane; measured.) An error where the
+  !> in-plane parts give no axes: a on the z axis, or b's in-plane part
+  !> on the line of a (then y' would be the global z axis).
+  subroutine rectangular_axes(p, t)
+    type(parser_t), intent(inout) :: p
+    type(transform_t), intent(inout) :: t
+    real(dp) :: e1(2), e2(2), scale
+    scale = max(norm2(t%a), norm2(t%b))
+    if (norm2(t%a) == 0.0_dp) call err(p, 'point a is the origin: it gives no direction for the local x axis')
+    if (norm2(t%a(1:2)) <= small * norm2(t%a)) call err(p, 'point a lies on the z axis: its in-plane part ' // &
+      'gives no direction for the local x axis of a 2D model')
+    e1 = t%a(1:2) / norm2(t%a(1:2))
+    e2 = t%b(1:2) - dot_product(t%b(1:2), e1) * e1
+    if (norm2(e2) <= small * scale) call err(p, 'point b lies on the local x axis (the line through the ' // &
+      'origin and a), or its in-plane part does: it does not fix a local y axis in the x-y plane')
+    if (abs(t%a(3)) > small * scale .or. abs(t%b(3)) > small * scale) call deck_warning(p%deck, p%i, &
+      '*TRANSFORM: a 2D model''s local z axis is the global one; point a or b lies out of the x-y plane ' // &
+      '(a3 = ' // rtoa(t%a(3), 6) // ', b3 = ' // rtoa(t%b(3), 6) // '): the in-plane parts (a1, a2) and ' // &
+      '(b1, b2) are used')
+    t%axes(:, 1) = e1
+    t%axes(:, 2) = e2 / norm2(e2)
+  end subroutine rectangular_axes
 
   ! ------------------------------------------------ once the deck is read
 
@@ -640,7 +668,31 @@ contains
       end do
     end do
     if (size(m%transforms) > 0) call apply_transforms(p, m, next_id)
+    call warn_chained_rigids(p, m)
   end subroutine finish_kinematic_cards
+
+  !> In a model with an NLGEOM step, a rigid card whose nodes a chain of
+  !> constraints keeps at the small rotation (constraints: rigid_chains;
+  !> its reference node constrained or transformed, its nodes named by an
+  !> *EQUATION) is told so at its line, with the count: never a small
+  !> rotation in silence where the others turn exactly.
+  subroutine warn_chained_rigids(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    logical, allocatable :: chained(:)
+    integer :: j, n
+    if (size(m%rigids) == 0 .or. p%nequations == 0 .or. .not. allocated(m%steps)) return
+    if (.not. any(m%steps%nlgeom)) return
+    chained = rigid_chains(m%equations(1:p%nequations), m%nn)
+    do j = 1, size(m%rigids)
+      n = count(chained .and. m%equations(1:p%nequations)%src%line == m%rigids(j)%src%line)
+      if (n == 0) cycle
+      call deck_warning(p%deck, m%rigids(j)%src%line, itoa(n) // ' constraint(s) of this card keep the small ' // &
+        'rotation in NLGEOM steps: its reference node or rotation is itself constrained (another card, an ' // &
+        '*EQUATION, a *TRANSFORM on the reference node), or an *EQUATION names its nodes; the other nodes ' // &
+        'follow the exact rotation')
+    end do
+  end subroutine warn_chained_rigids
 
   !> Gives node a (made while reading, id 0) the id next_id.
   subroutine give_id(p, m, a, next_id)

@@ -20,4 +20,4 @@ $(OBJDIR)/deck_compat_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $
 $(OBJDIR)/deck_load_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_constraint_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_part_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
-$(OBJDIR)/deck_rigid_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o
+$(OBJDIR)/deck_rigid_cards.o: $(OBJDIR)/constraints.o $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o

@@ -15,7 +15,7 @@ module constraints
   use model, only: model_t, equation_t, node_label
   implicit none
   private
-  public :: mpc_t, resolve_equations, constraint_label
+  public :: mpc_t, resolve_equations, constraint_label, rigid_chains
 
   !> The dependent dofs and, for each, its independent terms:
   !> u(dof(k), node(k)) = sum over j in xt(k):xt(k+1)-1 of
@@ -29,6 +29,15 @@ module constraints
     integer, allocatable :: xt(:)               ! (ndep + 1)
     integer, allocatable :: tnode(:), tdof(:)
     real(dp), allocatable :: tcoef(:)
+    !> (ndep) Rigid followers: a dependent dof made by a *RIGID BODY or
+    !> *KINEMATIC coupling whose terms are the reference node's dof
+    !> (rref) and the rotation (dof 1 of rrot), both independent, and that
+    !> no other constraint names, so that it can follow the exact rotation
+    !> u = u_ref + (R(theta) - I) roff of an NLGEOM step; rref 0 for the
+    !> other dependent dofs (their constraint stays linear). roff(2, ndep)
+    !> is the node's position relative to the reference node.
+    integer, allocatable :: rref(:), rrot(:)
+    real(dp), allocatable :: roff(:, :)
   end type mpc_t
 
   !> The equations' own terms (duplicates summed, the dependent dof's
@@ -58,14 +67,86 @@ contains
     allocate(mpc%dep(2, m%nn), mpc%xt(1))
     mpc%dep = 0
     mpc%xt(1) = 1
-    allocate(mpc%node(0), mpc%dof(0), mpc%tnode(0), mpc%tdof(0), mpc%tcoef(0))
+    allocate(mpc%node(0), mpc%dof(0), mpc%tnode(0), mpc%tdof(0), mpc%tcoef(0), mpc%rref(0), mpc%rrot(0), &
+             mpc%roff(2, 0))
     msg = ''
     bad = 0
     if (neqs == 0) return
     call raw_terms(m, mpc, raw, bad, msg)
     if (bad > 0) return
+    call rigid_followers(m, mpc)
     call substitute(m, raw, mpc, bad, msg)
   end subroutine resolve_equations
+
+  !> Marks the rigid followers (mpc_t: rref, rrot, roff): the equations
+  !> made by a rigid card (equation_t%rigid_ref, with a rotation node)
+  !> that no chain ties to other constraints (rigid_chains).
+  subroutine rigid_followers(m, mpc)
+    type(model_t), intent(in) :: m
+    type(mpc_t), intent(inout) :: mpc
+    logical, allocatable :: chained(:)
+    integer :: k, a, r
+    deallocate(mpc%rref, mpc%rrot, mpc%roff)
+    allocate(mpc%rref(mpc%ndep), mpc%rrot(mpc%ndep), mpc%roff(2, mpc%ndep))
+    chained = rigid_chains(m%equations, m%nn)
+    mpc%rref = 0
+    mpc%rrot = 0
+    mpc%roff = 0.0_dp
+    do k = 1, mpc%ndep
+      a = m%equations(k)%rigid_ref
+      r = m%equations(k)%rigid_rot
+      if (a == 0 .or. r == 0 .or. chained(k)) cycle
+      mpc%rref(k) = a
+      mpc%rrot(k) = r
+      mpc%roff(:, k) = m%x(:, mpc%node(k)) - m%x(:, a)
+    end do
+  end subroutine rigid_followers
+
+  !> Purpose: the equations of a *RIGID BODY or *KINEMATIC coupling (with
+  !> a rotation node) that a chain ties to other constraints, so that
+  !> they keep the linear, small-rotation form under NLGEOM: the
+  !> reference node's dof or the rotation is the dependent dof (first
+  !> term) of another equation (the reference node constrained, or under
+  !> a *TRANSFORM), or their own dependent dof is a term of another
+  !> equation. Read from the equations as written, before they are
+  !> resolved (the input layer warns with it).
+  !> Arguments: eqs the equations, nn the number of nodes; chained(k) for
+  !> eqs(k) (false for the others). Terms outside nodes 1..nn or dofs
+  !> 1..2 are left to resolve_equations to report.
+  pure function rigid_chains(eqs, nn) result(chained)
+    type(equation_t), intent(in) :: eqs(:)
+    integer, intent(in) :: nn
+    logical, allocatable :: chained(:)
+    integer, allocatable :: dep(:, :)
+    integer :: k, j, i, a, r
+    allocate(chained(size(eqs)), dep(2, nn))
+    dep = 0
+    do k = 1, size(eqs)
+      if (valid(eqs(k)%node(1), eqs(k)%dof(1))) dep(eqs(k)%dof(1), eqs(k)%node(1)) = k
+    end do
+    chained = .false.
+    do k = 1, size(eqs)
+      do j = 2, size(eqs(k)%node)
+        if (.not. valid(eqs(k)%node(j), eqs(k)%dof(j))) cycle
+        i = dep(eqs(k)%dof(j), eqs(k)%node(j))
+        if (i > 0 .and. i /= k) chained(i) = .true.
+      end do
+    end do
+    do k = 1, size(eqs)
+      a = eqs(k)%rigid_ref
+      r = eqs(k)%rigid_rot
+      if (a == 0 .or. r == 0) then
+        chained(k) = .false.
+      else if (valid(a, eqs(k)%dof(1)) .and. valid(r, 1)) then
+        chained(k) = chained(k) .or. dep(eqs(k)%dof(1), a) > 0 .or. dep(1, r) > 0
+      end if
+    end do
+  contains
+    pure logical function valid(node, dof)
+      integer, intent(in) :: node, dof
+      valid = node >= 1 .and. node <= nn .and. dof >= 1 .and. dof <= 2
+    end function valid
+  end function rigid_chains
 
   !> Marks every equation's dependent dof and collects its other terms,
   !> duplicates summed, as coefficients of u_d = sum c u.

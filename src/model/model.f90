@@ -260,6 +260,10 @@ module model
     !> The card that made it when not an *EQUATION (*TIE name, *PRE-TENSION
     !> SECTION surface), for messages once the deck's lines are gone.
     character(len=name_len + 24) :: origin = ''
+    !> Made by a *RIGID BODY or *KINEMATIC coupling: the reference node and
+    !> the rotation node (0: none) the dependent node follows rigidly, so
+    !> that an NLGEOM step can impose the exact rotation (dof_numbering).
+    integer :: rigid_ref = 0, rigid_rot = 0
   end type equation_t
 
   !> *PRE-TENSION SECTION: the element faces of `surface` are cut. Their
