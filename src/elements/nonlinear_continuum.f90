@@ -42,6 +42,11 @@
 !> finite-strain plasticity ignore it), so fe is the whole internal force
 !> and act_thermal gives zero on this path.
 !>
+!> One-point quadrilaterals (CPS4R, CPE4R, CAX4R): F (or the small
+!> strain) at the centre only, no F-bar, and the hourglass stabilization
+!> of continuum_element as a constant stiffness of the reference
+!> configuration (add_hourglass).
+!>
 !> Stresses (act_stresses): sig_ip the Cauchy stress (s11, s22, s33, s12)
 !> (sigma = tau / det Fbar with F-bar), extrapolated to the nodes;
 !> eps_ip the Green-Lagrange strain (E11, E22, 2 E12) under finite
@@ -64,7 +69,7 @@ module nonlinear_continuum
   use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants, max_hist
   use shape_functions, only: shape_at, gauss_rule, extrapolation
-  use continuum_element, only: volume_factor, strain_matrix
+  use continuum_element, only: volume_factor, strain_matrix, is_one_point_quad, hourglass_stiffness
   use material_laws, only: material_response, hist_peeq, fc_i, fc_j
   use small_matrices, only: det3, inv3
   implicit none
@@ -100,6 +105,7 @@ contains
     else
       call small_strain(ein, eout)
     end if
+    if (is_one_point_quad(ein)) call add_hourglass(ein, eout)
     ! a deformation the laws cannot evaluate (NaN in ue, an overflow at an
     ! absurd stretch or volume ratio): no arrays, the history unchanged,
     ! and the element reported bad so that the driver cuts back
@@ -197,12 +203,51 @@ contains
     if (ein%nyield > 0) h = ein%hist(:, ip)
   end function committed
 
-  !> Does the element use F-bar / B-bar (see the module header)?
+  !> Does the element use F-bar / B-bar (see the module header)? Not the
+  !> one-point quadrilateral, whose one point is the centre F-bar would
+  !> take J0 from.
   pure logical function uses_fbar(ein)
     type(elem_in_t), intent(in) :: ein
-    uses_fbar = ein%kind == shape_quad4 .and. ein%state /= state_plane_stress &
+    uses_fbar = ein%kind == shape_quad4 .and. ein%state /= state_plane_stress .and. ein%nip > 1 &
                 .and. (ein%law /= law_elastic .or. ein%nyield > 0)
   end function uses_fbar
+
+  !> Purpose: the hourglass stabilization of a one-point quadrilateral
+  !> (continuum_element's hourglass_stiffness) on the nonlinear path: a
+  !> constant stiffness k of the reference configuration with the law's
+  !> initial elastic constants, force k ue. A rigid motion of any size is
+  !> linear in X, so it has no hourglass part and no force; the
+  !> stabilization stays elastic under plasticity.
+  !> Arguments: ein; eout, whose ke and fe it adds to.
+  pure subroutine add_hourglass(ein, eout)
+    type(elem_in_t), intent(in) :: ein
+    type(elem_out_t), intent(inout) :: eout
+    real(dp) :: k(8, 8), e0, nu0
+    call initial_moduli(ein, e0, nu0)
+    k = hourglass_stiffness(ein%xy(:, 1:4), ein%thickness(1:4), e0, nu0, ein%state)
+    eout%ke(1:8, 1:8) = eout%ke(1:8, 1:8) + k
+    eout%fe(1:8) = eout%fe(1:8) + matmul(k, ein%ue(1:8))
+  end subroutine add_hourglass
+
+  !> Purpose: Young's modulus and Poisson's ratio of the law at zero
+  !> strain: *ELASTIC's, or of a hyperelastic law mu0 = 2 (C10 + C01) and
+  !> K0 = 2 / D1 (D1 = 0 taking material_laws' default 0.1 / mu0):
+  !> E0 = 9 K0 mu0 / (3 K0 + mu0), nu0 = (3 K0 - 2 mu0) / (2 (3 K0 + mu0)).
+  !> Arguments: ein; e0, nu0 out.
+  pure subroutine initial_moduli(ein, e0, nu0)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(out) :: e0, nu0
+    real(dp) :: mu0, k0, d1
+    e0 = ein%e
+    nu0 = ein%nu
+    if (ein%law == law_elastic) return
+    mu0 = 2.0_dp * (ein%c10 + ein%c01)
+    d1 = ein%d1
+    if (abs(d1) < 1e-10_dp) d1 = 0.1_dp / mu0
+    k0 = 2.0_dp / d1
+    e0 = 9.0_dp * k0 * mu0 / (3.0_dp * k0 + mu0)
+    nu0 = (3.0_dp * k0 - 2.0_dp * mu0) / (2.0_dp * (3.0_dp * k0 + mu0))
+  end subroutine initial_moduli
 
   !> Purpose: reference geometry at natural point xi: shape functions n,
   !> their derivatives dndx = dN/dX, det J and the radius R.
@@ -267,23 +312,15 @@ contains
     logical, intent(in) :: tangent
     type(elem_out_t), intent(inout) :: eout
     real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol, vinv
-    real(dp) :: f(3, 3), g(5, 2 * max_nodes), f0(3, 3), g0(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0
-    real(dp) :: fb(3, 3), s, c, v(5), fm(5), kmat(5, 2 * max_nodes), cg(3, 3), eth, w0(2 * max_nodes), &
-                wd(2 * max_nodes)
-    integer :: ip, nd, nexp, k
+    real(dp) :: f(3, 3), g(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0, cg(3, 3), eth, w0(2 * max_nodes)
+    integer :: ip, nd, nexp
     logical :: fbar, ok
     nd = 2 * ein%nen
     fbar = uses_fbar(ein)
     j0 = 1.0_dp
     nexp = 2
     if (ein%state == state_axisymmetric) nexp = 3
-    if (fbar) then
-      call reference_point(ein, [0.0_dp, 0.0_dp], n, dndx, detj, r)
-      call deformation(ein, n, dndx, r, f0, g0)
-      j0 = det3(f0)
-      ! F0^-T : dF0 as a row over the dofs, the same at every point
-      if (j0 > 0.0_dp) w0(1:nd) = matmul(comps(transpose(inv3(f0))), g0(:, 1:nd))
-    end if
+    if (fbar) call fbar_centre(ein, j0, w0)
     call gauss_rule(ein%kind, ein%nip, xg, wg)
     eout%detj_min = huge(1.0_dp)
     do ip = 1, ein%nip
@@ -307,25 +344,7 @@ contains
         cycle
       end if
       if (fbar) then
-        s = (j0 / jac)**(1.0_dp / nexp)
-        fb = f
-        fb(1:2, 1:2) = s * f(1:2, 1:2)
-        if (nexp == 3) fb(3, 3) = s * f(3, 3)
-        call material_response(ein, ein%state, fb, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
-        c = s**(1 - nexp)
-        eout%fe(1:nd) = eout%fe(1:nd) + matmul(c * p, g(:, 1:nd)) * dv
-        if (tangent) then
-          fm = comps(f)
-          if (nexp == 2) fm(5) = 0.0_dp
-          v = (c / nexp) * ((1 - nexp) * p + s * matmul(a, fm))
-          wd(1:nd) = w0(1:nd) - matmul(comps(transpose(inv3(f))), g(:, 1:nd))
-          kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd))
-          do k = 1, nd
-            kmat(:, k) = kmat(:, k) + v * wd(k)
-          end do
-          eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
-        end if
-        jac = det3(fb)
+        call fbar_point(ein, ip, tangent, f, g, dv, eth, j0, w0, nexp, eout, tau, jac, ok)
       else
         call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
@@ -343,6 +362,65 @@ contains
       eout%eps_ip(:, ip) = [0.5_dp * (cg(1, 1) - 1.0_dp), 0.5_dp * (cg(2, 2) - 1.0_dp), cg(1, 2)]
     end do
   end subroutine finite_strain
+
+  !> Purpose: what F-bar needs of the element's centre: J0 = det F0 and,
+  !> where J0 > 0, the row w0 = F0^-T : dF0 over the dofs (the same at
+  !> every point; w0 is left undefined otherwise, where every point gives
+  !> no force).
+  !> Arguments: ein; j0, w0(2 * max_nodes) out.
+  pure subroutine fbar_centre(ein, j0, w0)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(out) :: j0, w0(2 * max_nodes)
+    real(dp) :: n(max_nodes), dndx(2, max_nodes), detj, r, f0(3, 3), g0(5, 2 * max_nodes)
+    integer :: nd
+    nd = 2 * ein%nen
+    call reference_point(ein, [0.0_dp, 0.0_dp], n, dndx, detj, r)
+    call deformation(ein, n, dndx, r, f0, g0)
+    j0 = det3(f0)
+    if (j0 > 0.0_dp) w0(1:nd) = matmul(comps(transpose(inv3(f0))), g0(:, 1:nd))
+  end subroutine fbar_centre
+
+  !> Purpose: one integration point of the F-bar element (module header):
+  !> the material at Fbar = s F, s = (J0 / J)^(1/n), its force c P(Fbar)
+  !> (c = s^(1 - n)) and exact tangent added to eout%fe and eout%ke, the
+  !> point's history in eout%hist(:, ip).
+  !> Arguments: ein, ip the point, tangent (ke wanted), f and g the point's
+  !> F and dF/du, dv its reference volume, eth its thermal strain, j0 and
+  !> w0 from fbar_centre, nexp (2 plane strain, 3 axisymmetry); eout
+  !> inout; tau the Kirchhoff stress of Fbar, jac = det Fbar and ok (the
+  !> law's answer) out.
+  pure subroutine fbar_point(ein, ip, tangent, f, g, dv, eth, j0, w0, nexp, eout, tau, jac, ok)
+    type(elem_in_t), intent(in) :: ein
+    integer, intent(in) :: ip, nexp
+    logical, intent(in) :: tangent
+    real(dp), intent(in) :: f(3, 3), g(5, 2 * max_nodes), dv, eth, j0, w0(2 * max_nodes)
+    type(elem_out_t), intent(inout) :: eout
+    real(dp), intent(out) :: tau(3, 3), jac
+    logical, intent(out) :: ok
+    real(dp) :: fb(3, 3), s, c, v(5), fm(5), p(5), a(5, 5), kmat(5, 2 * max_nodes), wd(2 * max_nodes)
+    integer :: nd, k
+    nd = 2 * ein%nen
+    jac = (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) * f(3, 3)
+    s = (j0 / jac)**(1.0_dp / nexp)
+    fb = f
+    fb(1:2, 1:2) = s * f(1:2, 1:2)
+    if (nexp == 3) fb(3, 3) = s * f(3, 3)
+    call material_response(ein, ein%state, fb, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
+    c = s**(1 - nexp)
+    eout%fe(1:nd) = eout%fe(1:nd) + matmul(c * p, g(:, 1:nd)) * dv
+    if (tangent) then
+      fm = comps(f)
+      if (nexp == 2) fm(5) = 0.0_dp
+      v = (c / nexp) * ((1 - nexp) * p + s * matmul(a, fm))
+      wd(1:nd) = w0(1:nd) - matmul(comps(transpose(inv3(f))), g(:, 1:nd))
+      kmat(:, 1:nd) = c * s * matmul(a, g(:, 1:nd))
+      do k = 1, nd
+        kmat(:, k) = kmat(:, k) + v * wd(k)
+      end do
+      eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) + matmul(transpose(g(:, 1:nd)), kmat(:, 1:nd)) * dv
+    end if
+    jac = det3(fb)
+  end subroutine fbar_point
 
   !> Purpose: the small-strain element with a law with state (module
   !> header), B-bar for the 4-node quadrilateral in plane strain and
