@@ -44,8 +44,7 @@
 !>
 !> One-point quadrilaterals (CPS4R, CPE4R, CAX4R): F (or the small
 !> strain) at the centre only, no F-bar, and the hourglass stabilization
-!> of continuum_element as a constant stiffness of the reference
-!> configuration (add_hourglass).
+!> of continuum_element, corotational under finite strain (add_hourglass).
 !>
 !> Stresses (act_stresses): sig_ip the Cauchy stress (s11, s22, s33, s12)
 !> (sigma = tau / det Fbar with F-bar), extrapolated to the nodes;
@@ -69,7 +68,7 @@ module nonlinear_continuum
   use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants, max_hist
   use shape_functions, only: shape_at, gauss_rule, extrapolation
-  use continuum_element, only: volume_factor, strain_matrix, is_one_point_quad, hourglass_stiffness
+  use continuum_element, only: volume_factor, strain_matrix, is_one_point_quad, uniform_strain, hourglass_modes
   use material_laws, only: material_response, hist_peeq, fc_i, fc_j
   use small_matrices, only: det3, inv3
   implicit none
@@ -213,20 +212,54 @@ contains
   end function uses_fbar
 
   !> Purpose: the hourglass stabilization of a one-point quadrilateral
-  !> (continuum_element's hourglass_stiffness) on the nonlinear path: a
-  !> constant stiffness k of the reference configuration with the law's
-  !> initial elastic constants, force k ue. A rigid motion of any size is
-  !> linear in X, so it has no hourglass part and no force; the
-  !> stabilization stays elastic under plasticity.
+  !> (continuum_element's hourglass_modes: gamma, k2) on the nonlinear
+  !> path, with the law's initial elastic constants and the amplitudes
+  !> d = Gam ue (d_k = gamma . u_k). Small strain: the force Gam^T k2 d and
+  !> the stiffness Gam^T k2 Gam. Finite strain, corotational: d is measured
+  !> in the element's frame, rotated by R(theta) of the polar decomposition
+  !> of F at the centre (theta = atan2(F21 - F12, F11 + F22)), so that the
+  !> force is Gam^T kr d, kr = R k2 R^T, and its exact tangent is
+  !> Gam^T kr Gam + Gam^T (W kr - kr W) d dtheta/du^T (W = dR/dtheta R^T,
+  !> the quarter turn; unsymmetric, as F-bar's). A rigid motion of any size
+  !> is linear in X and has d = 0: no force. The stabilization stays
+  !> elastic under plasticity.
   !> Arguments: ein; eout, whose ke and fe it adds to.
   pure subroutine add_hourglass(ein, eout)
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(inout) :: eout
-    real(dp) :: k(8, 8), e0, nu0
+    real(dp), parameter :: w(2, 2) = reshape([0.0_dp, 1.0_dp, -1.0_dp, 0.0_dp], [2, 2])
+    real(dp) :: e0, nu0, gam(4), k2(2, 2), kr(2, 2), rot(2, 2), gm(2, 8), d(2), kd(2), nth(8), c, s, rr
+    real(dp) :: n(max_nodes), dndx(2, max_nodes), detj, r, f(3, 3), g(5, 2 * max_nodes)
+    integer :: k
     call initial_moduli(ein, e0, nu0)
-    k = hourglass_stiffness(ein%xy(:, 1:4), ein%thickness(1:4), e0, nu0, ein%state)
-    eout%ke(1:8, 1:8) = eout%ke(1:8, 1:8) + k
-    eout%fe(1:8) = eout%fe(1:8) + matmul(k, ein%ue(1:8))
+    call hourglass_modes(ein%xy(:, 1:4), ein%thickness(1:4), e0, nu0, ein%state, gam, k2)
+    gm = 0.0_dp
+    gm(1, 1:7:2) = gam
+    gm(2, 2:8:2) = gam
+    d = matmul(gm, ein%ue(1:8))
+    kr = k2
+    kd = 0.0_dp
+    nth = 0.0_dp
+    if (ein%nlgeom .or. ein%law /= law_elastic) then
+      call reference_point(ein, [0.0_dp, 0.0_dp], n, dndx, detj, r)
+      call deformation(ein, n, dndx, r, f, g)
+      c = f(1, 1) + f(2, 2)
+      s = f(2, 1) - f(1, 2)
+      rr = c**2 + s**2
+      ! (rr = 0 only where det F <= 0: an element turned inside out, which
+      ! the element reports; no rotation then)
+      if (rr > 0.0_dp) then
+        rot = reshape([c, s, -s, c], [2, 2]) / sqrt(rr)
+        kr = matmul(rot, matmul(k2, transpose(rot)))
+        kd = matmul(matmul(w, kr) - matmul(kr, w), d)
+        nth = (c * (g(3, 1:8) - g(2, 1:8)) - s * (g(1, 1:8) + g(4, 1:8))) / rr
+      end if
+    end if
+    eout%fe(1:8) = eout%fe(1:8) + matmul(matmul(kr, d), gm)
+    eout%ke(1:8, 1:8) = eout%ke(1:8, 1:8) + matmul(transpose(gm), matmul(kr, gm))
+    do k = 1, 8
+      eout%ke(1:8, k) = eout%ke(1:8, k) + matmul(kd, gm) * nth(k)
+    end do
   end subroutine add_hourglass
 
   !> Purpose: Young's modulus and Poisson's ratio of the law at zero
@@ -268,11 +301,14 @@ contains
   end subroutine reference_point
 
   !> Purpose: F at a point (F33 = 1 but in axisymmetry, 1 + u_r / R) and
-  !> G(5, nd), dF = G du in the component order (F11, F12, F21, F22, F33).
-  pure subroutine deformation(ein, n, dndx, r, f, g)
+  !> G(5, nd), dF = G du in the component order (F11, F12, F21, F22, F33);
+  !> hoop, if given, the row of F33 (N_a / R at a point; uniform_gradient's
+  !> mean of it for a one-point quadrilateral).
+  pure subroutine deformation(ein, n, dndx, r, f, g, hoop)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: n(max_nodes), dndx(2, max_nodes), r
     real(dp), intent(out) :: f(3, 3), g(5, 2 * max_nodes)
+    real(dp), intent(in), optional :: hoop(max_nodes)
     integer :: a, c
     f = 0.0_dp
     f(3, 3) = 1.0_dp
@@ -284,7 +320,11 @@ contains
     end do
     if (ein%state == state_axisymmetric) then
       do a = 1, ein%nen
-        g(5, 2 * a - 1) = n(a) / r
+        if (present(hoop)) then
+          g(5, 2 * a - 1) = hoop(a)
+        else
+          g(5, 2 * a - 1) = n(a) / r
+        end if
       end do
     end if
     do c = 1, 5
@@ -293,6 +333,36 @@ contains
     f(1, 1) = f(1, 1) + 1.0_dp
     f(2, 2) = f(2, 2) + 1.0_dp
   end subroutine deformation
+
+  !> Purpose: the one point of a one-point quadrilateral under finite
+  !> strain is the element's mean, as on the small-strain path
+  !> (continuum_element's uniform_strain): dndx = (1/V0) int dN/dX dV0,
+  !> n = (1/V0) int N dV0, hoop = (1/V0) int N / R dV0 (the F33 row in
+  !> axisymmetry), dv = V0, so that F is the element's mean F (dF is linear
+  !> in the dofs). In plane states dndx is its value at the centre.
+  !> Arguments: ein; n, dndx, hoop, dv out.
+  pure subroutine uniform_gradient(ein, n, dndx, hoop, dv)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(out) :: n(max_nodes), dndx(2, max_nodes), hoop(max_nodes), dv
+    real(dp) :: xg(2, max_ip), wg(max_ip), np(max_nodes), dp_(2, max_nodes), detj, r, w
+    integer :: ip
+    call gauss_rule(shape_quad4, 4, xg, wg)
+    n = 0.0_dp
+    dndx = 0.0_dp
+    hoop = 0.0_dp
+    dv = 0.0_dp
+    do ip = 1, 4
+      call reference_point(ein, xg(:, ip), np, dp_, detj, r)
+      w = volume_factor(ein%state, detj, r, dot_product(np(1:4), ein%thickness(1:4))) * wg(ip)
+      n = n + np * w
+      dndx = dndx + dp_ * w
+      if (ein%state == state_axisymmetric) hoop = hoop + np / r * w
+      dv = dv + w
+    end do
+    n = n / dv
+    dndx = dndx / dv
+    hoop = hoop / dv
+  end subroutine uniform_gradient
 
   !> The five components of a 3x3 tensor.
   pure function comps(t) result(v)
@@ -313,6 +383,7 @@ contains
     type(elem_out_t), intent(inout) :: eout
     real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dndx(2, max_nodes), detj, r, dv, t_ip, vol, vinv
     real(dp) :: f(3, 3), g(5, 2 * max_nodes), p(5), a(5, 5), tau(3, 3), jac, j0, cg(3, 3), eth, w0(2 * max_nodes)
+    real(dp) :: hoop(max_nodes)
     integer :: ip, nd, nexp
     logical :: fbar, ok
     nd = 2 * ein%nen
@@ -331,7 +402,12 @@ contains
       if (ein%state /= state_axisymmetric .and. .not. t_ip > 0.0_dp) vol = min(vol, t_ip)
       eout%detj_min = min(eout%detj_min, vol)
       dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
-      call deformation(ein, n, dndx, r, f, g)
+      if (is_one_point_quad(ein)) then
+        call uniform_gradient(ein, n, dndx, hoop, dv)
+        call deformation(ein, n, dndx, r, f, g, hoop)
+      else
+        call deformation(ein, n, dndx, r, f, g)
+      end if
       eth = ein%alpha * dot_product(n(1:ein%nen), ein%dtemp(1:ein%nen))
       eout%hist(:, ip) = committed(ein, ip)
       jac = (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) * f(3, 3)
@@ -458,8 +534,9 @@ contains
       if (ein%state /= state_axisymmetric .and. .not. t_ip > 0.0_dp) vol = min(vol, t_ip)
       eout%detj_min = min(eout%detj_min, vol)
       dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
-      if (bbar) b(:, 1:nd) = b(:, 1:nd) + spread(m, 2, nd) * spread(bv0(1:nd) - matmul(m, b(:, 1:nd)), 1, 4) / nexp
       eps0 = ein%alpha * dot_product(n(1:nen), ein%dtemp(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
+      if (is_one_point_quad(ein)) call uniform_strain(ein, n, b(:, 1:nd), dv, eps0)
+      if (bbar) b(:, 1:nd) = b(:, 1:nd) + spread(m, 2, nd) * spread(bv0(1:nd) - matmul(m, b(:, 1:nd)), 1, 4) / nexp
       eps = matmul(b(:, 1:nd), ein%ue(1:nd))
       call material_response(ein, ein%state, eps - eps0, committed(ein, ip), sig, d, eout%hist(:, ip))
       eout%fe(1:nd) = eout%fe(1:nd) + matmul(sig, b(:, 1:nd)) * dv
