@@ -9,10 +9,10 @@ submodule (deck_parser) deck_model_checks
   use deck_input, only: deck_warning
   use deck_cursor, only: err
   use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t, kept_nodes, &
-                   node_label, elem_label, law_elastic
+                   node_label, elem_label, law_elastic, step_dloads
   use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
-                               state_axisymmetric, shape_springa
+                               state_axisymmetric, shape_springa, max_edges
   use growable, only: grow
   use mesh_topology, only: build_topology
   implicit none
@@ -356,7 +356,7 @@ contains
   !> mixed with axisymmetric elements.
   subroutine check_elements(p, m)
     type(parser_t), intent(inout) :: p
-    type(model_t), intent(in) :: m
+    type(model_t), intent(inout) :: m
     integer :: e, ncol, first_col
     logical :: axi
     axi = .false.
@@ -383,9 +383,10 @@ contains
       call check_corners(p, m, e, ncol, first_col)
     end do
     if (ncol > 0) call deck_warning(p%deck, m%elem_src(first_col)%line, itoa(ncol) // ' collapsed ' // &
-        'quadrilateral(s), two neighbouring corners being one node (the first: element ' // &
-        elem_label(m, first_col) // '): each runs as the triangle of its other corners (its stiffness is ' // &
-        'that triangle''s), as CalculiX integrates a degenerate element')
+        'quadrilateral(s) (two neighbouring corners at one point; the first: element ' // &
+        elem_label(m, first_col) // '): where the two are one node the element is the triangle of its ' // &
+        'corners; two nodes stay two (the degenerate element, as CalculiX integrates it)')
+    if (ncol > 0) call collapse_to_triangles(m)
     if (.not. axi) return
     do e = 1, m%ne
       if (.not. (is_truss(m, e) .or. is_spring(m, e))) cycle
@@ -561,6 +562,72 @@ contains
       s = 'not convex (an angle of 180 degrees or more)'
     end if
   end function corner_fault
+
+  !> Purpose: a collapsed quadrilateral whose collapsed face is one node
+  !> becomes the triangle it is: the catalogue's triangle of its stress
+  !> state (CPS4, CPS4R -> CPS3; CPS8, CPS8R -> CPS6; CPE, CAX alike),
+  !> its corners from the end of the collapsed face k on, k+1, k+2, k+3
+  !> (and their faces' mid-side nodes); faces k+1, k+2, k+3 of the
+  !> quadrilateral become the triangle's S1, S2, S3 in the element
+  !> surfaces and the face loads, and face k (a point) leaves them. For
+  !> the bilinear shape this changes nothing but the bookkeeping (its
+  !> field and its stiffness are the triangle's, check_corners); the
+  !> analysis then never sees an element that names a node twice.
+  !> Arguments: m, whose etype, conn, surfaces and step loads change.
+  subroutine collapse_to_triangles(m)
+    type(model_t), intent(inout) :: m
+    integer :: e, k, j, nc, it, map(max_edges), conn(8)
+    character(len=:), allocatable :: name
+    do e = 1, m%ne
+      if (.not. is_continuum(m, e)) cycle
+      k = collapsed_face(m, e)
+      if (k <= 0) cycle
+      if (m%conn(catalogue(m%etype(e))%edge(1, k), e) /= m%conn(catalogue(m%etype(e))%edge(2, k), e)) cycle
+      name = trim(catalogue(m%etype(e))%name)
+      nc = 3
+      if (catalogue(m%etype(e))%nodes == 8) nc = 6
+      it = find_element_type(name(1:3) // merge('3', '6', nc == 3))
+      map = 0
+      conn = m%conn(1:8, e)
+      do j = 1, 3
+        map(mod(k + j - 1, 4) + 1) = j
+        m%conn(j, e) = conn(mod(k + j - 1, 4) + 1)
+        if (nc == 6) m%conn(3 + j, e) = conn(4 + mod(k + j - 1, 4) + 1)
+      end do
+      m%conn(nc + 1:, e) = 0
+      m%etype(e) = it
+      call renumber_faces(m, e, map)
+    end do
+  end subroutine collapse_to_triangles
+
+  !> Purpose: face j of element e becomes face map(j) (0: it is gone, a
+  !> point, and so are its surface entry and its pressure, whose resultant
+  !> was zero) in the element surfaces and in the face loads of every step.
+  subroutine renumber_faces(m, e, map)
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: e, map(max_edges)
+    integer :: s, i
+    logical, allocatable :: keep(:)
+    do s = 1, size(m%surfaces)
+      if (.not. allocated(m%surfaces(s)%elem)) cycle
+      keep = .not. (m%surfaces(s)%elem == e .and. map(max(m%surfaces(s)%edge, 1)) == 0)
+      where (m%surfaces(s)%elem == e) m%surfaces(s)%edge = map(max(m%surfaces(s)%edge, 1))
+      m%surfaces(s)%elem = pack(m%surfaces(s)%elem, keep)
+      m%surfaces(s)%edge = pack(m%surfaces(s)%edge, keep)
+    end do
+    do s = 1, size(m%steps)
+      if (step_dloads(m%steps(s)) == 0) cycle
+      keep = [(.true., i = 1, size(m%steps(s)%dloads))]
+      do i = 1, size(m%steps(s)%dloads)
+        associate(d => m%steps(s)%dloads(i))
+          if (d%elem /= e .or. d%face == 0) cycle
+          keep(i) = map(d%face) > 0
+          if (keep(i)) d%face = map(d%face)
+        end associate
+      end do
+      m%steps(s)%dloads = pack(m%steps(s)%dloads, keep)
+    end do
+  end subroutine renumber_faces
 
   !> Purpose: the collapsed face of a collapsed quadrilateral (a point) is
   !> no face: the topology gets no edge there (neighbour -1), so it is on

@@ -1,0 +1,182 @@
+"""Collapsed quadrilaterals: a 4- or 8-node quadrilateral whose two
+neighbouring corners are one node (mesh generators write them at a fan)
+runs as the triangle it is, with one warning that counts them; two nodes
+at one point stay two nodes (the degenerate element, as CalculiX
+integrates it); an element that is truly invalid keeps its error, naming
+the element and why (deck_model_checks: check_corners).
+
+The mesh: a disk of two rings around a centre node, 8 sectors; the inner
+ring's elements name the centre twice, each at another pair of corners
+(faces S1..S4 collapsed in turn)."""
+import math
+
+from helpers import run_deck
+
+NSEC = 8
+E, NU = 1000.0, 0.25
+
+
+def disk(order=1):
+    """Nodes and elements of the disk: (nodes {id: (x, y)}, inner [node
+    tuples], outer [node tuples], outer ring node ids). order 2 adds
+    straight mid-side nodes (the collapsed face's is the centre)."""
+    nodes = {1: (0.0, 0.0)}
+    p = [2 + k for k in range(NSEC)]
+    q = [2 + NSEC + k for k in range(NSEC)]
+    for k in range(NSEC):
+        t = 2 * math.pi * k / NSEC + 0.1 * (k % 3)      # uneven sectors
+        nodes[p[k]] = (math.cos(t), 0.9 * math.sin(t))
+        nodes[q[k]] = (2.1 * math.cos(t), 1.9 * math.sin(t))
+    mids = {}
+
+    def mid(a, b):
+        if a == b:
+            return a
+        key = (min(a, b), max(a, b))
+        if key not in mids:
+            mids[key] = max(nodes) + 1
+            (xa, ya), (xb, yb) = nodes[a], nodes[b]
+            nodes[mids[key]] = (0.5 * (xa + xb), 0.5 * (ya + yb))
+        return mids[key]
+    inner, outer = [], []
+    for k in range(NSEC):
+        a, b = p[k], p[(k + 1) % NSEC]
+        ring = [1, a, b, 1]                            # corners 4 and 1 are the centre: S4 collapsed
+        corners = ring[k % 4:] + ring[:k % 4]          # S4, S3, S2, S1 collapsed in turn
+        c = [corners[0], corners[1], corners[2], corners[3]]
+        o = [a, q[k], q[(k + 1) % NSEC], b]
+        if order == 2:
+            c += [mid(c[i], c[(i + 1) % 4]) for i in range(4)]
+            o += [mid(o[i], o[(i + 1) % 4]) for i in range(4)]
+        inner.append(tuple(c))
+        outer.append(tuple(o))
+    return nodes, inner, outer, q
+
+
+def deck(nodes, groups, bcs, extra=""):
+    """groups: [(element type, [node tuples])]; bcs: {node: (u, v)}."""
+    lines, eid = "", 1
+    for etype, els in groups:
+        lines += f"*ELEMENT, TYPE={etype}, ELSET=PLATE\n"
+        for c in els:
+            lines += f"{eid}, " + ", ".join(map(str, c)) + "\n"
+            eid += 1
+    node_lines = "".join(f"{n}, {x!r}, {y!r}\n" for n, (x, y) in nodes.items())
+    bc_lines = "".join(f"{n}, 1, 1, {u!r}\n{n}, 2, 2, {v!r}\n" for n, (u, v) in bcs.items())
+    return f"""*NODE, NSET=ALL
+{node_lines}{lines}*MATERIAL, NAME=M
+*ELASTIC
+{E}, {NU}
+*SOLID SECTION, ELSET=PLATE, MATERIAL=M
+0.5
+{extra}*STEP
+*STATIC
+*BOUNDARY
+{bc_lines}*NODE PRINT
+U
+*END STEP
+"""
+
+
+def displacements(run):
+    u = run.listing.increments[-1].block("NODE U")
+    return {int(n): (a, b) for n, a, b in zip(u["node"], u["U1"], u["U2"])}
+
+
+def warnings_about_collapse(run):
+    return [line for line in run.stderr.splitlines() if "collapsed quadrilateral" in line]
+
+
+def test_collapsed_quads_pass_the_patch_test_and_warn_once():
+    """Linear field on the outer ring: every node exact to 1e-10 (CPS4,
+    CPS4R, CPE4R, CPS8 with the mid-side node of the collapsed face at the
+    centre); one warning counting the 8 collapsed elements, at the first's
+    line."""
+    def lin(x, y):
+        return 1e-3 + 2e-3 * x - 1e-3 * y, -5e-4 + 1e-3 * x + 3e-3 * y
+    for etype, order in (("CPS4", 1), ("CPS4R", 1), ("CPE4R", 1), ("CPS8", 2)):
+        nodes, inner, outer, ring = disk(order)
+        boundary = ring + ([o[5] for o in outer] if order == 2 else [])   # o[5]: the mid-side of face S2
+        bcs = {n: lin(*nodes[n]) for n in boundary}
+        run = run_deck(f"collapsed_patch_{etype.lower()}", deck(nodes, [(etype, inner), (etype, outer)], bcs)).ok()
+        u = displacements(run)
+        err = max(max(abs(a - lin(*nodes[n])[0]), abs(b - lin(*nodes[n])[1])) for n, (a, b) in u.items()) / 3e-3
+        assert err < 1e-10, f"{etype}: patch test error {err:.2e}"
+        w = warnings_about_collapse(run)
+        assert len(w) == 1 and "8 collapsed quadrilateral" in w[0] and "element 1)" in w[0], run.stderr
+        assert ".inp:" in w[0] and "1, 1, " in run.stderr, run.stderr   # at the first element's line
+
+
+def test_collapsed_quads_are_the_triangles():
+    """A field that is not linear on the outer ring (u = 0.01 x^2, v = 0.02
+    x y): the mesh with collapsed CPS4 or CPS4R elements gives the same
+    displacements as the same mesh with CPS3 triangles there, to 1e-12 of
+    the largest (the collapsed element's field and stiffness are the
+    triangle's; its hourglass mode is no motion of the triangle)."""
+    nodes, inner, outer, ring = disk(1)
+    bcs = {n: (0.01 * nodes[n][0] ** 2, 0.02 * nodes[n][0] * nodes[n][1]) for n in ring}
+    tris = []
+    for c in inner:
+        k = [i for i in range(4) if c[i] == c[(i + 1) % 4]][0]
+        tris.append(tuple(c[(k + 1 + j) % 4] for j in range(3)))
+    ref = displacements(run_deck("collapsed_ref_cps3", deck(nodes, [("CPS3", tris), ("CPS4", outer)], bcs)).ok())
+    scale = max(max(abs(a), abs(b)) for a, b in ref.values())
+    for etype in ("CPS4", "CPS4R"):
+        reft = ref
+        if etype == "CPS4R":
+            reft = displacements(run_deck("collapsed_ref_cps3r",
+                                          deck(nodes, [("CPS3", tris), ("CPS4R", outer)], bcs)).ok())
+        u = displacements(run_deck(f"collapsed_{etype.lower()}", deck(nodes, [(etype, inner), (etype, outer)],
+                                                                      bcs)).ok())
+        err = max(max(abs(u[n][0] - reft[n][0]), abs(u[n][1] - reft[n][1])) for n in reft) / scale
+        print(f"  {etype}: largest difference from the triangles {err:.1e} of the largest displacement")
+        assert err < 1e-12, f"{etype}: {err:.2e}"
+
+
+def test_two_nodes_at_one_point_run_as_the_degenerate_element():
+    """The fan with a centre node of its own for each sector (two nodes at
+    one point in each inner element, as a mesh generator that does not
+    merge them writes it): it runs, with the one warning, and the nodes at
+    the centre stay apart (each moves with its sector)."""
+    nodes, inner, outer, ring = disk(1)
+    centre = {}
+    new_inner = []
+    for k, c in enumerate(inner):
+        c = list(c)
+        hits = [i for i in range(4) if c[i] == 1]
+        for j, i in enumerate(hits):
+            key = (k + j) % NSEC
+            if key not in centre:
+                centre[key] = max(nodes) + 1
+                nodes[centre[key]] = (0.0, 0.0)
+            c[i] = centre[key]
+        new_inner.append(tuple(c))
+    del nodes[1]
+    bcs = {n: (0.01 * nodes[n][0] ** 2, 0.02 * nodes[n][0] * nodes[n][1]) for n in ring}
+    run = run_deck("collapsed_two_nodes", deck(nodes, [("CPS4", new_inner), ("CPS4", outer)], bcs)).ok()
+    w = warnings_about_collapse(run)
+    assert len(w) == 1 and "8 collapsed quadrilateral" in w[0], run.stderr
+    u = displacements(run)
+    assert all(math.isfinite(a) and math.isfinite(b) for a, b in u.values())
+
+
+def test_invalid_elements_keep_their_error_and_say_why():
+    nodes, inner, outer, ring = disk(1)
+    bcs = {n: (0.0, 0.0) for n in ring}
+    bad = {
+        "clockwise": ((inner[0][0], inner[0][3], inner[0][2], inner[0][1]), "clockwise"),
+        "opposite corners": ((1, inner[0][1], 1, inner[0][2]), "not neighbours"),
+        "line": ((1, 1, inner[0][1], inner[0][1]), "no element"),
+    }
+    for name, (conn, why) in bad.items():
+        run = run_deck("collapsed_bad_" + name.replace(" ", "_"),
+                       deck(nodes, [("CPS4", [conn] + inner[1:]), ("CPS4", outer)], bcs))
+        assert run.rc != 0 and "element 1 (CPS4)" in run.stderr and why in run.stderr, (name, run.stderr)
+        assert ".inp:" in run.stderr, run.stderr
+    # an 8-node element whose collapsed face's mid-side node is not at the centre
+    nodes, inner, outer, ring = disk(2)
+    c = list(inner[0])
+    c[7] = c[5]                     # the collapsed face S4's mid-side node (the centre) moved to S2's
+    run = run_deck("collapsed_bad_midside", deck(nodes, [("CPS8", [tuple(c)] + inner[1:]), ("CPS8", outer)],
+                                                {n: (0.0, 0.0) for n in ring}))
+    assert run.rc != 0 and "element 1 (CPS8)" in run.stderr and "mid-side node" in run.stderr, run.stderr
