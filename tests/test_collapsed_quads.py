@@ -13,7 +13,7 @@ import math
 from helpers import run_deck
 
 NSEC = 8
-E, NU = 1000.0, 0.25
+E, NU, THICK = 1000.0, 0.25, 0.5
 
 
 def disk(order=1):
@@ -68,7 +68,7 @@ def deck(nodes, groups, bcs, extra=""):
 *ELASTIC
 {E}, {NU}
 *SOLID SECTION, ELSET=PLATE, MATERIAL=M
-0.5
+{THICK}
 {extra}*STEP
 *STATIC
 *BOUNDARY
@@ -180,3 +180,38 @@ def test_invalid_elements_keep_their_error_and_say_why():
     run = run_deck("collapsed_bad_midside", deck(nodes, [("CPS8", [tuple(c)] + inner[1:]), ("CPS8", outer)],
                                                 {n: (0.0, 0.0) for n in ring}))
     assert run.rc != 0 and "element 1 (CPS8)" in run.stderr and "mid-side node" in run.stderr, run.stderr
+
+
+def test_faces_of_collapsed_quads_keep_their_numbers():
+    """One ring of collapsed CPS4 elements (every element collapsed, at
+    faces S4, S3, S2, S1 in turn): a pressure p by the quadrilateral's face
+    number on the outer faces of the upper sectors (whichever of S1..S4
+    joins the two ring nodes; *DLOAD Pk on two elements, an element
+    *SURFACE with *DSLOAD on two) and on the collapsed faces (a point: no
+    load) gives the
+    reaction p t times the chords turned outward (balancing the pressure's
+    resultant on the polyline), to 1e-10."""
+    nodes, inner, _, _ = disk(1)
+    p = 3.0
+    loads, surface, chord = "", "", [0.0, 0.0]
+    for k, c in enumerate(inner[:NSEC // 2]):
+        i = [j for j in range(4) if c[j] != 1 and c[(j + 1) % 4] != 1][0]     # the face joining two ring nodes
+        z = [j for j in range(4) if c[j] == 1 and c[(j + 1) % 4] == 1][0]     # the collapsed face
+        if k < 2:
+            loads += f"{k + 1}, P{i + 1}, {p}\n{k + 1}, P{z + 1}, {p}\n"
+        else:
+            surface += f"{k + 1}, S{i + 1}\n{k + 1}, S{z + 1}\n"
+        (xa, ya), (xb, yb) = nodes[c[i]], nodes[c[(i + 1) % 4]]
+        chord[0] += yb - ya          # outward normal times length of a counter-clockwise edge: (dy, -dx)
+        chord[1] += -(xb - xa)
+    pin = inner[0][[j for j in range(4) if inner[0][j] != 1][0]]
+    text = deck(nodes, [("CPS4", inner)], {}, extra=f"*NSET, NSET=CENTRE\n1\n*NSET, NSET=PIN\n{pin}\n"
+                                                    f"*SURFACE, NAME=RIM\n{surface}")
+    text = text.replace("*STEP\n*STATIC\n*BOUNDARY\n", "*BOUNDARY\nCENTRE, 1, 2\nPIN, 2, 2\n*STEP\n*STATIC\n"
+                        f"*DLOAD\n{loads}*DSLOAD\nRIM, P, {p}\n")
+    run = run_deck("collapsed_faces", text).ok()
+    sums = run.listing.increments[-1].block("REACTIONS").as_dict()
+    rf = [sums["CENTRE"][0] + sums["PIN"][0], sums["CENTRE"][1] + sums["PIN"][1]]
+    exact = [p * THICK * chord[0], p * THICK * chord[1]]   # the supports balance the resultant -p t n L
+    err = max(abs(rf[0] - exact[0]), abs(rf[1] - exact[1])) / (p * math.hypot(*chord))
+    assert err < 1e-10, (rf, exact)

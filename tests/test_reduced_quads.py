@@ -278,3 +278,58 @@ U
         assert err < 0.002, (inc.time, u["U2"][0] / nle.L, d, -u["U1"][0] / nle.L, s)
     assert abs(run.listing.increments[-1].time - 1.0) < 1e-12
     print(f"  {len(run.listing.increments)} increments; largest difference from the elastica {worst:.2e} L")
+
+
+def test_pressure_and_contact_on_cps4r_faces():
+    """Faces as CPS4's: a pressure p on the top faces (*DLOAD P3) of a
+    distorted CPS4R block on rollers: S22 = -p in every element and the
+    reaction p W, to 1e-10; and tests/test_contact.py's two blocks pressed
+    together, made of CPS4R: the series-spring pressure at every slave node
+    within 0.5 % and the total force within 1e-3, as for CPS4 there."""
+    p, w, h = 2.5, 2.0, 1.0
+    nodes, ids, quads = grid(4, 3, 0.0, w, 0.0, h, distort=0.6)
+    top = [k + 1 for k in range(len(quads)) if k >= 4 * 2]
+    deck = f"""*NODE
+{node_lines(nodes)}*ELEMENT, TYPE=CPS4R, ELSET=BLOCK
+{quad_lines(quads)}*NSET, NSET=BOTTOM
+{", ".join(str(ids[i, 0]) for i in range(5))}
+*NSET, NSET=CORNER
+{ids[0, 0]}
+*ELSET, ELSET=TOP
+{", ".join(map(str, top))}
+*MATERIAL, NAME=M
+*ELASTIC
+{E}, {NU}
+*SOLID SECTION, ELSET=BLOCK, MATERIAL=M
+{T}
+*BOUNDARY
+BOTTOM, 2, 2
+CORNER, 1, 1
+*STEP
+*STATIC
+*DLOAD
+TOP, P3, {p}
+*EL PRINT, ELSET=BLOCK
+S
+*NODE PRINT, NSET=BOTTOM
+RF
+*END STEP
+"""
+    inc = run_deck("rq_pressure", deck).ok().listing.increments[-1]
+    s22 = inc.block("ELEMENT S", set="BLOCK")["S22"]
+    assert max(abs(s22 + p)) / p < 1e-10, max(abs(s22 + p)) / p
+    rf = inc.block("REACTIONS").as_dict()["BOTTOM"]
+    assert abs(rf[1] - p * w * T) < 1e-10 * p * w, rf
+
+    import test_contact as tc
+    d = 3 * tc.G0
+    text = tc.blocks_deck([tc.push_step(d, 2)]).replace("TYPE=CPS4,", "TYPE=CPS4R,")
+    assert text.count("TYPE=CPS4R,") == 2
+    inc = run_deck("rq_contact_pressed", text).ok().listing.increments[-1]
+    slave, master, summ = tc.contact_blocks(inc)
+    ps = tc.series_pressure(d)
+    assert all(s == "CLOSED" for s in slave["state"]), slave["state"]
+    err = max(abs(slave["pressure"] - ps)) / ps
+    assert err < 0.005, f"slave pressure error {err:.4f}"
+    assert abs(summ["total_force"][0] - ps * tc.W) / (ps * tc.W) < 1e-3
+    print(f"  contact: slave pressure within {err:.1e} of the series-spring pressure")
