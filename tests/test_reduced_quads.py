@@ -333,3 +333,28 @@ RF
     assert err < 0.005, f"slave pressure error {err:.4f}"
     assert abs(summ["total_force"][0] - ps * tc.W) / (ps * tc.W) < 1e-3
     print(f"  contact: slave pressure within {err:.1e} of the series-spring pressure")
+
+
+def test_abaqus_hourglass_cards_are_read_and_warn_when_not_honoured():
+    """*SECTION CONTROLS, HOURGLASS=ENHANCED named by the section's CONTROLS=
+    runs without a word (cfe2d's stabilization is its counterpart);
+    HOURGLASS=STIFFNESS, scale factors and *HOURGLASS STIFFNESS each warn at
+    their line; the answer is the same (pure bending exact)."""
+    base, m = bending_deck("CPS4R", [0.0, 2.0, 5.0, 10.0])
+    base = base.replace("*SOLID SECTION, ELSET=BEAM, MATERIAL=M", "*SOLID SECTION, ELSET=BEAM, MATERIAL=M, CONTROLS=EC-1")
+    exact = m / (E * T * H ** 3 / 12) * L ** 2 / 2
+    cases = {
+        "enhanced": ("*Section Controls, name=EC-1, hourglass=enhanced\n", []),
+        "stiffness": ("*SECTION CONTROLS, NAME=EC-1, HOURGLASS=STIFFNESS\n1., 1., 1.\n",
+                      ["HOURGLASS=STIFFNESS is not cfe2d's", "scale factors of *SECTION CONTROLS are not used"]),
+        "hourglass stiffness": ("*SECTION CONTROLS, NAME=EC-1\n*HOURGLASS STIFFNESS\n0.05\n",
+                                ["*HOURGLASS STIFFNESS is not used"]),
+    }
+    for name, (cards, warnings) in cases.items():
+        run = run_deck("rq_cards_" + name.replace(" ", "_"), base.replace("*MATERIAL, NAME=M", cards + "*MATERIAL, NAME=M"))
+        run.ok()
+        got = [line for line in run.stderr.splitlines() if "warning" in line]
+        assert len(got) == len(warnings) and all(any(w in g for g in got) for w in warnings), (name, run.stderr)
+        assert all(".inp:" in g for g in got), run.stderr
+        u = run.listing.increments[-1].block("NODE U", set="TIP")["U2"]
+        assert abs(u[0] - exact) < 1e-10 * exact, (name, u[0], exact)
