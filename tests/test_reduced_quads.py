@@ -28,14 +28,14 @@ from decks import grid, node_lines, quad_lines
 from helpers import HERE, run_deck
 from quadmesh import Mesh
 import test_nonlinear_elastica as nle
-import test_patch
+from test_patch import patch as patch_deck
 
 L, H, T, E, NU, P = 10.0, 1.0, 1.0, 1000.0, 0.3, 1.0
 
 
 def test_patch_cps4r_and_cpe4r_distorted_mesh():
-    test_patch.patch("CPS4R")
-    test_patch.patch("CPE4R")
+    patch_deck("CPS4R")
+    patch_deck("CPE4R")
 
 
 def test_patch_cax4r_distorted_mesh():
