@@ -358,3 +358,48 @@ def test_abaqus_hourglass_cards_are_read_and_warn_when_not_honoured():
         assert all(".inp:" in g for g in got), run.stderr
         u = run.listing.increments[-1].block("NODE U", set="TIP")["U2"]
         assert abs(u[0] - exact) < 1e-10 * exact, (name, u[0], exact)
+
+
+def test_nonlinear_closed_forms_with_cpe4r():
+    """tests/test_nonlinear_closed_forms.py's cases with CPE4R: the
+    neo-Hookean block in uniaxial stretch to 1.6 and compression to 0.6
+    (homogeneous: nominal stress to 1e-6); the nearly incompressible
+    neo-Hookean thick cylinder (K/mu = 2000, follower pressure, inner radius
+    +50 %) against Rivlin's solution within 1 % at every increment (the
+    stabilization from the law's initial constants, corotational); the
+    perfectly plastic thick cylinder (small strain) collapsing above
+    (2 / sqrt 3) sigma_y ln(b / a) by less than 2 % on 16 x 8 CPE4R and 1 %
+    on 32 x 16 (measured +1.3 %, +0.66 %: the hourglass modes, capped at the
+    yield stress, still carry a little; CPE4 on 16 x 8: +0.2 %). With an
+    elastic stabilization the cylinder carried 1.2 times that pressure and
+    did not collapse."""
+    import test_nonlinear_closed_forms as nc
+    for lam in (1.6, 0.6):
+        run = run_deck(f"rq_nh_block_{lam}", nc.block(lam, element="CPE4R")).ok()
+        for inc in run.listing.increments:
+            p11, _ = nc.neo_hooke_uniaxial(1.0 + (lam - 1.0) * inc.time)
+            assert abs(nc.right_force(inc) - p11) <= 1e-6 * abs(p11), (lam, inc.time, nc.right_force(inc), p11)
+    a0, b0, mu = 1.0, 2.0, 1.0
+    p = nc.rivlin_pressure(a0, b0, 1.5, mu)
+    text = nc.cylinder_deck(nc.annulus(a0, b0, 12, 12), "CPE4R",
+                            f"*HYPERELASTIC, NEO HOOKE\n{mu / 2}, {2.0 / (2000.0 * mu)!r}\n", p, "*STATIC\n0.1, 1.\n")
+    run = run_deck("rq_nh_cylinder", text).ok()
+    worst = 0.0
+    for inc in run.listing.increments:
+        ur = inc.block("NODE U", set="INNER")["U1"][0]
+        err = abs(nc.rivlin_pressure(a0, b0, a0 + ur, mu) - p * inc.time) / (p * inc.time)
+        worst = max(worst, err)
+        assert err <= 0.01, (inc.time, err)
+    assert abs(run.listing.increments[-1].time - 1.0) < 1e-12
+    e, sy = 200000.0, 200.0
+    pc = 2.0 / math.sqrt(3.0) * sy * math.log(b0 / a0)
+    excess = []
+    for nr, nt in ((16, 8), (32, 16)):
+        text = nc.cylinder_deck(nc.annulus(a0, b0, nr, nt), "CPE4R", f"*ELASTIC\n{e}, 0.3\n*PLASTIC\n{sy}, 0.\n",
+                                1.2 * pc, "*STATIC\n0.1, 1., 1e-4\n")
+        run = run_deck(f"rq_collapse_{nr}x{nt}", text)
+        assert run.rc == 1 and "below the minimum" in run.stderr, run.stderr
+        excess.append(1.2 * run.listing.increments[-1].time - 1.0)
+    assert 0.0 <= excess[0] < 0.02 and 0.0 <= excess[1] < 0.01 and excess[1] < excess[0] / 1.5, excess
+    print(f"  Rivlin cylinder: pressure error at most {worst:.1e}; collapse at {excess[0]:+.2%} (16x8), "
+          f"{excess[1]:+.2%} (32x16) of the closed form")

@@ -213,20 +213,23 @@ contains
   !> grad eta of xi d . grad eta, with the uniaxial modulus E' (E in plane
   !> stress, E / (1 - nu^2) in plane strain and axisymmetry) and int eta^2
   !> dV = V / 3:
-  !>   W = (1/2) d^T k2 d,  k2 = (E' V / 3) (g1 g1^T + g2 g2^T),
+  !>   W = (E' V / 6) ((d . g1)^2 + (d . g2)^2) = (1/2) d^T k2 d,
+  !>   k2 = (E' V / 3) (g1 g1^T + g2 g2^T),
   !> g1 = grad xi, g2 = grad eta at the centre. For a rectangle 2a x 2b
   !> this is E' V / (3 a^2) on the mode along x: pure bending is exact, as
   !> with the incompatible-mode element QM6. V = A t (t at the centre),
   !> 2 pi r0 A in axisymmetry (r0 the centre's radius). Parameter-free: the
   !> material's elastic constants set it.
   !> Arguments: xy the corner coordinates, thickness at the corners, e and
-  !> nu the (initial) elastic constants, state; gam (gamma) and k2 out.
-  pure subroutine hourglass_modes(xy, thickness, e, nu, state, gam, k2)
+  !> nu the (initial) elastic constants, state; out: gam (gamma), g (its
+  !> columns g1 = grad xi and g2 = grad eta at the centre), vol (V) and
+  !> emod (E'), so that k2 = (emod vol / 3) g g^T.
+  pure subroutine hourglass_modes(xy, thickness, e, nu, state, gam, g, vol, emod)
     real(dp), intent(in) :: xy(2, 4), thickness(4), e, nu
     integer, intent(in) :: state
-    real(dp), intent(out) :: gam(4), k2(2, 2)
+    real(dp), intent(out) :: gam(4), g(2, 2), vol, emod
     real(dp), parameter :: h(4) = [1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp]
-    real(dp) :: n(4), dn(2, 4), jac(2, 2), jinv(2, 2), detj, b(2, 4), vol, emod
+    real(dp) :: n(4), dn(2, 4), jac(2, 2), jinv(2, 2), detj, b(2, 4)
     call quad4_shape(0.0_dp, 0.0_dp, n, dn)
     jac = matmul(dn, transpose(xy))
     detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
@@ -237,7 +240,7 @@ contains
     emod = e
     if (state /= state_plane_stress) emod = e / (1.0_dp - nu**2)
     vol = volume_factor(state, 4.0_dp * detj, dot_product(n, xy(1, :)), dot_product(n, thickness))
-    k2 = emod * vol / 3.0_dp * matmul(jinv, transpose(jinv))
+    g = jinv
   end subroutine hourglass_modes
 
   !> Purpose: the 8x8 stiffness of hourglass_modes on the element dofs
@@ -246,9 +249,10 @@ contains
   pure function hourglass_stiffness(xy, thickness, e, nu, state) result(k)
     real(dp), intent(in) :: xy(2, 4), thickness(4), e, nu
     integer, intent(in) :: state
-    real(dp) :: k(8, 8), gam(4), k2(2, 2)
+    real(dp) :: k(8, 8), gam(4), g(2, 2), vol, emod, k2(2, 2)
     integer :: i, j
-    call hourglass_modes(xy, thickness, e, nu, state, gam, k2)
+    call hourglass_modes(xy, thickness, e, nu, state, gam, g, vol, emod)
+    k2 = emod * vol / 3.0_dp * matmul(g, transpose(g))
     do j = 1, 4
       do i = 1, 4
         k(2 * i - 1:2 * i, 2 * j - 1:2 * j) = k2 * gam(i) * gam(j)

@@ -212,33 +212,36 @@ contains
   end function uses_fbar
 
   !> Purpose: the hourglass stabilization of a one-point quadrilateral
-  !> (continuum_element's hourglass_modes: gamma, k2) on the nonlinear
-  !> path, with the law's initial elastic constants and the amplitudes
-  !> d = Gam ue (d_k = gamma . u_k). Small strain: the force Gam^T k2 d and
-  !> the stiffness Gam^T k2 Gam. Finite strain, corotational: d is measured
-  !> in the element's frame, rotated by R(theta) of the polar decomposition
-  !> of F at the centre (theta = atan2(F21 - F12, F11 + F22)), so that the
-  !> force is Gam^T kr d, kr = R k2 R^T, and its exact tangent is
-  !> Gam^T kr Gam + Gam^T (W kr - kr W) d dtheta/du^T (W = dR/dtheta R^T,
-  !> the quarter turn; unsymmetric, as F-bar's). A rigid motion of any size
-  !> is linear in X and has d = 0: no force. The stabilization stays
-  !> elastic under plasticity.
-  !> Arguments: ein; eout, whose ke and fe it adds to.
+  !> (continuum_element's hourglass_modes) on the nonlinear path, with the
+  !> law's initial elastic constants: the amplitudes d = Gam ue (d_k =
+  !> gamma . u_k), in the element's frame dl = R^T d, their curvatures
+  !> kappa_j = dl . g_j and the peak bending stresses m_j = E' kappa_j, the
+  !> force Gam^T q, q = R (V / 3) sum_j m_j g_j. Small strain: R = I.
+  !> Finite strain, corotational: R(theta) the rotation of the polar
+  !> decomposition of F at the centre, theta = atan2(F21 - F12, F11 + F22);
+  !> the exact tangent of q is kr + (W q - kr W d) dtheta/du^T, kr = R
+  !> (V / 3) sum_j E'_j g_j g_j^T R^T, W = dR/dtheta R^T the quarter turn
+  !> (unsymmetric, as F-bar's). A rigid motion of any size is linear in X
+  !> and has d = 0: no force. With *PLASTIC the modes are elastic-perfectly
+  !> plastic at the point's yield stress (hourglass_yield), so that a
+  !> plastic mechanism is not held up by them.
+  !> Arguments: ein; eout, whose ke, fe (and with *PLASTIC hist(6:7, 1))
+  !> it sets.
   pure subroutine add_hourglass(ein, eout)
     type(elem_in_t), intent(in) :: ein
     type(elem_out_t), intent(inout) :: eout
     real(dp), parameter :: w(2, 2) = reshape([0.0_dp, 1.0_dp, -1.0_dp, 0.0_dp], [2, 2])
-    real(dp) :: e0, nu0, gam(4), k2(2, 2), kr(2, 2), rot(2, 2), gm(2, 8), d(2), kd(2), nth(8), c, s, rr
-    real(dp) :: n(max_nodes), dndx(2, max_nodes), detj, r, f(3, 3), g(5, 2 * max_nodes)
+    real(dp) :: e0, nu0, gam(4), gk(2, 2), vol, emod, rot(2, 2), gm(2, 8), d(2), kappa(2), m(2), et(2), q(2)
+    real(dp) :: kr(2, 2), kd(2), nth(8), c, s, rr, n(max_nodes), dndx(2, max_nodes), detj, r, f(3, 3), &
+                g(5, 2 * max_nodes)
     integer :: k
     call initial_moduli(ein, e0, nu0)
-    call hourglass_modes(ein%xy(:, 1:4), ein%thickness(1:4), e0, nu0, ein%state, gam, k2)
+    call hourglass_modes(ein%xy(:, 1:4), ein%thickness(1:4), e0, nu0, ein%state, gam, gk, vol, emod)
     gm = 0.0_dp
     gm(1, 1:7:2) = gam
     gm(2, 2:8:2) = gam
     d = matmul(gm, ein%ue(1:8))
-    kr = k2
-    kd = 0.0_dp
+    rot = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
     nth = 0.0_dp
     if (ein%nlgeom .or. ein%law /= law_elastic) then
       call reference_point(ein, [0.0_dp, 0.0_dp], n, dndx, detj, r)
@@ -250,17 +253,66 @@ contains
       ! the element reports; no rotation then)
       if (rr > 0.0_dp) then
         rot = reshape([c, s, -s, c], [2, 2]) / sqrt(rr)
-        kr = matmul(rot, matmul(k2, transpose(rot)))
-        kd = matmul(matmul(w, kr) - matmul(kr, w), d)
         nth = (c * (g(3, 1:8) - g(2, 1:8)) - s * (g(1, 1:8) + g(4, 1:8))) / rr
       end if
     end if
-    eout%fe(1:8) = eout%fe(1:8) + matmul(matmul(kr, d), gm)
+    kappa = matmul(matmul(transpose(rot), d), gk)
+    m = emod * kappa
+    et = emod
+    if (ein%nyield > 0) call hourglass_yield(ein, emod, kappa, eout%hist(:, 1), m, et)
+    q = matmul(rot, matmul(gk, m)) * vol / 3.0_dp
+    kr = matmul(rot, matmul(matmul(gk, matmul(reshape([et(1), 0.0_dp, 0.0_dp, et(2)], [2, 2]), &
+                                              transpose(gk))), transpose(rot))) * vol / 3.0_dp
+    kd = matmul(w, q) - matmul(kr, matmul(w, d))
+    eout%fe(1:8) = eout%fe(1:8) + matmul(q, gm)
     eout%ke(1:8, 1:8) = eout%ke(1:8, 1:8) + matmul(transpose(gm), matmul(kr, gm))
     do k = 1, 8
       eout%ke(1:8, k) = eout%ke(1:8, k) + matmul(kd, gm) * nth(k)
     end do
   end subroutine add_hourglass
+
+  !> Purpose: the hourglass modes of a one-point quadrilateral with
+  !> *PLASTIC, elastic-perfectly plastic: each mode's peak bending stress
+  !> m_j = E' (kappa_j - kp_j) is held to the yield stress of the point's
+  !> PEEQ (its hardening table), kp_j the mode's plastic curvature, kept as
+  !> history(6:7) of the point (material_laws leaves those entries to the
+  !> element); the tangent E'_j is E' or, yielding, 0. Without this an
+  !> elastic stabilization would carry a plastic mechanism's load without
+  !> bound.
+  !> Arguments: ein (the committed kp in ein%hist(6:7, 1)), emod E', kappa
+  !> the curvatures; hist the point's history at ue (PEEQ read, kp written);
+  !> m, et out.
+  pure subroutine hourglass_yield(ein, emod, kappa, hist, m, et)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(in) :: emod, kappa(2)
+    real(dp), intent(inout) :: hist(max_hist)
+    real(dp), intent(out) :: m(2), et(2)
+    real(dp) :: kp(2), sy, p
+    integer :: j, k
+    kp = ein%hist(6:7, 1)
+    p = hist(hist_peeq)
+    ! the yield stress at PEEQ p: the piecewise-linear table, constant
+    ! beyond its last point
+    k = count(ein%yield(2, 1:ein%nyield) <= p)
+    if (k == 0) then
+      sy = ein%yield(1, 1)
+    else if (k >= ein%nyield) then
+      sy = ein%yield(1, ein%nyield)
+    else
+      sy = ein%yield(1, k) + (ein%yield(1, k + 1) - ein%yield(1, k)) * (p - ein%yield(2, k)) / &
+           (ein%yield(2, k + 1) - ein%yield(2, k))
+    end if
+    do j = 1, 2
+      m(j) = emod * (kappa(j) - kp(j))
+      et(j) = emod
+      if (abs(m(j)) > sy) then
+        m(j) = sign(sy, m(j))
+        kp(j) = kappa(j) - m(j) / emod
+        et(j) = 0.0_dp
+      end if
+    end do
+    hist(6:7) = kp
+  end subroutine hourglass_yield
 
   !> Purpose: Young's modulus and Poisson's ratio of the law at zero
   !> strain: *ELASTIC's, or of a hyperelastic law mu0 = 2 (C10 + C01) and
