@@ -403,3 +403,31 @@ def test_nonlinear_closed_forms_with_cpe4r():
     assert 0.0 <= excess[0] < 0.02 and 0.0 <= excess[1] < 0.01 and excess[1] < excess[0] / 1.5, excess
     print(f"  Rivlin cylinder: pressure error at most {worst:.1e}; collapse at {excess[0]:+.2%} (16x8), "
           f"{excess[1]:+.2%} (32x16) of the closed form")
+
+
+def test_thermal_free_expansion_and_held_block():
+    """tests/test_thermal.py's closed forms with CPS4R, CPE4R, CAX4R on its
+    distorted meshes: free expansion u = alpha dT (x, y) without stress
+    ((1 + nu) alpha dT and S33 = -E alpha dT in plane strain), and the block
+    held at both ends (S11 = -E alpha dT, or / (1 - nu) in plane strain), to
+    1e-9."""
+    import test_thermal as th
+    from test_dload import wavy
+    a = th.ALPHA * (th.T1 - th.T0)
+    for state, et in (("S", "CPS4R"), ("E", "CPE4R"), ("AX", "CAX4R")):
+        m, x0, bcs = th.free_case("Q4", state)
+        inc = run_deck(f"rq_thermal_free_{state}", th.deck(m, et, bcs, th.step(f"ALL, {th.T1}\n"))).ok() \
+            .listing.increments[-1]
+        s33 = -th.E * a if state == "E" else 0.0
+        g = a * (1 + th.NU) if state == "E" else a
+        th.check(inc, m, lambda p: (g * (p[0] - x0 * (state != "AX")), g * p[1]), (0.0, 0.0, s33, 0.0), a * 3.0,
+                 f"free {et}")
+    for state, et in (("S", "CPS4R"), ("E", "CPE4R")):
+        m = Mesh("Q4", 3, 2, wavy(3, 2, 2.0, 1.0))
+        inc = run_deck(f"rq_thermal_held_{state}", th.deck(m, et, "BOT, 2, 2\nLEFT, 1, 1\nRIGHT, 1, 1\n",
+                                                            th.step(f"ALL, {th.T1}\n"))).ok().listing.increments[-1]
+        if state == "S":
+            s, uy = (-th.E * a, 0.0, 0.0, 0.0), a * (1 + th.NU)
+        else:
+            s, uy = (-th.E * a / (1 - th.NU), 0.0, -th.E * a / (1 - th.NU), 0.0), a * (1 + th.NU) / (1 - th.NU)
+        th.check(inc, m, lambda p: (0.0, uy * p[1]), s, a * 3.0, f"held {et}")

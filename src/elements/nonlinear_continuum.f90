@@ -396,7 +396,7 @@ contains
   pure subroutine uniform_gradient(ein, n, dndx, hoop, dv)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(out) :: n(max_nodes), dndx(2, max_nodes), hoop(max_nodes), dv
-    real(dp) :: xg(2, max_ip), wg(max_ip), np(max_nodes), dp_(2, max_nodes), detj, r, w
+    real(dp) :: xg(2, max_ip), wg(max_ip), np(max_nodes), dnx(2, max_nodes), detj, r, w
     integer :: ip
     call gauss_rule(shape_quad4, 4, xg, wg)
     n = 0.0_dp
@@ -404,10 +404,10 @@ contains
     hoop = 0.0_dp
     dv = 0.0_dp
     do ip = 1, 4
-      call reference_point(ein, xg(:, ip), np, dp_, detj, r)
+      call reference_point(ein, xg(:, ip), np, dnx, detj, r)
       w = volume_factor(ein%state, detj, r, dot_product(np(1:4), ein%thickness(1:4))) * wg(ip)
       n = n + np * w
-      dndx = dndx + dp_ * w
+      dndx = dndx + dnx * w
       if (ein%state == state_axisymmetric) hoop = hoop + np / r * w
       dv = dv + w
     end do
