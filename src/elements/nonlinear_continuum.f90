@@ -42,9 +42,11 @@
 !> finite-strain plasticity ignore it), so fe is the whole internal force
 !> and act_thermal gives zero on this path.
 !>
-!> One-point quadrilaterals (CPS4R, CPE4R, CAX4R): F (or the small
-!> strain) at the centre only, no F-bar, and the hourglass stabilization
-!> of continuum_element, corotational under finite strain (add_hourglass).
+!> One-point quadrilaterals (CPS4R, CPE4R, CAX4R): one F (or small
+!> strain), the element's mean (uniform_gradient, continuum_element's
+!> uniform_strain), no F-bar, and continuum_element's hourglass
+!> stabilization, corotational under finite strain and with elastic-
+!> perfectly plastic modes under *PLASTIC (add_hourglass).
 !>
 !> Stresses (act_stresses): sig_ip the Cauchy stress (s11, s22, s33, s12)
 !> (sigma = tau / det Fbar with F-bar), extrapolated to the nodes;

@@ -429,13 +429,13 @@ contains
   !> two neighbouring corners at one point, and with 8 nodes the mid-side
   !> node between them there too) whose three other corners make a
   !> counter-clockwise triangle, counted in ncol (first_col the first).
-  !> When the two corners are one node its field is that triangle's: the
-  !> shape functions of the merged corners add up to one function, and
-  !> with the other two they span the triangle's linear fields
-  !> (isoparametric), which the quadrilateral's rules integrate exactly.
-  !> Two nodes at one point stay two nodes (the degenerate element as
-  !> CalculiX integrates it). No node may appear twice otherwise. Errors
-  !> say why an element is refused.
+  !> When the two corners are one node the element is that triangle
+  !> (collapse_to_triangles makes it one): the shape functions of the
+  !> merged corners add up to one function, and with the other two they
+  !> span the triangle's linear fields (isoparametric). Two nodes at one
+  !> point stay two nodes (the degenerate element as CalculiX integrates
+  !> it). No node may appear twice otherwise. Errors say why an element is
+  !> refused.
   !> Arguments: p the parser (errors at the element's line), m, e; ncol
   !> and first_col updated.
   subroutine check_corners(p, m, e, ncol, first_col)
