@@ -301,12 +301,6 @@ def test_bad_dload_cards():
         assert run.rc != 0 and msg in run.stderr and ".inp:" in run.stderr, (name, run.stderr)
 
 
-def test_cps4r_is_a_clear_error():
-    m = Mesh("Q4", 1, 1, wavy(1, 1, 1.0, 1.0))
-    run = run_deck("cps4r", block_deck(m, "CPS4R", "", "BOT, 2, 2\n"))
-    assert run.rc != 0 and "hourglass control" in run.stderr and "use CPS4" in run.stderr, run.stderr
-
-
 def test_invalid_quadratic_and_axisymmetric_elements():
     """A mid-side node pushed past the middle of the element (the corners
     are fine, the Jacobian is negative inside) and an axisymmetric element

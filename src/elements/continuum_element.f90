@@ -21,16 +21,25 @@
 !> out-of-plane strain: in plane stress D has no such row (S33 = 0); in
 !> plane strain it gives S33 = nu (S11 + S22) - E alpha dT; in axisymmetry
 !> it is the hoop strain.
+!>
+!> One-point quadrilaterals (CPS4R, CPE4R, CAX4R: the bilinear shape with
+!> nip = 1) take one strain, the element's mean (uniform_strain; in plane
+!> states the strain at the centre), and one stress, which leaves
+!> the two hourglass modes (u = d xi eta, d a vector) without stiffness;
+!> hourglass_stiffness gives them the stiffness they have in pure bending
+!> (the stresses stay those of the one point, as in CalculiX and Abaqus,
+!> and its value is every node's).
 module continuum_element
   use kinds, only: dp
-  use element_catalogue, only: max_nodes, max_ip, state_axisymmetric
+  use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, &
                                act_thermal, wants
-  use shape_functions, only: shape_at, gauss_rule, extrapolation
+  use shape_functions, only: shape_at, gauss_rule, extrapolation, quad4_shape
   use materials, only: elastic_matrix
   implicit none
   private
-  public :: continuum, volume_factor, strain_matrix
+  public :: continuum, volume_factor, strain_matrix, is_one_point_quad, uniform_strain, hourglass_modes, &
+            hourglass_stiffness
 
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
 
@@ -115,6 +124,7 @@ contains
       ! (its corner functions dip under zero) is flagged as a bad Jacobian
       if (ein%state /= state_axisymmetric .and. .not. t_ip > 0.0_dp) eout%detj_min = min(eout%detj_min, t_ip)
       dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
+      if (is_one_point_quad(ein)) call uniform_strain(ein, n, b(:, 1:nd), dv, eps0)
       if (wants(action, act_thermal)) eout%fe(1:nd) = eout%fe(1:nd) + matmul(matmul(eps0, d), b(:, 1:nd)) * dv
       if (need_k) then
         ! upper triangle of B^T D B, mirrored below after the loop
@@ -137,6 +147,8 @@ contains
       do j = 1, nd - 1
         eout%ke(j + 1:nd, j) = eout%ke(j, j + 1:nd)
       end do
+      if (is_one_point_quad(ein)) eout%ke(1:8, 1:8) = eout%ke(1:8, 1:8) + &
+          hourglass_stiffness(ein%xy(:, 1:4), ein%thickness(1:4), ein%e, ein%nu, ein%state)
     end if
     if (wants(action, act_residual)) eout%fe(1:nd) = matmul(eout%ke(1:nd, 1:nd), ein%ue(1:nd))
     if (.not. wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = 0.0_dp
@@ -145,4 +157,106 @@ contains
       eout%sig_node(:, 1:nen) = matmul(eout%sig_ip(:, 1:ein%nip), transpose(ex(1:nen, 1:ein%nip)))
     end if
   end subroutine continuum
+
+  !> Purpose: is the element a one-point bilinear quadrilateral (CPS4R,
+  !> CPE4R, CAX4R), which needs hourglass_stiffness?
+  pure logical function is_one_point_quad(ein)
+    type(elem_in_t), intent(in) :: ein
+    is_one_point_quad = ein%kind == shape_quad4 .and. ein%nip == 1
+  end function is_one_point_quad
+
+  !> Purpose: the one point of a one-point quadrilateral is the element's
+  !> mean (the uniform strain element, Flanagan and Belytschko 1981,
+  !> section 3): b = (1/V) int B dV, n = (1/V) int N dV, dv = V and the
+  !> thermal strain eps0 of the mean temperature change, integrated by
+  !> the 2x2 rule, exact for a bilinear shape. In plane states b is B at
+  !> the centre; in axisymmetry (dV = 2 pi r dA) it is not, and the mean
+  !> is what keeps the constant-strain patch test exact.
+  !> Arguments: ein; n(max_nodes), b(4, 8), dv, eps0(4) out.
+  pure subroutine uniform_strain(ein, n, b, dv, eps0)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(out) :: n(max_nodes), b(4, 8), dv, eps0(4)
+    real(dp) :: xg(2, max_ip), wg(max_ip), np(max_nodes), dn(2, max_nodes), bp(4, 8), detj, r, w
+    integer :: ip
+    call gauss_rule(shape_quad4, 4, xg, wg)
+    n = 0.0_dp
+    b = 0.0_dp
+    dv = 0.0_dp
+    do ip = 1, 4
+      call shape_at(shape_quad4, xg(:, ip), np, dn)
+      call strain_matrix(4, ein%xy(:, 1:4), np(1:4), dn(:, 1:4), ein%state, bp, detj, r)
+      w = volume_factor(ein%state, detj, r, dot_product(np(1:4), ein%thickness(1:4))) * wg(ip)
+      n = n + np * w
+      b = b + bp * w
+      dv = dv + w
+    end do
+    n = n / dv
+    b = b / dv
+    eps0 = ein%alpha * dot_product(n(1:4), ein%dtemp(1:4)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
+  end subroutine uniform_strain
+
+  !> Purpose: hourglass stabilization of the one-point bilinear
+  !> quadrilateral, the stiffness of its two hourglass modes: the
+  !> displacement fields d xi eta (d = (d1, d2)) that give no strain at the
+  !> centre, as the element has them in pure bending when its other strains
+  !> are relaxed (an assumed-strain stabilization in the spirit of
+  !> Belytschko and Bindeman 1991, Comput. Methods Appl. Mech. Engrg. 88,
+  !> 311-340, "ASQBI", and of Abaqus's HOURGLASS=ENHANCED, derived here).
+  !> The amplitudes are d_k = gamma . u_k (u_k the nodal values of
+  !> displacement component k) with
+  !>   gamma = (h - (h.x) b_x - (h.y) b_y) / 4,  h = (1, -1, 1, -1),
+  !> b = dN/dx at the centre (Flanagan and Belytschko 1981, Int. J. Numer.
+  !> Meth. Engng 17, 679-706, eq. 55-56): gamma is orthogonal to every
+  !> linear field, so the constant-strain patch test is untouched, and
+  !> gamma . h = 1. The energy of the mode is that of its bending strains
+  !> alone, the normal strain along grad xi of eta d . grad xi and along
+  !> grad eta of xi d . grad eta, with the uniaxial modulus E' (E in plane
+  !> stress, E / (1 - nu^2) in plane strain and axisymmetry) and int eta^2
+  !> dV = V / 3:
+  !>   W = (E' V / 6) ((d . g1)^2 + (d . g2)^2) = (1/2) d^T k2 d,
+  !>   k2 = (E' V / 3) (g1 g1^T + g2 g2^T),
+  !> g1 = grad xi, g2 = grad eta at the centre. For a rectangle 2a x 2b
+  !> this is E' V / (3 a^2) on the mode along x: pure bending is exact, as
+  !> with the incompatible-mode element QM6. V = A t (t at the centre),
+  !> 2 pi r0 A in axisymmetry (r0 the centre's radius). Parameter-free: the
+  !> material's elastic constants set it.
+  !> Arguments: xy the corner coordinates, thickness at the corners, e and
+  !> nu the (initial) elastic constants, state; out: gam (gamma), g (its
+  !> columns g1 = grad xi and g2 = grad eta at the centre), vol (V) and
+  !> emod (E'), so that k2 = (emod vol / 3) g g^T.
+  pure subroutine hourglass_modes(xy, thickness, e, nu, state, gam, g, vol, emod)
+    real(dp), intent(in) :: xy(2, 4), thickness(4), e, nu
+    integer, intent(in) :: state
+    real(dp), intent(out) :: gam(4), g(2, 2), vol, emod
+    real(dp), parameter :: h(4) = [1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp]
+    real(dp) :: n(4), dn(2, 4), jac(2, 2), jinv(2, 2), detj, b(2, 4)
+    call quad4_shape(0.0_dp, 0.0_dp, n, dn)
+    jac = matmul(dn, transpose(xy))
+    detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    jinv = reshape([jac(2, 2), -jac(2, 1), -jac(1, 2), jac(1, 1)], [2, 2]) / detj
+    ! b = dN/dx at the centre; grad xi, grad eta are the columns of jinv
+    b = matmul(jinv, dn)
+    gam = 0.25_dp * (h - dot_product(h, xy(1, :)) * b(1, :) - dot_product(h, xy(2, :)) * b(2, :))
+    emod = e
+    if (state /= state_plane_stress) emod = e / (1.0_dp - nu**2)
+    vol = volume_factor(state, 4.0_dp * detj, dot_product(n, xy(1, :)), dot_product(n, thickness))
+    g = jinv
+  end subroutine hourglass_modes
+
+  !> Purpose: the 8x8 stiffness of hourglass_modes on the element dofs
+  !> (u1, v1, ..., u4, v4): k2 (x) gamma gamma^T.
+  !> Arguments: as hourglass_modes.
+  pure function hourglass_stiffness(xy, thickness, e, nu, state) result(k)
+    real(dp), intent(in) :: xy(2, 4), thickness(4), e, nu
+    integer, intent(in) :: state
+    real(dp) :: k(8, 8), gam(4), g(2, 2), vol, emod, k2(2, 2)
+    integer :: i, j
+    call hourglass_modes(xy, thickness, e, nu, state, gam, g, vol, emod)
+    k2 = emod * vol / 3.0_dp * matmul(g, transpose(g))
+    do j = 1, 4
+      do i = 1, 4
+        k(2 * i - 1:2 * i, 2 * j - 1:2 * j) = k2 * gam(i) * gam(j)
+      end do
+    end do
+  end function hourglass_stiffness
 end module continuum_element

@@ -35,7 +35,9 @@
 !>   finite strain: hist(1:4) = Cp^-1 - I (11, 22, 33, 12), Cp^-1 the
 !>                  inverse plastic right Cauchy-Green tensor, so that a
 !>                  zero history is the virgin state; hist(5) = PEEQ;
-!>   hist(6:8) unused (zero). Elastic laws keep the history unchanged
+!>   hist(6:8) not the law's: it copies them through (nonlinear_continuum
+!>   keeps the plastic hourglass curvatures of a one-point quadrilateral in
+!>   hist(6:7); zero otherwise). Elastic laws keep the history unchanged
 !>   (nonlinear_continuum gives them a zero one).
 !>
 !> Plane stress: the out-of-plane strain (small strain) or stretch F33

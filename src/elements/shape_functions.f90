@@ -157,8 +157,9 @@ contains
 
   !> Purpose: the integration rule of nip points of a shape: natural
   !> coordinates xi(2, nip), weights w(nip) (a triangle's weights sum to
-  !> its natural area 1/2). Quadrilaterals: 2x2 with the points in the
-  !> order of the corners they are nearest to, 3x3 row by row (xi fastest);
+  !> its natural area 1/2). Quadrilaterals: 1 point (the centre, weight
+  !> 4: the reduced-integration CPS4R family), 2x2 with xi fastest, 3x3 row
+  !> by row (xi fastest);
   !> triangles: 1 point (centroid), 3 points (degree 2, at the mid-points
   !> of the lines from the centroid to the corners), 6 points (degree 4).
   pure subroutine gauss_rule(shape, nip, xi, w)
@@ -170,6 +171,8 @@ contains
     w = 0.0_dp
     if (is_triangle(shape)) then
       call triangle_rule(nip, xi, w)
+    else if (nip == 1) then
+      w(1) = 4.0_dp
     else if (nip == 4) then
       ! xi fastest, then eta, as the 3x3 rule and as Abaqus and CalculiX
       ! number the points (what *EL PRINT lists point by point)

@@ -248,7 +248,9 @@ contains
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     integer :: n
-    call allow_params(p, kw, 'ELSET,MATERIAL,STATE,OFFSET,NODAL THICKNESS')
+    ! (CONTROLS= names an Abaqus *SECTION CONTROLS, read for CPS4R's
+    ! hourglass control: deck_parser's read_hourglass_card)
+    call allow_params(p, kw, 'ELSET,MATERIAL,STATE,OFFSET,NODAL THICKNESS,CONTROLS')
     call grow(m%sections, p%nsec + 1)
     p%nsec = p%nsec + 1
     m%sections(p%nsec) = section_t()

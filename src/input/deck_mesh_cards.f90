@@ -129,9 +129,13 @@ contains
       do k = 1, nen
         m%conn(k, m%ne) = node_ref(p, m, f(k + 1), 'node of element')
       end do
-      do k = 2, nen
-        if (any(m%conn(1:k - 1, m%ne) == m%conn(k, m%ne))) call err(p, 'element uses the same node twice')
-      end do
+      ! a quadrilateral may name one node at two neighbouring corners (a
+      ! collapsed one): check_model's corner check decides
+      if (catalogue(et)%corners /= 4) then
+        do k = 2, nen
+          if (any(m%conn(1:k - 1, m%ne) == m%conn(k, m%ne))) call err(p, 'element uses the same node twice')
+        end do
+      end if
       m%elem_src(m%ne)%line = p%i
       m%elem_index(gid) = m%ne
       call append(items, nitems, m%ne)

@@ -9,10 +9,10 @@ submodule (deck_parser) deck_model_checks
   use deck_input, only: deck_warning
   use deck_cursor, only: err
   use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t, kept_nodes, &
-                   node_label, elem_label, law_elastic
+                   node_label, elem_label, law_elastic, step_dloads
   use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
-                               state_axisymmetric, shape_springa
+                               state_axisymmetric, shape_springa, max_edges
   use growable, only: grow
   use mesh_topology, only: build_topology
   implicit none
@@ -51,6 +51,7 @@ contains
     end if
     call check_unused_nodes(p, m)
     call build_topology(m%nn, m%ne, m%etype, m%conn, m%topo)
+    call drop_collapsed_faces(m)
   end subroutine check_model
 
   !> Purpose: a hyperelastic material makes every step geometrically
@@ -348,16 +349,19 @@ contains
   end subroutine warn_plane_stress
 
   !> Every solid element has a section and a positive Jacobian at each
-  !> corner; every spring has its *SPRING; a truss or a SPRINGA has two
+  !> corner, or is a collapsed quadrilateral (check_corners; one warning
+  !> counts them); every spring has its *SPRING; a truss or a SPRINGA has two
   !> distinct ends (its direction), a 3-node truss does not fold back;
   !> trusses and springs are not
   !> mixed with axisymmetric elements.
   subroutine check_elements(p, m)
     type(parser_t), intent(inout) :: p
-    type(model_t), intent(in) :: m
-    integer :: e
+    type(model_t), intent(inout) :: m
+    integer :: e, ncol, first_col
     logical :: axi
     axi = .false.
+    ncol = 0
+    first_col = 0
     do e = 1, m%ne
       p%i = m%elem_src(e)%line
       if (is_spring(m, e) .and. m%elem_section(e) == 0) call err(p, 'spring element ' // elem_label(m, e) // &
@@ -376,9 +380,13 @@ contains
       if (.not. is_continuum(m, e)) cycle
       axi = axi .or. catalogue(m%etype(e))%state == state_axisymmetric
       if (m%elem_section(e) == 0) call err(p, 'element ' // elem_label(m, e) // ' has no *SOLID SECTION')
-      if (min_corner_jacobian(m, e) <= 0.0_dp) call err(p, 'element ' // elem_label(m, e) // &
-          ' has a zero or negative Jacobian (nodes clockwise or element inverted)')
+      call check_corners(p, m, e, ncol, first_col)
     end do
+    if (ncol > 0) call deck_warning(p%deck, m%elem_src(first_col)%line, itoa(ncol) // ' collapsed ' // &
+        'quadrilateral(s) (two neighbouring corners at one point; the first: element ' // &
+        elem_label(m, first_col) // '): where the two are one node the element is the triangle of its ' // &
+        'corners; two nodes stay two (the degenerate element, as CalculiX integrates it)')
+    if (ncol > 0) call collapse_to_triangles(m)
     if (.not. axi) return
     do e = 1, m%ne
       if (.not. (is_truss(m, e) .or. is_spring(m, e))) cycle
@@ -415,6 +423,224 @@ contains
     end associate
     truss_folds = .not. 0.5_dp * dot_product(c, c) > abs(dot_product(q, c))
   end function truss_folds
+
+  !> Purpose: the corner check of continuum element e: a positive
+  !> Jacobian at every corner, or a collapsed quadrilateral (collapsed_face:
+  !> two neighbouring corners at one point, and with 8 nodes the mid-side
+  !> node between them there too) whose three other corners make a
+  !> counter-clockwise triangle, counted in ncol (first_col the first).
+  !> When the two corners are one node the element is that triangle
+  !> (collapse_to_triangles makes it one): the shape functions of the
+  !> merged corners add up to one function, and with the other two they
+  !> span the triangle's linear fields (isoparametric). Two nodes at one
+  !> point stay two nodes (the degenerate element as CalculiX integrates
+  !> it). No node may appear twice otherwise. Errors say why an element is
+  !> refused.
+  !> Arguments: p the parser (errors at the element's line), m, e; ncol
+  !> and first_col updated.
+  subroutine check_corners(p, m, e, ncol, first_col)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    integer, intent(inout) :: ncol, first_col
+    integer :: k, nc, nen, i, corner(3)
+    character(len=:), allocatable :: what
+    what = 'element ' // elem_label(m, e) // ' (' // trim(catalogue(m%etype(e))%name) // ')'
+    nc = catalogue(m%etype(e))%corners
+    nen = catalogue(m%etype(e))%nodes
+    k = collapsed_face(m, e)
+    if (k < 0) call err(p, what // ' has two corners at one point that are not neighbours, or two faces ' // &
+                        'of no length (it collapses to a line or a point): it is no element')
+    do i = 2, nen
+      if (.not. any(m%conn(1:i - 1, e) == m%conn(i, e))) cycle
+      if (k > 0) then
+        if (any(catalogue(m%etype(e))%edge(:, k) == i)) cycle
+      end if
+      call err(p, what // ' uses node ' // node_label(m, m%conn(i, e)) // ' twice (only the two corners ' // &
+               'of a collapsed face, and its mid-side node, may be one node)')
+    end do
+    if (k == 0) then
+      if (min_corner_jacobian(m, e) <= 0.0_dp) call err(p, what // ' has a zero or negative Jacobian at a ' // &
+          'corner: its corners are ' // corner_fault(m, m%conn(1:nc, e)))
+      return
+    end if
+    associate(ed => catalogue(m%etype(e))%edge(:, k))
+      if (ed(3) > 0) then
+        if (.not. coincident(m, e, ed(3), ed(1))) call err(p, what // ' is a collapsed quadrilateral (face S' // &
+            itoa(k) // ' has no length) whose mid-side node on that face is elsewhere: it must be at its corners')
+      end if
+      corner = [ed(2), mod(ed(2), nc) + 1, mod(ed(2) + 1, nc) + 1]
+    end associate
+    if (.not. triangle_area(m, m%conn(corner, e)) > 0.0_dp) call err(p, what // ' is a collapsed ' // &
+        'quadrilateral (face S' // itoa(k) // ' has no length) whose other corners are ' // &
+        corner_fault(m, m%conn(corner, e)))
+    ncol = ncol + 1
+    if (first_col == 0) first_col = e
+  end subroutine check_corners
+
+  !> Purpose: the face of quadrilateral e collapsed to a point: k where
+  !> the two corners of face k coincide (one node, or two at one point)
+  !> and no other two corners do; 0 when no two corners coincide (and for
+  !> a triangle); -1 when two corners that are not neighbours coincide,
+  !> or two faces do.
+  integer function collapsed_face(m, e) result(k)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    integer :: i, j
+    k = 0
+    if (catalogue(m%etype(e))%corners /= 4) return
+    do i = 1, 3
+      do j = i + 1, 4
+        if (.not. coincident(m, e, i, j)) cycle
+        if (k /= 0 .or. j == i + 2) then
+          k = -1
+          return
+        end if
+        k = i
+        if (j == 4 .and. i == 1) k = 4
+      end do
+    end do
+  end function collapsed_face
+
+  !> Are local nodes i and j of element e one node, or two at one point
+  !> (round-off of the element's size)?
+  logical function coincident(m, e, i, j)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e, i, j
+    real(dp) :: size2
+    integer :: k, nc
+    coincident = m%conn(i, e) == m%conn(j, e)
+    if (coincident) return
+    nc = catalogue(m%etype(e))%corners
+    size2 = 0.0_dp
+    do k = 2, nc
+      size2 = max(size2, sum((m%x(:, m%conn(k, e)) - m%x(:, m%conn(1, e)))**2))
+    end do
+    coincident = sum((m%x(:, m%conn(i, e)) - m%x(:, m%conn(j, e)))**2) <= 1.0e-24_dp * size2
+  end function coincident
+
+  !> Twice the signed area of the triangle of nodes t(1:3) (positive
+  !> counter-clockwise), zero where it is round-off of its edges' size.
+  real(dp) function triangle_area(m, t)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: t(3)
+    real(dp) :: u(2), v(2)
+    u = m%x(:, t(2)) - m%x(:, t(1))
+    v = m%x(:, t(3)) - m%x(:, t(1))
+    triangle_area = u(1) * v(2) - u(2) * v(1)
+    if (abs(triangle_area) <= 1.0e-12_dp * max(sum(u**2), sum(v**2))) triangle_area = 0.0_dp
+  end function triangle_area
+
+  !> Purpose: why the corners (nodes) of a polygon give no valid element:
+  !> two at one point, clockwise, on one line, or a corner of 180 degrees
+  !> or more.
+  function corner_fault(m, nodes) result(s)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: nodes(:)
+    character(len=:), allocatable :: s
+    integer :: i, j, n
+    real(dp) :: area, scale
+    n = size(nodes)
+    area = 0.0_dp
+    scale = 0.0_dp
+    do i = 1, n
+      j = mod(i, n) + 1
+      if (norm2(m%x(:, nodes(j)) - m%x(:, nodes(i))) == 0.0_dp) then
+        s = 'nodes ' // node_label(m, nodes(i)) // ' and ' // node_label(m, nodes(j)) // ', at one point'
+        if (n == 4 .and. nodes(i) /= nodes(j)) s = s // ' (two nodes: a collapsed quadrilateral names one ' // &
+            'node twice)'
+        return
+      end if
+      area = area + m%x(1, nodes(i)) * m%x(2, nodes(j)) - m%x(1, nodes(j)) * m%x(2, nodes(i))
+      scale = max(scale, sum((m%x(:, nodes(j)) - m%x(:, nodes(i)))**2))
+    end do
+    if (area < -1.0e-12_dp * scale) then
+      s = 'clockwise (list them counter-clockwise)'
+    else if (area <= 1.0e-12_dp * scale) then
+      s = 'on one line'
+    else
+      s = 'not convex (an angle of 180 degrees or more)'
+    end if
+  end function corner_fault
+
+  !> Purpose: a collapsed quadrilateral whose collapsed face is one node
+  !> becomes the triangle it is: the catalogue's triangle of its stress
+  !> state (CPS4, CPS4R -> CPS3; CPS8, CPS8R -> CPS6; CPE, CAX alike),
+  !> its corners from the end of the collapsed face k on, k+1, k+2, k+3
+  !> (and their faces' mid-side nodes); faces k+1, k+2, k+3 of the
+  !> quadrilateral become the triangle's S1, S2, S3 in the element
+  !> surfaces and the face loads, and face k (a point) leaves them. For
+  !> the bilinear shape this changes nothing but the bookkeeping (its
+  !> field and its stiffness are the triangle's, check_corners); the
+  !> analysis then never sees an element that names a node twice.
+  !> Arguments: m, whose etype, conn, surfaces and step loads change.
+  subroutine collapse_to_triangles(m)
+    type(model_t), intent(inout) :: m
+    integer :: e, k, j, nc, it, map(max_edges), conn(8)
+    character(len=:), allocatable :: name
+    do e = 1, m%ne
+      if (.not. is_continuum(m, e)) cycle
+      k = collapsed_face(m, e)
+      if (k <= 0) cycle
+      if (m%conn(catalogue(m%etype(e))%edge(1, k), e) /= m%conn(catalogue(m%etype(e))%edge(2, k), e)) cycle
+      name = trim(catalogue(m%etype(e))%name)
+      nc = 3
+      if (catalogue(m%etype(e))%nodes == 8) nc = 6
+      it = find_element_type(name(1:3) // merge('3', '6', nc == 3))
+      map = 0
+      conn = m%conn(1:8, e)
+      do j = 1, 3
+        map(mod(k + j - 1, 4) + 1) = j
+        m%conn(j, e) = conn(mod(k + j - 1, 4) + 1)
+        if (nc == 6) m%conn(3 + j, e) = conn(4 + mod(k + j - 1, 4) + 1)
+      end do
+      m%conn(nc + 1:, e) = 0
+      m%etype(e) = it
+      call renumber_faces(m, e, map)
+    end do
+  end subroutine collapse_to_triangles
+
+  !> Purpose: face j of element e becomes face map(j) (0: it is gone, a
+  !> point, and so are its surface entry and its pressure, whose resultant
+  !> was zero) in the element surfaces and in the face loads of every step.
+  subroutine renumber_faces(m, e, map)
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: e, map(max_edges)
+    integer :: s, i
+    logical, allocatable :: keep(:)
+    do s = 1, size(m%surfaces)
+      if (.not. allocated(m%surfaces(s)%elem)) cycle
+      keep = .not. (m%surfaces(s)%elem == e .and. map(max(m%surfaces(s)%edge, 1)) == 0)
+      where (m%surfaces(s)%elem == e) m%surfaces(s)%edge = map(max(m%surfaces(s)%edge, 1))
+      m%surfaces(s)%elem = pack(m%surfaces(s)%elem, keep)
+      m%surfaces(s)%edge = pack(m%surfaces(s)%edge, keep)
+    end do
+    do s = 1, size(m%steps)
+      if (step_dloads(m%steps(s)) == 0) cycle
+      keep = [(.true., i = 1, size(m%steps(s)%dloads))]
+      do i = 1, size(m%steps(s)%dloads)
+        associate(d => m%steps(s)%dloads(i))
+          if (d%elem /= e .or. d%face == 0) cycle
+          keep(i) = map(d%face) > 0
+          if (keep(i)) d%face = map(d%face)
+        end associate
+      end do
+      m%steps(s)%dloads = pack(m%steps(s)%dloads, keep)
+    end do
+  end subroutine renumber_faces
+
+  !> Purpose: the collapsed face of a collapsed quadrilateral (a point) is
+  !> no face: the topology gets no edge there (neighbour -1), so it is on
+  !> no boundary a contact surface or a node set's faces would take.
+  subroutine drop_collapsed_faces(m)
+    type(model_t), intent(inout) :: m
+    integer :: e, k
+    do e = 1, m%ne
+      if (.not. is_continuum(m, e)) cycle
+      k = collapsed_face(m, e)
+      if (k > 0) m%topo%neighbour(k, e) = -1
+    end do
+  end subroutine drop_collapsed_faces
 
   !> Smallest corner value of the Jacobian determinant: positive at every
   !> corner means a valid, convex, counter-clockwise element.

@@ -24,7 +24,8 @@
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
   use messages, only: fatal
-  use deck_input, only: keyword_t, read_deck, parse_keyword, deck_warning, is_keyword
+  use strings, only: to_upper
+  use deck_input, only: keyword_t, read_deck, parse_keyword, deck_warning, is_keyword, param_value
   use deck_cursor, only: parser_t, err, line_text, next_data, allow_params, in_step
   use model, only: model_t
   use element_catalogue, only: max_nodes
@@ -442,6 +443,7 @@ contains
     case ('END INSTANCE');  call read_end_instance(p, m, kw)
     case ('END ASSEMBLY');  call read_end_assembly(p, kw)
     case ('CONTROLS');      call read_controls(p, m, kw)
+    case ('SECTION CONTROLS', 'HOURGLASS STIFFNESS'); call in_step(p, kw, .false.); call read_hourglass_card(p, kw)
     case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT')
       call skip_card(p, kw)
     case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', 'CONTACT PRINT', &
@@ -467,7 +469,8 @@ contains
       'CONTACT PAIR', 'CONTACT CONTROLS', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'NODAL THICKNESS', &
       'SPECIFIC HEAT', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT', 'NODE OUTPUT', 'ELEMENT OUTPUT', &
       'CONTACT OUTPUT', 'CONTACT PRINT', 'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', &
-      'PRE-TENSION SECTION', 'END PART', 'END INSTANCE', 'END ASSEMBLY', 'RIGID BODY']
+      'PRE-TENSION SECTION', 'END PART', 'END INSTANCE', 'END ASSEMBLY', 'RIGID BODY', 'SECTION CONTROLS', &
+      'HOURGLASS STIFFNESS']
     integer :: i
     s = name
     if (index(name, ' ') > 0) return
@@ -520,5 +523,37 @@ contains
     do while (next_data(p))
     end do
   end subroutine skip_card
+
+  !> Purpose: Abaqus's *SECTION CONTROLS and *HOURGLASS STIFFNESS, read
+  !> for the one-point quadrilaterals (CPS4R, CPE4R, CAX4R), whose
+  !> hourglass stabilization is cfe2d's own, the counterpart of
+  !> HOURGLASS=ENHANCED without a parameter (docs/keywords.md, "Reduced
+  !> integration"): *SECTION CONTROLS with HOURGLASS=ENHANCED, or without
+  !> HOURGLASS=, and no data line is taken silently (a *SOLID SECTION's
+  !> CONTROLS= may name it); another HOURGLASS=, another parameter, scale
+  !> factors on its data line and *HOURGLASS STIFFNESS warn at their line
+  !> that they are not used.
+  subroutine read_hourglass_card(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=:), allocatable :: hg
+    integer :: k
+    if (kw%name == 'HOURGLASS STIFFNESS') then
+      call deck_warning(p%deck, p%i, '*HOURGLASS STIFFNESS is not used: cfe2d''s hourglass stabilization of ' // &
+                        'CPS4R, CPE4R, CAX4R follows from the elastic constants (as HOURGLASS=ENHANCED)')
+    else
+      hg = to_upper(param_value(kw, 'HOURGLASS'))
+      if (len(hg) > 0 .and. hg /= 'ENHANCED') call deck_warning(p%deck, p%i, 'HOURGLASS=' // hg // &
+          ' is not cfe2d''s: CPS4R, CPE4R, CAX4R keep their stabilization (as HOURGLASS=ENHANCED)')
+      do k = 1, kw%np
+        if (kw%pname(k)%s == 'NAME' .or. kw%pname(k)%s == 'HOURGLASS') cycle
+        call deck_warning(p%deck, p%i, kw%pname(k)%s // ' of *SECTION CONTROLS is not used by cfe2d')
+      end do
+      if (next_data(p)) call deck_warning(p%deck, p%i, 'the scale factors of *SECTION CONTROLS are not ' // &
+          'used: CPS4R, CPE4R, CAX4R keep their stabilization')
+    end if
+    do while (next_data(p))
+    end do
+  end subroutine read_hourglass_card
 
 end module deck_parser

@@ -72,7 +72,11 @@ module element_catalogue
   !> (degree 4) where CPS6/CPE6 take 3: the hoop terms N_i u_r / r times
   !> r dA of the axisymmetric triangle are of degree 3 for a quadratic
   !> field (degree 4 with curved edges), and 3 points fail its patch tests.
-  type(element_type_t), parameter :: catalogue(23) = [ &
+  !> CPS4R/CPE4R/CAX4R are the bilinear quadrilateral with one point at its
+  !> centre; a one-point bilinear quadrilateral (nip = 1) gets the hourglass
+  !> stabilization of continuum_element (its two spurious modes do spread
+  !> through a mesh, unlike the 8-node element's).
+  type(element_type_t), parameter :: catalogue(26) = [ &
     element_type_t('T3D2', shape_line2, 2, 2, 1, line_edges, 1, state_none, 1, 3), &
     element_type_t('T2D2', shape_line2, 2, 2, 1, line_edges, 1, state_none, 1, 3), &
     element_type_t('T3D3', shape_line3, 3, 2, 1, line3_edges, 2, state_none, 8, 21), &
@@ -87,6 +91,9 @@ module element_catalogue
     element_type_t('CPS4', shape_quad4, 4, 4, 4, quad_edges, 4, state_plane_stress, 3, 9), &
     element_type_t('CPE4', shape_quad4, 4, 4, 4, quad_edges, 4, state_plane_strain, 3, 9), &
     element_type_t('CAX4', shape_quad4, 4, 4, 4, quad_edges, 4, state_axisymmetric, 3, 9), &
+    element_type_t('CPS4R', shape_quad4, 4, 4, 4, quad_edges, 1, state_plane_stress, 3, 9), &
+    element_type_t('CPE4R', shape_quad4, 4, 4, 4, quad_edges, 1, state_plane_strain, 3, 9), &
+    element_type_t('CAX4R', shape_quad4, 4, 4, 4, quad_edges, 1, state_axisymmetric, 3, 9), &
     element_type_t('CPS6', shape_tri6, 6, 3, 3, tri6_edges, 3, state_plane_stress, 9, 22), &
     element_type_t('CPE6', shape_tri6, 6, 3, 3, tri6_edges, 3, state_plane_strain, 9, 22), &
     element_type_t('CAX6', shape_tri6, 6, 3, 3, tri6_edges, 6, state_axisymmetric, 9, 22), &
@@ -115,9 +122,6 @@ contains
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: s
     select case (name)
-    case ('CPS4R', 'CPE4R', 'CAX4R')
-      s = name(1:4) // ' with reduced integration needs hourglass control, which cfe2d does not have; ' // &
-          'use ' // name(1:4) // ' (full 2x2 integration)'
     case ('M3D9', 'CPS9', 'CPE9')
       s = 'the 9-node quadrilateral is not implemented; gmsh writes 8-node quadrilaterals (CPS8) with ' // &
           '-setnumber Mesh.SecondOrderIncomplete 1'
