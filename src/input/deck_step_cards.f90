@@ -474,8 +474,6 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t), allocatable :: f(:)
-    integer :: n
     character(len=:), allocatable :: what
     call allow_params(p, kw, 'PARAMETERS,RESET')
     if (has_param(kw, 'RESET')) then
@@ -486,43 +484,9 @@ contains
       what = to_upper(param_value(kw, 'PARAMETERS'))
       select case (what)
       case ('FIELD')
-        call require_data(p, 'R_n, C_n, q_0, q_u, R_p, epsilon, C_epsilon, R_l')
-        call split_fields(line_text(p), f, n)
-        if (n > 8) call err(p, '*CONTROLS, PARAMETERS=FIELD data line has at most 8 fields')
-        associate(c => p%controls)
-          call set_real(1, c%rn, 'R_n')
-          call set_real(2, c%cn, 'C_n')
-          call set_real(4, c%qu, 'q_u')
-          call set_real(5, c%rp, 'R_p')
-          call set_real(6, c%eps, 'epsilon')
-          call set_real(7, c%ceps, 'C_epsilon')
-          call set_real(8, c%rl, 'R_l')
-        end associate
-        if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=FIELD has one data line')
+        call field_controls(p)
       case ('TIME INCREMENTATION', 'TIMEINCREMENTATION')
-        call require_data(p, 'I_0, I_R, I_P, I_C, I_L, I_G')
-        call split_fields(line_text(p), f, n)
-        if (n > 10) call err(p, 'the first line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 10 fields')
-        associate(c => p%controls)
-          call set_int(1, c%i0, 'I_0')
-          call set_int(2, c%ir, 'I_R')
-          call set_int(3, c%ip, 'I_P')
-          call set_int(4, c%ic, 'I_C')
-          call set_int(5, c%il, 'I_L')
-          call set_int(6, c%ig, 'I_G')
-          if (next_data(p)) then
-            call split_fields(line_text(p), f, n)
-            if (n > 8) call err(p, 'the second line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 8 fields')
-            call set_real(1, c%df, 'D_f')
-            call set_real(2, c%dc, 'D_C')
-            call set_real(3, c%db, 'D_B')
-            call set_real(7, c%dd, 'D_D')
-            if (c%df >= 1.0_dp .or. c%dc >= 1.0_dp .or. c%db > 1.0_dp) call err(p, 'the cut-back factors ' // &
-              'D_f, D_C and D_B must be below 1')
-            if (c%dd < 1.0_dp) call err(p, 'D_D, the growth factor, must be at least 1')
-            if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=TIME INCREMENTATION has two data lines')
-          end if
-        end associate
+        call time_controls(p)
       case ('LINE SEARCH', 'LINESEARCH', 'CONTACT', 'NETWORK', 'CFD')
         call deck_warning(p%deck, p%i, '*CONTROLS, PARAMETERS=' // what // ' is not implemented and is ignored')
         do while (next_data(p))
@@ -534,29 +498,89 @@ contains
       end select
     end if
     if (p%step > 0) m%steps(p%step)%controls = p%controls
-  contains
-    !> A positive real in field k, if given.
-    subroutine set_real(k, v, name)
-      integer, intent(in) :: k
-      real(dp), intent(inout) :: v
-      character(len=*), intent(in) :: name
-      if (k > n) return
-      if (len(f(k)%s) == 0) return
-      v = get_real(p, f(k), name)
-      if (.not. v > 0.0_dp .and. name /= 'q_u') call err(p, name // ' must be positive')
-      if (v < 0.0_dp) call err(p, name // ' must not be negative')
-    end subroutine set_real
-    !> A positive integer in field k, if given.
-    subroutine set_int(k, v, name)
-      integer, intent(in) :: k
-      integer, intent(inout) :: v
-      character(len=*), intent(in) :: name
-      if (k > n) return
-      if (len(f(k)%s) == 0) return
-      v = get_int(p, f(k), name)
-      if (v < 1) call err(p, name // ' must be a positive integer')
-    end subroutine set_int
   end subroutine read_controls
+
+  !> Purpose: the data line of *CONTROLS, PARAMETERS=FIELD into p%controls:
+  !> `R_n, C_n, q_0, q_u, R_p, epsilon, C_epsilon, R_l` (q_0 not used).
+  subroutine field_controls(p)
+    type(parser_t), intent(inout) :: p
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call require_data(p, 'R_n, C_n, q_0, q_u, R_p, epsilon, C_epsilon, R_l')
+    call split_fields(line_text(p), f, n)
+    if (n > 8) call err(p, '*CONTROLS, PARAMETERS=FIELD data line has at most 8 fields')
+    associate(c => p%controls)
+      call control_real(p, f, n, 1, c%rn, 'R_n')
+      call control_real(p, f, n, 2, c%cn, 'C_n')
+      call control_real(p, f, n, 4, c%qu, 'q_u')
+      call control_real(p, f, n, 5, c%rp, 'R_p')
+      call control_real(p, f, n, 6, c%eps, 'epsilon')
+      call control_real(p, f, n, 7, c%ceps, 'C_epsilon')
+      call control_real(p, f, n, 8, c%rl, 'R_l')
+    end associate
+    if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=FIELD has one data line')
+  end subroutine field_controls
+
+  !> Purpose: the data lines of *CONTROLS, PARAMETERS=TIME INCREMENTATION
+  !> into p%controls: `I_0, I_R, I_P, I_C, I_L, I_G[, I_S, I_A, I_J, I_T]`
+  !> and, optionally, `D_f, D_C, D_B[, D_A, D_S, D_H, D_D, W_G]`.
+  subroutine time_controls(p)
+    type(parser_t), intent(inout) :: p
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call require_data(p, 'I_0, I_R, I_P, I_C, I_L, I_G')
+    call split_fields(line_text(p), f, n)
+    if (n > 10) call err(p, 'the first line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 10 fields')
+    associate(c => p%controls)
+      call control_int(p, f, n, 1, c%i0, 'I_0')
+      call control_int(p, f, n, 2, c%ir, 'I_R')
+      call control_int(p, f, n, 3, c%ip, 'I_P')
+      call control_int(p, f, n, 4, c%ic, 'I_C')
+      call control_int(p, f, n, 5, c%il, 'I_L')
+      call control_int(p, f, n, 6, c%ig, 'I_G')
+      if (next_data(p)) then
+        call split_fields(line_text(p), f, n)
+        if (n > 8) call err(p, 'the second line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 8 fields')
+        call control_real(p, f, n, 1, c%df, 'D_f')
+        call control_real(p, f, n, 2, c%dc, 'D_C')
+        call control_real(p, f, n, 3, c%db, 'D_B')
+        call control_real(p, f, n, 7, c%dd, 'D_D')
+        if (c%df >= 1.0_dp .or. c%dc >= 1.0_dp .or. c%db > 1.0_dp) call err(p, 'the cut-back factors ' // &
+          'D_f, D_C and D_B must be below 1')
+        if (c%dd < 1.0_dp) call err(p, 'D_D, the growth factor, must be at least 1')
+        if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=TIME INCREMENTATION has two data lines')
+      end if
+    end associate
+  end subroutine time_controls
+
+  !> Purpose: a positive real (q_u: not negative) in field k of the n
+  !> fields f of a *CONTROLS line into v, if given (else v is kept).
+  subroutine control_real(p, f, n, k, v, name)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f(:)
+    integer, intent(in) :: n, k
+    real(dp), intent(inout) :: v
+    character(len=*), intent(in) :: name
+    if (k > n) return
+    if (len(f(k)%s) == 0) return
+    v = get_real(p, f(k), name)
+    if (.not. v > 0.0_dp .and. name /= 'q_u') call err(p, name // ' must be positive')
+    if (v < 0.0_dp) call err(p, name // ' must not be negative')
+  end subroutine control_real
+
+  !> Purpose: a positive integer in field k of the n fields f of a
+  !> *CONTROLS line into v, if given (else v is kept).
+  subroutine control_int(p, f, n, k, v, name)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f(:)
+    integer, intent(in) :: n, k
+    integer, intent(inout) :: v
+    character(len=*), intent(in) :: name
+    if (k > n) return
+    if (len(f(k)%s) == 0) return
+    v = get_int(p, f(k), name)
+    if (v < 1) call err(p, name // ' must be a positive integer')
+  end subroutine control_int
 
   !> A number of increments too large for an integer, as text.
   function count_text(ratio) result(s)

@@ -575,17 +575,33 @@ contains
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
     type(pair_results_t), intent(in) :: r
-    integer :: j, nd, un, nid
-    real(dp) :: xs(2), p, tau
+    integer :: un
+    un = self%unit
+    call write_slave_rows(self, m, res, r)
+    call write_master_rows(self, m, res, r)
+    write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', r%pair
+    if (r%frictional) then
+      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration shear_total'
+      write(un, self%f_node5) r%nclosed, r%total, r%resultant, r%max_pen, r%shear_total
+    else
+      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
+      write(un, self%f_node4) r%nclosed, r%total, r%resultant, r%max_pen
+    end if
+  end subroutine write_contact
+
+  !> Purpose: the slave rows of one contact pair (write_contact): the
+  !> listing's block and, with a contact table, its slave rows.
+  subroutine write_slave_rows(self, m, res, r)
+    class(listing_t), intent(in) :: self
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    type(pair_results_t), intent(in) :: r
+    integer :: j, un, nid
     character(len=6) :: st
     character(len=*), parameter :: csv_slave = '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,",",' // &
       'es16.8e3,",",es16.8e3,",",a,",",es16.8e3,",",es16.8e3)'
     character(len=*), parameter :: csv_slave_fric = '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,' // &
       '",",es16.8e3,",",es16.8e3,",",a,6(",",es16.8e3))'
-    character(len=*), parameter :: csv_master = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",' // &
-      'es16.8e3,",0,-,",es16.8e3,",",es16.8e3)'
-    character(len=*), parameter :: csv_master_fric = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,' // &
-      '",",es16.8e3,",0,-,",es16.8e3,",",es16.8e3,",",es16.8e3,",",es16.8e3,",0,0")'
     un = self%unit
     write(un, '(a,i0,a)') '--- CONTACT SLAVE pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%slave_surface)%name)
@@ -617,6 +633,23 @@ contains
           r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j)
       end if
     end do
+  end subroutine write_slave_rows
+
+  !> Purpose: the master rows of one contact pair (write_contact): the
+  !> listing's block (deformed position, force, area, pressure = force /
+  !> area) and, with a contact table, its master rows.
+  subroutine write_master_rows(self, m, res, r)
+    class(listing_t), intent(in) :: self
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    type(pair_results_t), intent(in) :: r
+    integer :: j, nd, un
+    real(dp) :: xs(2), p, tau
+    character(len=*), parameter :: csv_master = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",' // &
+      'es16.8e3,",0,-,",es16.8e3,",",es16.8e3)'
+    character(len=*), parameter :: csv_master_fric = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,' // &
+      '",",es16.8e3,",0,-,",es16.8e3,",",es16.8e3,",",es16.8e3,",",es16.8e3,",0,0")'
+    un = self%unit
     write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%master_surface)%name)
     if (r%frictional) then
@@ -649,15 +682,7 @@ contains
           r%master_force(j), p
       end if
     end do
-    write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', r%pair
-    if (r%frictional) then
-      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration shear_total'
-      write(un, self%f_node5) r%nclosed, r%total, r%resultant, r%max_pen, r%shear_total
-    else
-      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
-      write(un, self%f_node4) r%nclosed, r%total, r%resultant, r%max_pen
-    end if
-  end subroutine write_contact
+  end subroutine write_master_rows
 
   !> Ends a row of the contact tables: with instances (Abaqus/CAE), the
   !> node's label in the deck's terms (a Gauss point of a slave face, node
