@@ -9,7 +9,7 @@ submodule (deck_parser) deck_step_cards
   use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, is_int, is_label, node_ref, &
                          need_nset, need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
-                         note_named, rotation_hint
+                         note_named, rotation_hint, nset_index, elset_index, time_points_t
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
                    find_name, node_label, controls_t
   use growable, only: append
@@ -376,7 +376,7 @@ contains
       if (v /= '' .and. v /= 'YES' .and. v /= 'NO') call err(p, 'NLGEOM must be YES or NO (or stand alone)')
       p%nlgeom = v /= 'NO'
     end if
-    if (has_param(kw, 'PERTURBATION')) call err(p, 'PERTURBATION steps are not implemented')
+    if (has_param(kw, 'PERTURBATION')) call perturbation_step(p, kw)
     if (has_param(kw, 'AMPLITUDE')) then
       if (to_upper(param_value(kw, 'AMPLITUDE')) /= 'RAMP') call err(p, 'only AMPLITUDE=RAMP is implemented on *STEP')
     end if
@@ -400,6 +400,23 @@ contains
       s%max_inc = param_int(p, kw, 'INC', s%max_inc, 1, max_increments)
     end associate
   end subroutine read_step
+
+  !> Purpose: *STEP, PERTURBATION: a linear perturbation step about the
+  !> state the steps before it leave. As the first step (CalculiX then
+  !> perturbs the unloaded, undeformed model) it is a linear step: read as
+  !> one, NLGEOM off for it (CalculiX's answer, measured). After other
+  !> steps cfe2d has no base state to perturb about: an error.
+  subroutine perturbation_step(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    if (p%nsteps > 0) call err(p, 'PERTURBATION after another step (a linear perturbation about the state ' // &
+      'it leaves) is not implemented; as the first step it is a linear step')
+    if (has_param(kw, 'NLGEOM')) then
+      if (to_upper(param_value(kw, 'NLGEOM')) /= 'NO') call err(p, 'PERTURBATION and NLGEOM exclude each ' // &
+                                                                   'other (a perturbation step is linear)')
+    end if
+    p%nlgeom = .false.
+  end subroutine perturbation_step
 
   !> Purpose: *STATIC: `initial increment, time period[, min, max]`
   !> (default 1, 1). A linear step runs period / increment equal
@@ -593,37 +610,103 @@ contains
     end if
   end function count_text
 
-  !> Purpose: *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE: output of the
-  !> step, a set (NSET= or ELSET=, default all) and quantities on the data
-  !> lines (unknown quantities are warned about and skipped).
+  !> Purpose: *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE (and *CONTACT
+  !> PRINT, *CONTACT FILE: contact_request): output of the step, a set
+  !> (NSET= or ELSET=, default all) and quantities on the data lines.
+  !> As CalculiX: a print card naming an undefined set is ignored with a
+  !> warning (a file card writes every node anyway: only its NSET= is
+  !> ignored), FREQUENCY= and TIME POINTS= set when the step's output is
+  !> written (output_schedule), FREQUENCY=0 turns the card off. Every
+  !> parameter and quantity is honoured or warned about at the line.
   module subroutine read_request(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t), allocatable :: f(:)
     type(request_t) :: r
-    integer :: n, k
-    character(len=:), allocatable :: q
+    logical :: keep
+    integer :: card, every
+    if (kw%name(1:min(7, len(kw%name))) == 'CONTACT') then
+      call contact_request(p, m, kw)
+      return
+    end if
+    card = p%i
     r%nodal = kw%name(1:4) == 'NODE'
     r%to_file = index(kw%name, 'FILE') > 0
     if (r%to_file) call file_format(p, m, kw)
     if (r%nodal) then
-      call allow_params(p, kw, 'NSET,FREQUENCY,TOTALS,GLOBAL,SUMMARY,OUTPUT,FORMAT')
+      call allow_params(p, kw, 'NSET,FREQUENCY,FREQUENCYF,TOTALS,GLOBAL,SUMMARY,OUTPUT,FORMAT,TIME POINTS,' // &
+                        'LAST ITERATIONS,CONTACT ELEMENTS')
       call global_param(p, kw, r)
-      if (has_param(kw, 'NSET')) then
-        r%set = need_nset(p, m, param_value(kw, 'NSET'))
-        ! (the result files hold every node whatever the set)
-        if (.not. r%to_file) &
-          call warn_empty_set(p, size(m%nsets(r%set)%items), 'node set', m%nsets(r%set)%name, kw%name)
-      end if
     else
-      call allow_params(p, kw, 'ELSET,FREQUENCY,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL,FORMAT')
-      if (has_param(kw, 'ELSET')) then
-        r%set = need_elset(p, m, param_value(kw, 'ELSET'))
-        if (.not. r%to_file) &
-          call warn_empty_set(p, size(m%elsets(r%set)%items), 'element set', m%elsets(r%set)%name, kw%name)
-      end if
+      call allow_params(p, kw, 'ELSET,NSET,FREQUENCY,FREQUENCYF,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL,FORMAT,' // &
+                        'TIME POINTS,LAST ITERATIONS,CONTACT ELEMENTS,SECTION FORCES')
+      call yes_no(p, kw, 'GLOBAL')
     end if
+    call ignored_params(p, kw, r)
+    keep = request_set(p, m, kw, r)
+    call request_quantities(p, kw, r)
+    call output_schedule(p, m, kw, card, every)
+    if (.not. keep .or. every == 0) return
+    call grow(m%steps(p%step)%requests, p%nreq + 1)
+    p%nreq = p%nreq + 1
+    m%steps(p%step)%requests(p%nreq) = r
+  end subroutine read_request
+
+  !> Purpose: the set of an output card (NSET= or ELSET=; r%set, 0 all)
+  !> and whether the card is kept: a print card naming an undefined set
+  !> is ignored with a warning at its line (CalculiX: "node set ... does
+  !> not exist"); a file card keeps its quantities, since the result
+  !> files hold every node whatever the set. An empty set is warned about.
+  logical function request_set(p, m, kw, r) result(keep)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    type(keyword_t), intent(in) :: kw
+    type(request_t), intent(inout) :: r
+    character(len=:), allocatable :: pname, what, name
+    integer :: iset, n
+    keep = .true.
+    pname = merge('NSET ', 'ELSET', r%nodal .or. (r%to_file .and. has_param(kw, 'NSET')))
+    pname = trim(pname)
+    if (.not. has_param(kw, pname)) return
+    name = to_upper(param_value(kw, pname))
+    what = merge('node set   ', 'element set', pname == 'NSET')
+    what = trim(what)
+    if (pname == 'NSET') then
+      iset = nset_index(p, m, name)
+      if (iset > 0) n = size(m%nsets(iset)%items)
+    else
+      iset = elset_index(p, m, name)
+      if (iset > 0) n = size(m%elsets(iset)%items)
+    end if
+    if (iset == 0 .and. r%to_file) then
+      call deck_warning(p%deck, p%i, what // ' ' // name // ' is undefined: ' // pname // '= on *' // kw%name // &
+                        ' is ignored (the result files hold every node)')
+    else if (iset == 0) then
+      call deck_warning(p%deck, p%i, what // ' ' // name // ' is undefined: *' // kw%name // &
+                        ' is ignored, as CalculiX ignores it')
+      keep = .false.
+    else if (r%to_file) then
+      ! (the result files hold every node whatever the set)
+      if (.not. r%nodal .and. pname == 'ELSET') r%set = iset
+    else
+      r%set = iset
+      call warn_empty_set(p, n, what, name, kw%name)
+    end if
+  end function request_set
+
+  !> Purpose: the quantities on the data lines of an output card into r.
+  !> Nodal cards: U, RF, S (extrapolated to the nodes and averaged),
+  !> CSTRESS (contact pressure; CDISP and CONTACT name it too); element
+  !> cards: S, E, PEEQ at the integration points, and in *EL FILE also U,
+  !> RF and CSTRESS (nodal views of the result file, as CalculiX writes U
+  !> asked for on *EL FILE). Anything else is warned about and skipped.
+  subroutine request_quantities(p, kw, r)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    type(request_t), intent(inout) :: r
+    type(field_t), allocatable :: f(:)
+    integer :: n, k
+    character(len=:), allocatable :: q
     call require_data(p, 'output quantities')
     do
       call split_fields(line_text(p), f, n)
@@ -639,16 +722,229 @@ contains
         case ('')
         case default
           call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
+          cycle
         end select
+        if (.not. r%nodal .and. .not. r%to_file .and. (q == 'U' .or. q == 'RF')) &
+          call deck_warning(p%deck, p%i, q // ' is a nodal quantity, which *EL PRINT does not list: ask for it ' // &
+                            'in *NODE PRINT; ignored here')
+        if (.not. r%nodal .and. .not. r%to_file .and. r%cstress) &
+          call deck_warning(p%deck, p%i, q // ' is listed in the contact tables of every increment, not by ' // &
+                            '*EL PRINT; ignored here')
       end do
       if (.not. next_data(p)) exit
     end do
     if (r%nodal .and. r%e) call err(p, 'E is an element quantity: ask for it in *EL PRINT or *EL FILE')
     if (r%nodal .and. r%peeq) call err(p, 'PEEQ is an element quantity: ask for it in *EL PRINT or *EL FILE')
+    if (r%only_totals .and. .not. r%rf) call deck_warning(p%deck, p%i, 'TOTALS=ONLY on *' // kw%name // &
+      ' lists only the sum of RF, which is not asked for: the card lists nothing')
+  end subroutine request_quantities
+
+  !> Purpose: the parameters of an output card that cfe2d honours by
+  !> what it does anyway, or cannot honour (a warning at the line): TOTALS=
+  !> (*NODE PRINT: the sum of RF over the set; *EL PRINT sums whole-element
+  !> quantities cfe2d does not have), OUTPUT= (2D: the result files are
+  !> 2D), POSITION= (INTEGRATION POINTS), SUMMARY=NO, FREQUENCYF= (fluid
+  !> output), LAST ITERATIONS, CONTACT ELEMENTS, SECTION FORCES (CalculiX's
+  !> debugging and shell output).
+  subroutine ignored_params(p, kw, r)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    type(request_t), intent(inout) :: r
+    character(len=:), allocatable :: v
+    integer :: k
+    character(len=16), parameter :: unused(*) = [character(len=16) :: 'FREQUENCYF', 'LAST ITERATIONS', &
+                                                 'CONTACT ELEMENTS', 'SECTION FORCES']
+    if (has_param(kw, 'TOTALS')) then
+      v = to_upper(param_value(kw, 'TOTALS'))
+      if (v /= 'YES' .and. v /= 'ONLY' .and. v /= 'NO') call err(p, 'TOTALS must be YES, ONLY or NO')
+      if (r%nodal .and. .not. r%to_file) then
+        r%totals = v /= 'NO'
+        r%only_totals = v == 'ONLY'
+      else if (v /= 'NO') then
+        call deck_warning(p%deck, p%i, 'TOTALS=' // v // ' on *' // kw%name // ' is ignored: it sums ' // &
+          merge('whole-element quantities (ELSE, EVOL), which cfe2d does not have', &
+                'RF of *NODE PRINT only                                          ', .not. r%nodal))
+      end if
+    end if
+    if (has_param(kw, 'OUTPUT')) then
+      v = to_upper(param_value(kw, 'OUTPUT'))
+      if (v == '3D') call deck_warning(p%deck, p%i, 'OUTPUT=3D is ignored: cfe2d''s results are those of the ' // &
+                                       '2D model (as OUTPUT=2D)')
+      if (v /= '2D' .and. v /= '3D') call err(p, 'OUTPUT must be 2D or 3D')
+    end if
+    if (has_param(kw, 'POSITION')) then
+      v = to_upper(param_value(kw, 'POSITION'))
+      if (v /= 'INTEGRATION POINTS' .and. v /= 'INTEGRATIONPOINTS') call deck_warning(p%deck, p%i, &
+        'POSITION=' // v // ' is ignored: *' // kw%name // ' gives values at the integration points')
+    end if
+    if (has_param(kw, 'SUMMARY')) then
+      if (to_upper(param_value(kw, 'SUMMARY')) /= 'NO') call deck_warning(p%deck, p%i, 'SUMMARY=' // &
+        to_upper(param_value(kw, 'SUMMARY')) // ' is ignored: cfe2d lists no summary of extreme values')
+    end if
+    do k = 1, size(unused)
+      if (has_param(kw, trim(unused(k)))) call deck_warning(p%deck, p%i, trim(unused(k)) // ' on *' // &
+        kw%name // ' is not implemented in cfe2d and is ignored')
+    end do
+  end subroutine ignored_params
+
+  !> A parameter that must be YES or NO, if given.
+  subroutine yes_no(p, kw, name)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: v
+    if (.not. has_param(kw, name)) return
+    v = to_upper(param_value(kw, name))
+    if (v /= 'YES' .and. v /= 'NO') call err(p, name // ' must be YES or NO')
+  end subroutine yes_no
+
+  !> Purpose: FREQUENCY= and TIME POINTS= of an output card (at line
+  !> card). As in CalculiX the last one given in a step applies to all of
+  !> its print and file output: FREQUENCY=n (n >= 1) writes it every n-th
+  !> increment, TIME POINTS= at the times of that *TIME POINTS card (the
+  !> first increment ending at or after each), and the step's last
+  !> increment always. FREQUENCY=0 turns only this card off (every = 0).
+  subroutine output_schedule(p, m, kw, card, every)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    integer, intent(in) :: card
+    integer, intent(out) :: every
+    integer :: k, line
+    character(len=:), allocatable :: name
+    every = 1
+    line = p%i
+    p%i = card
+    if (has_param(kw, 'FREQUENCY') .and. has_param(kw, 'TIME POINTS')) &
+      call err(p, 'FREQUENCY= and TIME POINTS= exclude each other')
+    if (has_param(kw, 'FREQUENCY')) then
+      every = param_int(p, kw, 'FREQUENCY', 1, 0, huge(1))
+      if (every > 0) then
+        m%steps(p%step)%out_every = every
+        if (allocated(m%steps(p%step)%out_times)) deallocate(m%steps(p%step)%out_times)
+      end if
+    else if (has_param(kw, 'TIME POINTS')) then
+      name = to_upper(param_value(kw, 'TIME POINTS'))
+      k = 0
+      if (p%ntime_points > 0) k = find_name(p%time_points(1:p%ntime_points)%name, name)
+      if (k == 0) then
+        call deck_warning(p%deck, p%i, 'undefined *TIME POINTS ' // name // ': TIME POINTS= is ignored')
+      else
+        m%steps(p%step)%out_every = 1
+        m%steps(p%step)%out_times = p%time_points(k)%t
+        m%steps(p%step)%out_total_time = p%time_points(k)%total
+      end if
+    end if
+    p%i = line
+  end subroutine output_schedule
+
+  !> Purpose: *CONTACT PRINT and *CONTACT FILE. The listing gives the
+  !> contact tables (gap, status, force, area, pressure, friction) of
+  !> every pair at every increment, so *CONTACT PRINT asks for nothing
+  !> more (CSTR, CDIS, CFN, CFS, CNUM; its TOTALS= are the pair
+  !> summaries); *CONTACT FILE with CSTR or CDIS writes the contact
+  !> pressure (and shear) views of the result file. Other quantities
+  !> (CELS, PCON, ...) are warned about; FREQUENCY= and TIME POINTS= as
+  !> on the other output cards.
+  subroutine contact_request(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(request_t) :: r
+    type(field_t), allocatable :: f(:)
+    integer :: n, k, card, every
+    character(len=:), allocatable :: q
+    card = p%i
+    r%to_file = kw%name == 'CONTACT FILE'
+    if (r%to_file) call allow_params(p, kw, 'FREQUENCY,TIME POINTS,LAST ITERATIONS,CONTACT ELEMENTS')
+    if (.not. r%to_file) call allow_params(p, kw, 'FREQUENCY,TIME POINTS,TOTALS')
+    call ignored_params(p, kw, r)
+    call require_data(p, 'output quantities')
+    do
+      call split_fields(line_text(p), f, n)
+      do k = 1, n
+        q = to_upper(f(k)%s)
+        select case (q)
+        case ('CSTR', 'CDIS'); r%cstress = .true.
+        case ('CFN', 'CFS', 'CNUM')
+          if (r%to_file) call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not written to the ' // &
+            'result files and is ignored (the listing''s contact tables give the contact forces)')
+        case ('')
+        case default
+          call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
+        end select
+      end do
+      if (.not. next_data(p)) exit
+    end do
+    call output_schedule(p, m, kw, card, every)
+    if (.not. r%to_file .or. .not. r%cstress .or. every == 0) return
     call grow(m%steps(p%step)%requests, p%nreq + 1)
     p%nreq = p%nreq + 1
     m%steps(p%step)%requests(p%nreq) = r
-  end subroutine read_request
+  end subroutine contact_request
+
+  !> Purpose: *TIME POINTS, NAME=: times named by TIME POINTS= of the
+  !> output cards, any number per data line, increasing; GENERATE: lines
+  !> `start, end, increment`; TIME=TOTAL TIME: total times (default: step
+  !> times).
+  module subroutine read_time_points(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    real(dp), allocatable :: t(:)
+    real(dp) :: a, b, c
+    integer :: n, k, nt
+    character(len=:), allocatable :: name
+    call allow_params(p, kw, 'NAME,TIME,GENERATE')
+    name = name_param(p, kw, 'NAME')
+    allocate(t(0))
+    nt = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (has_param(kw, 'GENERATE')) then
+        if (n /= 3) call err(p, '*TIME POINTS, GENERATE data line needs: start, end, increment')
+        a = get_real(p, f(1), 'start time')
+        b = get_real(p, f(2), 'end time')
+        c = get_real(p, f(3), 'time increment')
+        if (.not. c > 0.0_dp .or. b < a) call err(p, 'GENERATE needs start <= end and a positive increment')
+        if ((b - a) / c > real(max_increments, dp)) call err(p, 'GENERATE would make more than ' // &
+                                                              itoa(max_increments) // ' time points')
+        do k = 0, int((b - a) / c * (1.0_dp + 1.0e-12_dp))
+          call append(t, nt, a + k * c)
+        end do
+      else
+        do k = 1, n
+          if (len(f(k)%s) > 0) call append(t, nt, get_real(p, f(k), 'time point'))
+        end do
+      end if
+      if (nt > 1) then
+        if (any(t(2:nt) <= t(1:nt - 1))) call err(p, 'time points must increase')
+      end if
+    end do
+    if (nt == 0) call err(p, 'missing data line (time points)')
+    call add_time_points(p, name, t(1:nt), has_param(kw, 'TIME') .and. &
+                         to_upper(param_value(kw, 'TIME')) == 'TOTAL TIME')
+  end subroutine read_time_points
+
+  !> A *TIME POINTS card into p%time_points (a repeated name is an error).
+  subroutine add_time_points(p, name, t, total)
+    type(parser_t), intent(inout) :: p
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: t(:)
+    logical, intent(in) :: total
+    type(time_points_t), allocatable :: tmp(:)
+    if (.not. allocated(p%time_points)) allocate(p%time_points(2))
+    if (p%ntime_points > 0) then
+      if (find_name(p%time_points(1:p%ntime_points)%name, name) > 0) call err(p, 'duplicate *TIME POINTS ' // name)
+    end if
+    if (p%ntime_points == size(p%time_points)) then
+      allocate(tmp(2 * p%ntime_points))
+      tmp(1:p%ntime_points) = p%time_points(1:p%ntime_points)
+      call move_alloc(tmp, p%time_points)
+    end if
+    p%ntime_points = p%ntime_points + 1
+    p%time_points(p%ntime_points) = time_points_t(name=name, total=total, t=t)
+  end subroutine add_time_points
 
   !> GLOBAL= of *NODE PRINT and *NODE FILE: whether U and RF of a node
   !> with *TRANSFORM are given in global axes. CalculiX's defaults: NO for
