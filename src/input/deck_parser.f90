@@ -476,7 +476,7 @@ contains
         '): dropped from their sets, as CalculiX does')
     end if
     if (p%repeated_nodes > 0) call deck_warning(p%deck, p%repeated_line, itoa(p%repeated_nodes) // &
-      ' node line' // plural(p%repeated_nodes) // merge(' defines', ' define ', p%repeated_nodes == 1) // &
+      ' node line' // plural(p%repeated_nodes) // trim(merge(' defines', ' define ', p%repeated_nodes == 1)) // &
       ' a node again: the later coordinates win, as in CalculiX')
   end subroutine lenient_warnings
 
