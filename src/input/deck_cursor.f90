@@ -155,6 +155,10 @@ module deck_cursor
     ! The keyword lines read ahead of their place (read_model reads the
     ! mesh and set cards of a flat deck first, as CalculiX does).
     logical, allocatable :: read_ahead(:)
+    ! the material of each *MATERIAL line read ahead (0 on other lines):
+    ! a material card out of its block still describes the material
+    ! above it
+    integer, allocatable :: ahead_material(:)
   end type parser_t
 
 contains

@@ -337,9 +337,11 @@ contains
     do while (p%i <= p%deck%n)
       if (.not. is_keyword(line_text(p))) call err(p, 'data line where a keyword line was expected')
       if (p%read_ahead(p%i)) then
-        ! read by read_ahead: only its data lines are passed over
-        do while (next_data(p))
-        end do
+        ! read by read_ahead: its data lines are passed over; as a card it
+        ! still ends a *SURFACE INTERACTION block, stands where *COUPLING
+        ! wants its *KINEMATIC, and a *MATERIAL is the one later material
+        ! cards describe
+        call pass_over(p)
       else
         call parse_keyword(line_text(p), kw)
         call dispatch(p, m, kw)
@@ -375,21 +377,42 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     integer, allocatable :: pass(:)
-    integer :: k, i
-    allocate(p%read_ahead(p%deck%n))
+    integer :: k, i, nmat
+    allocate(p%read_ahead(p%deck%n), p%ahead_material(p%deck%n))
     p%read_ahead = .false.
+    p%ahead_material = 0
     call ahead_passes(p, pass)
     if (size(pass) == 0) return
     do k = 1, maxval(pass)
       do i = 1, p%deck%n
         if (pass(i) /= k) cycle
         p%i = i
+        nmat = p%nmat
         call dispatch_line(p, m)
         p%read_ahead(i) = .true.
+        if (p%nmat > nmat) p%ahead_material(i) = p%material
+
       end do
     end do
+    ! the cards read in order find the state of their place (pass_over)
     p%interaction = 0
+    p%material = 0
   end subroutine read_ahead
+
+  !> Purpose: the card at p%i, read ahead (read_ahead), in its place in
+  !> the deck: what its place means for the cards around it (see
+  !> dispatch), and its data lines passed over.
+  subroutine pass_over(p)
+    type(parser_t), intent(inout) :: p
+    p%interaction = 0
+    if (p%coupling_line > 0) then
+      p%i = p%coupling_line
+      call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
+    end if
+    if (p%ahead_material(p%i) > 0) p%material = p%ahead_material(p%i)
+    do while (next_data(p))
+    end do
+  end subroutine pass_over
 
   !> The keyword at p%i handed to its reader.
   subroutine dispatch_line(p, m)

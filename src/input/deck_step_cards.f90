@@ -856,8 +856,13 @@ contains
     character(len=:), allocatable :: q
     card = p%i
     r%to_file = kw%name == 'CONTACT FILE'
-    if (r%to_file) call allow_params(p, kw, 'FREQUENCY,TIME POINTS,LAST ITERATIONS,CONTACT ELEMENTS')
-    if (.not. r%to_file) call allow_params(p, kw, 'FREQUENCY,TIME POINTS,TOTALS')
+    ! (CalculiX warns about a parameter it does not know here and goes on;
+    ! its own test decks write SET=)
+    do k = 1, kw%np
+      if (index(',FREQUENCY,TIME POINTS,TOTALS,LAST ITERATIONS,CONTACT ELEMENTS,', ',' // kw%pname(k)%s // ',') &
+          == 0) call deck_warning(p%deck, p%i, 'parameter ' // kw%pname(k)%s // ' of *' // kw%name // &
+                                  ' is not known and is ignored')
+    end do
     call ignored_params(p, kw, r)
     call require_data(p, 'output quantities')
     do
@@ -865,7 +870,7 @@ contains
       do k = 1, n
         q = to_upper(f(k)%s)
         select case (q)
-        case ('CSTR', 'CDIS'); r%cstress = .true.
+        case ('CSTR', 'CDIS', 'CSTRESS', 'CDISP'); r%cstress = .true.
         case ('CFN', 'CFS', 'CNUM')
           if (r%to_file) call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not written to the ' // &
             'result files and is ignored (the listing''s contact tables give the contact forces)')

@@ -9,7 +9,7 @@ $(OBJDIR)/file_kind.o:
 $(OBJDIR)/deck_input.o: $(OBJDIR)/growable.o $(OBJDIR)/messages.o $(OBJDIR)/strings.o
 $(OBJDIR)/model_growth.o: $(OBJDIR)/growable.o $(OBJDIR)/model.o
 $(OBJDIR)/deck_cursor.o: $(OBJDIR)/deck_input.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o
-$(OBJDIR)/deck_parser.o: $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/messages.o $(OBJDIR)/model.o
+$(OBJDIR)/deck_parser.o: $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_mesh_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/mesh_topology.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_material_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o
 $(OBJDIR)/deck_step_cards.o: $(OBJDIR)/deck_parser.o $(OBJDIR)/deck_cursor.o $(OBJDIR)/deck_input.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/model_growth.o $(OBJDIR)/strings.o
