@@ -404,15 +404,24 @@ contains
   !> dispatch), and its data lines passed over.
   subroutine pass_over(p)
     type(parser_t), intent(inout) :: p
-    p%interaction = 0
-    if (p%coupling_line > 0) then
-      p%i = p%coupling_line
-      call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
-    end if
+    call card_in_place(p, '')
     if (p%ahead_material(p%i) > 0) p%material = p%ahead_material(p%i)
     do while (next_data(p))
     end do
   end subroutine pass_over
+
+  !> Purpose: what a card named `name` means for the cards around it: a
+  !> *SURFACE INTERACTION block ends at the first card that does not
+  !> describe it, and *COUPLING says what it is on the next card.
+  subroutine card_in_place(p, name)
+    type(parser_t), intent(inout) :: p
+    character(len=*), intent(in) :: name
+    if (name /= 'SURFACE BEHAVIOR' .and. name /= 'FRICTION') p%interaction = 0
+    if (p%coupling_line > 0 .and. name /= 'KINEMATIC' .and. name /= 'DISTRIBUTING') then
+      p%i = p%coupling_line
+      call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
+    end if
+  end subroutine card_in_place
 
   !> The keyword at p%i handed to its reader.
   subroutine dispatch_line(p, m)
@@ -544,16 +553,10 @@ contains
     type(keyword_t) :: kw
     kw = card
     kw%name = spaced_name(card%name)
-    ! A *SURFACE INTERACTION block ends at the first card that does not describe it.
-    if (kw%name /= 'SURFACE BEHAVIOR' .and. kw%name /= 'FRICTION') p%interaction = 0
-    ! *COUPLING says what it is on the next card.
-    if (p%coupling_line > 0 .and. kw%name /= 'KINEMATIC' .and. kw%name /= 'DISTRIBUTING') then
-      p%i = p%coupling_line
-      call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
-    end if
-    call check_part_context(p, m, kw)
     ! text on the *HEADING line itself (CalculiX reads it as a heading)
-    if (kw%name(1:min(8, len(kw%name))) == 'HEADING ' .or. kw%name == 'HEADING') kw%name = 'HEADING'
+    if (kw%name(1:min(8, len(kw%name))) == 'HEADING ') kw%name = 'HEADING'
+    call card_in_place(p, kw%name)
+    call check_part_context(p, m, kw)
     select case (kw%name)
     case ('HEADING');       call read_heading(p, m)
     case ('NODE');          call in_step(p, kw, .false.); call read_nodes(p, m, kw)
