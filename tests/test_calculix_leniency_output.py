@@ -142,19 +142,39 @@ def test_time_points_write_the_increments_that_reach_them():
     as CalculiX reads its time points first): output at the first
     increment ending at or after each point and at the step's end (cfe2d
     keeps its increments; CalculiX shortens its increments to end on the
-    points). A linear step of ten increments of 0.1 with points 0.3, 0.55
-    and 0.6: U at 0.3, 0.6 (once for both points) and 1.0. GENERATE makes
-    the points 0.25, 0.5, 0.75: U at 0.3, 0.5, 0.8, 1.0. An undefined
+    points, so a point inside an increment warns at the card, saying how
+    many). A linear step of ten increments of 0.1 with points 0.3, 0.55
+    and 0.6: U at 0.3, 0.6 (once for both points) and 1.0, one point
+    inside an increment. GENERATE makes the points 0.25, 0.5, 0.75: U at
+    0.3, 0.5, 0.8, 1.0, two inside. Points 0.2, 0.5: no warning. Under
+    NLGEOM (automatic increments) one warning says so, and U is written
+    at the first increment ending at or after each point. An undefined
     name warns at the line and the step's output stays every increment."""
     step = "*STEP\n*STATIC\n0.1, 1."
-    cases = (("*TIME POINTS, NAME=TP\n0.3, 0.55\n0.6\n", [0.3, 0.6, 1.0]),
-             ("*TIME POINTS, NAME=TP, GENERATE\n0.25, 0.75, 0.25\n", [0.3, 0.5, 0.8, 1.0]))
-    for k, (points, want) in enumerate(cases):
+    cases = (("*TIME POINTS, NAME=TP\n0.3, 0.55\n0.6\n", [0.3, 0.6, 1.0], "1 time point lies"),
+             ("*TIME POINTS, NAME=TP, GENERATE\n0.25, 0.75, 0.25\n", [0.3, 0.5, 0.8, 1.0], "2 time points lie"),
+             ("*TIME POINTS, NAME=TP\n0.2, 0.5\n", [0.2, 0.5, 1.0], None))
+    for k, (points, want, missed) in enumerate(cases):
         deck = bar(step, "*NODE PRINT, NSET=ALLN, TIME POINTS=TP\nU\n") + points
         run = run_deck(f"lenient_time_points_{k}", deck).ok()
-        assert warnings(run) == [], run.stderr
+        if missed is None:
+            assert warnings(run) == [], run.stderr
+        else:
+            assert warnings(run) == [f"{run.deck}:{line_of(deck, 'TIME POINTS=TP')}: warning: {missed} inside an "
+                                     "increment of 1.00000E-01: the output is that of the increment ending after it "
+                                     "(CalculiX shortens an increment to end on it)"], run.stderr
         got = block_times(run, "NODE U")
         assert np.allclose(got, want, atol=1e-12), (k, got, want)
+    # automatic increments (NLGEOM): one warning, and output at the
+    # increments that reach the points
+    deck = bar("*STEP, NLGEOM\n*STATIC\n0.2, 1.", "*NODE PRINT, NSET=ALLN, TIME POINTS=TP\nU\n") + cases[0][0]
+    run = run_deck("lenient_time_points_automatic", deck).ok()
+    w = warnings(run)
+    assert len(w) == 1 and "TIME POINTS: the increments of this step are automatic" in w[0], run.stderr
+    times = [inc.time for inc in run.listing.increments]
+    for t in (0.3, 0.55, 0.6):
+        first = min(x for x in times if x >= t - 1e-12)
+        assert any(abs(first - x) < 1e-12 for x in block_times(run, "NODE U")), (t, times)
     deck = bar(step, "*NODE PRINT, NSET=ALLN, TIME POINTS=NONE\nU\n")
     run = run_deck("lenient_time_points_undefined", deck).ok()
     assert warnings(run) == [f"{run.deck}:{line_of(deck, 'TIME POINTS=NONE')}: warning: undefined *TIME POINTS "

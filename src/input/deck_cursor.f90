@@ -144,6 +144,7 @@ module deck_cursor
     ! output cards.
     type(time_points_t), allocatable :: time_points(:)
     integer :: ntime_points = 0
+    integer :: time_points_line = 0   ! the output card whose TIME POINTS= the current step follows (0 none)
     ! Leniency as CalculiX's, each told by one warning once the deck is
     ! read: node numbers in *NSET lists that no *NODE defines (dropped:
     ! how many, the first line, the first five numbers), and node lines

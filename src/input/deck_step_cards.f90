@@ -11,7 +11,7 @@ submodule (deck_parser) deck_step_cards
                          need_nset, need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
                          note_named, rotation_hint, nset_index, elset_index, time_points_t
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
-                   find_name, node_label, controls_t
+                   find_name, node_label, controls_t, law_elastic
   use growable, only: append
   use model_growth, only: grow
   implicit none
@@ -822,6 +822,7 @@ contains
       if (every > 0) then
         m%steps(p%step)%out_every = every
         if (allocated(m%steps(p%step)%out_times)) deallocate(m%steps(p%step)%out_times)
+        p%time_points_line = 0
       end if
     else if (has_param(kw, 'TIME POINTS')) then
       name = to_upper(param_value(kw, 'TIME POINTS'))
@@ -833,6 +834,7 @@ contains
         m%steps(p%step)%out_every = 1
         m%steps(p%step)%out_times = p%time_points(k)%t
         m%steps(p%step)%out_total_time = p%time_points(k)%total
+        p%time_points_line = card
       end if
     end if
     p%i = line
@@ -987,6 +989,51 @@ contains
     end select
   end subroutine file_format
 
+  !> Purpose: where the step's output follows TIME POINTS= (read at line
+  !> p%time_points_line), say at that line what cfe2d writes where
+  !> CalculiX would write elsewhere: CalculiX shortens its increments to
+  !> end on the time points, cfe2d keeps its increments and writes the
+  !> first increment ending at or after each point (output_schedule). A
+  !> step of fixed increments (linear, or DIRECT) warns about the points
+  !> that fall inside an increment; a step of automatic increments (NLGEOM,
+  !> a nonlinear material) warns once.
+  subroutine check_time_points(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    real(dp) :: start, t, n
+    integer :: k, line, missed
+    logical :: fixed
+    line = p%i
+    associate(s => m%steps(p%step))
+      start = 0.0_dp
+      if (s%out_total_time) start = sum(merge(m%steps(1:p%step - 1)%period, 1.0_dp, &
+                                              m%steps(1:p%step - 1)%period > 0.0_dp))
+      fixed = s%direct .or. .not. (s%nlgeom .or. any(m%materials(1:p%nmat)%law /= law_elastic) .or. &
+                                   any(m%materials(1:p%nmat)%nyield > 0))
+      p%i = p%time_points_line
+      if (s%period <= 0.0_dp) then
+        ! (no *STATIC: the step is refused elsewhere)
+      else if (.not. fixed) then
+        call deck_warning(p%deck, p%i, 'TIME POINTS: the increments of this step are automatic and are not ' // &
+          'shortened to end on the time points (CalculiX shortens them): the output of each point is that of ' // &
+          'the first increment ending at or after it')
+      else
+        missed = 0
+        do k = 1, size(s%out_times)
+          t = s%out_times(k) - start
+          if (t <= 0.0_dp .or. t > s%period) cycle
+          n = t / s%dt
+          if (abs(n - nint(n)) > 1.0e-9_dp * max(n, 1.0_dp)) missed = missed + 1
+        end do
+        if (missed > 0) call deck_warning(p%deck, p%i, itoa(missed) // ' time point' // &
+          merge('s lie', ' lies', missed > 1) // ' inside an increment of ' // rtoa(s%dt, 6) // &
+          ': the output is that of the increment ending after it (CalculiX shortens an increment to end on it)')
+      end if
+    end associate
+    p%i = line
+    p%time_points_line = 0
+  end subroutine check_time_points
+
   !> Purpose: *END STEP: closes the step; its lists are cut to length.
   module subroutine read_end_step(p, m, kw)
     type(parser_t), intent(inout) :: p
@@ -994,6 +1041,7 @@ contains
     type(keyword_t), intent(in) :: kw
     call allow_params(p, kw, '')
     call no_data(p, kw)
+    if (p%time_points_line > 0) call check_time_points(p, m)
     associate(s => m%steps(p%step))
       s%bcs = s%bcs(1:p%nbc)
       s%loads = s%loads(1:p%nload)
