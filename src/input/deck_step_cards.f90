@@ -638,8 +638,10 @@ contains
                         'LAST ITERATIONS,CONTACT ELEMENTS')
       call global_param(p, kw, r)
     else
-      call allow_params(p, kw, 'ELSET,NSET,FREQUENCY,FREQUENCYF,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL,FORMAT,' // &
-                        'TIME POINTS,LAST ITERATIONS,CONTACT ELEMENTS,SECTION FORCES')
+      ! (NSET= on *EL FILE: CalculiX's set of the nodes written)
+      call allow_params(p, kw, 'ELSET,FREQUENCY,FREQUENCYF,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL,FORMAT,' // &
+                        'TIME POINTS,LAST ITERATIONS,CONTACT ELEMENTS,SECTION FORCES' // trim(merge(',NSET', &
+                        '     ', r%to_file)))
       call yes_no(p, kw, 'GLOBAL')
     end if
     call ignored_params(p, kw, r)
