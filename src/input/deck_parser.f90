@@ -388,7 +388,7 @@ contains
         if (pass(i) /= k) cycle
         p%i = i
         nmat = p%nmat
-        call dispatch_line(p, m)
+        call read_card_at(p, m)
         p%read_ahead(i) = .true.
         if (p%nmat > nmat) p%ahead_material(i) = p%material
 
@@ -424,13 +424,13 @@ contains
   end subroutine card_in_place
 
   !> The keyword at p%i handed to its reader.
-  subroutine dispatch_line(p, m)
+  subroutine read_card_at(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t) :: kw
     call parse_keyword(line_text(p), kw)
     call dispatch(p, m, kw)
-  end subroutine dispatch_line
+  end subroutine read_card_at
 
   !> Purpose: the pass of read_ahead each line is read in (0: in order,
   !> by read_model): 1 *NODE, 2 *ELEMENT, 3 *NSET and *ELSET, 4 *SURFACE,
