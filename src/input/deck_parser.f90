@@ -391,7 +391,6 @@ contains
         call read_card_at(p, m)
         p%read_ahead(i) = .true.
         if (p%nmat > nmat) p%ahead_material(i) = p%material
-
       end do
     end do
     ! the cards read in order find the state of their place (pass_over)
@@ -495,11 +494,10 @@ contains
     character(len=:), allocatable :: ids
     integer :: k
     if (p%dropped_nodes > 0) then
-      ids = ''
-      do k = 1, min(p%dropped_nodes, size(p%dropped_ids))
-        ids = ids // merge(', ', '  ', k > 1) // itoa(p%dropped_ids(k))
+      ids = itoa(p%dropped_ids(1))
+      do k = 2, min(p%dropped_nodes, size(p%dropped_ids))
+        ids = ids // ', ' // itoa(p%dropped_ids(k))
       end do
-      ids = trim(adjustl(ids))
       if (p%dropped_nodes > size(p%dropped_ids)) ids = ids // ' and ' // itoa(p%dropped_nodes - &
                                                                           size(p%dropped_ids)) // ' more'
       call deck_warning(p%deck, p%dropped_line, itoa(p%dropped_nodes) // ' node number' // &
@@ -586,7 +584,7 @@ contains
     case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'CONTACT PRINT', 'CONTACT FILE')
       call in_step(p, kw, .true.)
       call read_request(p, m, kw)
-    case ('TIME POINTS');   call in_step(p, kw, .false.); call read_time_points(p, kw)
+    case ('TIME POINTS');   call read_time_points(p, kw)
     case ('SOLVER');        call in_step(p, kw, .false.); call read_solver(p, m, kw)
     case ('CONTACT PAIR');  call in_step(p, kw, .false.); call read_contact_pair(p, m, kw)
     case ('CONTACT CONTROLS'); call read_contact_controls(p, m, kw)

@@ -729,7 +729,7 @@ contains
         if (.not. r%nodal .and. .not. r%to_file .and. (q == 'U' .or. q == 'RF')) &
           call deck_warning(p%deck, p%i, q // ' is a nodal quantity, which *EL PRINT does not list: ask for it ' // &
                             'in *NODE PRINT; ignored here')
-        if (.not. r%nodal .and. .not. r%to_file .and. r%cstress) &
+        if (.not. r%nodal .and. .not. r%to_file .and. (q == 'CSTRESS' .or. q == 'CDISP' .or. q == 'CONTACT')) &
           call deck_warning(p%deck, p%i, q // ' is listed in the contact tables of every increment, not by ' // &
                             '*EL PRINT; ignored here')
       end do
