@@ -298,3 +298,27 @@ def test_contact_print_and_file_are_honoured():
     w = [x for x in warnings(run) if x not in base]
     assert w == [f"{run.deck}:{line_of(text, 'CSTR, CELS')}: warning: output quantity CELS is not available and "
                  "is ignored"], run.stderr
+
+
+def test_frequency_applies_to_the_vtu_files_and_excludes_time_points():
+    """FREQUENCY=2 on a *NODE FILE, FORMAT=VTU of the five-increment step:
+    the VTU series holds the increments CalculiX's schedule writes (0.4,
+    0.8 and the step's end 1.0: three files, the .pvd listing those
+    times), as the gmsh file does. FREQUENCY= and TIME POINTS= on one card
+    are an error at its line."""
+    import re
+    deck = bar(NLGEOM_DIRECT, "*NODE FILE, FORMAT=VTU, FREQUENCY=2\nU\n")
+    run = run_deck("lenient_vtu_frequency", deck).ok()
+    d = os.path.dirname(run.deck)
+    files = sorted(f for f in os.listdir(d) if f.endswith(".vtu"))
+    assert files == [f"lenient_vtu_frequency_{k:04d}.vtu" for k in (1, 2, 3)], files
+    pvd = open(os.path.join(d, "lenient_vtu_frequency.pvd")).read()
+    times = [float(t) for t in re.findall(r'timestep="([^"]+)"', pvd)]
+    assert np.allclose(times, [0.4, 0.8, 1.0], atol=1e-12), times
+    msh = read_msh(os.path.join(d, "lenient_vtu_frequency.msh"))
+    assert np.allclose([t for t, _, _ in msh.views["Displacement"]], times, atol=1e-12)
+    bad = bar(NLGEOM_DIRECT, "*NODE PRINT, NSET=ALLN, FREQUENCY=2, TIME POINTS=TP\nU\n") + \
+        "*TIME POINTS, NAME=TP\n0.5\n"
+    run = run_deck("lenient_frequency_and_time_points", bad)
+    assert run.rc == 1 and f"{run.deck}:{line_of(bad, 'FREQUENCY=2, TIME POINTS=TP')}: error: FREQUENCY= and TIME " \
+        "POINTS= exclude each other" in run.stderr, run.stderr
