@@ -105,6 +105,13 @@ def test_output_card_naming_an_undefined_set_warns_and_is_ignored():
         got, ref = inc.block(q, set="ALLN"), plain.listing.increments[-1].block(q, set="ALLN")
         for c in cols:
             assert list(got[c]) == list(ref[c]), (q, c)
+    # an element set of that name: the warning says how gmsh writes node sets
+    deck = bar("*STEP\n*STATIC", "*NODE PRINT, NSET=BAR\nU\n" + plain_out)
+    hinted = run_deck("lenient_undefined_output_set_hint", deck).ok()
+    assert warnings(hinted) == [f"{hinted.deck}:{line_of(deck, '*NODE PRINT, NSET=BAR')}: warning: node set BAR is "
+                                "undefined: *NODE PRINT is ignored, as CalculiX ignores it (there is an element set "
+                                "of that name: gmsh writes node sets only with -setnumber Mesh.SaveGroupsOfNodes 1; "
+                                "or define it with *NSET, NSET=BAR, ELSET=BAR)"], hinted.stderr
     msh = read_msh(os.path.join(os.path.dirname(run.deck), "lenient_undefined_output_set.msh"))
     _, u = msh.node_view("Displacement", 0)
     ref = plain.listing.increments[-1].block("NODE U", set="ALLN")

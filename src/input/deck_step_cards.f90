@@ -685,7 +685,7 @@ contains
                         ' is ignored (the result files hold every node)')
     else if (iset == 0) then
       call deck_warning(p%deck, p%i, what // ' ' // name // ' is undefined: *' // kw%name // &
-                        ' is ignored, as CalculiX ignores it')
+                        ' is ignored, as CalculiX ignores it' // set_hint(p, m, pname, name))
       keep = .false.
     else if (r%to_file) then
       ! (the result files hold every node whatever the set)
@@ -695,6 +695,21 @@ contains
       call warn_empty_set(p, n, what, name, kw%name)
     end if
   end function request_set
+
+  !> Purpose: the hint to a warning about an undefined node set (pname
+  !> NSET) that is an element set: how gmsh writes node sets, or how to
+  !> make one; '' otherwise.
+  function set_hint(p, m, pname, name) result(s)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: pname, name
+    character(len=:), allocatable :: s
+    s = ''
+    if (pname /= 'NSET') return
+    if (elset_index(p, m, name) == 0) return
+    s = ' (there is an element set of that name: gmsh writes node sets only with -setnumber ' // &
+        'Mesh.SaveGroupsOfNodes 1; or define it with *NSET, NSET=' // name // ', ELSET=' // name // ')'
+  end function set_hint
 
   !> Purpose: the quantities on the data lines of an output card into r.
   !> Nodal cards: U, RF, S (extrapolated to the nodes and averaged),
