@@ -36,11 +36,9 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t), allocatable :: f(:)
     type(contact_pair_t) :: c
-    integer :: n, npair, first, card
+    integer :: card
     logical :: two_pass, sts, default_sts
-    real(dp) :: ratio
     card = p%i
     associate(l => p%deck%lines(card))
       c%card_file = p%deck%files(l%file)%s
@@ -72,6 +70,29 @@ contains
     c%search_distance = param_real(p, kw, 'SEARCH DISTANCE', -1.0_dp)
     c%update_search = has_param(kw, 'UPDATE SEARCH') .or. &
         (has_param(kw, 'INTERACTION') .and. .not. (two_pass .or. sts) .and. .not. has_param(kw, 'SMALL SLIDING'))
+    call pair_data_lines(p, m, kw, c, card, sts, default_sts, two_pass)
+  end subroutine read_contact_pair
+
+  !> Purpose: the data lines of a *CONTACT PAIR (`slave, master` each):
+  !> one pair per line (and its twin for two-pass contact), taking the
+  !> card's parameters already in c.
+  !> Arguments:
+  !>   p, m         parser state and model (the pairs are added to m)
+  !>   kw           the *CONTACT PAIR keyword line
+  !>   c            the pair as the card's parameters make it
+  !>   card         the line of the *CONTACT PAIR card
+  !>   sts          TYPE=SURFACE TO SURFACE was given
+  !>   default_sts  no TYPE=, INTERACTION= nor SYMMETRIC: segment-to-segment where it can be
+  !>   two_pass     SYMMETRIC: the pair again with the roles swapped
+  subroutine pair_data_lines(p, m, kw, c, card, sts, default_sts, two_pass)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(contact_pair_t), intent(inout) :: c
+    integer, intent(in) :: card
+    logical, intent(in) :: sts, default_sts, two_pass
+    type(field_t), allocatable :: f(:)
+    integer :: n, npair
     npair = 0
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
@@ -96,32 +117,46 @@ contains
       if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
                                                                   to_upper(param_value(kw, 'INTERACTION')))
       npair = npair + 1
-      if (two_pass .and. .not. similar_density(m, c%slave_surface, c%master_surface, ratio)) then
-        ! Two passes over meshes of different density fight: the finer
-        ! side's nodes open in turn and its pressures alternate (measured
-        ! -75 % / +72 % about the right value at 2:1), with a wrong total.
-        if (has_param(kw, 'SYMMETRIC')) call err(p, 'SYMMETRIC two-pass contact needs slave and master meshes ' // &
-          'of about the same density (mean edge lengths differ by a factor ' // rtoa(ratio, 3) // &
-          '): drop SYMMETRIC and make the finer surface the slave')
-        call deck_warning(p%deck, p%i, 'SURFACE TO SURFACE: the two meshes differ in density by a factor ' // &
-          rtoa(ratio, 3) // '; contact is single-pass from the first (slave) surface, which should be the finer')
-      else if (two_pass) then
-        ! Two-pass contact: the same pair again with the roles swapped.
-        if (m%surfaces(c%slave_surface)%kind /= surf_element) &
-          call err(p, 'two-pass contact (SYMMETRIC, TYPE=SURFACE TO SURFACE) needs an element-based slave ' // &
-                   'surface (it is the master of the second pass)')
-        first = p%npairs
-        m%pairs(first)%twin = first + 1
-        c%slave_surface = m%pairs(first)%master_surface
-        c%master_surface = m%pairs(first)%slave_surface
-        c%twin = first
-        call add_pair(p, m, c)
-        if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
-                                                                    to_upper(param_value(kw, 'INTERACTION')))
-      end if
+      if (two_pass) call add_second_pass(p, m, kw, c, card)
     end do
     if (npair == 0) call err(p, 'missing data line (slave, master)')
-  end subroutine read_contact_pair
+  end subroutine pair_data_lines
+
+  !> Purpose: SYMMETRIC (two-pass node-to-segment): the pair just added
+  !> (m%pairs(p%npairs), from c) again with slave and master swapped, its
+  !> twin; refused where the two meshes differ in density.
+  subroutine add_second_pass(p, m, kw, c, card)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(contact_pair_t), intent(inout) :: c
+    integer, intent(in) :: card
+    integer :: first
+    real(dp) :: ratio
+    if (.not. similar_density(m, c%slave_surface, c%master_surface, ratio)) then
+      ! Two passes over meshes of different density fight: the finer
+      ! side's nodes open in turn and its pressures alternate (measured
+      ! -75 % / +72 % about the right value at 2:1), with a wrong total.
+      if (has_param(kw, 'SYMMETRIC')) call err(p, 'SYMMETRIC two-pass contact needs slave and master meshes ' // &
+        'of about the same density (mean edge lengths differ by a factor ' // rtoa(ratio, 3) // &
+        '): drop SYMMETRIC and make the finer surface the slave')
+      call deck_warning(p%deck, p%i, 'SURFACE TO SURFACE: the two meshes differ in density by a factor ' // &
+        rtoa(ratio, 3) // '; contact is single-pass from the first (slave) surface, which should be the finer')
+      return
+    end if
+    ! Two-pass contact: the same pair again with the roles swapped.
+    if (m%surfaces(c%slave_surface)%kind /= surf_element) &
+      call err(p, 'two-pass contact (SYMMETRIC, TYPE=SURFACE TO SURFACE) needs an element-based slave ' // &
+               'surface (it is the master of the second pass)')
+    first = p%npairs
+    m%pairs(first)%twin = first + 1
+    c%slave_surface = m%pairs(first)%master_surface
+    c%master_surface = m%pairs(first)%slave_surface
+    c%twin = first
+    call add_pair(p, m, c)
+    if (has_param(kw, 'INTERACTION')) call add_pair_interaction(p, p%npairs, card, &
+                                                                to_upper(param_value(kw, 'INTERACTION')))
+  end subroutine add_second_pass
 
   !> Purpose: do two element surfaces have about the same mesh density?
   !> ratio returns the larger mean edge length over the smaller; above

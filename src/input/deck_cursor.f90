@@ -16,12 +16,12 @@ module deck_cursor
   use growable, only: grow
   implicit none
   private
-  public :: parser_t, max_id, max_increments, max_cutbacks, max_contact_iterations
+  public :: parser_t, time_points_t, max_id, max_increments, max_cutbacks, max_contact_iterations
   public :: interaction_t, behaviour_none, behaviour_linear, behaviour_hard, new_interaction
   public :: pair_interaction_t, add_pair_interaction
   public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
             name_param, check_name_length, get_real, get_int, param_real, param_int, &
-            node_of, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
+            node_of, node_or_zero, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
             new_surface, in_step, warn_empty_set
   ! Abaqus/CAE decks: parts, instances and the names and numbers of their members.
   public :: part_t, is_label, node_ref, elem_ref, defined_name, new_node_id, new_elem_id, placed, &
@@ -79,6 +79,14 @@ module deck_cursor
     integer :: instances = 0
   end type part_t
 
+  !> A *TIME POINTS card: its name, its times and whether they are total
+  !> times (TIME=TOTAL TIME) rather than step times.
+  type :: time_points_t
+    character(len=name_len) :: name = ''
+    logical :: total = .false.
+    real(dp), allocatable :: t(:)
+  end type time_points_t
+
   !> Parser state that only lives while reading.
   type :: parser_t
     type(deck_t) :: deck
@@ -132,6 +140,26 @@ module deck_cursor
     type(rigid_t) :: coupling
     integer :: coupling_line = 0, coupling_surface = 0
     real(dp) :: coupling_radius = -1.0_dp
+    ! *TIME POINTS cards (deck_step_cards), named by TIME POINTS= of the
+    ! output cards.
+    type(time_points_t), allocatable :: time_points(:)
+    integer :: ntime_points = 0
+    integer :: time_points_line = 0   ! the output card whose TIME POINTS= the current step follows (0 none)
+    ! Leniency as CalculiX's, each told by one warning once the deck is
+    ! read: node numbers in *NSET lists that no *NODE defines (dropped:
+    ! how many, the first line, the first five numbers), and node lines
+    ! that define a node again (the later coordinates win: how many, the
+    ! first such line).
+    integer :: dropped_nodes = 0, dropped_line = 0
+    integer :: dropped_ids(5) = 0
+    integer :: repeated_nodes = 0, repeated_line = 0
+    ! The keyword lines read ahead of their place (read_model reads the
+    ! mesh and set cards of a flat deck first, as CalculiX does).
+    logical, allocatable :: read_ahead(:)
+    ! the material of each *MATERIAL line read ahead (0 on other lines):
+    ! a material card out of its block still describes the material
+    ! above it
+    integer, allocatable :: ahead_material(:)
   end type parser_t
 
 contains
@@ -300,6 +328,18 @@ contains
     if (gid >= 1 .and. gid <= size(m%node_index)) node_of = m%node_index(gid)
     if (node_of == 0) call err(p, 'undefined node ' // itoa(id) // assembly_hint(p, m, id))
   end function node_of
+
+  !> Purpose: the node with number `id` where the card stands (as
+  !> node_of), or 0 when the deck defines none (no error).
+  integer function node_or_zero(p, m, id)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: id
+    integer :: gid
+    node_or_zero = 0
+    gid = scoped_id(m, p%scope, id, .true.)
+    if (gid >= 1 .and. gid <= size(m%node_index)) node_or_zero = m%node_index(gid)
+  end function node_or_zero
 
   integer function elem_of(p, m, id)
     type(parser_t), intent(in) :: p

@@ -34,8 +34,18 @@ contains
     p%material = p%nmat
   end subroutine read_material
 
+  !> TYPE= of *ELASTIC naming the isotropic law: ISOTROPIC or a shortening
+  !> of it to at least ISO.
+  pure logical function is_isotropic(v)
+    character(len=*), intent(in) :: v
+    is_isotropic = len(v) >= 3 .and. len(v) <= 9
+    if (is_isotropic) is_isotropic = v == 'ISOTROPIC'(1:len(v))
+  end function is_isotropic
+
   !> Purpose: *ELASTIC (isotropic): `E, nu` of the current material, one
-  !> data line (temperature dependence is not implemented).
+  !> data line (temperature dependence is not implemented). TYPE=ISO is
+  !> TYPE=ISOTROPIC, as CalculiX reads it (it compares the first three
+  !> letters).
   module subroutine read_elastic(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -44,7 +54,8 @@ contains
     integer :: n
     call allow_params(p, kw, 'TYPE')
     if (has_param(kw, 'TYPE')) then
-      if (to_upper(param_value(kw, 'TYPE')) /= 'ISOTROPIC') call err(p, 'only TYPE=ISOTROPIC is implemented')
+      if (.not. is_isotropic(to_upper(param_value(kw, 'TYPE')))) call err(p, 'only TYPE=ISOTROPIC (or ISO) is ' // &
+                                                                          'implemented')
     end if
     if (p%material == 0) call err(p, '*ELASTIC outside a *MATERIAL')
     call require_data(p, 'E, nu')

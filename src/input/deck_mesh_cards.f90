@@ -4,7 +4,8 @@ submodule (deck_parser) deck_mesh_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_id, line_text, err, next_data, no_data, allow_params, required_param, &
-                         name_param, check_name_length, get_real, get_int, node_of, elem_of, &
+                         name_param, check_name_length, get_real, get_int, node_of, node_or_zero, elem_of, &
+                         is_int, &
                          need_nset, need_elset, new_surface, warn_empty_set, &
                          is_label, node_ref, elem_ref, defined_name, new_node_id, new_elem_id, placed, &
                          instance_index, set_scope
@@ -59,7 +60,11 @@ contains
       end do
       gid = new_node_id(p, m, id)
       call grow(m%node_index, gid, fill=0)
-      if (m%node_index(gid) /= 0) call err(p, 'duplicate node id ' // f(1)%s)
+      if (m%node_index(gid) /= 0) then
+        call redefine_node(p, m, m%node_index(gid), xyz)
+        call append(items, nitems, m%node_index(gid))
+        cycle
+      end if
       call grow(m%node_id, m%nn + 1)
       call grow(m%x, m%nn + 1)
       m%nn = m%nn + 1
@@ -81,6 +86,23 @@ contains
       call extend_set(m%nsets(iset)%items, items(1:nitems))
     end if
   end subroutine read_nodes
+
+  !> Purpose: a node line that defines node a again: the later
+  !> coordinates win, as in CalculiX (which keeps the last line read); the
+  !> repeats are counted for one warning once the deck is read
+  !> (read_model). Inside an instance the count is per part read; an
+  !> instance's nodes are new ids (new_node_id), so only a part's own
+  !> repeats count.
+  subroutine redefine_node(p, m, a, xyz)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer, intent(in) :: a
+    real(dp), intent(in) :: xyz(3)
+    m%x(:, a) = placed(p, m, xyz(1:2))
+    p%node_line(a) = p%i
+    p%repeated_nodes = p%repeated_nodes + 1
+    if (p%repeated_line == 0) p%repeated_line = p%i
+  end subroutine redefine_node
 
   pure function coordinate_name(k) result(s)
     integer, intent(in) :: k
@@ -271,13 +293,19 @@ contains
       if (n == 3) c = get_int(p, f(3), 'increment')
       if (c <= 0 .or. b < a) call err(p, 'GENERATE needs first <= last and a positive increment')
       do id = a, b, c
-        call append(items, nitems, entity_of(p, m, nodes, id))
+        if (nodes) then
+          call add_node_or_drop(p, m, id, items, nitems)
+        else
+          call append(items, nitems, entity_of(p, m, nodes, id))
+        end if
       end do
       return
     end if
     do k = 1, n
       if (len(f(k)%s) == 0) call err(p, 'empty entry in list')
-      if (is_label(f(k)%s) .and. nodes) then
+      if (nodes .and. is_int(f(k)%s)) then
+        call add_node_or_drop(p, m, get_int(p, f(k), 'id'), items, nitems)
+      else if (is_label(f(k)%s) .and. nodes) then
         call append(items, nitems, node_ref(p, m, f(k), 'id'))
       else if (is_label(f(k)%s)) then
         call append(items, nitems, elem_ref(p, m, f(k), 'id'))
@@ -288,6 +316,27 @@ contains
       end if
     end do
   end subroutine read_id_list
+
+  !> Purpose: node number id of a *NSET list appended to items, or, when
+  !> the deck defines no such node, dropped as CalculiX drops it ("value
+  !> > nk"): counted, with the first line and numbers, for one warning
+  !> once the deck is read (read_model).
+  subroutine add_node_or_drop(p, m, id, items, nitems)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: id
+    integer, allocatable, intent(inout) :: items(:)
+    integer, intent(inout) :: nitems
+    integer :: a
+    a = node_or_zero(p, m, id)
+    if (a > 0) then
+      call append(items, nitems, a)
+      return
+    end if
+    p%dropped_nodes = p%dropped_nodes + 1
+    if (p%dropped_line == 0) p%dropped_line = p%i
+    if (p%dropped_nodes <= size(p%dropped_ids)) p%dropped_ids(p%dropped_nodes) = id
+  end subroutine add_node_or_drop
 
   !> Internal index of node (nodes) or element id.
   integer function entity_of(p, m, nodes, id)

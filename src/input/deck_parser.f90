@@ -24,7 +24,7 @@
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
   use messages, only: fatal
-  use strings, only: to_upper
+  use strings, only: itoa, to_upper
   use deck_input, only: keyword_t, read_deck, parse_keyword, deck_warning, is_keyword, param_value
   use deck_cursor, only: parser_t, err, line_text, next_data, allow_params, in_step
   use model, only: model_t
@@ -151,6 +151,10 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_request
+    module subroutine read_time_points(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_time_points
     module subroutine read_end_step(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -328,11 +332,20 @@ contains
     allocate(m%equations(0), m%initial_temps(0), m%pretensions(0), m%ties(0))
     allocate(m%instances(0), m%rigids(0), m%transforms(0))
 
+    call read_ahead(p, m)
     p%i = 1
     do while (p%i <= p%deck%n)
       if (.not. is_keyword(line_text(p))) call err(p, 'data line where a keyword line was expected')
-      call parse_keyword(line_text(p), kw)
-      call dispatch(p, m, kw)
+      if (p%read_ahead(p%i)) then
+        ! read by read_ahead: its data lines are passed over; as a card it
+        ! still ends a *SURFACE INTERACTION block, stands where *COUPLING
+        ! wants its *KINEMATIC, and a *MATERIAL is the one later material
+        ! cards describe
+        call pass_over(p)
+      else
+        call parse_keyword(line_text(p), kw)
+        call dispatch(p, m, kw)
+      end if
       p%i = p%i + 1
     end do
     if (p%step /= 0) then
@@ -344,11 +357,165 @@ contains
       p%i = p%coupling_line
       call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
     end if
+    call lenient_warnings(p)
     call trim_model(p, m)
     call finish_kinematic_cards(p, m)
     call cut_pretension_sections(p, m)
     call check_model(p, m)
   end subroutine read_model
+
+  !> Purpose: CalculiX reads a deck in passes, its nodes first, then its
+  !> elements, sets, surfaces, materials and amplitudes, and then the
+  !> rest in order, so that a card may use a node, element, set,
+  !> surface, material or amplitude that the deck defines further down.
+  !> This reads those cards of a flat deck (outside *STEP) ahead in the
+  !> same passes, each pass in deck order, and marks them in
+  !> p%read_ahead so that read_model passes them over. A deck with
+  !> *PART, *ASSEMBLY or *INSTANCE is read in order, as Abaqus reads it.
+  !> A material's cards (*ELASTIC, *DENSITY, ...) are read with it.
+  subroutine read_ahead(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer, allocatable :: pass(:)
+    integer :: k, i, nmat
+    allocate(p%read_ahead(p%deck%n), p%ahead_material(p%deck%n))
+    p%read_ahead = .false.
+    p%ahead_material = 0
+    call ahead_passes(p, pass)
+    if (size(pass) == 0) return
+    do k = 1, maxval(pass)
+      do i = 1, p%deck%n
+        if (pass(i) /= k) cycle
+        p%i = i
+        nmat = p%nmat
+        call read_card_at(p, m)
+        p%read_ahead(i) = .true.
+        if (p%nmat > nmat) p%ahead_material(i) = p%material
+      end do
+    end do
+    ! the cards read in order find the state of their place (pass_over)
+    p%interaction = 0
+    p%material = 0
+  end subroutine read_ahead
+
+  !> Purpose: the card at p%i, read ahead (read_ahead), in its place in
+  !> the deck: what its place means for the cards around it (see
+  !> dispatch), and its data lines passed over.
+  subroutine pass_over(p)
+    type(parser_t), intent(inout) :: p
+    call card_in_place(p, '')
+    if (p%ahead_material(p%i) > 0) p%material = p%ahead_material(p%i)
+    do while (next_data(p))
+    end do
+  end subroutine pass_over
+
+  !> Purpose: what a card named `name` means for the cards around it: a
+  !> *SURFACE INTERACTION block ends at the first card that does not
+  !> describe it, and *COUPLING says what it is on the next card.
+  subroutine card_in_place(p, name)
+    type(parser_t), intent(inout) :: p
+    character(len=*), intent(in) :: name
+    if (name /= 'SURFACE BEHAVIOR' .and. name /= 'FRICTION') p%interaction = 0
+    if (p%coupling_line > 0 .and. name /= 'KINEMATIC' .and. name /= 'DISTRIBUTING') then
+      p%i = p%coupling_line
+      call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
+    end if
+  end subroutine card_in_place
+
+  !> The keyword at p%i handed to its reader.
+  subroutine read_card_at(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t) :: kw
+    call parse_keyword(line_text(p), kw)
+    call dispatch(p, m, kw)
+  end subroutine read_card_at
+
+  !> Purpose: the pass of read_ahead each line is read in (0: in order,
+  !> by read_model): 1 *NODE, 2 *ELEMENT, 3 *NSET and *ELSET, 4 *SURFACE,
+  !> 5 a material with its cards, 6 *AMPLITUDE and *TIME POINTS; only
+  !> model data outside *STEP. Empty when the deck has parts.
+  subroutine ahead_passes(p, pass)
+    type(parser_t), intent(in) :: p
+    integer, allocatable, intent(out) :: pass(:)
+    type(keyword_t) :: kw
+    character(len=:), allocatable :: name
+    logical :: in_step, in_material
+    integer :: i
+    allocate(pass(p%deck%n))
+    pass = 0
+    in_step = .false.
+    in_material = .false.
+    do i = 1, p%deck%n
+      if (.not. is_keyword(p%deck%lines(i)%text)) cycle
+      call parse_keyword(p%deck%lines(i)%text, kw)
+      name = spaced_name(kw%name)
+      select case (name)
+      case ('PART', 'END PART', 'ASSEMBLY', 'INSTANCE')
+        deallocate(pass)
+        allocate(pass(0))
+        return
+      case ('STEP'); in_step = .true.
+      case ('END STEP'); in_step = .false.
+      end select
+      in_material = name == 'MATERIAL' .or. (in_material .and. is_material_card(name))
+      if (in_step) cycle
+      select case (name)
+      case ('NODE'); pass(i) = 1
+      case ('ELEMENT'); pass(i) = 2
+      case ('NSET', 'ELSET'); pass(i) = 3
+      case ('SURFACE'); pass(i) = 4
+      case ('AMPLITUDE', 'TIME POINTS'); pass(i) = 6
+      case default
+        if (in_material) pass(i) = 5
+      end select
+    end do
+  end subroutine ahead_passes
+
+  !> Cards that describe the material of the *MATERIAL before them.
+  pure logical function is_material_card(name)
+    character(len=*), intent(in) :: name
+    select case (name)
+    case ('ELASTIC', 'EXPANSION', 'HYPERELASTIC', 'PLASTIC', 'DENSITY', 'SPECIFIC HEAT', 'CONDUCTIVITY', &
+          'DAMPING')
+      is_material_card = .true.
+    case default
+      is_material_card = .false.
+    end select
+  end function is_material_card
+
+  !> Purpose: the warnings of CalculiX's leniency that count what they
+  !> are about, once the deck is read: node numbers in *NSET lists that
+  !> no *NODE defines (dropped from their sets) and node lines that
+  !> define a node again (the later coordinates win), each at the first
+  !> line concerned.
+  subroutine lenient_warnings(p)
+    type(parser_t), intent(in) :: p
+    character(len=:), allocatable :: ids
+    integer :: k
+    if (p%dropped_nodes > 0) then
+      ids = itoa(p%dropped_ids(1))
+      do k = 2, min(p%dropped_nodes, size(p%dropped_ids))
+        ids = ids // ', ' // itoa(p%dropped_ids(k))
+      end do
+      if (p%dropped_nodes > size(p%dropped_ids)) ids = ids // ' and ' // itoa(p%dropped_nodes - &
+                                                                          size(p%dropped_ids)) // ' more'
+      call deck_warning(p%deck, p%dropped_line, itoa(p%dropped_nodes) // ' node number' // &
+        plural(p%dropped_nodes) // ' in *NSET lists ' // trim(merge('names', 'name ', p%dropped_nodes == 1)) // &
+        ' no node of the deck (' // ids // &
+        '): dropped from their sets, as CalculiX does')
+    end if
+    if (p%repeated_nodes > 0) call deck_warning(p%deck, p%repeated_line, itoa(p%repeated_nodes) // &
+      ' node line' // plural(p%repeated_nodes) // trim(merge(' defines', ' define ', p%repeated_nodes == 1)) // &
+      ' a node again: the later coordinates win, as in CalculiX')
+  end subroutine lenient_warnings
+
+  pure function plural(n) result(s)
+    integer, intent(in) :: n
+    character(len=:), allocatable :: s
+    s = ''
+    if (n /= 1) s = 's'
+  end function plural
 
   !> The model's arrays cut to the number of entries read.
   subroutine trim_model(p, m)
@@ -384,16 +551,12 @@ contains
     type(keyword_t) :: kw
     kw = card
     kw%name = spaced_name(card%name)
-    ! A *SURFACE INTERACTION block ends at the first card that does not describe it.
-    if (kw%name /= 'SURFACE BEHAVIOR' .and. kw%name /= 'FRICTION') p%interaction = 0
-    ! *COUPLING says what it is on the next card.
-    if (p%coupling_line > 0 .and. kw%name /= 'KINEMATIC' .and. kw%name /= 'DISTRIBUTING') then
-      p%i = p%coupling_line
-      call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
-    end if
+    ! text on the *HEADING line itself (CalculiX reads it as a heading)
+    if (kw%name(1:min(8, len(kw%name))) == 'HEADING ') kw%name = 'HEADING'
+    call card_in_place(p, kw%name)
     call check_part_context(p, m, kw)
     select case (kw%name)
-    case ('HEADING');       call read_heading(p, m, kw)
+    case ('HEADING');       call read_heading(p, m)
     case ('NODE');          call in_step(p, kw, .false.); call read_nodes(p, m, kw)
     case ('ELEMENT');       call in_step(p, kw, .false.); call read_elements(p, m, kw)
     case ('NSET');          call in_step(p, kw, .false.); call read_nset(p, m, kw)
@@ -418,9 +581,10 @@ contains
     case ('STEP');          call read_step(p, m, kw)
     case ('STATIC');        call in_step(p, kw, .true.); call read_static(p, m, kw)
     case ('END STEP');      call in_step(p, kw, .true.); call read_end_step(p, m, kw)
-    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE')
+    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'CONTACT PRINT', 'CONTACT FILE')
       call in_step(p, kw, .true.)
       call read_request(p, m, kw)
+    case ('TIME POINTS');   call read_time_points(p, kw)
     case ('SOLVER');        call in_step(p, kw, .false.); call read_solver(p, m, kw)
     case ('CONTACT PAIR');  call in_step(p, kw, .false.); call read_contact_pair(p, m, kw)
     case ('CONTACT CONTROLS'); call read_contact_controls(p, m, kw)
@@ -444,10 +608,10 @@ contains
     case ('END ASSEMBLY');  call read_end_assembly(p, kw)
     case ('CONTROLS');      call read_controls(p, m, kw)
     case ('SECTION CONTROLS', 'HOURGLASS STIFFNESS'); call in_step(p, kw, .false.); call read_hourglass_card(p, kw)
-    case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'TIME POINTS', 'FILE FORMAT')
+    case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'FILE FORMAT')
       call skip_card(p, kw)
-    case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', 'CONTACT PRINT', &
-          'CONTACT FILE', 'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &
+    case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', &
+          'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &
           'RESTART', 'MONITOR')
       call skip_card(p, kw)
     case ('')
@@ -493,26 +657,44 @@ contains
   end function without_blanks
 
   !> Purpose: *HEADING: the first data line is the title; others are kept
-  !> out of the model. The deck's own title wins over one from a file it
-  !> includes (gmsh writes a *Heading into every mesh); otherwise the
-  !> first title stays.
-  subroutine read_heading(p, m, kw)
+  !> out of the model. Text on the *HEADING line itself (`*HEADING my
+  !> model`, which CalculiX accepts) is the title, before any data line.
+  !> The deck's own title wins over one from a file it includes (gmsh
+  !> writes a *Heading into every mesh); otherwise the first title stays.
+  subroutine read_heading(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
-    type(keyword_t), intent(in) :: kw
-    logical :: from_deck
-    call allow_params(p, kw, '')
-    if (next_data(p)) then
-      from_deck = p%deck%lines(p%i)%file == 1
-      if (len(m%heading) == 0 .or. (from_deck .and. .not. p%heading_from_deck)) then
-        m%heading = trim(adjustl(line_text(p)))
-        p%heading_from_deck = from_deck
-        p%heading_line = p%i
-      end if
+    character(len=:), allocatable :: inline
+    integer :: k
+    ! what follows the keyword HEADING on its line, commas and case kept
+    inline = adjustl(line_text(p))
+    k = index(to_upper(inline), 'HEADING')
+    inline = trim(adjustl(inline(k + 7:)))
+    if (len(inline) > 0) then
+      if (inline(1:1) == ',') inline = trim(adjustl(inline(2:)))
+    end if
+    if (len(inline) > 0) then
+      call take_title(p, m, inline)
+    else if (next_data(p)) then
+      call take_title(p, m, trim(adjustl(line_text(p))))
     end if
     do while (next_data(p))
     end do
+  contains
+    subroutine take_title(p, m, title)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      character(len=*), intent(in) :: title
+      logical :: from_deck
+      from_deck = p%deck%lines(p%i)%file == 1
+      if (len(m%heading) == 0 .or. (from_deck .and. .not. p%heading_from_deck)) then
+        m%heading = title
+        p%heading_from_deck = from_deck
+        p%heading_line = p%i
+      end if
+    end subroutine take_title
   end subroutine read_heading
+
 
   !> Purpose: cards that cannot change the answer (pure output requests):
   !> warn and skip them with their data lines.

@@ -9,9 +9,9 @@ submodule (deck_parser) deck_step_cards
   use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, is_int, is_label, node_ref, &
                          need_nset, need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
-                         note_named, rotation_hint
+                         note_named, rotation_hint, nset_index, elset_index, time_points_t
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
-                   find_name, node_label, controls_t
+                   find_name, node_label, controls_t, law_elastic
   use growable, only: append
   use model_growth, only: grow
   implicit none
@@ -376,7 +376,7 @@ contains
       if (v /= '' .and. v /= 'YES' .and. v /= 'NO') call err(p, 'NLGEOM must be YES or NO (or stand alone)')
       p%nlgeom = v /= 'NO'
     end if
-    if (has_param(kw, 'PERTURBATION')) call err(p, 'PERTURBATION steps are not implemented')
+    if (has_param(kw, 'PERTURBATION')) call perturbation_step(p, kw)
     if (has_param(kw, 'AMPLITUDE')) then
       if (to_upper(param_value(kw, 'AMPLITUDE')) /= 'RAMP') call err(p, 'only AMPLITUDE=RAMP is implemented on *STEP')
     end if
@@ -400,6 +400,23 @@ contains
       s%max_inc = param_int(p, kw, 'INC', s%max_inc, 1, max_increments)
     end associate
   end subroutine read_step
+
+  !> Purpose: *STEP, PERTURBATION: a linear perturbation step about the
+  !> state the steps before it leave. As the first step (CalculiX then
+  !> perturbs the unloaded, undeformed model) it is a linear step: read as
+  !> one, NLGEOM off for it (CalculiX's answer, measured). After other
+  !> steps cfe2d has no base state to perturb about: an error.
+  subroutine perturbation_step(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    if (p%nsteps > 0) call err(p, 'PERTURBATION after another step (a linear perturbation about the state ' // &
+      'it leaves) is not implemented; as the first step it is a linear step')
+    if (has_param(kw, 'NLGEOM')) then
+      if (to_upper(param_value(kw, 'NLGEOM')) /= 'NO') call err(p, 'PERTURBATION and NLGEOM exclude each ' // &
+                                                                   'other (a perturbation step is linear)')
+    end if
+    p%nlgeom = .false.
+  end subroutine perturbation_step
 
   !> Purpose: *STATIC: `initial increment, time period[, min, max]`
   !> (default 1, 1). A linear step runs period / increment equal
@@ -474,8 +491,6 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t), allocatable :: f(:)
-    integer :: n
     character(len=:), allocatable :: what
     call allow_params(p, kw, 'PARAMETERS,RESET')
     if (has_param(kw, 'RESET')) then
@@ -486,43 +501,9 @@ contains
       what = to_upper(param_value(kw, 'PARAMETERS'))
       select case (what)
       case ('FIELD')
-        call require_data(p, 'R_n, C_n, q_0, q_u, R_p, epsilon, C_epsilon, R_l')
-        call split_fields(line_text(p), f, n)
-        if (n > 8) call err(p, '*CONTROLS, PARAMETERS=FIELD data line has at most 8 fields')
-        associate(c => p%controls)
-          call set_real(1, c%rn, 'R_n')
-          call set_real(2, c%cn, 'C_n')
-          call set_real(4, c%qu, 'q_u')
-          call set_real(5, c%rp, 'R_p')
-          call set_real(6, c%eps, 'epsilon')
-          call set_real(7, c%ceps, 'C_epsilon')
-          call set_real(8, c%rl, 'R_l')
-        end associate
-        if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=FIELD has one data line')
+        call field_controls(p)
       case ('TIME INCREMENTATION', 'TIMEINCREMENTATION')
-        call require_data(p, 'I_0, I_R, I_P, I_C, I_L, I_G')
-        call split_fields(line_text(p), f, n)
-        if (n > 10) call err(p, 'the first line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 10 fields')
-        associate(c => p%controls)
-          call set_int(1, c%i0, 'I_0')
-          call set_int(2, c%ir, 'I_R')
-          call set_int(3, c%ip, 'I_P')
-          call set_int(4, c%ic, 'I_C')
-          call set_int(5, c%il, 'I_L')
-          call set_int(6, c%ig, 'I_G')
-          if (next_data(p)) then
-            call split_fields(line_text(p), f, n)
-            if (n > 8) call err(p, 'the second line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 8 fields')
-            call set_real(1, c%df, 'D_f')
-            call set_real(2, c%dc, 'D_C')
-            call set_real(3, c%db, 'D_B')
-            call set_real(7, c%dd, 'D_D')
-            if (c%df >= 1.0_dp .or. c%dc >= 1.0_dp .or. c%db > 1.0_dp) call err(p, 'the cut-back factors ' // &
-              'D_f, D_C and D_B must be below 1')
-            if (c%dd < 1.0_dp) call err(p, 'D_D, the growth factor, must be at least 1')
-            if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=TIME INCREMENTATION has two data lines')
-          end if
-        end associate
+        call time_controls(p)
       case ('LINE SEARCH', 'LINESEARCH', 'CONTACT', 'NETWORK', 'CFD')
         call deck_warning(p%deck, p%i, '*CONTROLS, PARAMETERS=' // what // ' is not implemented and is ignored')
         do while (next_data(p))
@@ -534,29 +515,89 @@ contains
       end select
     end if
     if (p%step > 0) m%steps(p%step)%controls = p%controls
-  contains
-    !> A positive real in field k, if given.
-    subroutine set_real(k, v, name)
-      integer, intent(in) :: k
-      real(dp), intent(inout) :: v
-      character(len=*), intent(in) :: name
-      if (k > n) return
-      if (len(f(k)%s) == 0) return
-      v = get_real(p, f(k), name)
-      if (.not. v > 0.0_dp .and. name /= 'q_u') call err(p, name // ' must be positive')
-      if (v < 0.0_dp) call err(p, name // ' must not be negative')
-    end subroutine set_real
-    !> A positive integer in field k, if given.
-    subroutine set_int(k, v, name)
-      integer, intent(in) :: k
-      integer, intent(inout) :: v
-      character(len=*), intent(in) :: name
-      if (k > n) return
-      if (len(f(k)%s) == 0) return
-      v = get_int(p, f(k), name)
-      if (v < 1) call err(p, name // ' must be a positive integer')
-    end subroutine set_int
   end subroutine read_controls
+
+  !> Purpose: the data line of *CONTROLS, PARAMETERS=FIELD into p%controls:
+  !> `R_n, C_n, q_0, q_u, R_p, epsilon, C_epsilon, R_l` (q_0 not used).
+  subroutine field_controls(p)
+    type(parser_t), intent(inout) :: p
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call require_data(p, 'R_n, C_n, q_0, q_u, R_p, epsilon, C_epsilon, R_l')
+    call split_fields(line_text(p), f, n)
+    if (n > 8) call err(p, '*CONTROLS, PARAMETERS=FIELD data line has at most 8 fields')
+    associate(c => p%controls)
+      call control_real(p, f, n, 1, c%rn, 'R_n')
+      call control_real(p, f, n, 2, c%cn, 'C_n')
+      call control_real(p, f, n, 4, c%qu, 'q_u')
+      call control_real(p, f, n, 5, c%rp, 'R_p')
+      call control_real(p, f, n, 6, c%eps, 'epsilon')
+      call control_real(p, f, n, 7, c%ceps, 'C_epsilon')
+      call control_real(p, f, n, 8, c%rl, 'R_l')
+    end associate
+    if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=FIELD has one data line')
+  end subroutine field_controls
+
+  !> Purpose: the data lines of *CONTROLS, PARAMETERS=TIME INCREMENTATION
+  !> into p%controls: `I_0, I_R, I_P, I_C, I_L, I_G[, I_S, I_A, I_J, I_T]`
+  !> and, optionally, `D_f, D_C, D_B[, D_A, D_S, D_H, D_D, W_G]`.
+  subroutine time_controls(p)
+    type(parser_t), intent(inout) :: p
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call require_data(p, 'I_0, I_R, I_P, I_C, I_L, I_G')
+    call split_fields(line_text(p), f, n)
+    if (n > 10) call err(p, 'the first line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 10 fields')
+    associate(c => p%controls)
+      call control_int(p, f, n, 1, c%i0, 'I_0')
+      call control_int(p, f, n, 2, c%ir, 'I_R')
+      call control_int(p, f, n, 3, c%ip, 'I_P')
+      call control_int(p, f, n, 4, c%ic, 'I_C')
+      call control_int(p, f, n, 5, c%il, 'I_L')
+      call control_int(p, f, n, 6, c%ig, 'I_G')
+      if (next_data(p)) then
+        call split_fields(line_text(p), f, n)
+        if (n > 8) call err(p, 'the second line of *CONTROLS, PARAMETERS=TIME INCREMENTATION has at most 8 fields')
+        call control_real(p, f, n, 1, c%df, 'D_f')
+        call control_real(p, f, n, 2, c%dc, 'D_C')
+        call control_real(p, f, n, 3, c%db, 'D_B')
+        call control_real(p, f, n, 7, c%dd, 'D_D')
+        if (c%df >= 1.0_dp .or. c%dc >= 1.0_dp .or. c%db > 1.0_dp) call err(p, 'the cut-back factors ' // &
+          'D_f, D_C and D_B must be below 1')
+        if (c%dd < 1.0_dp) call err(p, 'D_D, the growth factor, must be at least 1')
+        if (next_data(p)) call err(p, '*CONTROLS, PARAMETERS=TIME INCREMENTATION has two data lines')
+      end if
+    end associate
+  end subroutine time_controls
+
+  !> Purpose: a positive real (q_u: not negative) in field k of the n
+  !> fields f of a *CONTROLS line into v, if given (else v is kept).
+  subroutine control_real(p, f, n, k, v, name)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f(:)
+    integer, intent(in) :: n, k
+    real(dp), intent(inout) :: v
+    character(len=*), intent(in) :: name
+    if (k > n) return
+    if (len(f(k)%s) == 0) return
+    v = get_real(p, f(k), name)
+    if (.not. v > 0.0_dp .and. name /= 'q_u') call err(p, name // ' must be positive')
+    if (v < 0.0_dp) call err(p, name // ' must not be negative')
+  end subroutine control_real
+
+  !> Purpose: a positive integer in field k of the n fields f of a
+  !> *CONTROLS line into v, if given (else v is kept).
+  subroutine control_int(p, f, n, k, v, name)
+    type(parser_t), intent(in) :: p
+    type(field_t), intent(in) :: f(:)
+    integer, intent(in) :: n, k
+    integer, intent(inout) :: v
+    character(len=*), intent(in) :: name
+    if (k > n) return
+    if (len(f(k)%s) == 0) return
+    v = get_int(p, f(k), name)
+    if (v < 1) call err(p, name // ' must be a positive integer')
+  end subroutine control_int
 
   !> A number of increments too large for an integer, as text.
   function count_text(ratio) result(s)
@@ -569,37 +610,120 @@ contains
     end if
   end function count_text
 
-  !> Purpose: *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE: output of the
-  !> step, a set (NSET= or ELSET=, default all) and quantities on the data
-  !> lines (unknown quantities are warned about and skipped).
+  !> Purpose: *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE (and *CONTACT
+  !> PRINT, *CONTACT FILE: contact_request): output of the step, a set
+  !> (NSET= or ELSET=, default all) and quantities on the data lines.
+  !> As CalculiX: a print card naming an undefined set is ignored with a
+  !> warning (a file card writes every node anyway: only its NSET= is
+  !> ignored), FREQUENCY= and TIME POINTS= set when the step's output is
+  !> written (output_schedule), FREQUENCY=0 turns the card off. Every
+  !> parameter and quantity is honoured or warned about at the line.
   module subroutine read_request(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t), allocatable :: f(:)
     type(request_t) :: r
-    integer :: n, k
-    character(len=:), allocatable :: q
+    logical :: keep
+    integer :: card, every
+    if (kw%name(1:min(7, len(kw%name))) == 'CONTACT') then
+      call contact_request(p, m, kw)
+      return
+    end if
+    card = p%i
     r%nodal = kw%name(1:4) == 'NODE'
     r%to_file = index(kw%name, 'FILE') > 0
     if (r%to_file) call file_format(p, m, kw)
     if (r%nodal) then
-      call allow_params(p, kw, 'NSET,FREQUENCY,TOTALS,GLOBAL,SUMMARY,OUTPUT,FORMAT')
+      call allow_params(p, kw, 'NSET,FREQUENCY,FREQUENCYF,TOTALS,GLOBAL,SUMMARY,OUTPUT,FORMAT,TIME POINTS,' // &
+                        'LAST ITERATIONS,CONTACT ELEMENTS')
       call global_param(p, kw, r)
-      if (has_param(kw, 'NSET')) then
-        r%set = need_nset(p, m, param_value(kw, 'NSET'))
-        ! (the result files hold every node whatever the set)
-        if (.not. r%to_file) &
-          call warn_empty_set(p, size(m%nsets(r%set)%items), 'node set', m%nsets(r%set)%name, kw%name)
-      end if
     else
-      call allow_params(p, kw, 'ELSET,FREQUENCY,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL,FORMAT')
-      if (has_param(kw, 'ELSET')) then
-        r%set = need_elset(p, m, param_value(kw, 'ELSET'))
-        if (.not. r%to_file) &
-          call warn_empty_set(p, size(m%elsets(r%set)%items), 'element set', m%elsets(r%set)%name, kw%name)
-      end if
+      ! (NSET= on *EL FILE: CalculiX's set of the nodes written)
+      call allow_params(p, kw, 'ELSET,FREQUENCY,FREQUENCYF,POSITION,TOTALS,SUMMARY,OUTPUT,GLOBAL,FORMAT,' // &
+                        'TIME POINTS,LAST ITERATIONS,CONTACT ELEMENTS,SECTION FORCES' // trim(merge(',NSET', &
+                        '     ', r%to_file)))
+      call yes_no(p, kw, 'GLOBAL')
     end if
+    call ignored_params(p, kw, r)
+    keep = request_set(p, m, kw, r)
+    call request_quantities(p, kw, r)
+    call output_schedule(p, m, kw, card, every)
+    if (.not. keep .or. every == 0) return
+    call grow(m%steps(p%step)%requests, p%nreq + 1)
+    p%nreq = p%nreq + 1
+    m%steps(p%step)%requests(p%nreq) = r
+  end subroutine read_request
+
+  !> Purpose: the set of an output card (NSET= or ELSET=; r%set, 0 all)
+  !> and whether the card is kept: a print card naming an undefined set
+  !> is ignored with a warning at its line (CalculiX: "node set ... does
+  !> not exist"); a file card keeps its quantities, since the result
+  !> files hold every node whatever the set. An empty set is warned about.
+  logical function request_set(p, m, kw, r) result(keep)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    type(keyword_t), intent(in) :: kw
+    type(request_t), intent(inout) :: r
+    character(len=:), allocatable :: pname, what, name
+    integer :: iset, n
+    keep = .true.
+    pname = merge('NSET ', 'ELSET', r%nodal .or. (r%to_file .and. has_param(kw, 'NSET')))
+    pname = trim(pname)
+    if (.not. has_param(kw, pname)) return
+    name = to_upper(param_value(kw, pname))
+    what = merge('node set   ', 'element set', pname == 'NSET')
+    what = trim(what)
+    if (pname == 'NSET') then
+      iset = nset_index(p, m, name)
+      if (iset > 0) n = size(m%nsets(iset)%items)
+    else
+      iset = elset_index(p, m, name)
+      if (iset > 0) n = size(m%elsets(iset)%items)
+    end if
+    if (iset == 0 .and. r%to_file) then
+      call deck_warning(p%deck, p%i, what // ' ' // name // ' is undefined: ' // pname // '= on *' // kw%name // &
+                        ' is ignored (the result files hold every node)')
+    else if (iset == 0) then
+      call deck_warning(p%deck, p%i, what // ' ' // name // ' is undefined: *' // kw%name // &
+                        ' is ignored, as CalculiX ignores it' // set_hint(p, m, pname, name))
+      keep = .false.
+    else if (r%to_file) then
+      ! (the result files hold every node whatever the set)
+      if (.not. r%nodal .and. pname == 'ELSET') r%set = iset
+    else
+      r%set = iset
+      call warn_empty_set(p, n, what, name, kw%name)
+    end if
+  end function request_set
+
+  !> Purpose: the hint to a warning about an undefined node set (pname
+  !> NSET) that is an element set: how gmsh writes node sets, or how to
+  !> make one; '' otherwise.
+  function set_hint(p, m, pname, name) result(s)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: pname, name
+    character(len=:), allocatable :: s
+    s = ''
+    if (pname /= 'NSET') return
+    if (elset_index(p, m, name) == 0) return
+    s = ' (there is an element set of that name: gmsh writes node sets only with -setnumber ' // &
+        'Mesh.SaveGroupsOfNodes 1; or define it with *NSET, NSET=' // name // ', ELSET=' // name // ')'
+  end function set_hint
+
+  !> Purpose: the quantities on the data lines of an output card into r.
+  !> Nodal cards: U, RF, S (extrapolated to the nodes and averaged),
+  !> CSTRESS (contact pressure; CDISP and CONTACT name it too); element
+  !> cards: S, E, PEEQ at the integration points, and in *EL FILE also U,
+  !> RF and CSTRESS (nodal views of the result file, as CalculiX writes U
+  !> asked for on *EL FILE). Anything else is warned about and skipped.
+  subroutine request_quantities(p, kw, r)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    type(request_t), intent(inout) :: r
+    type(field_t), allocatable :: f(:)
+    integer :: n, k
+    character(len=:), allocatable :: q
     call require_data(p, 'output quantities')
     do
       call split_fields(line_text(p), f, n)
@@ -615,16 +739,236 @@ contains
         case ('')
         case default
           call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
+          cycle
         end select
+        if (.not. r%nodal .and. .not. r%to_file .and. (q == 'U' .or. q == 'RF')) &
+          call deck_warning(p%deck, p%i, q // ' is a nodal quantity, which *EL PRINT does not list: ask for it ' // &
+                            'in *NODE PRINT; ignored here')
+        if (.not. r%nodal .and. .not. r%to_file .and. (q == 'CSTRESS' .or. q == 'CDISP' .or. q == 'CONTACT')) &
+          call deck_warning(p%deck, p%i, q // ' is listed in the contact tables of every increment, not by ' // &
+                            '*EL PRINT; ignored here')
       end do
       if (.not. next_data(p)) exit
     end do
     if (r%nodal .and. r%e) call err(p, 'E is an element quantity: ask for it in *EL PRINT or *EL FILE')
     if (r%nodal .and. r%peeq) call err(p, 'PEEQ is an element quantity: ask for it in *EL PRINT or *EL FILE')
+    if (r%only_totals .and. .not. r%rf) call deck_warning(p%deck, p%i, 'TOTALS=ONLY on *' // kw%name // &
+      ' lists only the sum of RF, which is not asked for: the card lists nothing')
+  end subroutine request_quantities
+
+  !> Purpose: the parameters of an output card that cfe2d honours by
+  !> what it does anyway, or cannot honour (a warning at the line): TOTALS=
+  !> (*NODE PRINT: the sum of RF over the set; *EL PRINT sums whole-element
+  !> quantities cfe2d does not have), OUTPUT= (2D: the result files are
+  !> 2D), POSITION= (INTEGRATION POINTS), SUMMARY=NO, FREQUENCYF= (fluid
+  !> output), LAST ITERATIONS, CONTACT ELEMENTS, SECTION FORCES (CalculiX's
+  !> debugging and shell output).
+  subroutine ignored_params(p, kw, r)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    type(request_t), intent(inout) :: r
+    character(len=:), allocatable :: v
+    integer :: k
+    character(len=16), parameter :: unused(*) = [character(len=16) :: 'FREQUENCYF', 'LAST ITERATIONS', &
+                                                 'CONTACT ELEMENTS', 'SECTION FORCES']
+    if (has_param(kw, 'TOTALS')) then
+      v = to_upper(param_value(kw, 'TOTALS'))
+      if (v /= 'YES' .and. v /= 'ONLY' .and. v /= 'NO') call err(p, 'TOTALS must be YES, ONLY or NO')
+      if (r%nodal .and. .not. r%to_file) then
+        r%totals = v /= 'NO'
+        r%only_totals = v == 'ONLY'
+      else if (v /= 'NO') then
+        call deck_warning(p%deck, p%i, 'TOTALS=' // v // ' on *' // kw%name // ' is ignored: it sums ' // &
+          merge('whole-element quantities (ELSE, EVOL), which cfe2d does not have', &
+                'RF of *NODE PRINT only                                          ', .not. r%nodal))
+      end if
+    end if
+    if (has_param(kw, 'OUTPUT')) then
+      v = to_upper(param_value(kw, 'OUTPUT'))
+      if (v == '3D') call deck_warning(p%deck, p%i, 'OUTPUT=3D is ignored: cfe2d''s results are those of the ' // &
+                                       '2D model (as OUTPUT=2D)')
+      if (v /= '2D' .and. v /= '3D') call err(p, 'OUTPUT must be 2D or 3D')
+    end if
+    if (has_param(kw, 'POSITION')) then
+      v = to_upper(param_value(kw, 'POSITION'))
+      if (v /= 'INTEGRATION POINTS' .and. v /= 'INTEGRATIONPOINTS') call deck_warning(p%deck, p%i, &
+        'POSITION=' // v // ' is ignored: *' // kw%name // ' gives values at the integration points')
+    end if
+    if (has_param(kw, 'SUMMARY')) then
+      if (to_upper(param_value(kw, 'SUMMARY')) /= 'NO') call deck_warning(p%deck, p%i, 'SUMMARY=' // &
+        to_upper(param_value(kw, 'SUMMARY')) // ' is ignored: cfe2d lists no summary of extreme values')
+    end if
+    do k = 1, size(unused)
+      if (has_param(kw, trim(unused(k)))) call deck_warning(p%deck, p%i, trim(unused(k)) // ' on *' // &
+        kw%name // ' is not implemented in cfe2d and is ignored')
+    end do
+  end subroutine ignored_params
+
+  !> A parameter that must be YES or NO, if given.
+  subroutine yes_no(p, kw, name)
+    type(parser_t), intent(in) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: v
+    if (.not. has_param(kw, name)) return
+    v = to_upper(param_value(kw, name))
+    if (v /= 'YES' .and. v /= 'NO') call err(p, name // ' must be YES or NO')
+  end subroutine yes_no
+
+  !> Purpose: FREQUENCY= and TIME POINTS= of an output card (at line
+  !> card). As in CalculiX the last one given in a step applies to all of
+  !> its print and file output: FREQUENCY=n (n >= 1) writes it every n-th
+  !> increment, TIME POINTS= at the times of that *TIME POINTS card (the
+  !> first increment ending at or after each), and the step's last
+  !> increment always. FREQUENCY=0 turns only this card off (every = 0).
+  subroutine output_schedule(p, m, kw, card, every)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    integer, intent(in) :: card
+    integer, intent(out) :: every
+    integer :: k, line
+    character(len=:), allocatable :: name
+    every = 1
+    line = p%i
+    p%i = card
+    if (has_param(kw, 'FREQUENCY') .and. has_param(kw, 'TIME POINTS')) &
+      call err(p, 'FREQUENCY= and TIME POINTS= exclude each other')
+    if (has_param(kw, 'FREQUENCY')) then
+      every = param_int(p, kw, 'FREQUENCY', 1, 0, huge(1))
+      if (every > 0) then
+        m%steps(p%step)%out_every = every
+        if (allocated(m%steps(p%step)%out_times)) deallocate(m%steps(p%step)%out_times)
+        p%time_points_line = 0
+      end if
+    else if (has_param(kw, 'TIME POINTS')) then
+      name = to_upper(param_value(kw, 'TIME POINTS'))
+      k = 0
+      if (p%ntime_points > 0) k = find_name(p%time_points(1:p%ntime_points)%name, name)
+      if (k == 0) then
+        call deck_warning(p%deck, p%i, 'undefined *TIME POINTS ' // name // ': TIME POINTS= is ignored')
+      else
+        m%steps(p%step)%out_every = 1
+        m%steps(p%step)%out_times = p%time_points(k)%t
+        m%steps(p%step)%out_total_time = p%time_points(k)%total
+        p%time_points_line = card
+      end if
+    end if
+    p%i = line
+  end subroutine output_schedule
+
+  !> Purpose: *CONTACT PRINT and *CONTACT FILE. The listing gives the
+  !> contact tables (gap, status, force, area, pressure, friction) of
+  !> every pair at every increment, so *CONTACT PRINT asks for nothing
+  !> more (CSTR, CDIS, CFN, CFS, CNUM; its TOTALS= are the pair
+  !> summaries); *CONTACT FILE with CSTR or CDIS writes the contact
+  !> pressure (and shear) views of the result file. Other quantities
+  !> (CELS, PCON, ...) are warned about; FREQUENCY= and TIME POINTS= as
+  !> on the other output cards.
+  subroutine contact_request(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(request_t) :: r
+    type(field_t), allocatable :: f(:)
+    integer :: n, k, card, every
+    character(len=:), allocatable :: q
+    card = p%i
+    r%to_file = kw%name == 'CONTACT FILE'
+    ! (CalculiX warns about a parameter it does not know here and goes on;
+    ! its own test decks write SET=)
+    do k = 1, kw%np
+      if (index(',FREQUENCY,TIME POINTS,TOTALS,LAST ITERATIONS,CONTACT ELEMENTS,', ',' // kw%pname(k)%s // ',') &
+          == 0) call deck_warning(p%deck, p%i, 'parameter ' // kw%pname(k)%s // ' of *' // kw%name // &
+                                  ' is not known and is ignored')
+    end do
+    call ignored_params(p, kw, r)
+    call require_data(p, 'output quantities')
+    do
+      call split_fields(line_text(p), f, n)
+      do k = 1, n
+        q = to_upper(f(k)%s)
+        select case (q)
+        case ('CSTR', 'CDIS', 'CSTRESS', 'CDISP'); r%cstress = .true.
+        case ('CFN', 'CFS', 'CNUM')
+          if (r%to_file) call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not written to the ' // &
+            'result files and is ignored (the listing''s contact tables give the contact forces)')
+        case ('')
+        case default
+          call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
+        end select
+      end do
+      if (.not. next_data(p)) exit
+    end do
+    call output_schedule(p, m, kw, card, every)
+    if (.not. r%to_file .or. .not. r%cstress .or. every == 0) return
     call grow(m%steps(p%step)%requests, p%nreq + 1)
     p%nreq = p%nreq + 1
     m%steps(p%step)%requests(p%nreq) = r
-  end subroutine read_request
+  end subroutine contact_request
+
+  !> Purpose: *TIME POINTS, NAME=: times named by TIME POINTS= of the
+  !> output cards, any number per data line, increasing; GENERATE: lines
+  !> `start, end, increment`; TIME=TOTAL TIME: total times (default: step
+  !> times).
+  module subroutine read_time_points(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    real(dp), allocatable :: t(:)
+    real(dp) :: a, b, c
+    integer :: n, k, nt
+    character(len=:), allocatable :: name
+    call allow_params(p, kw, 'NAME,TIME,GENERATE')
+    name = name_param(p, kw, 'NAME')
+    allocate(t(0))
+    nt = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (has_param(kw, 'GENERATE')) then
+        if (n /= 3) call err(p, '*TIME POINTS, GENERATE data line needs: start, end, increment')
+        a = get_real(p, f(1), 'start time')
+        b = get_real(p, f(2), 'end time')
+        c = get_real(p, f(3), 'time increment')
+        if (.not. c > 0.0_dp .or. b < a) call err(p, 'GENERATE needs start <= end and a positive increment')
+        if ((b - a) / c > real(max_increments, dp)) call err(p, 'GENERATE would make more than ' // &
+                                                              itoa(max_increments) // ' time points')
+        do k = 0, int((b - a) / c * (1.0_dp + 1.0e-12_dp))
+          call append(t, nt, a + k * c)
+        end do
+      else
+        do k = 1, n
+          if (len(f(k)%s) > 0) call append(t, nt, get_real(p, f(k), 'time point'))
+        end do
+      end if
+      if (nt > 1) then
+        if (any(t(2:nt) <= t(1:nt - 1))) call err(p, 'time points must increase')
+      end if
+    end do
+    if (nt == 0) call err(p, 'missing data line (time points)')
+    call add_time_points(p, name, t(1:nt), has_param(kw, 'TIME') .and. &
+                         to_upper(param_value(kw, 'TIME')) == 'TOTAL TIME')
+  end subroutine read_time_points
+
+  !> A *TIME POINTS card into p%time_points (a repeated name is an error).
+  subroutine add_time_points(p, name, t, total)
+    type(parser_t), intent(inout) :: p
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: t(:)
+    logical, intent(in) :: total
+    type(time_points_t), allocatable :: tmp(:)
+    if (.not. allocated(p%time_points)) allocate(p%time_points(2))
+    if (p%ntime_points > 0) then
+      if (find_name(p%time_points(1:p%ntime_points)%name, name) > 0) call err(p, 'duplicate *TIME POINTS ' // name)
+    end if
+    if (p%ntime_points == size(p%time_points)) then
+      allocate(tmp(2 * p%ntime_points))
+      tmp(1:p%ntime_points) = p%time_points(1:p%ntime_points)
+      call move_alloc(tmp, p%time_points)
+    end if
+    p%ntime_points = p%ntime_points + 1
+    p%time_points(p%ntime_points) = time_points_t(name=name, total=total, t=t)
+  end subroutine add_time_points
 
   !> GLOBAL= of *NODE PRINT and *NODE FILE: whether U and RF of a node
   !> with *TRANSFORM are given in global axes. CalculiX's defaults: NO for
@@ -662,6 +1006,51 @@ contains
     end select
   end subroutine file_format
 
+  !> Purpose: where the step's output follows TIME POINTS= (read at line
+  !> p%time_points_line), say at that line what cfe2d writes where
+  !> CalculiX would write elsewhere: CalculiX shortens its increments to
+  !> end on the time points, cfe2d keeps its increments and writes the
+  !> first increment ending at or after each point (output_schedule). A
+  !> step of fixed increments (linear, or DIRECT) warns about the points
+  !> that fall inside an increment; a step of automatic increments (NLGEOM,
+  !> a nonlinear material) warns once.
+  subroutine check_time_points(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    real(dp) :: start, t, n
+    integer :: k, line, missed
+    logical :: fixed
+    line = p%i
+    associate(s => m%steps(p%step))
+      start = 0.0_dp
+      if (s%out_total_time) start = sum(merge(m%steps(1:p%step - 1)%period, 1.0_dp, &
+                                              m%steps(1:p%step - 1)%period > 0.0_dp))
+      fixed = s%direct .or. .not. (s%nlgeom .or. any(m%materials(1:p%nmat)%law /= law_elastic) .or. &
+                                   any(m%materials(1:p%nmat)%nyield > 0))
+      p%i = p%time_points_line
+      if (s%period <= 0.0_dp) then
+        ! (no *STATIC: the step is refused elsewhere)
+      else if (.not. fixed) then
+        call deck_warning(p%deck, p%i, 'TIME POINTS: the increments of this step are automatic and are not ' // &
+          'shortened to end on the time points (CalculiX shortens them): the output of each point is that of ' // &
+          'the first increment ending at or after it')
+      else
+        missed = 0
+        do k = 1, size(s%out_times)
+          t = s%out_times(k) - start
+          if (t <= 0.0_dp .or. t > s%period) cycle
+          n = t / s%dt
+          if (abs(n - nint(n)) > 1.0e-9_dp * max(n, 1.0_dp)) missed = missed + 1
+        end do
+        if (missed > 0) call deck_warning(p%deck, p%i, itoa(missed) // ' time point' // &
+          merge('s lie', ' lies', missed > 1) // ' inside an increment of ' // rtoa(s%dt, 6) // &
+          ': the output is that of the increment ending after it (CalculiX shortens an increment to end on it)')
+      end if
+    end associate
+    p%i = line
+    p%time_points_line = 0
+  end subroutine check_time_points
+
   !> Purpose: *END STEP: closes the step; its lists are cut to length.
   module subroutine read_end_step(p, m, kw)
     type(parser_t), intent(inout) :: p
@@ -669,6 +1058,7 @@ contains
     type(keyword_t), intent(in) :: kw
     call allow_params(p, kw, '')
     call no_data(p, kw)
+    if (p%time_points_line > 0) call check_time_points(p, m)
     associate(s => m%steps(p%step))
       s%bcs = s%bcs(1:p%nbc)
       s%loads = s%loads(1:p%nload)

@@ -174,6 +174,9 @@ module model
     !> GLOBAL= of *NODE PRINT: U and RF of a node with *TRANSFORM in global
     !> axes (YES) or in its local ones (NO, CalculiX's default).
     logical :: global = .false.
+    !> TOTALS= of *NODE PRINT: YES lists the sum of RF over the set after
+    !> the rows, ONLY the sum alone (and no row of U or RF), as CalculiX.
+    logical :: totals = .false., only_totals = .false.
   end type request_t
 
   !> *CONTROLS of a nonlinear step (CalculiX's names and defaults, its
@@ -212,6 +215,15 @@ module model
     !> *CONTROLS in force in the step (kept by the later steps until
     !> *CONTROLS, RESET, as CalculiX)
     type(controls_t) :: controls
+    !> When the step's print and file output is written (CalculiX: the
+    !> last FREQUENCY= or TIME POINTS= of the step's output cards applies
+    !> to all of them): every out_every-th increment, or, when out_times
+    !> is allocated, at the first increment ending at or after each of
+    !> those times (step time, or total time if out_total_time); always at
+    !> the step's last increment.
+    integer :: out_every = 1
+    real(dp), allocatable :: out_times(:)
+    logical :: out_total_time = .false.
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.

@@ -16,6 +16,7 @@ module listing
                              run_timing_t
   use increment_results, only: increment_results_t
   use contact_results, only: pair_results_t, model_has_friction, slave_state
+  use output_schedule, only: schedule_t
   implicit none
   private
   public :: listing_t, open_listing, write_header
@@ -30,6 +31,8 @@ module listing
     !> reals, and a slave contact row without and with friction.
     character(len=:), allocatable :: f_set2, f_node2, f_node4, f_node5, f_node7, f_ip1, f_ip3, f_ip5, f_slave, &
                                      f_slave_fric
+    !> Which increments get the requested blocks (FREQUENCY=, TIME POINTS=)
+    type(schedule_t) :: schedule
   contains
     procedure :: step_started => write_step_header
     procedure :: solver_ready => write_solver
@@ -356,21 +359,24 @@ contains
   end subroutine write_timing
 
 
-  !> Purpose: one increment: the requested blocks, reaction sums, contact
-  !> results (and the contact table rows).
+  !> Purpose: one increment: the requested blocks (at the increments the
+  !> step's FREQUENCY= or TIME POINTS= select, output_schedule), reaction
+  !> sums, contact results (and the contact table rows).
   subroutine write_increment(self, m, res)
     class(listing_t), intent(inout) :: self
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
     integer :: ir, k, un
+    logical :: due
     un = self%unit
+    due = self%schedule%due(m, res)
     write(un, '(a)') ''
     write(un, '(a,i0,a,i0,a,i0,a)') '=== INCREMENT step=', res%step, ' increment=', res%increment, &
       ' time=' // rtoa(res%time, 9) // ' total_time=' // rtoa(res%total_time, 9) // ' iterations=', &
       res%iterations, ' ==='
     associate(reqs => m%steps(res%step)%requests)
       do ir = 1, size(reqs)
-        if (reqs(ir)%to_file) cycle
+        if (reqs(ir)%to_file .or. .not. due) cycle
         if (reqs(ir)%nodal) then
           call write_node_request(self, m, reqs(ir), res)
         else
@@ -434,6 +440,8 @@ contains
     else
       sel = [(k, k = 1, m%nn)]
     end if
+    if (req%totals) call write_rf_total(self, m, req, res, sel)
+    if (req%only_totals) return
     if (req%u) then
       call block_head(self, m, 'NODE U', req%set, .true., 'node U1 U2' // system_column(local) // label_column(m))
       do k = 1, size(sel)
@@ -488,6 +496,26 @@ contains
       end if
     end subroutine vector_row
   end subroutine write_node_request
+
+  !> Purpose: TOTALS=YES or ONLY of *NODE PRINT: the sum of RF over the
+  !> nodes sel of the set, global components (CalculiX's "total force"),
+  !> when RF is asked for.
+  subroutine write_rf_total(self, m, req, res, sel)
+    class(listing_t), intent(in) :: self
+    type(model_t), intent(in) :: m
+    type(request_t), intent(in) :: req
+    type(increment_results_t), intent(in) :: res
+    integer, intent(in) :: sel(:)
+    integer :: k
+    real(dp) :: total(2)
+    if (.not. req%rf) return
+    total = 0.0_dp
+    do k = 1, size(sel)
+      total = total + res%rf(:, sel(k))
+    end do
+    call block_head(self, m, 'NODE RF TOTAL', req%set, .true., 'RF1 RF2')
+    write(self%unit, '(2' // efmt(self) // ')') total
+  end subroutine write_rf_total
 
   !> ' system' after the column names of U and RF when rows may be in a
   !> node's local axes (L) or global (G).
@@ -575,17 +603,33 @@ contains
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
     type(pair_results_t), intent(in) :: r
-    integer :: j, nd, un, nid
-    real(dp) :: xs(2), p, tau
+    integer :: un
+    un = self%unit
+    call write_slave_rows(self, m, res, r)
+    call write_master_rows(self, m, res, r)
+    write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', r%pair
+    if (r%frictional) then
+      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration shear_total'
+      write(un, self%f_node5) r%nclosed, r%total, r%resultant, r%max_pen, r%shear_total
+    else
+      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
+      write(un, self%f_node4) r%nclosed, r%total, r%resultant, r%max_pen
+    end if
+  end subroutine write_contact
+
+  !> Purpose: the slave rows of one contact pair (write_contact): the
+  !> listing's block and, with a contact table, its slave rows.
+  subroutine write_slave_rows(self, m, res, r)
+    class(listing_t), intent(in) :: self
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    type(pair_results_t), intent(in) :: r
+    integer :: j, un, nid
     character(len=6) :: st
     character(len=*), parameter :: csv_slave = '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,",",' // &
       'es16.8e3,",",es16.8e3,",",a,",",es16.8e3,",",es16.8e3)'
     character(len=*), parameter :: csv_slave_fric = '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,' // &
       '",",es16.8e3,",",es16.8e3,",",a,6(",",es16.8e3))'
-    character(len=*), parameter :: csv_master = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",' // &
-      'es16.8e3,",0,-,",es16.8e3,",",es16.8e3)'
-    character(len=*), parameter :: csv_master_fric = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,' // &
-      '",",es16.8e3,",0,-,",es16.8e3,",",es16.8e3,",",es16.8e3,",",es16.8e3,",0,0")'
     un = self%unit
     write(un, '(a,i0,a)') '--- CONTACT SLAVE pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%slave_surface)%name)
@@ -617,6 +661,23 @@ contains
           r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j)
       end if
     end do
+  end subroutine write_slave_rows
+
+  !> Purpose: the master rows of one contact pair (write_contact): the
+  !> listing's block (deformed position, force, area, pressure = force /
+  !> area) and, with a contact table, its master rows.
+  subroutine write_master_rows(self, m, res, r)
+    class(listing_t), intent(in) :: self
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    type(pair_results_t), intent(in) :: r
+    integer :: j, nd, un
+    real(dp) :: xs(2), p, tau
+    character(len=*), parameter :: csv_master = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,",",' // &
+      'es16.8e3,",0,-,",es16.8e3,",",es16.8e3)'
+    character(len=*), parameter :: csv_master_fric = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,' // &
+      '",",es16.8e3,",0,-,",es16.8e3,",",es16.8e3,",",es16.8e3,",",es16.8e3,",0,0")'
+    un = self%unit
     write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%master_surface)%name)
     if (r%frictional) then
@@ -649,15 +710,7 @@ contains
           r%master_force(j), p
       end if
     end do
-    write(un, '(a,i0)') '--- CONTACT SUMMARY pair=', r%pair
-    if (r%frictional) then
-      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration shear_total'
-      write(un, self%f_node5) r%nclosed, r%total, r%resultant, r%max_pen, r%shear_total
-    else
-      write(un, '(a)') 'closed total_force resultant_x resultant_y max_penetration'
-      write(un, self%f_node4) r%nclosed, r%total, r%resultant, r%max_pen
-    end if
-  end subroutine write_contact
+  end subroutine write_master_rows
 
   !> Ends a row of the contact tables: with instances (Abaqus/CAE), the
   !> node's label in the deck's terms (a Gauss point of a slave face, node

@@ -15,6 +15,7 @@ module results_gmsh
   use messages, only: register_unit_to_close, fatal
   use analysis_events, only: analysis_observer_t
   use increment_results, only: increment_results_t
+  use output_schedule, only: schedule_t
   implicit none
   private
   public :: result_file_t, open_result_file
@@ -25,6 +26,7 @@ module results_gmsh
     integer :: unit = 0
     logical :: open = .false.
     integer :: count = 0          ! increments written (gmsh time-step index)
+    type(schedule_t) :: schedule  ! which increments are written (FREQUENCY=, TIME POINTS=)
   contains
     procedure :: increment_done => write_increment_views
   end type result_file_t
@@ -32,7 +34,10 @@ module results_gmsh
 contains
 
   !> Purpose: the views of this increment that the step's *NODE FILE and
-  !> *EL FILE requests ask for, merged into one nodal and one element set.
+  !> *EL FILE requests ask for, merged into one nodal and one element set,
+  !> at the increments the step's FREQUENCY= or TIME POINTS= select. U,
+  !> RF and CSTRESS asked for on *EL FILE are nodal views (CalculiX
+  !> writes U asked for there too); E is written as element averages.
   subroutine write_increment_views(self, m, res)
     class(result_file_t), intent(inout) :: self
     type(model_t), intent(in) :: m
@@ -42,23 +47,49 @@ contains
     do q = 1, size(m%steps(res%step)%requests)
       associate(r => m%steps(res%step)%requests(q))
         if (.not. r%to_file) cycle
+        fnode%u = fnode%u .or. r%u
+        fnode%rf = fnode%rf .or. r%rf
+        fnode%cstress = fnode%cstress .or. r%cstress
         if (r%nodal) then
-          fnode%u = fnode%u .or. r%u
-          fnode%rf = fnode%rf .or. r%rf
           fnode%s = fnode%s .or. r%s
-          fnode%cstress = fnode%cstress .or. r%cstress
         else
           felem%s = felem%s .or. r%s
+          felem%e = felem%e .or. r%e
           felem%peeq = felem%peeq .or. r%peeq
         end if
       end associate
     end do
     if (.not. self%open) return
-    if (.not. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s .or. felem%peeq)) return
+    if (.not. self%schedule%due(m, res)) return
+    if (.not. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s .or. felem%e .or. felem%peeq)) &
+      return
     call write_result_views(self, m, fnode, felem, res%total_time, res%u, res%rf, res%sig_node, res%sig_elem, &
                             res%contact%pressure, res%contact%has_pressure, res%contact%frictional, &
                             res%contact%shear, res%peeq_elem)
+    if (felem%e .and. res%has_stresses) call write_strain_views(self, m, res)
+    flush(self%unit)
   end subroutine write_increment_views
+
+  !> Purpose: E of *EL FILE: the element averages of the strain at the
+  !> integration points (E11, E22, E12, as the listing's *EL PRINT),
+  !> three element views of the increment just counted.
+  subroutine write_strain_views(rf, m, res)
+    type(result_file_t), intent(in) :: rf
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    real(dp) :: eps(3, m%ne)
+    logical :: solid(m%ne)
+    integer :: e, k
+    character(len=3), parameter :: names(3) = ['E11', 'E22', 'E12']
+    solid = [(is_drawn(m, e), e = 1, m%ne)]
+    eps = 0.0_dp
+    do e = 1, m%ne
+      if (res%nip(e) > 0) eps(:, e) = sum(res%eps_ip(:, 1:res%nip(e), e), dim=2) / res%nip(e)
+    end do
+    do k = 1, 3
+      call write_view(rf, 'ElementData', names(k) // ' (element)', res%total_time, m%elem_id, solid, eps(k:k, :))
+    end do
+  end subroutine write_strain_views
 
   !> One text line of the file.
   subroutine line(u, text)

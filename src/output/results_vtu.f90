@@ -16,6 +16,7 @@ module results_vtu
   use messages, only: fatal
   use analysis_events, only: analysis_observer_t
   use increment_results, only: increment_results_t
+  use output_schedule, only: schedule_t
   implicit none
   private
   public :: vtu_series_t, open_vtu_series
@@ -36,6 +37,7 @@ module results_vtu
     character(len=:), allocatable :: job     ! path of the results without extension
     integer :: count = 0                     ! increments written
     real(dp), allocatable :: times(:)        ! total time of each file
+    type(schedule_t) :: schedule             ! which increments are written (FREQUENCY=, TIME POINTS=)
   contains
     procedure :: increment_done => write_vtu_increment
   end type vtu_series_t
@@ -51,13 +53,15 @@ contains
     allocate(vs%times(0))
   end subroutine open_vtu_series
 
-  !> Purpose: the VTU file of this increment and the updated .pvd.
+  !> Purpose: the VTU file of this increment and the updated .pvd, at the
+  !> increments the step's FREQUENCY= or TIME POINTS= select.
   subroutine write_vtu_increment(self, m, res)
     class(vtu_series_t), intent(inout) :: self
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
     type(vtu_array_t), allocatable :: arrays(:)
     character(len=:), allocatable :: name
+    if (.not. self%schedule%due(m, res)) return
     self%count = self%count + 1
     self%times = [self%times, res%total_time]
     call collect_arrays(m, res, arrays)
@@ -80,17 +84,19 @@ contains
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
     type(vtu_array_t), allocatable, intent(out) :: arrays(:)
-    logical :: rf, s_node, cstress, s_elem, peeq
+    logical :: rf, s_node, cstress, s_elem, peeq, e_elem
     integer :: q, k
     integer, allocatable :: cells(:)
-    rf = .false.; s_node = .false.; cstress = .false.; s_elem = .false.; peeq = .false.
+    rf = .false.; s_node = .false.; cstress = .false.; s_elem = .false.; peeq = .false.; e_elem = .false.
     do q = 1, size(m%steps(res%step)%requests)
       associate(r => m%steps(res%step)%requests(q))
         if (.not. r%to_file) cycle
-        rf = rf .or. (r%nodal .and. r%rf)
+        ! (U is always written; RF and CSTRESS asked for on *EL FILE are nodal arrays too)
+        rf = rf .or. r%rf
         s_node = s_node .or. (r%nodal .and. r%s)
-        cstress = cstress .or. (r%nodal .and. r%cstress)
+        cstress = cstress .or. r%cstress
         s_elem = s_elem .or. (.not. r%nodal .and. r%s)
+        e_elem = e_elem .or. (.not. r%nodal .and. r%e)
         peeq = peeq .or. (.not. r%nodal .and. r%peeq)
       end associate
     end do
@@ -110,10 +116,29 @@ contains
     if (s_elem .and. res%has_stresses) arrays = [arrays, &
         tensor_array('S (element)', cell_data, res%sig_elem(:, cells)), &
         real_array('Mises (element)', cell_data, [(von_mises(res%sig_elem(:, cells(k))), k = 1, size(cells))])]
+    if (e_elem .and. res%has_stresses) arrays = [arrays, strain_array(m, res, cells)]
     ! the element average of the equivalent plastic strain
     if (peeq .and. size(res%peeq_elem) == m%ne) arrays = [arrays, &
         real_array('PEEQ (element)', cell_data, res%peeq_elem(cells))]
   end subroutine collect_arrays
+
+  !> Purpose: E of *EL FILE: the element averages of the strain at the
+  !> integration points (E11, E22, E12) of the elements cells.
+  function strain_array(m, res, cells) result(a)
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    integer, intent(in) :: cells(:)
+    type(vtu_array_t) :: a
+    real(dp) :: eps(3, size(cells))
+    integer :: k, e
+    eps = 0.0_dp
+    do k = 1, size(cells)
+      e = cells(k)
+      if (res%nip(e) > 0) eps(:, k) = sum(res%eps_ip(:, 1:res%nip(e), e), dim=2) / res%nip(e)
+    end do
+    a = vtu_array_t(name='E (element)', vtype='Float64', ncomp=3, place=cell_data)
+    a%r = real(reshape(eps, [3 * size(cells)]), real64)
+  end function strain_array
 
   !> Points (z = 0) and the elements the model draws (continuum elements,
   !> trusses, springs, point masses) as cells, with the VTK type of their
