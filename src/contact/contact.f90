@@ -28,12 +28,12 @@ module contact
   use shape_functions, only: gauss_line
   use contact_mortar, only: nearest_edge, face_cuts, edge_tol, mortar_t, mortar_integrals
   use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted
-  use element_interface, only: elem_in_t, elem_out_t, kind_cfe, max_slave, max_en, act_residual
-  use element_library, only: element_routine
+  use element_interface, only: cfe_in_t, cfe_out_t, max_slave, act_residual
+  use cfe_element, only: cfe
   implicit none
   private
-  public :: cfe_t, max_cfe_master, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
-            coupling_node, cfe_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes
+  public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
+            coupling_node, cfe_nodes, cfe_max_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -55,13 +55,6 @@ module contact
   !> Open penalty (fraction of the closed one) while a body that only open
   !> contact holds is being brought into contact; see contact_set_t.
   real(dp), parameter :: stabilised_open_ratio = 1.0e-6_dp
-  !> Master nodes of a segment-to-segment CFE (one slave node and these
-  !> fill an element's node list).
-  integer, parameter :: max_cfe_master = max_en - 1
-  !> The same for the dual mortar and the master-mesh multipliers on
-  !> 2-node faces (an element's nodes and its slave nodes; element
-  !> arrays hold max_en for the master-mesh multipliers on 3-node faces).
-  integer, parameter :: max_mortar_master = max_nodes + max_slave - 1
   !> A segment-to-segment CFE whose covered dual weight D_j is below this
   !> share of its node's whole int N_j da is not made: its support hardly
   !> faces the master, and its weights M_jm / D_j would be large.
@@ -80,10 +73,10 @@ module contact
     !> Segment-to-segment (nm > 0): the master side is these nodes with
     !> these weights (M_jm / D_j, contact_mortar), not the shape functions
     !> of elem at xi; elem, edge and t then name a master face under the
-    !> slave node's support.
+    !> slave node's support. As many as the support reaches: no limit.
     integer :: nm = 0
-    integer :: mnode(max_cfe_master) = 0
-    real(dp) :: mw(max_cfe_master) = 0.0_dp
+    integer, allocatable :: mnode(:)
+    real(dp), allocatable :: mw(:)
     !> Segment-to-segment with the multiplier on the master mesh
     !> (contact_master_multipliers; ns = 0): mnode(1:nsl) are the slave
     !> nodes, with the weights -S_mj / D_m in mw (the element subtracts
@@ -91,7 +84,7 @@ module contact
     !> (the pressure field there), and lnode the master node that carries
     !> the multiplier (also in sip, which the re-search matches).
     integer :: nsl = 0, lnode = 0
-    real(dp) :: psi(max_cfe_master) = 0.0_dp
+    real(dp), allocatable :: psi(:)
     real(dp) :: t = 0.0_dp           ! position of X_C along the edge, 0..1
     real(dp) :: xi(2) = 0.0_dp       ! natural coordinates of X_C in the master
     real(dp) :: normal(2) = 0.0_dp   ! outward unit normal of the master edge
@@ -309,8 +302,7 @@ contains
     type(mortar_t) :: mo
     type(cfe_t) :: c
     real(dp) :: em, xm(2), xm_ref(2)
-    integer :: k, s, q, e
-    logical :: done
+    integer :: k, s
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
       if (sl%kind /= surf_element) call fatal('segment-to-segment contact (TYPE=SURFACE TO SURFACE) needs ' // &
         'an element-based slave surface: ' // trim(sl%name) // ' is a node set')
@@ -325,8 +317,8 @@ contains
       ! slave nodes and carry it along.
       if (master_space_wanted(m, sl, ms, dmax) .and. .not. (m%pairs(ip)%mu > 0.0_dp .and. &
           (m%pairs(ip)%update_search .or. any(m%steps%nlgeom)))) then
-        call couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p, done)
-        if (done) return
+        call couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
+        return
       end if
       call mortar_integrals(m, x, sl, ms, dmax, mo)
       do k = 1, mo%n
@@ -336,31 +328,17 @@ contains
           call append(uncp, nunc_p, ip)
           cycle
         end if
-        if (mo%nm(k) > max_mortar_master) call pair_error(m%pairs(ip), 'segment-to-segment contact: slave node ' // &
-          node_label(m, s) // ' of ' // trim(sl%name) // ' faces more than ' // itoa(max_mortar_master) // &
-          ' master nodes (its faces span more than ' // itoa(max_mortar_master - 1) // ' linear or ' // &
-          itoa((max_mortar_master - 1) / 2) // ' quadratic master faces); make the finer surface the slave ' // &
-          '(or refine the slave side)')
         c = cfe_t()
         c%pair = ip
         c%ns = 1
         c%snode(1) = s
         c%nm = mo%nm(k)
-        c%mnode(1:c%nm) = mo%mnode(1:c%nm, k)
-        c%mw(1:c%nm) = mo%mval(1:c%nm, k) / mo%d(k)
+        c%mnode = mo%mnode(1:c%nm, k)
+        c%mw = mo%mval(1:c%nm, k) / mo%d(k)
         call place_on_master(m, mo%melem(k), mo%medge(k), mo%mt(k), mo%nsum(:, k), mo%d(k), mo%h(k), c)
-        em = 0.0_dp
-        do q = 1, size(sl%elem)
-          if (any(m%conn(1:elem_nodes(m, sl%elem(q)), sl%elem(q)) == s)) em = max(em, section_e(m, sl%elem(q)))
-        end do
-        do q = 1, c%nm
-          do e = 1, size(ms%elem)
-            if (any(m%conn(1:elem_nodes(m, ms%elem(e)), ms%elem(e)) == c%mnode(q))) &
-              em = max(em, section_e(m, ms%elem(e)))
-          end do
-        end do
-        xm = matmul(x(:, c%mnode(1:c%nm)), c%mw(1:c%nm))
-        xm_ref = matmul(m%x(:, c%mnode(1:c%nm)), c%mw(1:c%nm))
+        em = max(largest_modulus(m, sl, [s]), largest_modulus(m, ms, c%mnode))
+        xm = matmul(x(:, c%mnode), c%mw)
+        xm_ref = matmul(m%x(:, c%mnode), c%mw)
         c%gap0 = m%x(:, s) - xm_ref
         c%gap_round = gap_round_off * (norm2(x(:, s)) + c%h)
         c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
@@ -378,88 +356,31 @@ contains
   !> (contact_master_multipliers; taken where the slave is the finer side
   !> of straight faces): one CFE per master node m whose hat function
   !> faces the slave surface over more than min_mortar_cover of its int
-  !> N_m da; its slave side the slave nodes with the weights S_mj / D_m,
-  !> its master side node m (weight one: the lumped master side), or for
-  !> a frictional pair or 3-node master faces the master nodes k with
-  !> M_mk / D_m (the consistent one, whose tangential component is
-  !> consistent too; 3-node faces: their mid-side nodes carry no
-  !> multiplier to lump onto), its area D_m, its
-  !> normal the mean master normal under psi_m, its initial gap the
-  !> weighted one.
-  !> done: .false. (nothing added) where a CFE would hold more nodes than
-  !> an element may (max_mortar_master on 2-node faces, as before the
-  !> 3-node ones needed max_cfe_master; the caller then takes the dual
-  !> mortar). Slave nodes
-  !> that no multiplier's field reaches are reported uncoupled.
-  subroutine couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p, done)
+  !> N_m da (master_space_cfe). Slave nodes that no multiplier's field
+  !> reaches are reported uncoupled. A CFE holds every slave node its hat
+  !> reaches, however much finer the slave is.
+  subroutine couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), dmax
     integer, intent(in) :: ip
     type(contact_set_t), intent(inout) :: cs
     integer, allocatable, intent(inout) :: unc(:), uncp(:)
     integer, intent(inout) :: nunc, nunc_p
-    logical, intent(out) :: done
     type(master_space_t) :: sp
     type(cfe_t) :: c
     logical, allocatable :: taken(:), reached(:)
     logical :: lumped
-    real(dp) :: em, rel(2)
-    integer :: k, q, e, nn, limit
-    done = .false.
+    integer :: k
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
       call master_space_integrals(m, x, sl, ms, dmax, sp)
-      if (sp%overflow) return
       taken = sp%ns > 0 .and. sp%d > min_mortar_cover * sp%full .and. norm2(sp%nsum, dim=1) > 0.0_dp
       lumped = m%pairs(ip)%mu <= 0.0_dp .and. .not. sp%quadratic
-      limit = merge(max_cfe_master, max_mortar_master, sp%quadratic)
-      if (lumped .and. any(taken .and. sp%ns + 1 > limit)) return
-      if (.not. lumped .and. any(taken .and. sp%ns + sp%nm > limit)) return
-      done = .true.
       allocate(reached(m%nn))
       reached = .false.
       do k = 1, sp%n
         if (.not. taken(k)) cycle
-        c = cfe_t()
-        c%pair = ip
-        c%ns = 0
-        c%nsl = sp%ns(k)
-        if (lumped) then
-          nn = sp%ns(k) + 1
-          c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), ms%nodes(k)]
-          c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k) / sp%d(k), 1.0_dp]
-        else
-          nn = sp%ns(k) + sp%nm(k)
-          c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), sp%mnode(1:sp%nm(k), k)]
-          c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k), sp%mval(1:sp%nm(k), k)] / sp%d(k)
-        end if
-        c%nm = nn
-        c%psi(1:c%nsl) = sp%psi(1:sp%ns(k), k)
-        reached(sp%snode(1:sp%ns(k), k)) = reached(sp%snode(1:sp%ns(k), k)) .or. sp%psi(1:sp%ns(k), k) > 0.0_dp
-        c%lnode = ms%nodes(k)
-        c%sip = c%lnode
-        call place_on_master(m, sp%melem(k), sp%medge(k), sp%mt(k), sp%nsum(:, k), sp%d(k), sp%h(k), c)
-        em = 0.0_dp
-        do q = 1, nn
-          do e = 1, size(sl%elem)
-            if (any(m%conn(1:elem_nodes(m, sl%elem(e)), sl%elem(e)) == c%mnode(q))) &
-              em = max(em, section_e(m, sl%elem(e)))
-          end do
-          do e = 1, size(ms%elem)
-            if (any(m%conn(1:elem_nodes(m, ms%elem(e)), ms%elem(e)) == c%mnode(q))) &
-              em = max(em, section_e(m, ms%elem(e)))
-          end do
-        end do
-        ! the weighted gap vector sum_j S_mj / D_m x_j - x_m (the element
-        ! subtracts the weights mw)
-        rel = -matmul(x(:, c%mnode(1:nn)), c%mw(1:nn))
-        c%gap0 = -matmul(m%x(:, c%mnode(1:nn)), c%mw(1:nn))
-        c%gap_round = gap_round_off * (maxval(norm2(x(:, c%mnode(1:nn)), dim=1)) + c%h)
-        c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
-        c%exact = m%pairs(ip)%exact
-        c%k_open = open_stiffness(m%pairs(ip), c%area, em, c%h, .false., c%k_closed)
-        c%mu = m%pairs(ip)%mu
-        if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
-        c%closed = dot_product(c%normal, rel) <= c%gap_round
+        call master_space_cfe(m, x, ip, sp, k, lumped, c)
+        reached(c%mnode(1:c%nsl)) = reached(c%mnode(1:c%nsl)) .or. c%psi(1:c%nsl) > 0.0_dp
         call add_cfe(cs, c)
       end do
       do k = 1, size(sl%nodes)
@@ -469,6 +390,74 @@ contains
       end do
     end associate
   end subroutine couple_master_space
+
+  !> Purpose: the CFE of master node k (of the master surface's node list)
+  !> with the multiplier on the master mesh: its slave side the slave
+  !> nodes with the weights S_mj / D_m, its master side node m (weight
+  !> one: the lumped master side), or for a frictional pair or 3-node
+  !> master faces the master nodes k with M_mk / D_m (the consistent one,
+  !> whose tangential component is consistent too; 3-node faces: their
+  !> mid-side nodes carry no multiplier to lump onto), its area D_m, its
+  !> normal the mean master normal under psi_m, its initial gap the
+  !> weighted one.
+  !> Arguments: sp the integrals (master_space_integrals), lumped the
+  !> master side; c returns the CFE.
+  subroutine master_space_cfe(m, x, ip, sp, k, lumped, c)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    integer, intent(in) :: ip, k
+    type(master_space_t), intent(in) :: sp
+    logical, intent(in) :: lumped
+    type(cfe_t), intent(out) :: c
+    real(dp) :: em, rel(2)
+    integer :: nn
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
+      c%pair = ip
+      c%ns = 0
+      c%nsl = sp%ns(k)
+      if (lumped) then
+        nn = sp%ns(k) + 1
+        c%mnode = [sp%snode(1:sp%ns(k), k), ms%nodes(k)]
+        c%mw = [-sp%sval(1:sp%ns(k), k) / sp%d(k), 1.0_dp]
+      else
+        nn = sp%ns(k) + sp%nm(k)
+        c%mnode = [sp%snode(1:sp%ns(k), k), sp%mnode(1:sp%nm(k), k)]
+        c%mw = [-sp%sval(1:sp%ns(k), k), sp%mval(1:sp%nm(k), k)] / sp%d(k)
+      end if
+      c%nm = nn
+      c%psi = sp%psi(1:sp%ns(k), k)
+      c%lnode = ms%nodes(k)
+      c%sip = c%lnode
+      call place_on_master(m, sp%melem(k), sp%medge(k), sp%mt(k), sp%nsum(:, k), sp%d(k), sp%h(k), c)
+      em = max(largest_modulus(m, sl, c%mnode), largest_modulus(m, ms, c%mnode))
+      ! the weighted gap vector sum_j S_mj / D_m x_j - x_m (the element
+      ! subtracts the weights mw)
+      rel = -matmul(x(:, c%mnode), c%mw)
+      c%gap0 = -matmul(m%x(:, c%mnode), c%mw)
+      c%gap_round = gap_round_off * (maxval(norm2(x(:, c%mnode), dim=1)) + c%h)
+      c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
+      c%exact = m%pairs(ip)%exact
+      c%k_open = open_stiffness(m%pairs(ip), c%area, em, c%h, .false., c%k_closed)
+      c%mu = m%pairs(ip)%mu
+      if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
+      c%closed = dot_product(c%normal, rel) <= c%gap_round
+    end associate
+  end subroutine master_space_cfe
+
+  !> Purpose: the largest Young's modulus of the elements of surface s
+  !> that hold any of the nodes (0 if none).
+  real(dp) function largest_modulus(m, s, nodes) result(em)
+    type(model_t), intent(in) :: m
+    type(surface_t), intent(in) :: s
+    integer, intent(in) :: nodes(:)
+    integer :: q, e
+    em = 0.0_dp
+    do q = 1, size(nodes)
+      do e = 1, size(s%elem)
+        if (any(m%conn(1:elem_nodes(m, s%elem(e)), s%elem(e)) == nodes(q))) em = max(em, section_e(m, s%elem(e)))
+      end do
+    end do
+  end function largest_modulus
 
   !> Purpose: the master face, normal and size of a segment-to-segment
   !> CFE (dual mortar or master-mesh multipliers): face edge of element
@@ -500,10 +489,10 @@ contains
     type(contact_set_t), intent(inout) :: cs
     integer, allocatable, intent(inout) :: unc(:), uncp(:)
     integer, intent(inout) :: nunc, nunc_p
-    integer, parameter :: max_cuts = 64
     type(edge_t) :: ed, ref
     type(cfe_t) :: c
-    real(dp) :: cuts(max_cuts), tg(3), wg(3), t, w(3), p(2), pref(2), dpdt(2), tbest, area, h, em
+    real(dp), allocatable :: cuts(:)
+    real(dp) :: tg(3), wg(3), t, w(3), p(2), pref(2), dpdt(2), tbest, area, h, em
     integer :: f, ncut, iv, ig, best, npts, ncoupled
     call gauss_line(2, tg, wg)
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
@@ -766,7 +755,8 @@ contains
   pure logical function same_nodes(m, a, b)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: a, b
-    integer :: na(max_en), nb(max_en), ka, kb
+    integer, allocatable :: na(:), nb(:)
+    integer :: ka, kb
     call cfe_nodes(m, a, na, ka)
     call cfe_nodes(m, b, nb, kb)
     same_nodes = ka == kb
@@ -802,11 +792,11 @@ contains
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
     real(dp), intent(in) :: u(:, :)
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: nodes(max_en)
+    type(cfe_in_t) :: ein
+    type(cfe_out_t) :: eout
+    integer, allocatable :: nodes(:)
     call cfe_input(m, c, u, .false., ein, nodes)
-    call element_routine(act_residual, ein, eout)
+    call cfe(act_residual, ein, eout)
     slide = eout%slide
   end function current_slide
 
@@ -869,45 +859,69 @@ contains
     call fatal(msg)
   end subroutine pair_error
 
-  !> Purpose: the nodes of a CFE: slave nodes, then the master element's.
+  !> Purpose: the nodes of a CFE: slave nodes, then the master element's
+  !> (or the segment-to-segment master side's).
+  !> Arguments: nodes(1:nen) returns them; nodes is (re)allocated when it
+  !> is shorter than nen (a caller keeps one list for many CFEs), so a
+  !> coupling of any size fits.
   pure subroutine cfe_nodes(m, c, nodes, nen)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
-    integer, intent(out) :: nodes(:), nen
+    integer, allocatable, intent(inout) :: nodes(:)
+    integer, intent(out) :: nen
     integer :: nm
+    if (c%nm > 0) then
+      nm = c%nm
+    else
+      nm = elem_nodes(m, c%elem)
+    end if
+    nen = c%ns + nm
+    if (allocated(nodes)) then
+      if (size(nodes) < nen) deallocate(nodes)
+    end if
+    if (.not. allocated(nodes)) allocate(nodes(max(nen, max_nodes + max_slave)))
     nodes(1:c%ns) = c%snode(1:c%ns)
     if (c%nm > 0) then
-      nen = c%ns + c%nm
       nodes(c%ns + 1:nen) = c%mnode(1:c%nm)
-      return
+    else
+      nodes(c%ns + 1:nen) = m%conn(1:nm, c%elem)
     end if
-    nm = elem_nodes(m, c%elem)
-    nen = c%ns + nm
-    nodes(c%ns + 1:nen) = m%conn(1:nm, c%elem)
   end subroutine cfe_nodes
 
-  !> Purpose: element data of CFE c for the element routine, and its node
-  !> list (slave nodes first, then the master element's nodes).
+  !> Purpose: the largest node count of the CFEs of cs (at least that of
+  !> a node-to-segment CFE on the largest element), for callers that size
+  !> per-coupling arrays once.
+  pure integer function cfe_max_nodes(cs) result(n)
+    type(contact_set_t), intent(in) :: cs
+    integer :: j
+    n = max_nodes + max_slave
+    do j = 1, cs%n
+      n = max(n, cs%c(j)%ns + cs%c(j)%nm)
+    end do
+  end function cfe_max_nodes
+
+  !> Purpose: element data of CFE c for the coupling element routine
+  !> (cfe_element's cfe), and its node list (slave nodes first, then the
+  !> master side's nodes; reallocated when shorter, as cfe_nodes).
   subroutine cfe_input(m, c, u, stabilised, ein, nodes)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
     real(dp), intent(in) :: u(:, :)
     logical, intent(in) :: stabilised     ! contact_set_t%stabilised
-    type(elem_in_t), intent(out) :: ein
-    integer, intent(out) :: nodes(:)
+    type(cfe_in_t), intent(out) :: ein
+    integer, allocatable, intent(inout) :: nodes(:)
     integer :: k, nen
     call cfe_nodes(m, c, nodes, nen)
-    ein%kind = kind_cfe
     ein%nen = nen
     ein%ns = c%ns
     ein%ws = c%sw
+    allocate(ein%ue(2 * nen))
     do k = 1, nen
-      ein%xy(:, k) = m%x(:, nodes(k))
       ein%ue(2 * k - 1:2 * k) = u(:, nodes(k))
     end do
     if (c%nm > 0) then
       ein%master_kind = 0
-      ein%wm(1:c%nm) = c%mw(1:c%nm)
+      ein%wm = c%mw(1:c%nm)
     else
       ein%master_kind = catalogue(m%etype(c%elem))%shape
       ein%xi = c%xi
@@ -948,12 +962,13 @@ contains
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(inout) :: fint(:, :)
     integer(kind=8), intent(inout) :: ncalls
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: j, i, nodes(max_en)
+    type(cfe_in_t) :: ein
+    type(cfe_out_t) :: eout
+    integer, allocatable :: nodes(:)
+    integer :: j, i
     do j = 1, cs%n
       call cfe_input(m, cs%c(j), u, cs%stabilised, ein, nodes)
-      call element_routine(act_residual, ein, eout)
+      call cfe(act_residual, ein, eout)
       ncalls = ncalls + 1
       do i = 1, ein%nen
         fint(:, nodes(i)) = fint(:, nodes(i)) + eout%fe(2 * i - 1:2 * i)

@@ -21,7 +21,7 @@
 module contact_results
   use kinds, only: dp
   use model
-  use contact, only: contact_set_t, coupling_node, max_cfe_master
+  use contact, only: contact_set_t, coupling_node
   use contact_geometry, only: edge_t, get_edge, edge_weights, surface_areas
   implicit none
   private
@@ -275,8 +275,10 @@ contains
     integer :: k, j, nm, ns, n, q
     integer, allocatable :: pos(:), sel(:)
     real(dp), allocatable :: area(:)
-    real(dp) :: w(3), shear, ww(max_cfe_master)
-    integer :: nw, wn(max_cfe_master)
+    real(dp) :: w(3), shear
+    real(dp), allocatable :: ww(:)
+    integer, allocatable :: wn(:)
+    integer :: nw
     type(edge_t) :: ed
     r%pair = ip
     r%frictional = m%pairs(ip)%mu > 0.0_dp
@@ -331,8 +333,8 @@ contains
           ! segment-to-segment: the master nodes' mortar weights (after
           ! the slave nodes, with the multiplier on the master mesh)
           nw = c%nm - c%nsl
-          wn(1:nw) = c%mnode(c%nsl + 1:c%nm)
-          ww(1:nw) = c%mw(c%nsl + 1:c%nm)
+          wn = c%mnode(c%nsl + 1:c%nm)
+          ww = c%mw(c%nsl + 1:c%nm)
         else
           ed = get_edge(m, m%x, c%elem, c%edge)
           if (ed%nn == 2) then
@@ -341,8 +343,8 @@ contains
             w = edge_weights(ed, c%t)
           end if
           nw = ed%nn
-          wn(1:nw) = ed%node(1:nw)
-          ww(1:nw) = w(1:nw)
+          wn = ed%node(1:nw)
+          ww = w(1:nw)
         end if
         do q = 1, nw
           r%master_force(pos(wn(q))) = r%master_force(pos(wn(q))) - ww(q) * c%force
