@@ -652,7 +652,6 @@ contains
     logical, allocatable :: matched(:)
     integer :: j, q, nchg
     logical :: stabilised, reevaluate
-    real(dp) :: old_slide
     reevaluate = .false.
     if (present(moved)) reevaluate = moved
     nchg = 0
@@ -681,49 +680,78 @@ contains
         cycle
       end if
       matched(q) = .true.
-      ! Within an increment's iterations a closed coupling that stays on
-      ! the same master element (the same node list) keeps its geometry:
-      ! its normal and projection are the linearisation the tangent has
-      ! (no contact geometric stiffness), and re-evaluating them at every
-      ! iterate under a penalty far stiffer than the bodies chattered
-      ! (a soft rubber cylinder on the Hertz plate: out-of-balance 5e4 and
-      ! 7e9 in alternate iterations). The search at the start of the next
-      ! increment evaluates it on the converged configuration.
-      ! And it moves on to another master element only once its point has
-      ! left its old edge by switch_band of the edge's length (a point at a
-      ! master vertex otherwise alternates between the two edges from
-      ! iterate to iterate).
-      if (reevaluate .and. old%c(q)%closed .and. old%c(q)%ns > 0) then
-        if (same_nodes(m, old%c(q), cs%c(j)) .or. near_old_edge(m, x, old%c(q))) then
-          cs%c(j) = old%c(q)
-          cycle
-        end if
-      end if
-      cs%c(j)%closed = old%c(q)%closed
-      cs%c(j)%lambda = old%c(q)%lambda
-      ! friction: the elastic tangential offset carries over to the
-      ! new coupling, whose t.[[U]] is evaluated where the point is now
-      ! (zero on a straight edge; not at a blended corner normal)
-      cs%c(j)%sliding = old%c(q)%sliding
-      cs%c(j)%slip_sign = old%c(q)%slip_sign
-      cs%c(j)%slip_total = old%c(q)%slip_total
-      if (cs%c(j)%mu > 0.0_dp) then
-        old_slide = old%c(q)%slide
-        if (reevaluate) old_slide = current_slide(m, old%c(q), x - m%x)
-        cs%c(j)%anchor = current_slide(m, cs%c(j), x - m%x) - (old_slide - old%c(q)%anchor)
-      end if
+      call carry_history(m, x, old%c(q), reevaluate, cs%c(j))
     end do
-    ! A coupling of a slave point that the search finds no master edge for
-    ! (a point pushed past the end of the master surface) is kept within
-    ! the iterations of an increment (moved), its geometry and status as
-    ! they were, as the pairing of the increment's start would have them;
-    ! the search at the start of the next increment (not moved) decides on
-    ! the converged configuration. Otherwise a point at the master's end,
-    ! just past it in one iterate and not in the next, loses its coupling
-    ! and comes back with a new one whose status the geometry decides,
-    ! from iteration to iteration, and the status never settles.
-    ! Couplings of the master-mesh multiplier (ns = 0) belong to master
-    ! nodes and are not kept; a closed one lost is a status change.
+    call keep_lost_couplings(old, matched, reevaluate, cs, nchg)
+    if (present(changed)) changed = nchg
+  end subroutine contact_research
+
+  !> Purpose: what coupling c of the new search takes from the old
+  !> coupling of the same slave point (contact_research): its status,
+  !> multiplier and friction history, or, within an increment's iterations
+  !> (reevaluate), the old coupling whole where it is closed and stays.
+  !> Arguments: x the configuration searched; oc the old coupling; c the
+  !> new one, completed.
+  subroutine carry_history(m, x, oc, reevaluate, c)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    type(cfe_t), intent(in) :: oc
+    logical, intent(in) :: reevaluate
+    type(cfe_t), intent(inout) :: c
+    real(dp) :: old_slide
+    ! Within an increment's iterations a closed coupling that stays on
+    ! the same master element (the same node list) keeps its geometry:
+    ! its normal and projection are the linearisation the tangent has
+    ! (no contact geometric stiffness), and re-evaluating them at every
+    ! iterate under a penalty far stiffer than the bodies chattered
+    ! (a soft rubber cylinder on the Hertz plate: out-of-balance 5e4 and
+    ! 7e9 in alternate iterations). The search at the start of the next
+    ! increment evaluates it on the converged configuration.
+    ! And it moves on to another master element only once its point has
+    ! left its old edge by switch_band of the edge's length (a point at a
+    ! master vertex otherwise alternates between the two edges from
+    ! iterate to iterate).
+    if (reevaluate .and. oc%closed .and. oc%ns > 0) then
+      if (same_nodes(m, oc, c) .or. near_old_edge(m, x, oc)) then
+        c = oc
+        return
+      end if
+    end if
+    c%closed = oc%closed
+    c%lambda = oc%lambda
+    ! friction: the elastic tangential offset carries over to the
+    ! new coupling, whose t.[[U]] is evaluated where the point is now
+    ! (zero on a straight edge; not at a blended corner normal)
+    c%sliding = oc%sliding
+    c%slip_sign = oc%slip_sign
+    c%slip_total = oc%slip_total
+    if (c%mu > 0.0_dp) then
+      old_slide = oc%slide
+      if (reevaluate) old_slide = current_slide(m, oc, x - m%x)
+      c%anchor = current_slide(m, c, x - m%x) - (old_slide - oc%anchor)
+    end if
+  end subroutine carry_history
+
+  !> Purpose: the old couplings that no new one matched (contact_research).
+  !> A coupling of a slave point that the search finds no master edge for
+  !> (a point pushed past the end of the master surface) is kept within
+  !> the iterations of an increment (reevaluate), its geometry and status
+  !> as they were, as the pairing of the increment's start would have
+  !> them; the search at the start of the next increment (not reevaluate)
+  !> decides on the converged configuration. Otherwise a point at the
+  !> master's end, just past it in one iterate and not in the next, loses
+  !> its coupling and comes back with a new one whose status the geometry
+  !> decides, from iteration to iteration, and the status never settles.
+  !> Couplings of the master-mesh multiplier (ns = 0) belong to master
+  !> nodes and are not kept; a closed one lost is a status change.
+  !> Arguments: matched(q) whether old%c(q) found a match; nchg counts the
+  !> status changes.
+  subroutine keep_lost_couplings(old, matched, reevaluate, cs, nchg)
+    type(contact_set_t), intent(in) :: old
+    logical, intent(in) :: matched(:), reevaluate
+    type(contact_set_t), intent(inout) :: cs
+    integer, intent(inout) :: nchg
+    integer :: q
     do q = 1, old%n
       if (matched(q)) cycle
       if (reevaluate .and. old%c(q)%ns > 0) then
@@ -733,8 +761,7 @@ contains
         nchg = nchg + 1
       end if
     end do
-    if (present(changed)) changed = nchg
-  end subroutine contact_research
+  end subroutine keep_lost_couplings
 
   !> Does the coupling point of c (configuration x) project onto its
   !> master edge (project_to_edge, t not clamped) within switch_band edge
