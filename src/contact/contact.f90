@@ -17,8 +17,8 @@
 !> (3 nodes): points are projected onto the quadratic edge.
 module contact
   use kinds, only: dp
-  use strings, only: itoa
-  use messages, only: fatal, fatal_at
+  use strings, only: itoa, ftoa
+  use messages, only: fatal
   use model
   use growable, only: append
   use element_catalogue, only: catalogue, max_nodes
@@ -27,7 +27,7 @@ module contact
                               edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line
   use contact_mortar, only: nearest_edge, face_cuts, edge_tol, mortar_t, mortar_integrals
-  use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted
+  use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted, coarse_straight_slave
   use element_interface, only: cfe_in_t, cfe_out_t, max_slave, act_residual
   use cfe_element, only: cfe
   implicit none
@@ -133,6 +133,9 @@ module contact
     !> nominal open penalty; the open state resists relative motion only,
     !> so it biases nothing at zero relative motion.
     logical :: stabilised = .false.
+    !> Notes for the listing from the search (a pair whose coarse slave
+    !> resolves the pressure less well than the pair swapped would).
+    character(len=600), allocatable :: notes(:)
   end type contact_set_t
 
 contains
@@ -233,6 +236,7 @@ contains
       end if
     end do
     cs%c = cs%c(1:cs%n)
+    if (.not. allocated(cs%notes)) allocate(cs%notes(0))
     cs%uncoupled = unc(1:nunc)
     cs%uncoupled_pair = uncp(1:nunc_p)
   end subroutine contact_search
@@ -320,6 +324,7 @@ contains
         call couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
         return
       end if
+      call note_coarse_slave(m, ip, dmax, cs)
       call mortar_integrals(m, x, sl, ms, dmax, mo)
       do k = 1, mo%n
         s = sl%nodes(k)
@@ -351,6 +356,31 @@ contains
       end do
     end associate
   end subroutine couple_mortar
+
+  !> Purpose: a note for the listing where the dual mortar couples a slave
+  !> surface coarser than its master that would do better as the master
+  !> (contact_master_multipliers' coarse_straight_slave, with the spacing
+  !> ratio): the pair runs as given, the note says what swapping gives.
+  subroutine note_coarse_slave(m, ip, dmax, cs)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: ip
+    real(dp), intent(in) :: dmax
+    type(contact_set_t), intent(inout) :: cs
+    character(len=600), allocatable :: more(:)
+    real(dp) :: ratio
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
+      if (.not. coarse_straight_slave(m, sl, ms, dmax, ratio)) return
+      if (.not. allocated(cs%notes)) allocate(cs%notes(0))
+      allocate(more(size(cs%notes) + 1))
+      more(1:size(cs%notes)) = cs%notes
+      more(size(more)) = 'contact pair ' // itoa(ip) // ' (' // trim(sl%name) // ', ' // trim(ms%name) // &
+        '): the slave faces are ' // ftoa(ratio, 2) // ' times the master faces under them: the contact ' // &
+        'pressure is resolved at the slave spacing (dual mortar); swapped (the finer surface the slave, ' // &
+        'the multiplier on this straight surface as the master mesh) it is more accurate ' // &
+        '(docs/contact.md, "Any pair of meshes")'
+      call move_alloc(more, cs%notes)
+    end associate
+  end subroutine note_coarse_slave
 
   !> Purpose: segment-to-segment with the multiplier on the master mesh
   !> (contact_master_multipliers; taken where the slave is the finer side
@@ -875,16 +905,6 @@ contains
     stick_penalty = k_closed
     if (pr%stick_slope > 0.0_dp) stick_penalty = pr%stick_slope * area
   end function stick_penalty
-
-  !> Purpose: stops with msg at the pair's *CONTACT PAIR card
-  !> (file:line: error: msg and the card quoted), or without a line where
-  !> the pair was not read from a deck.
-  subroutine pair_error(pr, msg)
-    type(contact_pair_t), intent(in) :: pr
-    character(len=*), intent(in) :: msg
-    if (pr%card_line > 0) call fatal_at(pr%card_file, pr%card_line, pr%card_text, msg)
-    call fatal(msg)
-  end subroutine pair_error
 
   !> Purpose: the nodes of a CFE: slave nodes, then the master element's
   !> (or the segment-to-segment master side's).
