@@ -324,7 +324,9 @@ contains
         call couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
         return
       end if
-      call note_coarse_slave(m, ip, dmax, cs)
+      ! the note is about the meshes: made by the search on the reference
+      ! configuration (not again in every Newton iteration under NLGEOM)
+      if (all(x == m%x)) call note_coarse_slave(m, ip, dmax, cs)
       call mortar_integrals(m, x, sl, ms, dmax, mo)
       do k = 1, mo%n
         s = sl%nodes(k)
