@@ -53,14 +53,14 @@ contains
     integer, intent(in) :: g
     integer, allocatable, intent(inout) :: nodes(:)
     integer, intent(out) :: nen
+    if (allocated(nodes)) then
+      if (size(nodes) < max_en) deallocate(nodes)
+    end if
+    if (.not. allocated(nodes)) allocate(nodes(max_en))
     if (g <= m%ne) then
       nen = 0
       if (.not. carries_stiffness(m, g)) return
       nen = elem_nodes(m, g)
-      if (allocated(nodes)) then
-        if (size(nodes) < max_en) deallocate(nodes)
-      end if
-      if (.not. allocated(nodes)) allocate(nodes(max_en))
       nodes(1:nen) = m%conn(1:nen, g)
     else
       call cfe_nodes(m, cs%c(g - m%ne), nodes, nen)
