@@ -368,3 +368,26 @@ def test_nlgeom_rubber_cylinder_coarse_slave():
         assert -rf > last
         last = -rf
     assert "searched again" in open(run.listing_path).read()
+
+
+def test_frictional_patch_test_ten_times_finer_and_five_times_coarser():
+    """The frictional patch test of test_friction (a uniform pressure p and
+    shear s = mu p / 2 through two blocks, the upper one held by contact
+    alone, starting open) with the segment-to-segment coupling and EXACT,
+    the slave 50 faces over 5 (10 times finer: the multiplier on the master
+    mesh with the consistent master side, couplings of 21 slave and 3
+    master nodes) and 1 face over 5 (5 times coarser: the dual mortar, two
+    couplings of 6 master nodes): every point sticks; stresses, pressures,
+    shear tractions and reactions uniform to 1e-8 of p."""
+    from test_friction import MU, patch_deck, patch_errors
+    for nx in (50, 1):
+        deck = patch_deck(nx, "single").replace(
+            f"*CONTACT PAIR, FRICTION={MU}\nSLV, MASTER\n",
+            f"*CONTACT PAIR, FRICTION={MU}, TYPE=SURFACE TO SURFACE, EXACT\nUPPERFACE, MASTER\n")
+        run = run_deck(f"sts_any_friction_patch_{nx}", deck).ok()
+        err, states, ratio = patch_errors(run)
+        print(f"  {nx} over 5: " + ", ".join(f"{k} {v:.1e}" for k, v in err.items()))
+        assert states == {"STICK"}, states
+        assert max(err.values()) < 1e-8 and ratio < MU, (nx, err, ratio)
+        couplings = int(re.search(r"coupling_elements (\d+)", open(run.listing_path).read()).group(1))
+        assert couplings == (6 if nx > 5 else nx + 1), couplings
