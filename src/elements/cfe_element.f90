@@ -49,9 +49,9 @@ contains
   end subroutine cfe_b_matrix
 
   !> Purpose: element arrays of a coupling element.
-  !> Arguments: action (act_tangent: K_e; act_residual: F_int, the
-  !> relative displacement, gap, normal force, slide and tangential
-  !> force), ein, eout.
+  !> Arguments: action (act_tangent: K_e, eout%ke allocated only then;
+  !> act_residual: F_int, the relative displacement, gap, normal force,
+  !> slide and tangential force), ein, eout.
   !> Friction (ein%mu > 0, closed only): eq. (7)'s c gets a tangential
   !> factor. Sticking, C = c_n n n^T + k_t t t^T and the tangential force
   !> is k_t (t.[[U]] - anchor); sliding, the tangential force is
@@ -65,8 +65,10 @@ contains
     integer :: nd, i, j
     nd = 2 * ein%nen
     eout%ndof = nd
-    allocate(eout%ke(nd, nd), eout%fe(nd))
-    eout%ke = 0.0_dp
+    ! the tangent only where asked for: a residual evaluation (every CFE
+    ! at every status iteration) need not fill a matrix that grows with
+    ! the square of the coupling's nodes
+    allocate(eout%fe(nd))
     eout%fe = 0.0_dp
     call cfe_b_matrix(ein, b)
     t = [-ein%normal(2), ein%normal(1)]
@@ -88,7 +90,7 @@ contains
       end do
     end if
     ! eq. (10): K_e = B_e^T C B_e
-    if (wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = matmul(transpose(b), matmul(c, b))
+    if (wants(action, act_tangent)) eout%ke = matmul(transpose(b), matmul(c, b))
     if (wants(action, act_residual)) then
       rel = matmul(b, ein%ue(1:nd))
       ! eq. (8): [[U]] = B_e D_e + [[U]]_0

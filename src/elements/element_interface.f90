@@ -133,8 +133,8 @@ module element_interface
     real(dp) :: slip_sign = 0.0_dp, anchor = 0.0_dp
   end type cfe_in_t
 
-  !> Output of a coupling element: its tangent ke(ndof, ndof) and internal
-  !> force fe(ndof) (allocated by the routine, ndof = 2 nen), the relative
+  !> Output of a coupling element: its tangent ke(ndof, ndof) (allocated
+  !> with act_tangent only) and internal force fe(ndof) (ndof = 2 nen), the relative
   !> displacement [[U]] (eq. 8) and its normal component, the normal gap
   !> (negative = penetration), the normal force, and the tangential
   !> component t.[[U]] and tangential force.
