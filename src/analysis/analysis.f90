@@ -164,6 +164,12 @@ contains
     do k = 1, size(obs)
       call obs(k)%o%step_started(m, info)
     end do
+    ! the contact search's notes (a coarse slave that would do better swapped)
+    if (allocated(rs%cs%notes)) then
+      do k = 1, size(rs%cs%notes)
+        call tell_note(obs, trim(rs%cs%notes(k)))
+      end do
+    end if
     rs%timing%output = rs%timing%output + (wall_time() - t0)
     rs%inc = 0
     if (rs%nonlinear) then

@@ -19,11 +19,12 @@ module assembly
   use model
   use element_catalogue, only: catalogue
   use contact, only: contact_set_t, cfe_input
-  use element_interface, only: elem_in_t, elem_out_t, max_en, act_tangent, act_stresses, act_thermal, &
+  use element_interface, only: elem_in_t, elem_out_t, cfe_in_t, cfe_out_t, max_en, act_tangent, act_stresses, act_thermal, &
                                act_residual, max_hist
   use element_catalogue, only: max_ip, max_nodes, state_plane_stress
   use distributed_loads, only: follower_pressure_load
   use element_library, only: element_routine, thickness_stretch
+  use cfe_element, only: cfe
   use body_elements, only: body_input, body_alpha
   use linear_solver, only: linear_system_t, sys_zero, sys_add
   use dof_numbering, only: dofmap_t, has_dependent, group_transform, reduce_dependent
@@ -370,7 +371,10 @@ contains
     logical, intent(in), optional :: converged
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
+    type(cfe_in_t) :: cin
+    type(cfe_out_t) :: cout
     integer :: e, j, nd, nodes(max_en)
+    integer, allocatable :: cnodes(:)
     real(dp) :: ke(2 * max_en, 2 * max_en), fe_dummy(2 * max_en)
     logical :: at_converged
     at_converged = .false.
@@ -399,12 +403,12 @@ contains
       call add_group(sys, dm, e, m%conn(1:nd / 2, e), ke(1:nd, 1:nd))
     end do
     do e = 1, cs%n
-      call cfe_input(m, cs%c(e), u, cs%stabilised, ein, nodes)
-      call element_routine(act_tangent, ein, eout)
+      call cfe_input(m, cs%c(e), u, cs%stabilised, cin, cnodes)
+      call cfe(act_tangent, cin, cout)
       counts%coupling = counts%coupling + 1
-      call add_group(sys, dm, m%ne + e, nodes(1:ein%nen), eout%ke(1:eout%ndof, 1:eout%ndof))
-      do j = 1, eout%ndof
-        kmax = max(kmax, abs(eout%ke(j, j)))
+      call add_group(sys, dm, m%ne + e, cnodes(1:cin%nen), cout%ke)
+      do j = 1, cout%ndof
+        kmax = max(kmax, abs(cout%ke(j, j)))
       end do
     end do
   end subroutine assemble_stiffness

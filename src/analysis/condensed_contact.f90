@@ -24,9 +24,8 @@ module condensed_contact
   use model, only: model_t, carries_stiffness, elem_nodes
   use solver_codes, only: solver_cholmod, solver_umfpack, solver_mumps, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set
-  use element_interface, only: elem_in_t, elem_out_t, max_en, max_edof, act_tangent
-  use element_library, only: element_routine
-  use cfe_element, only: cfe_b_matrix
+  use element_interface, only: cfe_in_t, cfe_out_t, max_en, act_tangent
+  use cfe_element, only: cfe, cfe_b_matrix
   use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, number_dofs, has_dependent, group_transform, expand_dependent, reduce_dependent
   use constraints, only: mpc_t
@@ -56,8 +55,10 @@ module condensed_contact
     integer :: n = 0, m = 0             ! equations, contact equations (the last m)
     integer, allocatable :: pos(:)      ! (n) trailing position of an equation, 0 for the others
     integer, allocatable :: eq_at(:)    ! (m) equation at a trailing position
-    integer, allocatable :: cfe_pos(:, :)       ! (max_edof, ncfe) position of each CFE dof, 0 if none
-    real(dp), allocatable :: ke0(:, :, :)       ! (max_edof, max_edof, ncfe) CFE tangents as in K0
+    !> (maxng, ncfe): maxng the most dofs (equations, through constraints)
+    !> of any CFE of the numbering (dependents_at_cfes)
+    integer, allocatable :: cfe_pos(:, :)       ! position of each CFE dof, 0 if none
+    real(dp), allocatable :: ke0(:, :, :)       ! (maxng, maxng, ncfe) CFE tangents as in K0
     !> One m x m array for two matrices: the trailing block L22 of the
     !> factor of K0 as its transpose in the upper triangle and diagonal,
     !> the Schur complement S0 of K0 in the strict lower triangle (its
@@ -161,12 +162,13 @@ contains
     logical, intent(in) :: prescribed(:, :)
     type(mpc_t), intent(in) :: mpc
     logical, allocatable, intent(out) :: mask(:, :)
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
+    type(cfe_in_t) :: ein
+    type(cfe_out_t) :: eout
     type(cfe_t) :: c
     real(dp), allocatable :: u(:, :)
     real(dp) :: kmax
-    integer :: j, k, d, i, q, nodes(max_en)
+    integer :: j, k, d, i, q
+    integer, allocatable :: nodes(:)
     allocate(mask(2, m%nn), u(2, m%nn))
     mask = .false.
     u = 0.0_dp
@@ -177,7 +179,7 @@ contains
       c%closed = .true.
       c%sliding = .false.
       call cfe_input(m, c, u, .false., ein, nodes)
-      call element_routine(act_tangent, ein, eout)
+      call cfe(act_tangent, ein, eout)
       kmax = 0.0_dp
       do k = 1, 2 * ein%nen
         kmax = max(kmax, abs(eout%ke(k, k)))
@@ -286,12 +288,14 @@ contains
     logical, allocatable :: seen(:)
     integer, allocatable :: geq(:)
     real(dp), allocatable :: t(:, :)
-    integer :: j, k, d, i, nen, nodes(max_en)
+    integer :: j, k, d, i, nen
+    integer, allocatable :: nodes(:)
     allocate(seen(dm%mpc%ndep))
     seen = .false.
-    maxng = max_edof
+    maxng = 0
     do j = 1, cs%n
       call cfe_nodes(m, cs%c(j), nodes, nen)
+      maxng = max(maxng, 2 * nen)
       if (.not. has_dependent(dm, nodes(1:nen))) cycle
       call group_transform(dm, nodes(1:nen), geq, t)
       maxng = max(maxng, size(geq))
@@ -320,12 +324,13 @@ contains
     integer, intent(out) :: ng
     real(dp), intent(out) :: kraw
     integer(kind=8), intent(inout) :: ncalls
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
+    type(cfe_in_t) :: ein
+    type(cfe_out_t) :: eout
     real(dp), allocatable :: t(:, :)
-    integer :: nd, b, nodes(max_en)
+    integer :: nd, b
+    integer, allocatable :: nodes(:)
     call cfe_input(m, c, u, stabilised, ein, nodes)
-    call element_routine(act_tangent, ein, eout)
+    call cfe(act_tangent, ein, eout)
     ncalls = ncalls + 1
     nd = eout%ndof
     kraw = 0.0_dp
@@ -479,7 +484,8 @@ contains
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(out) :: f(:)
     integer(kind=8), intent(inout) :: ncalls
-    integer :: p, e, j, k, q, nen, nodes(max_en)
+    integer :: p, e, j, k, q, nen
+    integer, allocatable :: nodes(:)
     call contact_forces(m, cs, u, cd%fw, ncalls)
     ! forces on dependent dofs act on their independent dofs
     if (size(cd%cdep) > 0) call reduce_dependent(dm, cd%fw, cd%cdep)
@@ -609,9 +615,10 @@ contains
     logical, intent(out) :: ok
     integer, allocatable :: act(:), geq(:)
     real(dp), allocatable :: z(:, :), w(:, :), g(:), t(:, :), bn(:), wdiag(:), dx(:, :)
-    type(elem_in_t) :: ein
-    real(dp) :: bm(2, max_edof)
-    integer :: j, k, p, nd, info, nodes(max_en)
+    type(cfe_in_t) :: ein
+    real(dp), allocatable :: bm(:, :)
+    integer :: j, k, p, nd, info
+    integer, allocatable :: nodes(:)
     ok = .true.
     where (cs%c(1:cs%n)%exact .and. .not. cs%c(1:cs%n)%closed) cs%c(1:cs%n)%lambda = 0.0_dp
     act = pack([(j, j = 1, cs%n)], cs%c(1:cs%n)%exact .and. cs%c(1:cs%n)%closed)
@@ -625,7 +632,9 @@ contains
       j = act(k)
       call cfe_input(m, cs%c(j), cd%u0, cs%stabilised, ein, nodes)
       nd = 2 * ein%nen
-      call cfe_b_matrix(ein, bm(:, 1:nd))
+      if (allocated(bm)) deallocate(bm)
+      allocate(bm(2, nd))
+      call cfe_b_matrix(ein, bm)
       bn = matmul(cs%c(j)%normal, bm(:, 1:nd))
       if (has_dependent(dm, nodes(1:ein%nen))) then
         call group_transform(dm, nodes(1:ein%nen), geq, t)

@@ -58,12 +58,18 @@ contains
 
   !> Purpose: nodes of assembly group g: body element g, or CFE g - ne
   !> (slave nodes first); no nodes for elements without stiffness (line
-  !> elements that only describe boundaries).
+  !> elements that only describe boundaries). nodes is (re)allocated when
+  !> shorter than the group (a CFE may hold any number of nodes).
   pure subroutine group_nodes(m, cs, g, nodes, nen)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: g
-    integer, intent(out) :: nodes(:), nen
+    integer, allocatable, intent(inout) :: nodes(:)
+    integer, intent(out) :: nen
+    if (allocated(nodes)) then
+      if (size(nodes) < max_en) deallocate(nodes)
+    end if
+    if (.not. allocated(nodes)) allocate(nodes(max_en))
     if (g <= m%ne) then
       nen = 0
       if (.not. carries_stiffness(m, g)) return
@@ -227,7 +233,8 @@ contains
     type(dofmap_t), intent(inout) :: dm
     logical, allocatable, intent(out) :: numbered(:, :)
     logical, allocatable :: reached(:), named(:, :), kept(:)
-    integer :: g, a, d, k, nen, nodes(max_en)
+    integer :: g, a, d, k, nen
+    integer, allocatable :: nodes(:)
     allocate(reached(m%nn), named(2, m%nn), numbered(2, m%nn), dm%inactive(2, m%nn))
     reached = .false.
     do g = 1, m%ne + cs%n
@@ -267,7 +274,8 @@ contains
     type(linear_system_t), intent(inout) :: sys
     integer, allocatable :: xeq(:), eqs(:), geq(:)
     real(dp), allocatable :: t(:, :)
-    integer :: ng, e, i, k, nen, nodes(max_en)
+    integer :: ng, e, i, k, nen
+    integer, allocatable :: nodes(:)
     ng = m%ne + cs%n
     allocate(xeq(ng + 1), eqs(2 * max_en * ng))
     xeq(1) = 1

@@ -14,14 +14,13 @@ module equilibrium
   use kinds, only: dp
   use strings, only: itoa
   use model, only: model_t, elem_label, node_label
-  use contact, only: contact_set_t, status_codes, contact_forces, contact_research, cfe_nodes
+  use contact, only: contact_set_t, status_codes, contact_forces, contact_research, cfe_nodes, cfe_max_nodes
   use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
   use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent, follow_rotations
   use constraints, only: mpc_t
   use condensed_contact, only: number_equations
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
-  use element_interface, only: max_en
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
                                 report_iteration, describe, singular, contact_force_scale, take_back, &
                                 stabilise_open, set_aside_or_stop, newton_begin, newton_test, newton_converged, &
@@ -406,8 +405,9 @@ contains
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     integer, allocatable :: l(:)
-    integer :: j, nen, k, nodes(max_en)
-    allocate(l(cs%n * (max_en + 1)))
+    integer :: j, nen, k
+    integer, allocatable :: nodes(:)
+    allocate(l(cs%n * (cfe_max_nodes(cs) + 1)))
     k = 0
     do j = 1, cs%n
       call cfe_nodes(m, cs%c(j), nodes, nen)

@@ -17,8 +17,8 @@
 !> (3 nodes): points are projected onto the quadratic edge.
 module contact
   use kinds, only: dp
-  use strings, only: itoa
-  use messages, only: fatal, fatal_at
+  use strings, only: itoa, ftoa
+  use messages, only: fatal
   use model
   use growable, only: append
   use element_catalogue, only: catalogue, max_nodes
@@ -27,13 +27,13 @@ module contact
                               edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line
   use contact_mortar, only: nearest_edge, face_cuts, edge_tol, mortar_t, mortar_integrals
-  use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted
-  use element_interface, only: elem_in_t, elem_out_t, kind_cfe, max_slave, max_en, act_residual
-  use element_library, only: element_routine
+  use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted, coarse_straight_slave
+  use element_interface, only: cfe_in_t, cfe_out_t, max_slave, act_residual
+  use cfe_element, only: cfe
   implicit none
   private
-  public :: cfe_t, max_cfe_master, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
-            coupling_node, cfe_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes
+  public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
+            coupling_node, cfe_nodes, cfe_max_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -55,13 +55,6 @@ module contact
   !> Open penalty (fraction of the closed one) while a body that only open
   !> contact holds is being brought into contact; see contact_set_t.
   real(dp), parameter :: stabilised_open_ratio = 1.0e-6_dp
-  !> Master nodes of a segment-to-segment CFE (one slave node and these
-  !> fill an element's node list).
-  integer, parameter :: max_cfe_master = max_en - 1
-  !> The same for the dual mortar and the master-mesh multipliers on
-  !> 2-node faces (an element's nodes and its slave nodes; element
-  !> arrays hold max_en for the master-mesh multipliers on 3-node faces).
-  integer, parameter :: max_mortar_master = max_nodes + max_slave - 1
   !> A segment-to-segment CFE whose covered dual weight D_j is below this
   !> share of its node's whole int N_j da is not made: its support hardly
   !> faces the master, and its weights M_jm / D_j would be large.
@@ -80,10 +73,10 @@ module contact
     !> Segment-to-segment (nm > 0): the master side is these nodes with
     !> these weights (M_jm / D_j, contact_mortar), not the shape functions
     !> of elem at xi; elem, edge and t then name a master face under the
-    !> slave node's support.
+    !> slave node's support. As many as the support reaches: no limit.
     integer :: nm = 0
-    integer :: mnode(max_cfe_master) = 0
-    real(dp) :: mw(max_cfe_master) = 0.0_dp
+    integer, allocatable :: mnode(:)
+    real(dp), allocatable :: mw(:)
     !> Segment-to-segment with the multiplier on the master mesh
     !> (contact_master_multipliers; ns = 0): mnode(1:nsl) are the slave
     !> nodes, with the weights -S_mj / D_m in mw (the element subtracts
@@ -91,7 +84,7 @@ module contact
     !> (the pressure field there), and lnode the master node that carries
     !> the multiplier (also in sip, which the re-search matches).
     integer :: nsl = 0, lnode = 0
-    real(dp) :: psi(max_cfe_master) = 0.0_dp
+    real(dp), allocatable :: psi(:)
     real(dp) :: t = 0.0_dp           ! position of X_C along the edge, 0..1
     real(dp) :: xi(2) = 0.0_dp       ! natural coordinates of X_C in the master
     real(dp) :: normal(2) = 0.0_dp   ! outward unit normal of the master edge
@@ -140,6 +133,9 @@ module contact
     !> nominal open penalty; the open state resists relative motion only,
     !> so it biases nothing at zero relative motion.
     logical :: stabilised = .false.
+    !> Notes for the listing from the search (a pair whose coarse slave
+    !> resolves the pressure less well than the pair swapped would).
+    character(len=600), allocatable :: notes(:)
   end type contact_set_t
 
 contains
@@ -240,6 +236,7 @@ contains
       end if
     end do
     cs%c = cs%c(1:cs%n)
+    if (.not. allocated(cs%notes)) allocate(cs%notes(0))
     cs%uncoupled = unc(1:nunc)
     cs%uncoupled_pair = uncp(1:nunc_p)
   end subroutine contact_search
@@ -309,8 +306,7 @@ contains
     type(mortar_t) :: mo
     type(cfe_t) :: c
     real(dp) :: em, xm(2), xm_ref(2)
-    integer :: k, s, q, e
-    logical :: done
+    integer :: k, s
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
       if (sl%kind /= surf_element) call fatal('segment-to-segment contact (TYPE=SURFACE TO SURFACE) needs ' // &
         'an element-based slave surface: ' // trim(sl%name) // ' is a node set')
@@ -325,9 +321,12 @@ contains
       ! slave nodes and carry it along.
       if (master_space_wanted(m, sl, ms, dmax) .and. .not. (m%pairs(ip)%mu > 0.0_dp .and. &
           (m%pairs(ip)%update_search .or. any(m%steps%nlgeom)))) then
-        call couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p, done)
-        if (done) return
+        call couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
+        return
       end if
+      ! the note is about the meshes: made by the search on the reference
+      ! configuration (not again in every Newton iteration under NLGEOM)
+      if (all(x == m%x)) call note_coarse_slave(m, ip, dmax, cs)
       call mortar_integrals(m, x, sl, ms, dmax, mo)
       do k = 1, mo%n
         s = sl%nodes(k)
@@ -336,31 +335,17 @@ contains
           call append(uncp, nunc_p, ip)
           cycle
         end if
-        if (mo%nm(k) > max_mortar_master) call pair_error(m%pairs(ip), 'segment-to-segment contact: slave node ' // &
-          node_label(m, s) // ' of ' // trim(sl%name) // ' faces more than ' // itoa(max_mortar_master) // &
-          ' master nodes (its faces span more than ' // itoa(max_mortar_master - 1) // ' linear or ' // &
-          itoa((max_mortar_master - 1) / 2) // ' quadratic master faces); make the finer surface the slave ' // &
-          '(or refine the slave side)')
         c = cfe_t()
         c%pair = ip
         c%ns = 1
         c%snode(1) = s
         c%nm = mo%nm(k)
-        c%mnode(1:c%nm) = mo%mnode(1:c%nm, k)
-        c%mw(1:c%nm) = mo%mval(1:c%nm, k) / mo%d(k)
+        c%mnode = mo%mnode(1:c%nm, k)
+        c%mw = mo%mval(1:c%nm, k) / mo%d(k)
         call place_on_master(m, mo%melem(k), mo%medge(k), mo%mt(k), mo%nsum(:, k), mo%d(k), mo%h(k), c)
-        em = 0.0_dp
-        do q = 1, size(sl%elem)
-          if (any(m%conn(1:elem_nodes(m, sl%elem(q)), sl%elem(q)) == s)) em = max(em, section_e(m, sl%elem(q)))
-        end do
-        do q = 1, c%nm
-          do e = 1, size(ms%elem)
-            if (any(m%conn(1:elem_nodes(m, ms%elem(e)), ms%elem(e)) == c%mnode(q))) &
-              em = max(em, section_e(m, ms%elem(e)))
-          end do
-        end do
-        xm = matmul(x(:, c%mnode(1:c%nm)), c%mw(1:c%nm))
-        xm_ref = matmul(m%x(:, c%mnode(1:c%nm)), c%mw(1:c%nm))
+        em = max(largest_modulus(m, sl, [s]), largest_modulus(m, ms, c%mnode))
+        xm = matmul(x(:, c%mnode), c%mw)
+        xm_ref = matmul(m%x(:, c%mnode), c%mw)
         c%gap0 = m%x(:, s) - xm_ref
         c%gap_round = gap_round_off * (norm2(x(:, s)) + c%h)
         c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
@@ -374,92 +359,60 @@ contains
     end associate
   end subroutine couple_mortar
 
+  !> Purpose: a note for the listing where the dual mortar couples a slave
+  !> surface coarser than its master that would do better as the master
+  !> (contact_master_multipliers' coarse_straight_slave, with the spacing
+  !> ratio): the pair runs as given, the note says what swapping gives.
+  subroutine note_coarse_slave(m, ip, dmax, cs)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: ip
+    real(dp), intent(in) :: dmax
+    type(contact_set_t), intent(inout) :: cs
+    character(len=600), allocatable :: more(:)
+    real(dp) :: ratio
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
+      if (.not. coarse_straight_slave(m, sl, ms, dmax, ratio)) return
+      if (.not. allocated(cs%notes)) allocate(cs%notes(0))
+      allocate(more(size(cs%notes) + 1))
+      more(1:size(cs%notes)) = cs%notes
+      more(size(more)) = 'contact pair ' // itoa(ip) // ' (' // trim(sl%name) // ', ' // trim(ms%name) // &
+        '): the slave faces are ' // ftoa(ratio, 2) // ' times the master faces under them: the contact ' // &
+        'pressure is resolved at the slave spacing (dual mortar); swapped (the finer surface the slave, ' // &
+        'the multiplier on this straight surface as the master mesh) it is more accurate ' // &
+        '(docs/contact.md, "Any pair of meshes")'
+      call move_alloc(more, cs%notes)
+    end associate
+  end subroutine note_coarse_slave
+
   !> Purpose: segment-to-segment with the multiplier on the master mesh
   !> (contact_master_multipliers; taken where the slave is the finer side
   !> of straight faces): one CFE per master node m whose hat function
   !> faces the slave surface over more than min_mortar_cover of its int
-  !> N_m da; its slave side the slave nodes with the weights S_mj / D_m,
-  !> its master side node m (weight one: the lumped master side), or for
-  !> a frictional pair or 3-node master faces the master nodes k with
-  !> M_mk / D_m (the consistent one, whose tangential component is
-  !> consistent too; 3-node faces: their mid-side nodes carry no
-  !> multiplier to lump onto), its area D_m, its
-  !> normal the mean master normal under psi_m, its initial gap the
-  !> weighted one.
-  !> done: .false. (nothing added) where a CFE would hold more nodes than
-  !> an element may (max_mortar_master on 2-node faces, as before the
-  !> 3-node ones needed max_cfe_master; the caller then takes the dual
-  !> mortar). Slave nodes
-  !> that no multiplier's field reaches are reported uncoupled.
-  subroutine couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p, done)
+  !> N_m da (master_space_cfe). Slave nodes that no multiplier's field
+  !> reaches are reported uncoupled. A CFE holds every slave node its hat
+  !> reaches, however much finer the slave is.
+  subroutine couple_master_space(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), dmax
     integer, intent(in) :: ip
     type(contact_set_t), intent(inout) :: cs
     integer, allocatable, intent(inout) :: unc(:), uncp(:)
     integer, intent(inout) :: nunc, nunc_p
-    logical, intent(out) :: done
     type(master_space_t) :: sp
     type(cfe_t) :: c
     logical, allocatable :: taken(:), reached(:)
     logical :: lumped
-    real(dp) :: em, rel(2)
-    integer :: k, q, e, nn, limit
-    done = .false.
+    integer :: k
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
       call master_space_integrals(m, x, sl, ms, dmax, sp)
-      if (sp%overflow) return
       taken = sp%ns > 0 .and. sp%d > min_mortar_cover * sp%full .and. norm2(sp%nsum, dim=1) > 0.0_dp
       lumped = m%pairs(ip)%mu <= 0.0_dp .and. .not. sp%quadratic
-      limit = merge(max_cfe_master, max_mortar_master, sp%quadratic)
-      if (lumped .and. any(taken .and. sp%ns + 1 > limit)) return
-      if (.not. lumped .and. any(taken .and. sp%ns + sp%nm > limit)) return
-      done = .true.
       allocate(reached(m%nn))
       reached = .false.
       do k = 1, sp%n
         if (.not. taken(k)) cycle
-        c = cfe_t()
-        c%pair = ip
-        c%ns = 0
-        c%nsl = sp%ns(k)
-        if (lumped) then
-          nn = sp%ns(k) + 1
-          c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), ms%nodes(k)]
-          c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k) / sp%d(k), 1.0_dp]
-        else
-          nn = sp%ns(k) + sp%nm(k)
-          c%mnode(1:nn) = [sp%snode(1:sp%ns(k), k), sp%mnode(1:sp%nm(k), k)]
-          c%mw(1:nn) = [-sp%sval(1:sp%ns(k), k), sp%mval(1:sp%nm(k), k)] / sp%d(k)
-        end if
-        c%nm = nn
-        c%psi(1:c%nsl) = sp%psi(1:sp%ns(k), k)
-        reached(sp%snode(1:sp%ns(k), k)) = reached(sp%snode(1:sp%ns(k), k)) .or. sp%psi(1:sp%ns(k), k) > 0.0_dp
-        c%lnode = ms%nodes(k)
-        c%sip = c%lnode
-        call place_on_master(m, sp%melem(k), sp%medge(k), sp%mt(k), sp%nsum(:, k), sp%d(k), sp%h(k), c)
-        em = 0.0_dp
-        do q = 1, nn
-          do e = 1, size(sl%elem)
-            if (any(m%conn(1:elem_nodes(m, sl%elem(e)), sl%elem(e)) == c%mnode(q))) &
-              em = max(em, section_e(m, sl%elem(e)))
-          end do
-          do e = 1, size(ms%elem)
-            if (any(m%conn(1:elem_nodes(m, ms%elem(e)), ms%elem(e)) == c%mnode(q))) &
-              em = max(em, section_e(m, ms%elem(e)))
-          end do
-        end do
-        ! the weighted gap vector sum_j S_mj / D_m x_j - x_m (the element
-        ! subtracts the weights mw)
-        rel = -matmul(x(:, c%mnode(1:nn)), c%mw(1:nn))
-        c%gap0 = -matmul(m%x(:, c%mnode(1:nn)), c%mw(1:nn))
-        c%gap_round = gap_round_off * (maxval(norm2(x(:, c%mnode(1:nn)), dim=1)) + c%h)
-        c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
-        c%exact = m%pairs(ip)%exact
-        c%k_open = open_stiffness(m%pairs(ip), c%area, em, c%h, .false., c%k_closed)
-        c%mu = m%pairs(ip)%mu
-        if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
-        c%closed = dot_product(c%normal, rel) <= c%gap_round
+        call master_space_cfe(m, x, ip, sp, k, lumped, c)
+        reached(c%mnode(1:c%nsl)) = reached(c%mnode(1:c%nsl)) .or. c%psi(1:c%nsl) > 0.0_dp
         call add_cfe(cs, c)
       end do
       do k = 1, size(sl%nodes)
@@ -469,6 +422,74 @@ contains
       end do
     end associate
   end subroutine couple_master_space
+
+  !> Purpose: the CFE of master node k (of the master surface's node list)
+  !> with the multiplier on the master mesh: its slave side the slave
+  !> nodes with the weights S_mj / D_m, its master side node m (weight
+  !> one: the lumped master side), or for a frictional pair or 3-node
+  !> master faces the master nodes k with M_mk / D_m (the consistent one,
+  !> whose tangential component is consistent too; 3-node faces: their
+  !> mid-side nodes carry no multiplier to lump onto), its area D_m, its
+  !> normal the mean master normal under psi_m, its initial gap the
+  !> weighted one.
+  !> Arguments: sp the integrals (master_space_integrals), lumped the
+  !> master side; c returns the CFE.
+  subroutine master_space_cfe(m, x, ip, sp, k, lumped, c)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    integer, intent(in) :: ip, k
+    type(master_space_t), intent(in) :: sp
+    logical, intent(in) :: lumped
+    type(cfe_t), intent(out) :: c
+    real(dp) :: em, rel(2)
+    integer :: nn
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
+      c%pair = ip
+      c%ns = 0
+      c%nsl = sp%ns(k)
+      if (lumped) then
+        nn = sp%ns(k) + 1
+        c%mnode = [sp%snode(1:sp%ns(k), k), ms%nodes(k)]
+        c%mw = [-sp%sval(1:sp%ns(k), k) / sp%d(k), 1.0_dp]
+      else
+        nn = sp%ns(k) + sp%nm(k)
+        c%mnode = [sp%snode(1:sp%ns(k), k), sp%mnode(1:sp%nm(k), k)]
+        c%mw = [-sp%sval(1:sp%ns(k), k), sp%mval(1:sp%nm(k), k)] / sp%d(k)
+      end if
+      c%nm = nn
+      c%psi = sp%psi(1:sp%ns(k), k)
+      c%lnode = ms%nodes(k)
+      c%sip = c%lnode
+      call place_on_master(m, sp%melem(k), sp%medge(k), sp%mt(k), sp%nsum(:, k), sp%d(k), sp%h(k), c)
+      em = max(largest_modulus(m, sl, c%mnode), largest_modulus(m, ms, c%mnode))
+      ! the weighted gap vector sum_j S_mj / D_m x_j - x_m (the element
+      ! subtracts the weights mw)
+      rel = -matmul(x(:, c%mnode), c%mw)
+      c%gap0 = -matmul(m%x(:, c%mnode), c%mw)
+      c%gap_round = gap_round_off * (maxval(norm2(x(:, c%mnode), dim=1)) + c%h)
+      c%k_closed = cfe_penalty(m%pairs(ip), c%area, em, c%h, .false.)
+      c%exact = m%pairs(ip)%exact
+      c%k_open = open_stiffness(m%pairs(ip), c%area, em, c%h, .false., c%k_closed)
+      c%mu = m%pairs(ip)%mu
+      if (c%mu > 0.0_dp) c%k_tan = stick_penalty(m%pairs(ip), c%area, c%k_closed)
+      c%closed = dot_product(c%normal, rel) <= c%gap_round
+    end associate
+  end subroutine master_space_cfe
+
+  !> Purpose: the largest Young's modulus of the elements of surface s
+  !> that hold any of the nodes (0 if none).
+  real(dp) function largest_modulus(m, s, nodes) result(em)
+    type(model_t), intent(in) :: m
+    type(surface_t), intent(in) :: s
+    integer, intent(in) :: nodes(:)
+    integer :: q, e
+    em = 0.0_dp
+    do q = 1, size(nodes)
+      do e = 1, size(s%elem)
+        if (any(m%conn(1:elem_nodes(m, s%elem(e)), s%elem(e)) == nodes(q))) em = max(em, section_e(m, s%elem(e)))
+      end do
+    end do
+  end function largest_modulus
 
   !> Purpose: the master face, normal and size of a segment-to-segment
   !> CFE (dual mortar or master-mesh multipliers): face edge of element
@@ -500,10 +521,10 @@ contains
     type(contact_set_t), intent(inout) :: cs
     integer, allocatable, intent(inout) :: unc(:), uncp(:)
     integer, intent(inout) :: nunc, nunc_p
-    integer, parameter :: max_cuts = 64
     type(edge_t) :: ed, ref
     type(cfe_t) :: c
-    real(dp) :: cuts(max_cuts), tg(3), wg(3), t, w(3), p(2), pref(2), dpdt(2), tbest, area, h, em
+    real(dp), allocatable :: cuts(:)
+    real(dp) :: tg(3), wg(3), t, w(3), p(2), pref(2), dpdt(2), tbest, area, h, em
     integer :: f, ncut, iv, ig, best, npts, ncoupled
     call gauss_line(2, tg, wg)
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
@@ -663,7 +684,6 @@ contains
     logical, allocatable :: matched(:)
     integer :: j, q, nchg
     logical :: stabilised, reevaluate
-    real(dp) :: old_slide
     reevaluate = .false.
     if (present(moved)) reevaluate = moved
     nchg = 0
@@ -692,49 +712,78 @@ contains
         cycle
       end if
       matched(q) = .true.
-      ! Within an increment's iterations a closed coupling that stays on
-      ! the same master element (the same node list) keeps its geometry:
-      ! its normal and projection are the linearisation the tangent has
-      ! (no contact geometric stiffness), and re-evaluating them at every
-      ! iterate under a penalty far stiffer than the bodies chattered
-      ! (a soft rubber cylinder on the Hertz plate: out-of-balance 5e4 and
-      ! 7e9 in alternate iterations). The search at the start of the next
-      ! increment evaluates it on the converged configuration.
-      ! And it moves on to another master element only once its point has
-      ! left its old edge by switch_band of the edge's length (a point at a
-      ! master vertex otherwise alternates between the two edges from
-      ! iterate to iterate).
-      if (reevaluate .and. old%c(q)%closed .and. old%c(q)%ns > 0) then
-        if (same_nodes(m, old%c(q), cs%c(j)) .or. near_old_edge(m, x, old%c(q))) then
-          cs%c(j) = old%c(q)
-          cycle
-        end if
-      end if
-      cs%c(j)%closed = old%c(q)%closed
-      cs%c(j)%lambda = old%c(q)%lambda
-      ! friction: the elastic tangential offset carries over to the
-      ! new coupling, whose t.[[U]] is evaluated where the point is now
-      ! (zero on a straight edge; not at a blended corner normal)
-      cs%c(j)%sliding = old%c(q)%sliding
-      cs%c(j)%slip_sign = old%c(q)%slip_sign
-      cs%c(j)%slip_total = old%c(q)%slip_total
-      if (cs%c(j)%mu > 0.0_dp) then
-        old_slide = old%c(q)%slide
-        if (reevaluate) old_slide = current_slide(m, old%c(q), x - m%x)
-        cs%c(j)%anchor = current_slide(m, cs%c(j), x - m%x) - (old_slide - old%c(q)%anchor)
-      end if
+      call carry_history(m, x, old%c(q), reevaluate, cs%c(j))
     end do
-    ! A coupling of a slave point that the search finds no master edge for
-    ! (a point pushed past the end of the master surface) is kept within
-    ! the iterations of an increment (moved), its geometry and status as
-    ! they were, as the pairing of the increment's start would have them;
-    ! the search at the start of the next increment (not moved) decides on
-    ! the converged configuration. Otherwise a point at the master's end,
-    ! just past it in one iterate and not in the next, loses its coupling
-    ! and comes back with a new one whose status the geometry decides,
-    ! from iteration to iteration, and the status never settles.
-    ! Couplings of the master-mesh multiplier (ns = 0) belong to master
-    ! nodes and are not kept; a closed one lost is a status change.
+    call keep_lost_couplings(old, matched, reevaluate, cs, nchg)
+    if (present(changed)) changed = nchg
+  end subroutine contact_research
+
+  !> Purpose: what coupling c of the new search takes from the old
+  !> coupling of the same slave point (contact_research): its status,
+  !> multiplier and friction history, or, within an increment's iterations
+  !> (reevaluate), the old coupling whole where it is closed and stays.
+  !> Arguments: x the configuration searched; oc the old coupling; c the
+  !> new one, completed.
+  subroutine carry_history(m, x, oc, reevaluate, c)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    type(cfe_t), intent(in) :: oc
+    logical, intent(in) :: reevaluate
+    type(cfe_t), intent(inout) :: c
+    real(dp) :: old_slide
+    ! Within an increment's iterations a closed coupling that stays on
+    ! the same master element (the same node list) keeps its geometry:
+    ! its normal and projection are the linearisation the tangent has
+    ! (no contact geometric stiffness), and re-evaluating them at every
+    ! iterate under a penalty far stiffer than the bodies chattered
+    ! (a soft rubber cylinder on the Hertz plate: out-of-balance 5e4 and
+    ! 7e9 in alternate iterations). The search at the start of the next
+    ! increment evaluates it on the converged configuration.
+    ! And it moves on to another master element only once its point has
+    ! left its old edge by switch_band of the edge's length (a point at a
+    ! master vertex otherwise alternates between the two edges from
+    ! iterate to iterate).
+    if (reevaluate .and. oc%closed .and. oc%ns > 0) then
+      if (same_nodes(m, oc, c) .or. near_old_edge(m, x, oc)) then
+        c = oc
+        return
+      end if
+    end if
+    c%closed = oc%closed
+    c%lambda = oc%lambda
+    ! friction: the elastic tangential offset carries over to the
+    ! new coupling, whose t.[[U]] is evaluated where the point is now
+    ! (zero on a straight edge; not at a blended corner normal)
+    c%sliding = oc%sliding
+    c%slip_sign = oc%slip_sign
+    c%slip_total = oc%slip_total
+    if (c%mu > 0.0_dp) then
+      old_slide = oc%slide
+      if (reevaluate) old_slide = current_slide(m, oc, x - m%x)
+      c%anchor = current_slide(m, c, x - m%x) - (old_slide - oc%anchor)
+    end if
+  end subroutine carry_history
+
+  !> Purpose: the old couplings that no new one matched (contact_research).
+  !> A coupling of a slave point that the search finds no master edge for
+  !> (a point pushed past the end of the master surface) is kept within
+  !> the iterations of an increment (reevaluate), its geometry and status
+  !> as they were, as the pairing of the increment's start would have
+  !> them; the search at the start of the next increment (not reevaluate)
+  !> decides on the converged configuration. Otherwise a point at the
+  !> master's end, just past it in one iterate and not in the next, loses
+  !> its coupling and comes back with a new one whose status the geometry
+  !> decides, from iteration to iteration, and the status never settles.
+  !> Couplings of the master-mesh multiplier (ns = 0) belong to master
+  !> nodes and are not kept; a closed one lost is a status change.
+  !> Arguments: matched(q) whether old%c(q) found a match; nchg counts the
+  !> status changes.
+  subroutine keep_lost_couplings(old, matched, reevaluate, cs, nchg)
+    type(contact_set_t), intent(in) :: old
+    logical, intent(in) :: matched(:), reevaluate
+    type(contact_set_t), intent(inout) :: cs
+    integer, intent(inout) :: nchg
+    integer :: q
     do q = 1, old%n
       if (matched(q)) cycle
       if (reevaluate .and. old%c(q)%ns > 0) then
@@ -744,8 +793,7 @@ contains
         nchg = nchg + 1
       end if
     end do
-    if (present(changed)) changed = nchg
-  end subroutine contact_research
+  end subroutine keep_lost_couplings
 
   !> Does the coupling point of c (configuration x) project onto its
   !> master edge (project_to_edge, t not clamped) within switch_band edge
@@ -766,7 +814,8 @@ contains
   pure logical function same_nodes(m, a, b)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: a, b
-    integer :: na(max_en), nb(max_en), ka, kb
+    integer, allocatable :: na(:), nb(:)
+    integer :: ka, kb
     call cfe_nodes(m, a, na, ka)
     call cfe_nodes(m, b, nb, kb)
     same_nodes = ka == kb
@@ -802,11 +851,11 @@ contains
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
     real(dp), intent(in) :: u(:, :)
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: nodes(max_en)
+    type(cfe_in_t) :: ein
+    type(cfe_out_t) :: eout
+    integer, allocatable :: nodes(:)
     call cfe_input(m, c, u, .false., ein, nodes)
-    call element_routine(act_residual, ein, eout)
+    call cfe(act_residual, ein, eout)
     slide = eout%slide
   end function current_slide
 
@@ -859,55 +908,69 @@ contains
     if (pr%stick_slope > 0.0_dp) stick_penalty = pr%stick_slope * area
   end function stick_penalty
 
-  !> Purpose: stops with msg at the pair's *CONTACT PAIR card
-  !> (file:line: error: msg and the card quoted), or without a line where
-  !> the pair was not read from a deck.
-  subroutine pair_error(pr, msg)
-    type(contact_pair_t), intent(in) :: pr
-    character(len=*), intent(in) :: msg
-    if (pr%card_line > 0) call fatal_at(pr%card_file, pr%card_line, pr%card_text, msg)
-    call fatal(msg)
-  end subroutine pair_error
-
-  !> Purpose: the nodes of a CFE: slave nodes, then the master element's.
+  !> Purpose: the nodes of a CFE: slave nodes, then the master element's
+  !> (or the segment-to-segment master side's).
+  !> Arguments: nodes(1:nen) returns them; nodes is (re)allocated when it
+  !> is shorter than nen (a caller keeps one list for many CFEs), so a
+  !> coupling of any size fits.
   pure subroutine cfe_nodes(m, c, nodes, nen)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
-    integer, intent(out) :: nodes(:), nen
+    integer, allocatable, intent(inout) :: nodes(:)
+    integer, intent(out) :: nen
     integer :: nm
+    if (c%nm > 0) then
+      nm = c%nm
+    else
+      nm = elem_nodes(m, c%elem)
+    end if
+    nen = c%ns + nm
+    if (allocated(nodes)) then
+      if (size(nodes) < nen) deallocate(nodes)
+    end if
+    if (.not. allocated(nodes)) allocate(nodes(max(nen, max_nodes + max_slave)))
     nodes(1:c%ns) = c%snode(1:c%ns)
     if (c%nm > 0) then
-      nen = c%ns + c%nm
       nodes(c%ns + 1:nen) = c%mnode(1:c%nm)
-      return
+    else
+      nodes(c%ns + 1:nen) = m%conn(1:nm, c%elem)
     end if
-    nm = elem_nodes(m, c%elem)
-    nen = c%ns + nm
-    nodes(c%ns + 1:nen) = m%conn(1:nm, c%elem)
   end subroutine cfe_nodes
 
-  !> Purpose: element data of CFE c for the element routine, and its node
-  !> list (slave nodes first, then the master element's nodes).
+  !> Purpose: the largest node count of the CFEs of cs (at least that of
+  !> a node-to-segment CFE on the largest element), for callers that size
+  !> per-coupling arrays once.
+  pure integer function cfe_max_nodes(cs) result(n)
+    type(contact_set_t), intent(in) :: cs
+    integer :: j
+    n = max_nodes + max_slave
+    do j = 1, cs%n
+      n = max(n, cs%c(j)%ns + cs%c(j)%nm)
+    end do
+  end function cfe_max_nodes
+
+  !> Purpose: element data of CFE c for the coupling element routine
+  !> (cfe_element's cfe), and its node list (slave nodes first, then the
+  !> master side's nodes; reallocated when shorter, as cfe_nodes).
   subroutine cfe_input(m, c, u, stabilised, ein, nodes)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
     real(dp), intent(in) :: u(:, :)
     logical, intent(in) :: stabilised     ! contact_set_t%stabilised
-    type(elem_in_t), intent(out) :: ein
-    integer, intent(out) :: nodes(:)
+    type(cfe_in_t), intent(out) :: ein
+    integer, allocatable, intent(inout) :: nodes(:)
     integer :: k, nen
     call cfe_nodes(m, c, nodes, nen)
-    ein%kind = kind_cfe
     ein%nen = nen
     ein%ns = c%ns
     ein%ws = c%sw
+    allocate(ein%ue(2 * nen))
     do k = 1, nen
-      ein%xy(:, k) = m%x(:, nodes(k))
       ein%ue(2 * k - 1:2 * k) = u(:, nodes(k))
     end do
     if (c%nm > 0) then
       ein%master_kind = 0
-      ein%wm(1:c%nm) = c%mw(1:c%nm)
+      ein%wm = c%mw(1:c%nm)
     else
       ein%master_kind = catalogue(m%etype(c%elem))%shape
       ein%xi = c%xi
@@ -948,12 +1011,13 @@ contains
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(inout) :: fint(:, :)
     integer(kind=8), intent(inout) :: ncalls
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: j, i, nodes(max_en)
+    type(cfe_in_t) :: ein
+    type(cfe_out_t) :: eout
+    integer, allocatable :: nodes(:)
+    integer :: j, i
     do j = 1, cs%n
       call cfe_input(m, cs%c(j), u, cs%stabilised, ein, nodes)
-      call element_routine(act_residual, ein, eout)
+      call cfe(act_residual, ein, eout)
       ncalls = ncalls + 1
       do i = 1, ein%nen
         fint(:, nodes(i)) = fint(:, nodes(i)) + eout%fe(2 * i - 1:2 * i)

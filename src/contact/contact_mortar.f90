@@ -40,14 +40,14 @@ module contact_mortar
   use shape_functions, only: gauss_line
   implicit none
   private
-  public :: nearest_edge, face_cuts, mortar_dual, mortar_t, mortar_integrals, edge_tol, max_mortar_nodes
+  public :: nearest_edge, face_cuts, mortar_dual, mortar_t, mortar_integrals, edge_tol, grow_columns
 
   !> A projection this far outside [0, 1] along an edge still counts: it
   !> catches slave nodes exactly above a master vertex.
   real(dp), parameter :: edge_tol = 1.0e-6_dp
-  !> Master nodes one slave node's integrals may reach while they are
-  !> gathered (a coupling element holds fewer; contact checks).
-  integer, parameter :: max_mortar_nodes = 32
+  !> The initial width of the per-node lists of master nodes and of the
+  !> cuts of a face; both grow as a mesh needs (no limit).
+  integer, parameter :: initial_width = 16
 
   !> The integrals of every node of a slave surface (in the order of the
   !> surface's node list).
@@ -58,13 +58,12 @@ module contact_mortar
     real(dp), allocatable :: nsum(:, :)      ! int N_j n da (the normal, not normalised)
     real(dp), allocatable :: h(:)            ! shortest slave or master node spacing met
     integer, allocatable :: nm(:)            ! master nodes reached
-    integer, allocatable :: mnode(:, :)      ! (max_mortar_nodes, n)
+    !> (width, n): node k's master nodes mnode(1:nm(k), k); the width grows
+    !> with the longest list (add_master)
+    integer, allocatable :: mnode(:, :)
     real(dp), allocatable :: mval(:, :)      ! M_jm
     integer, allocatable :: melem(:), medge(:)   ! a master face under the node (its last point)
     real(dp), allocatable :: mt(:)           ! and the position there
-    !> A node reached more than max_mortar_nodes (its list is then full:
-    !> nm = max_mortar_nodes, and its integrals incomplete).
-    logical :: overflow = .false.
   end type mortar_t
 
 contains
@@ -110,17 +109,21 @@ contains
   !> corners of the master edges project onto it: between two of them the
   !> slave face faces one master edge, whose shape functions are
   !> polynomials there.
+  !> Arguments: cuts(1:ncut) returns them (allocated here, as long as the
+  !> master mesh needs: a coarse face over a fine master has many).
   subroutine face_cuts(m, x, ed, ms, dmax, cuts, ncut)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), dmax
     type(edge_t), intent(in) :: ed
     type(surface_t), intent(in) :: ms
-    real(dp), intent(out) :: cuts(:)
+    real(dp), allocatable, intent(out) :: cuts(:)
     integer, intent(out) :: ncut
     real(dp), parameter :: tol = 1.0e-6_dp
     type(edge_t) :: mt
+    real(dp), allocatable :: longer(:)
     real(dp) :: t, nvec(2), d
     integer :: j, q, a
+    allocate(cuts(initial_width))
     ncut = 2
     cuts(1:2) = [0.0_dp, 1.0_dp]
     do j = 1, size(ms%elem)
@@ -131,7 +134,11 @@ contains
         call project_to_edge(ed, x(:, a), t, nvec, d)
         if (t <= tol .or. t >= 1.0_dp - tol .or. abs(d) > dmax) cycle
         if (any(abs(cuts(1:ncut) - t) <= tol)) cycle
-        if (ncut == size(cuts)) exit
+        if (ncut == size(cuts)) then
+          allocate(longer(2 * ncut))
+          longer(1:ncut) = cuts(1:ncut)
+          call move_alloc(longer, cuts)
+        end if
         ncut = ncut + 1
         cuts(ncut) = t
       end do
@@ -202,15 +209,15 @@ contains
     real(dp), intent(in) :: x(:, :), dmax
     type(surface_t), intent(in) :: sl, ms
     type(mortar_t), intent(out) :: mo
-    integer, parameter :: max_cuts = 64
     type(edge_t) :: ed, ref, mt
     integer, allocatable :: pos(:)
-    real(dp) :: cuts(max_cuts), tg(3), wg(3), a(3, 3), t, nsl(3), phi(3), wmst(3), p(2), pref(2), dpdt(2), &
+    real(dp), allocatable :: cuts(:)
+    real(dp) :: tg(3), wg(3), a(3, 3), t, nsl(3), phi(3), wmst(3), p(2), pref(2), dpdt(2), &
                 mdp(2), nrm(2), tbest, da, hs, hmst
     integer :: f, ncut, iv, ig, best, q, r, k
     mo%n = size(sl%nodes)
     allocate(pos(m%nn), mo%d(mo%n), mo%full(mo%n), mo%nsum(2, mo%n), mo%h(mo%n), mo%nm(mo%n), &
-             mo%mnode(max_mortar_nodes, mo%n), mo%mval(max_mortar_nodes, mo%n), mo%melem(mo%n), &
+             mo%mnode(initial_width, mo%n), mo%mval(initial_width, mo%n), mo%melem(mo%n), &
              mo%medge(mo%n), mo%mt(mo%n))
     pos = 0
     pos(sl%nodes) = [(k, k = 1, mo%n)]
@@ -266,7 +273,8 @@ contains
     end do
   end subroutine mortar_integrals
 
-  !> M(k, node) += v in node k's short list of master nodes.
+  !> M(k, node) += v in node k's list of master nodes (the lists widen as
+  !> needed: grow_columns).
   subroutine add_master(mo, k, node, v)
     type(mortar_t), intent(inout) :: mo
     integer, intent(in) :: k, node
@@ -278,12 +286,27 @@ contains
         return
       end if
     end do
-    if (mo%nm(k) == max_mortar_nodes) then
-      mo%overflow = .true.
-      return
-    end if
+    if (mo%nm(k) == size(mo%mnode, 1)) call grow_columns(mo%mnode, mo%mval)
     mo%nm(k) = mo%nm(k) + 1
     mo%mnode(mo%nm(k), k) = node
     mo%mval(mo%nm(k), k) = v
   end subroutine add_master
+
+  !> Purpose: doubles the length of every column of a per-node list of
+  !> (node, value) pairs, keeping the entries (the new ones 0).
+  pure subroutine grow_columns(nodes, vals)
+    integer, allocatable, intent(inout) :: nodes(:, :)
+    real(dp), allocatable, intent(inout) :: vals(:, :)
+    integer, allocatable :: wider(:, :)
+    real(dp), allocatable :: wider_vals(:, :)
+    integer :: w
+    w = size(nodes, 1)
+    allocate(wider(2 * w, size(nodes, 2)), wider_vals(2 * w, size(nodes, 2)))
+    wider = 0
+    wider_vals = 0.0_dp
+    wider(1:w, :) = nodes
+    wider_vals(1:w, :) = vals
+    call move_alloc(wider, nodes)
+    call move_alloc(wider_vals, vals)
+  end subroutine grow_columns
 end module contact_mortar

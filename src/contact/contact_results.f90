@@ -21,7 +21,7 @@
 module contact_results
   use kinds, only: dp
   use model
-  use contact, only: contact_set_t, coupling_node, max_cfe_master
+  use contact, only: contact_set_t, cfe_t, coupling_node
   use contact_geometry, only: edge_t, get_edge, edge_weights, surface_areas
   implicit none
   private
@@ -67,6 +67,13 @@ module contact_results
     logical, allocatable :: has_pressure(:)         ! nodes that carry both
     logical :: frictional = .false.                 ! some pair of the model has friction
   end type contact_results_t
+
+  !> Per-node sums of the master-mesh multipliers' field (sum_fields), by
+  !> node number.
+  type :: field_sums_t
+    real(dp), allocatable :: p(:), tau(:), g(:), wsum(:), slip(:), slip_inc(:), fn(:), ft(:), gs(:), ws(:)
+    logical, allocatable :: closed(:), sliding(:)
+  end type field_sums_t
 
 contains
 
@@ -272,36 +279,13 @@ contains
     real(dp), intent(in) :: u(:, :)
     integer, intent(in) :: ip
     type(pair_results_t), intent(out) :: r
-    integer :: k, j, nm, ns, n, q
-    integer, allocatable :: pos(:), sel(:)
-    real(dp), allocatable :: area(:)
-    real(dp) :: w(3), shear, ww(max_cfe_master)
-    integer :: nw, wn(max_cfe_master)
-    type(edge_t) :: ed
-    r%pair = ip
-    r%frictional = m%pairs(ip)%mu > 0.0_dp
+    integer :: k, j, ns, n, q, nw
+    integer, allocatable :: pos(:), sel(:), wn(:)
+    real(dp) :: shear
+    real(dp), allocatable :: ww(:)
     sel = pack([(k, k = 1, cs%n)], cs%c(1:cs%n)%pair == ip)
     n = size(sel)
-    allocate(r%slave_node(n), r%slave_x(2, n), r%slave_gap(n), r%slave_closed(n), r%slave_force(n), &
-             r%slave_area(n), r%slave_sliding(n), r%slave_shear(n), r%slave_slip(n), r%slave_slip_inc(n))
-    r%slave_sliding = .false.
-    r%slave_shear = 0.0_dp
-    r%slave_slip = 0.0_dp
-    r%slave_slip_inc = 0.0_dp
-    associate(ms => m%surfaces(m%pairs(ip)%master_surface))
-      r%master_node = ms%nodes
-      nm = size(ms%nodes)
-      allocate(r%master_force(nm), r%master_area(nm), r%master_shear(nm), pos(m%nn))
-      pos = 0
-      do k = 1, nm
-        pos(ms%nodes(k)) = k
-      end do
-      r%master_force = 0.0_dp
-      r%master_shear = 0.0_dp
-      ! consistent areas: the integral of N_i over the master faces
-      area = surface_areas(m, ms)
-      r%master_area = area(ms%nodes)
-    end associate
+    call start_pass(m, ip, n, r, pos)
     do j = 1, n
       associate(c => cs%c(sel(j)))
         ns = c%ns
@@ -327,23 +311,8 @@ contains
         r%slave_force(j) = -c%force
         ! the master's tangential force on the point along t
         shear = -c%tforce
-        if (c%nm > 0) then
-          ! segment-to-segment: the master nodes' mortar weights (after
-          ! the slave nodes, with the multiplier on the master mesh)
-          nw = c%nm - c%nsl
-          wn(1:nw) = c%mnode(c%nsl + 1:c%nm)
-          ww(1:nw) = c%mw(c%nsl + 1:c%nm)
-        else
-          ed = get_edge(m, m%x, c%elem, c%edge)
-          if (ed%nn == 2) then
-            w(1:2) = [1.0_dp - c%t, c%t]
-          else
-            w = edge_weights(ed, c%t)
-          end if
-          nw = ed%nn
-          wn(1:nw) = ed%node(1:nw)
-          ww(1:nw) = w(1:nw)
-        end if
+        call master_shares(m, c, wn, ww)
+        nw = size(wn)
         do q = 1, nw
           r%master_force(pos(wn(q))) = r%master_force(pos(wn(q))) - ww(q) * c%force
         end do
@@ -367,6 +336,66 @@ contains
     if (any(cs%c(sel)%ns == 0)) call field_rows(m, cs, u, ip, sel, r)
   end subroutine pass_results
 
+  !> Purpose: the results of pair ip before its CFEs are summed: n slave
+  !> rows and the master rows (the master surface's nodes, their
+  !> consistent areas, the integral of N_i over the master faces), zero;
+  !> pos(node) the master row of a node (0 for none).
+  subroutine start_pass(m, ip, n, r, pos)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: ip, n
+    type(pair_results_t), intent(out) :: r
+    integer, allocatable, intent(out) :: pos(:)
+    real(dp), allocatable :: area(:)
+    integer :: k, nm
+    r%pair = ip
+    r%frictional = m%pairs(ip)%mu > 0.0_dp
+    allocate(r%slave_node(n), r%slave_x(2, n), r%slave_gap(n), r%slave_closed(n), r%slave_force(n), &
+             r%slave_area(n), r%slave_sliding(n), r%slave_shear(n), r%slave_slip(n), r%slave_slip_inc(n))
+    r%slave_sliding = .false.
+    r%slave_shear = 0.0_dp
+    r%slave_slip = 0.0_dp
+    r%slave_slip_inc = 0.0_dp
+    associate(ms => m%surfaces(m%pairs(ip)%master_surface))
+      r%master_node = ms%nodes
+      nm = size(ms%nodes)
+      allocate(r%master_force(nm), r%master_area(nm), r%master_shear(nm), pos(m%nn))
+      pos = 0
+      do k = 1, nm
+        pos(ms%nodes(k)) = k
+      end do
+      r%master_force = 0.0_dp
+      r%master_shear = 0.0_dp
+      area = surface_areas(m, ms)
+      r%master_area = area(ms%nodes)
+    end associate
+  end subroutine start_pass
+
+  !> Purpose: the master nodes wn of CFE c and the shares ww of its force
+  !> each receives: segment-to-segment, the master nodes' mortar weights
+  !> (after the slave nodes, with the multiplier on the master mesh);
+  !> node-to-segment, the master edge's shape functions at X_C (t).
+  subroutine master_shares(m, c, wn, ww)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(in) :: c
+    integer, allocatable, intent(out) :: wn(:)
+    real(dp), allocatable, intent(out) :: ww(:)
+    type(edge_t) :: ed
+    real(dp) :: w(3)
+    if (c%nm > 0) then
+      wn = c%mnode(c%nsl + 1:c%nm)
+      ww = c%mw(c%nsl + 1:c%nm)
+      return
+    end if
+    ed = get_edge(m, m%x, c%elem, c%edge)
+    if (ed%nn == 2) then
+      w(1:2) = [1.0_dp - c%t, c%t]
+    else
+      w = edge_weights(ed, c%t)
+    end if
+    wn = ed%node(1:ed%nn)
+    ww = w(1:ed%nn)
+  end subroutine master_shares
+
   !> Purpose: the slave rows of a pass whose multiplier lives on the
   !> master mesh (contact_master_multipliers: CFEs sel, one per master
   !> node): one row per slave node the field reaches, its pressure the
@@ -383,25 +412,71 @@ contains
     real(dp), intent(in) :: u(:, :)
     integer, intent(in) :: ip, sel(:)
     type(pair_results_t), intent(inout) :: r
-    real(dp), allocatable :: p(:), tau(:), g(:), wsum(:), slip(:), slip_inc(:), area(:), fn(:), ft(:), gs(:), ws(:)
-    logical, allocatable :: closed(:), sliding(:)
+    type(field_sums_t) :: f
+    real(dp), allocatable :: area(:)
     integer, allocatable :: rows(:)
+    call sum_fields(m, cs, sel, f)
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
+      area = surface_areas(m, sl)
+      rows = pack(sl%nodes, f%wsum(sl%nodes) > 0.0_dp .or. f%fn(sl%nodes) /= 0.0_dp)
+    end associate
+    deallocate(r%slave_node, r%slave_x, r%slave_gap, r%slave_closed, r%slave_force, r%slave_area, r%slave_sliding, &
+               r%slave_shear, r%slave_slip, r%slave_slip_inc)
+    ! a row with no hat at its node: the S-weighted gap, no slip
+    where (.not. f%wsum > 0.0_dp)
+      f%g = f%gs
+      f%wsum = f%ws
+      f%slip = 0.0_dp
+      f%slip_inc = 0.0_dp
+      f%closed = f%fn /= 0.0_dp
+    end where
+    r%slave_node = rows
+    r%slave_x = m%x(:, rows) + u(:, rows)
+    r%slave_gap = f%g(rows) / f%wsum(rows)
+    r%slave_closed = f%closed(rows)
+    r%slave_area = area(rows)
+    r%slave_force = f%fn(rows)
+    r%slave_pressure = f%p(rows)
+    r%slave_sliding = f%sliding(rows)
+    r%slave_shear = 0.0_dp * area(rows)
+    r%slave_traction = 0.0_dp * area(rows)
+    r%slave_slip = 0.0_dp * area(rows)
+    r%slave_slip_inc = 0.0_dp * area(rows)
+    if (r%frictional) then
+      r%slave_shear = f%ft(rows)
+      r%slave_traction = f%tau(rows)
+      r%slave_slip = f%slip(rows) / f%wsum(rows)
+      r%slave_slip_inc = f%slip_inc(rows) / f%wsum(rows)
+    end if
+  end subroutine field_rows
+
+  !> Purpose: the per-node sums field_rows makes its rows of, over the
+  !> CFEs sel (one per master node) and the slave nodes j of each: the
+  !> forces the couplings put on j (fn, ft) and the S-weighted gap (gs,
+  !> ws); where psi_m > 0 at j, the field's pressure and traction (p,
+  !> tau), the psi-weighted gap and slips (g, slip, slip_inc over wsum),
+  !> and whether a closed (sliding) multiplier reaches it.
+  subroutine sum_fields(m, cs, sel, f)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: sel(:)
+    type(field_sums_t), intent(out) :: f
     real(dp) :: lam, ta, ps
-    integer :: k, q, j, n
-    allocate(p(m%nn), tau(m%nn), g(m%nn), wsum(m%nn), slip(m%nn), slip_inc(m%nn), closed(m%nn), &
-             sliding(m%nn), fn(m%nn), ft(m%nn), gs(m%nn), ws(m%nn))
-    fn = 0.0_dp
-    ft = 0.0_dp
-    gs = 0.0_dp
-    ws = 0.0_dp
-    p = 0.0_dp
-    tau = 0.0_dp
-    g = 0.0_dp
-    wsum = 0.0_dp
-    slip = 0.0_dp
-    slip_inc = 0.0_dp
-    closed = .false.
-    sliding = .false.
+    integer :: k, q, j
+    allocate(f%p(m%nn), f%tau(m%nn), f%g(m%nn), f%wsum(m%nn), f%slip(m%nn), f%slip_inc(m%nn), f%closed(m%nn), &
+             f%sliding(m%nn), f%fn(m%nn), f%ft(m%nn), f%gs(m%nn), f%ws(m%nn))
+    f%fn = 0.0_dp
+    f%ft = 0.0_dp
+    f%gs = 0.0_dp
+    f%ws = 0.0_dp
+    f%p = 0.0_dp
+    f%tau = 0.0_dp
+    f%g = 0.0_dp
+    f%wsum = 0.0_dp
+    f%slip = 0.0_dp
+    f%slip_inc = 0.0_dp
+    f%closed = .false.
+    f%sliding = .false.
     do k = 1, size(sel)
       associate(c => cs%c(sel(k)))
         lam = 0.0_dp
@@ -417,56 +492,23 @@ contains
           ! node may have S_mj > 0 and psi_m = 0 at its own projection
           ! (past the master's end): its row then has the force only.
           if (c%closed) then
-            fn(j) = fn(j) + c%force * c%mw(q)
-            ft(j) = ft(j) + c%tforce * c%mw(q)
+            f%fn(j) = f%fn(j) + c%force * c%mw(q)
+            f%ft(j) = f%ft(j) + c%tforce * c%mw(q)
           end if
-          gs(j) = gs(j) - c%mw(q) * c%gap
-          ws(j) = ws(j) - c%mw(q)
+          f%gs(j) = f%gs(j) - c%mw(q) * c%gap
+          f%ws(j) = f%ws(j) - c%mw(q)
           ps = c%psi(q)
           if (ps <= 0.0_dp) cycle
-          p(j) = p(j) + ps * lam
-          tau(j) = tau(j) + ps * ta
-          g(j) = g(j) + ps * c%gap
-          wsum(j) = wsum(j) + ps
-          slip(j) = slip(j) + ps * c%slip_total
-          slip_inc(j) = slip_inc(j) + ps * c%slip_inc
-          closed(j) = closed(j) .or. c%closed
-          sliding(j) = sliding(j) .or. (c%closed .and. c%sliding)
+          f%p(j) = f%p(j) + ps * lam
+          f%tau(j) = f%tau(j) + ps * ta
+          f%g(j) = f%g(j) + ps * c%gap
+          f%wsum(j) = f%wsum(j) + ps
+          f%slip(j) = f%slip(j) + ps * c%slip_total
+          f%slip_inc(j) = f%slip_inc(j) + ps * c%slip_inc
+          f%closed(j) = f%closed(j) .or. c%closed
+          f%sliding(j) = f%sliding(j) .or. (c%closed .and. c%sliding)
         end do
       end associate
     end do
-    associate(sl => m%surfaces(m%pairs(ip)%slave_surface))
-      area = surface_areas(m, sl)
-      rows = pack(sl%nodes, wsum(sl%nodes) > 0.0_dp .or. fn(sl%nodes) /= 0.0_dp)
-    end associate
-    n = size(rows)
-    deallocate(r%slave_node, r%slave_x, r%slave_gap, r%slave_closed, r%slave_force, r%slave_area, r%slave_sliding, &
-               r%slave_shear, r%slave_slip, r%slave_slip_inc)
-    ! a row with no hat at its node: the S-weighted gap, no slip
-    where (.not. wsum > 0.0_dp)
-      g = gs
-      wsum = ws
-      slip = 0.0_dp
-      slip_inc = 0.0_dp
-      closed = fn /= 0.0_dp
-    end where
-    r%slave_node = rows
-    r%slave_x = m%x(:, rows) + u(:, rows)
-    r%slave_gap = g(rows) / wsum(rows)
-    r%slave_closed = closed(rows)
-    r%slave_area = area(rows)
-    r%slave_force = fn(rows)
-    r%slave_pressure = p(rows)
-    r%slave_sliding = sliding(rows)
-    r%slave_shear = 0.0_dp * area(rows)
-    r%slave_traction = 0.0_dp * area(rows)
-    r%slave_slip = 0.0_dp * area(rows)
-    r%slave_slip_inc = 0.0_dp * area(rows)
-    if (r%frictional) then
-      r%slave_shear = ft(rows)
-      r%slave_traction = tau(rows)
-      r%slave_slip = slip(rows) / wsum(rows)
-      r%slave_slip_inc = slip_inc(rows) / wsum(rows)
-    end if
-  end subroutine field_rows
+  end subroutine sum_fields
 end module contact_results

@@ -26,7 +26,7 @@ module tie_constraints
   use messages, only: warn
   use model, only: model_t, tie_t, equation_t, node_label
   use contact_geometry, only: edge_t, get_edge, project_to_edge, edge_at, edge_weights, edge_length
-  use contact_mortar, only: mortar_t, mortar_integrals, max_mortar_nodes
+  use contact_mortar, only: mortar_t, mortar_integrals
   implicit none
   private
   public :: tie_surfaces
@@ -264,8 +264,7 @@ contains
   pure logical function mortar_covered(mo, k)
     type(mortar_t), intent(in) :: mo
     integer, intent(in) :: k
-    ! (a node whose list of master nodes overflowed keeps node to face)
-    mortar_covered = mo%nm(k) > 0 .and. mo%nm(k) < max_mortar_nodes .and. mo%d(k) > min_mortar_cover * mo%full(k)
+    mortar_covered = mo%nm(k) > 0 .and. mo%d(k) > min_mortar_cover * mo%full(k)
   end function mortar_covered
 
   !> TYPE=SURFACE TO SURFACE (mortar tie): D_j u_j(s) = sum_m M_jm u_j(m)

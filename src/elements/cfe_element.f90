@@ -6,11 +6,14 @@
 !> otherwise, as section 5 of the paper allows). Nodes 1..ns are the slave
 !> nodes, nodes ns+1..nen the master element's nodes in its own order, or
 !> (master_kind 0, segment-to-segment contact) master nodes whose weights
-!> are given (ein%wm: the mortar integrals, contact_mortar).
+!> are given (ein%wm: the mortar integrals, contact_mortar). Its input and
+!> output (cfe_in_t, cfe_out_t) are its own, sized by each coupling: a
+!> segment-to-segment coupling holds as many master (or slave) nodes as
+!> its support reaches.
 module cfe_element
   use kinds, only: dp
   use element_catalogue, only: max_nodes
-  use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, wants, max_en
+  use element_interface, only: cfe_in_t, cfe_out_t, act_tangent, act_residual, wants
   use shape_functions, only: shape_at
   implicit none
   private
@@ -22,9 +25,9 @@ contains
   !> so that B_e D_e = sum_j w_j u_j - sum_i N_i(X_C) u_i, the relative
   !> displacement of eq. (3).
   pure subroutine cfe_b_matrix(ein, b)
-    type(elem_in_t), intent(in) :: ein
+    type(cfe_in_t), intent(in) :: ein
     real(dp), intent(out) :: b(2, 2 * ein%nen)
-    real(dp) :: n(max_en), dn(2, max_nodes)
+    real(dp) :: n(max(ein%nen, max_nodes)), dn(2, max_nodes)
     integer :: nm, k
     nm = ein%nen - ein%ns
     if (ein%master_kind == 0) then
@@ -46,9 +49,9 @@ contains
   end subroutine cfe_b_matrix
 
   !> Purpose: element arrays of a coupling element.
-  !> Arguments: action (act_tangent: K_e; act_residual: F_int, the
-  !> relative displacement, gap, normal force, slide and tangential
-  !> force), ein, eout.
+  !> Arguments: action (act_tangent: K_e, eout%ke allocated only then;
+  !> act_residual: F_int, the relative displacement, gap, normal force,
+  !> slide and tangential force), ein, eout.
   !> Friction (ein%mu > 0, closed only): eq. (7)'s c gets a tangential
   !> factor. Sticking, C = c_n n n^T + k_t t t^T and the tangential force
   !> is k_t (t.[[U]] - anchor); sliding, the tangential force is
@@ -56,14 +59,17 @@ contains
   !> derivative makes K_e unsymmetric: -slip_sign mu c_n B^T t n^T B.
   pure subroutine cfe(action, ein, eout)
     integer, intent(in) :: action
-    type(elem_in_t), intent(in) :: ein
-    type(elem_out_t), intent(out) :: eout
+    type(cfe_in_t), intent(in) :: ein
+    type(cfe_out_t), intent(out) :: eout
     real(dp) :: b(2, 2 * ein%nen), c(2, 2), rel(2), t(2), ft
     integer :: nd, i, j
     nd = 2 * ein%nen
     eout%ndof = nd
-    eout%ke(1:nd, 1:nd) = 0.0_dp
-    eout%nip = 0
+    ! the tangent only where asked for: a residual evaluation (every CFE
+    ! at every status iteration) need not fill a matrix that grows with
+    ! the square of the coupling's nodes
+    allocate(eout%fe(nd))
+    eout%fe = 0.0_dp
     call cfe_b_matrix(ein, b)
     t = [-ein%normal(2), ein%normal(1)]
     ! eq. (7): C = R^T c R with c = diag(c_n, 0): only the normal penalty.
@@ -84,7 +90,7 @@ contains
       end do
     end if
     ! eq. (10): K_e = B_e^T C B_e
-    if (wants(action, act_tangent)) eout%ke(1:nd, 1:nd) = matmul(transpose(b), matmul(c, b))
+    if (wants(action, act_tangent)) eout%ke = matmul(transpose(b), matmul(c, b))
     if (wants(action, act_residual)) then
       rel = matmul(b, ein%ue(1:nd))
       ! eq. (8): [[U]] = B_e D_e + [[U]]_0
@@ -121,7 +127,7 @@ contains
 
   !> Does the closed element carry friction?
   pure logical function frictional(ein)
-    type(elem_in_t), intent(in) :: ein
+    type(cfe_in_t), intent(in) :: ein
     frictional = ein%closed .and. ein%mu > 0.0_dp
   end function frictional
 end module cfe_element

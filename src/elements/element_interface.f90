@@ -9,26 +9,29 @@ module element_interface
                                shape_line2, shape_line3, shape_spring1, shape_spring2, shape_springa
   implicit none
   private
-  public :: elem_in_t, elem_out_t, max_en, max_edof, max_ip, max_slave, &
-            kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, kind_truss2, kind_truss3, kind_spring1, &
+  public :: elem_in_t, elem_out_t, cfe_in_t, cfe_out_t, max_en, max_edof, max_ip, max_slave, &
+            kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_truss2, kind_truss3, kind_spring1, &
             kind_spring2, kind_springa, act_tangent, act_residual, act_stresses, &
             act_thermal, wants, max_hist
 
   !> Routine selectors: a continuum element is its catalogue shape (one
-  !> routine serves them all), so are a truss (a line) and a spring; the
-  !> coupling element is the contact layer's.
+  !> routine serves them all), so are a truss (a line) and a spring. The
+  !> coupling element is not among them: it has its own types and routine
+  !> (cfe_element), which the contact and analysis layers call.
   integer, parameter :: kind_tri3 = shape_tri3, kind_quad4 = shape_quad4, kind_tri6 = shape_tri6, &
                         kind_quad8 = shape_quad8, kind_truss2 = shape_line2, kind_truss3 = shape_line3, &
                         kind_spring1 = shape_spring1, kind_spring2 = shape_spring2, &
-                        kind_springa = shape_springa, kind_cfe = 100
-  !> Slave-side nodes of a coupling element (its coupling point is a
-  !> weighted combination of them, section 5 of the paper).
+                        kind_springa = shape_springa
+  !> Slave-side nodes of a coupling element whose coupling point lies on
+  !> one slave face (its coupling point is a weighted combination of them,
+  !> section 5 of the paper).
   integer, parameter :: max_slave = 3
-  !> Nodes of the largest coupling element: a master-mesh multiplier on
-  !> 3-node faces holds the slave nodes its hat function reaches and the
-  !> master nodes of its two master faces (contact_master_multipliers).
-  integer, parameter :: max_cfe_nodes = 20
-  integer, parameter :: max_en = max(max_nodes + max_slave, max_cfe_nodes), max_edof = 2 * max_en
+  !> Nodes of the largest body element: the fixed arrays of elem_in_t and
+  !> elem_out_t, on the hot path of every body element call, hold this
+  !> many. Coupling elements have their own types (cfe_in_t, cfe_out_t)
+  !> with arrays as large as each coupling needs: a segment-to-segment
+  !> coupling holds every node its support reaches, however many.
+  integer, parameter :: max_en = max_nodes, max_edof = 2 * max_en
   !> Actions, combined with ior: tangent stiffness ke, internal force fe
   !> (and, for a coupling element, its gap and normal force), stresses and
   !> strains at the integration points and extrapolated to the nodes; the
@@ -41,7 +44,7 @@ module element_interface
 
   type :: elem_in_t
     integer :: kind = 0
-    integer :: nen = 0                      ! nodes (CFE: slave nodes + master nodes)
+    integer :: nen = 0                      ! nodes
     real(dp) :: xy(2, max_en) = 0.0_dp      ! nodal coordinates
     real(dp) :: ue(max_edof) = 0.0_dp       ! nodal displacements
     ! continuum elements and trusses
@@ -60,32 +63,6 @@ module element_interface
     !> change from the initial state; the stresses are D (eps - eps0).
     real(dp) :: alpha = 0.0_dp
     real(dp) :: dtemp(max_nodes) = 0.0_dp
-    ! coupling element: slave side (ns nodes, weights ws summing to 1),
-    ! master kind, natural coordinates of X_C in the master, unit outward
-    ! normal of the master edge, normal penalty and the initial gap [[U]]_0
-    integer :: ns = 1
-    real(dp) :: ws(max_slave) = [1.0_dp, 0.0_dp, 0.0_dp]
-    integer :: master_kind = 0
-    real(dp) :: xi(2) = 0.0_dp
-    !> master_kind 0 (a segment-to-segment CFE): the master nodes' weights
-    !> are given, not shape functions at xi (no default: set and read only
-    !> there, so that no other element's input is made larger to initialise)
-    real(dp) :: wm(max_en)
-    real(dp) :: normal(2) = 0.0_dp
-    real(dp) :: penalty = 0.0_dp
-    real(dp) :: gap0(2) = 0.0_dp
-    !> Closed: the penalty acts on the gap [[U]] (eq. 9). Open: it acts on
-    !> the relative motion B_e D_e only, so that an open CFE carries no
-    !> force at zero relative motion whatever its initial gap.
-    logical :: closed = .true.
-    !> Coulomb friction of a closed coupling element (mu = 0: none): the
-    !> tangential penalty, sliding or sticking, the direction of sliding
-    !> (+-1 along t = (-n_y, n_x)) and the anchor, the tangential relative
-    !> displacement t.[[U]] at which a sticking element carries no
-    !> tangential force (its slip so far).
-    real(dp) :: mu = 0.0_dp, k_tan = 0.0_dp
-    logical :: sliding = .false.
-    real(dp) :: slip_sign = 0.0_dp, anchor = 0.0_dp
     !> Nonlinear bodies: large deformation (NLGEOM), the elastic law and
     !> its constants (model's law_*; law_elastic uses e and nu), the
     !> *PLASTIC table (nyield = 0: elastic), and the history at the
@@ -106,22 +83,13 @@ module element_interface
     integer :: ndof = 0
     !> No default: each element routine zeroes ke(1:ndof, 1:ndof), the part
     !> it defines and its callers read; a default would clear the whole
-    !> max_edof square (sized for the largest coupling element) on every
-    !> element call.
+    !> max_edof square on every element call.
     real(dp) :: ke(max_edof, max_edof)
     real(dp) :: fe(max_edof) = 0.0_dp          ! internal force
     integer :: nip = 0
     real(dp) :: sig_ip(4, max_ip) = 0.0_dp     ! s11, s22, s33, s12
     real(dp) :: eps_ip(3, max_ip) = 0.0_dp     ! e11, e22, gamma12
     real(dp) :: sig_node(4, max_nodes) = 0.0_dp   ! extrapolated to the nodes
-    ! coupling element: relative displacement [[U]] (eq. 8) and its
-    ! normal component, the normal gap (negative = penetration)
-    real(dp) :: jump(2) = 0.0_dp
-    real(dp) :: gap = 0.0_dp
-    real(dp) :: normal_force = 0.0_dp
-    !> and its tangential component t.[[U]] and tangential force (the
-    !> internal force's component along t)
-    real(dp) :: slide = 0.0_dp, tangential_force = 0.0_dp
     !> continuum element: the smallest det J (times r in axisymmetry) at
     !> its integration points; not positive means an invalid element
     real(dp) :: detj_min = 0.0_dp
@@ -131,6 +99,53 @@ module element_interface
     real(dp) :: hist(max_hist, max_ip) = 0.0_dp
     real(dp) :: peeq_ip(max_ip) = 0.0_dp
   end type elem_out_t
+
+  !> Input of a coupling element (cfe_element): nen nodes, the ns slave
+  !> nodes first (the coupling point sum_j ws(j) x_j), then the master
+  !> side: the master element's nodes with its shape functions at xi
+  !> (master_kind its catalogue shape), or (master_kind 0, segment-to-
+  !> segment contact) master nodes with the given weights wm. The arrays
+  !> that grow with the coupling are allocatable: ue(2 nen), wm(nen - ns).
+  type :: cfe_in_t
+    integer :: nen = 0
+    real(dp), allocatable :: ue(:)          ! nodal displacements
+    integer :: ns = 1
+    real(dp) :: ws(max_slave) = [1.0_dp, 0.0_dp, 0.0_dp]
+    integer :: master_kind = 0
+    real(dp) :: xi(2) = 0.0_dp
+    real(dp), allocatable :: wm(:)
+    !> unit outward normal of the master edge, normal penalty and the
+    !> initial gap [[U]]_0
+    real(dp) :: normal(2) = 0.0_dp
+    real(dp) :: penalty = 0.0_dp
+    real(dp) :: gap0(2) = 0.0_dp
+    !> Closed: the penalty acts on the gap [[U]] (eq. 9). Open: it acts on
+    !> the relative motion B_e D_e only, so that an open CFE carries no
+    !> force at zero relative motion whatever its initial gap.
+    logical :: closed = .true.
+    !> Coulomb friction of a closed coupling element (mu = 0: none): the
+    !> tangential penalty, sliding or sticking, the direction of sliding
+    !> (+-1 along t = (-n_y, n_x)) and the anchor, the tangential relative
+    !> displacement t.[[U]] at which a sticking element carries no
+    !> tangential force (its slip so far).
+    real(dp) :: mu = 0.0_dp, k_tan = 0.0_dp
+    logical :: sliding = .false.
+    real(dp) :: slip_sign = 0.0_dp, anchor = 0.0_dp
+  end type cfe_in_t
+
+  !> Output of a coupling element: its tangent ke(ndof, ndof) (allocated
+  !> with act_tangent only) and internal force fe(ndof) (ndof = 2 nen), the relative
+  !> displacement [[U]] (eq. 8) and its normal component, the normal gap
+  !> (negative = penetration), the normal force, and the tangential
+  !> component t.[[U]] and tangential force.
+  type :: cfe_out_t
+    integer :: ndof = 0
+    real(dp), allocatable :: ke(:, :), fe(:)
+    real(dp) :: jump(2) = 0.0_dp
+    real(dp) :: gap = 0.0_dp
+    real(dp) :: normal_force = 0.0_dp
+    real(dp) :: slide = 0.0_dp, tangential_force = 0.0_dp
+  end type cfe_out_t
 
 contains
 

@@ -1,12 +1,12 @@
 !> Dispatch from an element kind to its routine; the single entry point the
-!> analysis and contact layers call. A new element routine is one module
-!> and one line here.
+!> analysis layer calls for body elements (the coupling element has its
+!> own types and routine, cfe_element). A new element routine is one
+!> module and one line here.
 module element_library
-  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_quad8, kind_tri6, kind_cfe, &
+  use element_interface, only: elem_in_t, elem_out_t, kind_quad4, kind_tri3, kind_quad8, kind_tri6, &
                                kind_truss2, kind_truss3, kind_spring1, kind_spring2, kind_springa
   use continuum_element, only: continuum
   use nonlinear_continuum, only: nonlinear_continuum_element, is_nonlinear, thickness_stretch
-  use cfe_element, only: cfe
   use truss_element, only: truss
   use spring_element, only: spring
   implicit none
@@ -33,7 +33,6 @@ contains
       end if
     case (kind_truss2, kind_truss3); call truss(action, ein, eout)
     case (kind_spring1, kind_spring2, kind_springa); call spring(action, ein, eout)
-    case (kind_cfe); call cfe(action, ein, eout)
     end select
   end subroutine element_routine
 end module element_library

@@ -5,7 +5,7 @@ $(OBJDIR)/cfe_element.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interfa
 $(OBJDIR)/continuum_element.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/materials.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/distributed_loads.o: $(OBJDIR)/continuum_element.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/element_interface.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
-$(OBJDIR)/element_library.o: $(OBJDIR)/cfe_element.o $(OBJDIR)/continuum_element.o $(OBJDIR)/element_interface.o \
+$(OBJDIR)/element_library.o: $(OBJDIR)/continuum_element.o $(OBJDIR)/element_interface.o \
                              $(OBJDIR)/nonlinear_continuum.o $(OBJDIR)/spring_element.o $(OBJDIR)/truss_element.o
 $(OBJDIR)/material_laws.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o \
                            $(OBJDIR)/materials.o $(OBJDIR)/model.o $(OBJDIR)/small_matrices.o

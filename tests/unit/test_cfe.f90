@@ -7,9 +7,8 @@
 program test_cfe
   use kinds, only: dp
   use test_report, only: report, failures
-  use element_interface, only: elem_in_t, elem_out_t, kind_cfe, kind_quad4, kind_tri3, act_tangent, act_residual
-  use element_library, only: element_routine
-  use cfe_element, only: cfe_b_matrix
+  use element_interface, only: cfe_in_t, cfe_out_t, kind_quad4, kind_tri3, act_tangent, act_residual
+  use cfe_element, only: cfe, cfe_b_matrix
   use shape_functions, only: quad4_shape, tri3_shape, gauss_line
   use contact_geometry, only: edge_t, edge_at, edge_weights, area_factor
   use contact_mortar, only: mortar_dual
@@ -34,13 +33,12 @@ contains
     character(len=*), intent(in) :: name
     integer, intent(in) :: mkind, nm
     real(dp), intent(in) :: xi(2)
-    type(elem_in_t) :: ein, ep, em
-    type(elem_out_t) :: eout, op, om
+    type(cfe_in_t) :: ein, ep, em
+    type(cfe_out_t) :: eout, op, om
     real(dp) :: b(2, 2 * (nm + 1)), c(2, 2), f_expect(10), kfd(10, 10), err, h, n(4), dn(2, 4)
-    real(dp) :: xc(2), uc(2), jump_geo(2), theta
+    real(dp) :: xc(2), uc(2), jump_geo(2), theta, xy(2, 5)
     character(len=120) :: msg
     integer :: nd, j, i
-    ein%kind = kind_cfe
     ein%master_kind = mkind
     ein%nen = nm + 1
     ein%xi = xi
@@ -49,8 +47,9 @@ contains
     ein%normal = [sin(theta), -cos(theta)]
     ein%penalty = 3.7e9_dp
     ! Master nodes (nodes 2..nm+1) and their displacements.
-    ein%xy(:, 2:nm + 1) = reshape([0.0_dp, 0.0_dp, 1.1_dp, 0.1_dp, 1.0_dp, 0.9_dp, -0.1_dp, 1.0_dp], [2, 4])
+    xy(:, 2:5) = reshape([0.0_dp, 0.0_dp, 1.1_dp, 0.1_dp, 1.0_dp, 0.9_dp, -0.1_dp, 1.0_dp], [2, 4])
     nd = 2 * (nm + 1)
+    allocate(ein%ue(nd))
     do i = 1, nd
       ein%ue(i) = 1.0e-4_dp * sin(1.3_dp * i)
     end do
@@ -59,10 +58,10 @@ contains
     else
       call tri3_shape(xi(1), xi(2), n(1:3), dn(:, 1:3))
     end if
-    xc = matmul(ein%xy(:, 2:nm + 1), n(1:nm))
+    xc = matmul(xy(:, 2:nm + 1), n(1:nm))
     ein%gap0 = 2.0e-4_dp * ein%normal + [1.0e-5_dp, 0.0_dp]
-    ein%xy(:, 1) = xc + ein%gap0
-    call element_routine(ior(act_tangent, act_residual), ein, eout)
+    xy(:, 1) = xc + ein%gap0
+    call cfe(ior(act_tangent, act_residual), ein, eout)
 
     err = maxval(abs(eout%ke(1:nd, 1:nd) - transpose(eout%ke(1:nd, 1:nd)))) / maxval(abs(eout%ke(1:nd, 1:nd)))
     write(msg, '(a,es9.2)') 'relative asymmetry ', err
@@ -87,8 +86,8 @@ contains
       em = ein
       ep%ue(j) = ep%ue(j) + h
       em%ue(j) = em%ue(j) - h
-      call element_routine(ior(act_tangent, act_residual), ep, op)
-      call element_routine(ior(act_tangent, act_residual), em, om)
+      call cfe(ior(act_tangent, act_residual), ep, op)
+      call cfe(ior(act_tangent, act_residual), em, om)
       kfd(1:nd, j) = (op%fe(1:nd) - om%fe(1:nd)) / (2.0_dp * h)
     end do
     err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / maxval(abs(eout%ke(1:nd, 1:nd)))
@@ -98,7 +97,7 @@ contains
     ! [[U]] of eq. (8) is the current vector from X_C (moved with the master)
     ! to the slave node; its normal part is the gap, and the force is c*gap.
     uc = matmul(reshape(ein%ue(3:nd), [2, nm]), n(1:nm))
-    jump_geo = (ein%xy(:, 1) + ein%ue(1:2)) - (xc + uc)
+    jump_geo = (xy(:, 1) + ein%ue(1:2)) - (xc + uc)
     err = maxval(abs(eout%jump - jump_geo)) / maxval(abs(jump_geo))
     write(msg, '(a,es9.2)') 'relative difference ', err
     call report(name // ': [[U]] = B_e D_e + [[U]]_0 is the slave-to-X_C vector (eq. 8)', err < 1.0e-12_dp, msg)
@@ -110,7 +109,7 @@ contains
     ! slide of the slave node costs no force.
     ep = ein
     ep%ue(1:2) = ep%ue(1:2) + 1.0e-3_dp * [cos(theta), sin(theta)]
-    call element_routine(ior(act_tangent, act_residual), ep, op)
+    call cfe(ior(act_tangent, act_residual), ep, op)
     err = maxval(abs(op%fe(1:nd) - eout%fe(1:nd))) / maxval(abs(eout%fe(1:nd)))
     write(msg, '(a,es9.2)') 'relative force change ', err
     call report(name // ': frictionless (tangential slide changes no force)', err < 1.0e-9_dp, msg)
@@ -126,12 +125,11 @@ contains
     logical, intent(in) :: sliding
     real(dp), intent(in) :: sgn
     character(len=*), intent(in) :: what
-    type(elem_in_t) :: ein, ep, em
-    type(elem_out_t) :: eout, op, om
+    type(cfe_in_t) :: ein, ep, em
+    type(cfe_out_t) :: eout, op, om
     real(dp) :: kfd(10, 10), err, h, theta, t(2), expect, asym
     character(len=120) :: msg
     integer :: i, j, nd
-    ein%kind = kind_cfe
     ein%master_kind = kind_quad4
     ein%nen = 5
     ein%xi = [0.3_dp, 1.0_dp]
@@ -144,14 +142,13 @@ contains
     ein%sliding = sliding
     ein%slip_sign = sgn
     ein%anchor = 2.0e-5_dp
-    ein%xy(:, 2:5) = reshape([0.0_dp, 0.0_dp, 1.1_dp, 0.1_dp, 1.0_dp, 0.9_dp, -0.1_dp, 1.0_dp], [2, 4])
-    ein%xy(:, 1) = [0.5_dp, -0.3_dp]
     ein%gap0 = -3.0e-5_dp * ein%normal
     nd = 10
+    allocate(ein%ue(nd))
     do i = 1, nd
       ein%ue(i) = 1.0e-5_dp * sin(1.7_dp * i)
     end do
-    call element_routine(ior(act_tangent, act_residual), ein, eout)
+    call cfe(ior(act_tangent, act_residual), ein, eout)
     call report('friction, ' // what // ': closed and penetrating', eout%gap < 0.0_dp, 'the test setup opened')
     h = 1.0e-8_dp
     do j = 1, nd
@@ -159,8 +156,8 @@ contains
       em = ein
       ep%ue(j) = ep%ue(j) + h
       em%ue(j) = em%ue(j) - h
-      call element_routine(act_residual, ep, op)
-      call element_routine(act_residual, em, om)
+      call cfe(act_residual, ep, op)
+      call cfe(act_residual, em, om)
       kfd(1:nd, j) = (op%fe(1:nd) - om%fe(1:nd)) / (2.0_dp * h)
     end do
     err = maxval(abs(kfd(1:nd, 1:nd) - eout%ke(1:nd, 1:nd))) / maxval(abs(eout%ke(1:nd, 1:nd)))
@@ -193,20 +190,20 @@ contains
   !> node moves as the weighted slave nodes, and the slave forces are the
   !> weights times that node's force.
   subroutine check_slave_point()
-    type(elem_in_t) :: e1, e2
-    type(elem_out_t) :: o1, o2
+    type(cfe_in_t) :: e1, e2
+    type(cfe_out_t) :: o1, o2
     real(dp), parameter :: w(2) = [0.3_dp, 0.7_dp]
     real(dp) :: err, f_expect(12), b1(2, 10), b2(2, 12)
     character(len=120) :: msg
     integer :: i
     ! the one-node reference: coupling node + Q4 master
-    e1%kind = kind_cfe
     e1%master_kind = kind_quad4
     e1%nen = 5
     e1%xi = [0.2_dp, 1.0_dp]
     e1%normal = [0.0_dp, -1.0_dp]
     e1%penalty = 2.0e8_dp
-    e1%xy(:, 2:5) = reshape([0.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 4])
+    allocate(e1%ue(10))
+    e1%ue = 0.0_dp
     do i = 3, 10
       e1%ue(i) = 1.0e-4_dp * cos(0.7_dp * i)
     end do
@@ -215,14 +212,15 @@ contains
     e2%ns = 2
     e2%ws(1:2) = w
     e2%nen = 6
-    e2%xy(:, 3:6) = e1%xy(:, 2:5)
+    deallocate(e2%ue)
+    allocate(e2%ue(12))
     e2%ue(5:12) = e1%ue(3:10)
     e2%ue(1:4) = [1.0e-4_dp, -3.0e-4_dp, -2.0e-4_dp, -1.0e-4_dp]
     e1%ue(1:2) = w(1) * e2%ue(1:2) + w(2) * e2%ue(3:4)
     e1%gap0 = [0.0_dp, 1.0e-5_dp]
     e2%gap0 = e1%gap0
-    call element_routine(ior(act_tangent, act_residual), e1, o1)
-    call element_routine(ior(act_tangent, act_residual), e2, o2)
+    call cfe(ior(act_tangent, act_residual), e1, o1)
+    call cfe(ior(act_tangent, act_residual), e2, o2)
     err = abs(o2%gap - o1%gap) / abs(o1%gap)
     write(msg, '(a,es9.2)') 'relative gap difference ', err
     call report('CFE with a slave point between two nodes: same gap as the one-node CFE', err < 1.0e-13_dp, msg)
@@ -247,27 +245,27 @@ contains
   !> Q4 shape functions at X_C: the same gap, forces and K_e as the CFE on
   !> the Q4 master element.
   subroutine check_given_master_weights()
-    type(elem_in_t) :: e1, e2
-    type(elem_out_t) :: o1, o2
+    type(cfe_in_t) :: e1, e2
+    type(cfe_out_t) :: o1, o2
     real(dp) :: n(4), dn(2, 4), err
     character(len=120) :: msg
     integer :: i
-    e1%kind = kind_cfe
     e1%master_kind = kind_quad4
     e1%nen = 5
     e1%xi = [0.2_dp, 1.0_dp]
     e1%normal = [0.6_dp, -0.8_dp]
     e1%penalty = 2.0e8_dp
     e1%gap0 = [1.0e-6_dp, -2.0e-5_dp]
+    allocate(e1%ue(10))
     do i = 1, 10
       e1%ue(i) = 1.0e-4_dp * cos(0.7_dp * i)
     end do
     e2 = e1
     e2%master_kind = 0
     call quad4_shape(e1%xi(1), e1%xi(2), n, dn)
-    e2%wm(1:4) = n
-    call element_routine(ior(act_tangent, act_residual), e1, o1)
-    call element_routine(ior(act_tangent, act_residual), e2, o2)
+    e2%wm = n
+    call cfe(ior(act_tangent, act_residual), e1, o1)
+    call cfe(ior(act_tangent, act_residual), e2, o2)
     err = abs(o2%gap - o1%gap) / abs(o1%gap) + maxval(abs(o2%fe(1:10) - o1%fe(1:10))) / maxval(abs(o1%fe(1:10))) + &
           maxval(abs(o2%ke(1:10, 1:10) - o1%ke(1:10, 1:10))) / maxval(abs(o1%ke(1:10, 1:10)))
     write(msg, '(a,es9.2)') 'relative difference ', err
