@@ -33,7 +33,8 @@ module contact
   implicit none
   private
   public :: cfe_t, max_cfe_master, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
-            coupling_node, cfe_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes
+            coupling_node, cfe_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes, &
+            reset_stabilisation, soften_stabilisation
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -55,6 +56,14 @@ module contact
   !> Open penalty (fraction of the closed one) while a body that only open
   !> contact holds is being brought into contact; see contact_set_t.
   real(dp), parameter :: stabilised_open_ratio = 1.0e-6_dp
+  !> Each softening of the stabilisation (soften_stabilisation) multiplies
+  !> that ratio by this, down to min_stabilised_ratio: a status that the
+  !> stabilised penalty settled but that holds the body only through the
+  !> stabilisation (singular with the nominal one) is searched again with
+  !> an open penalty this much softer, under which the loads move the body
+  !> this much further, across its clearances, into contact.
+  real(dp), parameter :: stabilisation_softening = 1.0e-1_dp
+  real(dp), parameter :: min_stabilised_ratio = 1.0e-10_dp
   !> Master nodes of a segment-to-segment CFE (one slave node and these
   !> fill an element's node list).
   integer, parameter :: max_cfe_master = max_en - 1
@@ -103,6 +112,9 @@ module contact
     real(dp) :: gap_round = 0.0_dp
     real(dp) :: k_closed = 0.0_dp    ! normal penalty of the CFE (force/length)
     real(dp) :: k_open = 0.0_dp
+    !> Stabilised open penalty / k_closed (open_penalty): the same for
+    !> every CFE of a set (reset_stabilisation, soften_stabilisation).
+    real(dp) :: stab_ratio = stabilised_open_ratio
     logical :: closed = .false.
     !> Exact enforcement: the Lagrange multiplier (normal force, <= 0) the
     !> penalty is augmented with, and whether the pair asks for it: a
@@ -672,6 +684,7 @@ contains
     old%n = cs%n
     call contact_search(m, x, cs)
     cs%stabilised = stabilised
+    if (old%n > 0) cs%c(1:cs%n)%stab_ratio = old%c(1)%stab_ratio
     allocate(head(m%nn), next(old%n), matched(old%n))
     head = 0
     matched = .false.
@@ -936,8 +949,36 @@ contains
     type(cfe_t), intent(in) :: c
     logical, intent(in) :: stabilised
     open_penalty = c%k_open
-    if (stabilised) open_penalty = max(c%k_open, stabilised_open_ratio * c%k_closed)
+    if (stabilised) open_penalty = max(c%k_open, c%stab_ratio * c%k_closed)
   end function open_penalty
+
+  !> Purpose: the stabilised open penalty back at stabilised_open_ratio of
+  !> the closed one (the first stabilisation of an increment).
+  !> Arguments: cs - the contact set.
+  pure subroutine reset_stabilisation(cs)
+    type(contact_set_t), intent(inout) :: cs
+    if (cs%n > 0) cs%c(1:cs%n)%stab_ratio = stabilised_open_ratio
+  end subroutine reset_stabilisation
+
+  !> Purpose: a softer stabilised open penalty (stabilisation_softening
+  !> times the last), for a status that the stabilised search settled
+  !> but whose stiffness is singular with the nominal open penalty: the
+  !> stabilisation, not the contact, held the body there (its loads moved
+  !> it less than its clearances under the stabilised penalty). False,
+  !> and nothing changed, where it would fall below min_stabilised_ratio:
+  !> no load brings the body into contact.
+  !> Arguments: cs - the contact set; softer - whether it was softened.
+  logical function soften_stabilisation(cs) result(softer)
+    type(contact_set_t), intent(inout) :: cs
+    real(dp) :: ratio
+    softer = .false.
+    if (cs%n == 0) return
+    ratio = cs%c(1)%stab_ratio * stabilisation_softening
+    ! (half a step's margin for the round-off of the products)
+    if (ratio < 0.5_dp * min_stabilised_ratio) return
+    cs%c(1:cs%n)%stab_ratio = ratio
+    softer = .true.
+  end function soften_stabilisation
 
   !> Purpose: evaluates every CFE at displacements u with its current
   !> status: stores its gap and normal force and adds its internal force
