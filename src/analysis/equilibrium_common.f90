@@ -9,7 +9,7 @@ module equilibrium_common
   use kinds, only: dp
   use strings, only: itoa
   use model, only: model_t, node_label, controls_t
-  use contact, only: contact_set_t, contact_forces, reset_stabilisation, soften_stabilisation
+  use contact, only: contact_set_t, contact_forces, reset_stabilisation
   use contact_status, only: status_search_t, reject_pivot, begin_status_search
   use assembly, only: element_counts_t, body_t, body_forces, nonlinear_body_forces
   use dof_numbering, only: dofmap_t
@@ -355,37 +355,22 @@ contains
   !> open contact) and the stabilisation not yet used in this increment:
   !> the open CFEs are stabilised (contact_set_t), a new search begins
   !> (the open penalty changed), which may still take back the pivot that
-  !> led here; true if so. Used already, and singular at the status the
-  !> stabilised search settled (no pivot since): the stabilisation held
-  !> the body there, not the contact (its loads moved it less than its
-  !> clearances); stabilised again with a softer open penalty
-  !> (soften_stabilisation), under which they move it further, until
-  !> the softest (then no load brings it into contact: false).
+  !> led here; true if so.
   logical function stabilise_open(eq, cs, obs) result(done)
     type(equilibrium_t), intent(inout) :: eq
     type(contact_set_t), intent(inout) :: cs
     type(observer_ref_t), intent(in) :: obs(:)
     logical :: pivoted
-    character(len=9) :: ratio
-    done = any(.not. cs%c(1:cs%n)%closed)
+    done = .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)
     if (.not. done) return
-    if (eq%stabilisation_used) then
-      done = .not. cs%stabilised .and. .not. eq%search%pivoted
-      if (done) done = soften_stabilisation(cs)
-      if (.not. done) return
-      write(ratio, '(es9.2)') cs%c(1)%stab_ratio
-      call tell_note(obs, 'the settled status holds the body only through the stabilisation: stabilising ' // &
-                          'again with a softer open penalty (' // trim(adjustl(ratio)) // ' of the closed one)')
-    else
-      call reset_stabilisation(cs)
-      call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
-                          'until the status settles')
-    end if
+    call reset_stabilisation(cs)
     cs%stabilised = .true.
     eq%stabilisation_used = .true.
     pivoted = eq%search%pivoted
     call begin_status_search(eq%search)
     eq%search%pivoted = pivoted
+    call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
+                        'until the status settles')
   end function stabilise_open
 
   !> Purpose: a singular stiffness that stabilising cannot mend: where the
