@@ -17,25 +17,29 @@ stiffness": the stabilised open penalty (1e-6 of the closed one) carried
 the plate's loads with a drift smaller than the clearance, so the
 stabilised search settled on two closed points, which leave the plate a
 rigid mode; with the nominal open penalty that status is singular, and
-there was nothing left to do but stop. Now such a status is searched
-again with a softer stabilisation (a tenth, down to 1e-10 of the closed
-penalty), under which the loads carry the plate across its clearance.
+there was nothing left to do but stop. Now the stabilisation goes in
+stages (docs/contact.md): while it still carries the plate, its penalty
+is anchored where the plate came to rest and the search goes on, the
+loads moving the plate on, until the contact holds it.
 
-Checked: every increment's reactions balance the loads to 1e-6; the
-middle pin carries nothing (the side load's moment turns the plate onto
-the outer pins, in CalculiX too); the outer pins' x reactions are the
-plate's moment balance about the pin centres; the pins share the load as
-CalculiX's run of the same deck (tests/decks/pinned_plate/README.md); the
-plate without its loads still stops with today's message.
+Checked: every increment's reactions balance the loads to 1e-6, and the
+plate's moment about pin 1 to 1e-6; the middle pin carries nothing (the
+side load's moment turns the plate onto the outer pins, in CalculiX too);
+the pins share the load as CalculiX's run of the same deck
+(tests/decks/pinned_plate/README.md); the full solve gives the condensed
+one's reactions; lighter side loads run too; the plate without its loads
+still stops with today's message.
 """
 import csv
 import math
 import os
 import re
+import subprocess
 
 import numpy as np
 
-from helpers import ROOT, rel_err, run_deck
+from cfe2d_listing import read_listing
+from helpers import ROOT, WORK, Skip, rel_err, run_deck
 
 DECKS = os.path.join(ROOT, "tests", "decks", "pinned_plate")
 PINS = {"L20-L23_NODES": (65.0, 25.0), "L28-L31_NODES": (65.0, 75.0), "L36-L39_NODES": (65.0, 125.0)}
@@ -44,11 +48,21 @@ PIN1, PIN2, PIN3 = PINS
 _RUNS = {}
 
 
-def run_pinned(name):
-    """The listing of cfe2d's run of tests/decks/pinned_plate/<name>.inp."""
-    if name not in _RUNS:
-        _RUNS[name] = run_deck("fall_" + name, path=os.path.join(DECKS, name + ".inp"))
-    return _RUNS[name]
+def run_pinned(name, side=None, solver=None):
+    """cfe2d's run of tests/decks/pinned_plate/<name>.inp; side: another
+    side load per node (the deck's *CLOAD value edited); solver: --solver."""
+    key = (name, side, solver)
+    if key not in _RUNS:
+        args = ("-s", solver) if solver else ()
+        tag = "fall_" + name + (f"_side{side}" if side else "") + (f"_{solver}" if solver else "")
+        if side is None:
+            _RUNS[key] = run_deck(tag, path=os.path.join(DECKS, name + ".inp"), args=args)
+        else:
+            with open(os.path.join(DECKS, name + ".inp")) as f:
+                deck = f.read()
+            assert deck.count("L3_nodes,2,0.500000") == 1
+            _RUNS[key] = run_deck(tag, deck.replace("L3_nodes,2,0.500000", f"L3_nodes,2,{side:.6f}"), args=args)
+    return _RUNS[key]
 
 
 def read_deck(path):
@@ -169,16 +183,16 @@ def calculix(name):
     return {r["set"]: np.array([float(r["RF1"]), float(r["RF2"])]) for r in rows}
 
 
-def check_pinned_plate(name):
-    run = run_pinned(name).ok()
-    deck = read_deck(os.path.join(DECKS, name + ".inp"))
+def check_pinned_plate(name, side=None, solver=None):
+    run = run_pinned(name, side, solver).ok()
+    deck = read_deck(run.deck)
     force, moment, area = loads(deck)
     assert rel_err(area, 80 * 150 - 3 * math.pi * 5 ** 2) < 1e-4, area
     incs = run.listing.increments
     assert incs and abs(incs[-1].time - 1.0) < 1e-12, [i.time for i in incs]
-    # the path of the fix was taken: stabilised again, softer
+    # the path of the fix was taken: stabilised again from where it came to rest
     text = open(run.listing_path).read()
-    assert "stabilising again with a softer open penalty" in text
+    assert "stabilising again from where it came to rest" in text
     scale = np.linalg.norm(force)
     for inc in incs:
         rf = reactions(inc)
@@ -186,18 +200,21 @@ def check_pinned_plate(name):
         # the pins carry the whole load of each increment, to 1e-6
         assert np.linalg.norm(total + inc.time * force) < 1e-6 * inc.time * scale, (inc.number, total, force)
     rf = reactions(incs[-1])
-    # the side load's moment turns the plate onto the outer pins
-    assert np.linalg.norm(rf[PIN2]) < 1e-6 * scale, rf[PIN2]
     # the plate's moment about pin 1: the contact forces pass through the
     # pin centres (radial normals), but for the faceting of the pins'
-    # quadratic faces (measured: 2e-10)
+    # quadratic faces and the pull of the nominal open penalty (1e-12 of
+    # the closed one) on the relative motion of open points (measured:
+    # 2e-10 of the moment; 1.1e-8 with a tenth of the side load)
+    c1 = np.array(PINS[PIN1])
+    pin_moment = sum((np.array(PINS[s]) - c1)[0] * rf[s][1] - (np.array(PINS[s]) - c1)[1] * rf[s][0] for s in PINS)
+    assert abs(moment + pin_moment) < 1e-6 * abs(moment), (moment, pin_moment)
+    # with pin 2 free, pin 3's x reaction is the moment over the pins' distance
     statics = moment / (PINS[PIN3][1] - PINS[PIN1][1])
     ccx = calculix(name)
-    print(f"  {name}: loads {force} (plate area {area:.6f}), moment {moment:.6f} about pin 1; "
-          f"pin 3 RF1 {rf[PIN3][0]:.9f} (statics {statics:.9f}); reactions "
+    print(f"  {name}: loads {force} (plate area {area:.6f}), moment {moment:.6f} about pin 1 "
+          f"(the pins' {-pin_moment:.9f}); reactions "
           + ", ".join(f"{s} {rf[s][0]:.5f} {rf[s][1]:.5f} (CalculiX {ccx[s][0]:.5f} {ccx[s][1]:.5f})" for s in PINS)
           + f"; {len(incs)} increments, iterations {[int(i.attrs['iterations']) for i in incs]}")
-    assert rel_err(rf[PIN3][0], statics) < 1e-8, (rf[PIN3][0], statics)
     return rf, ccx, force, statics
 
 
@@ -213,7 +230,7 @@ def check_against_calculix(rf, ccx, force, statics, ccx_error):
     ccx_total = sum(ccx.values())
     measured = max(abs(ccx_total[1] / -force[1] - 1), abs(ccx[PIN3][0] / statics - 1))
     assert abs(measured - ccx_error) < 0.001, (measured, ccx_error)
-    assert np.linalg.norm(ccx[PIN2]) < 1e-12 and np.linalg.norm(rf[PIN2]) < 1e-6 * np.linalg.norm(force)
+    assert np.linalg.norm(ccx[PIN2]) < 1e-12 and np.linalg.norm(rf[PIN2]) < 1e-5 * np.linalg.norm(force)
     for s in (PIN1, PIN3):
         share, ccx_share = rf[s][1] / -force[1], ccx[s][1] / ccx_total[1]
         assert abs(share - ccx_share) < 0.03, (s, share, ccx_share)
@@ -222,11 +239,20 @@ def check_against_calculix(rf, ccx, force, statics, ccx_error):
             assert rel_err(rf[s][k], ccx[s][k]) < ccx_error + 0.01, (s, k, rf[s], ccx[s])
 
 
+def middle_pin_free(rf, force, statics):
+    """The side load's moment turns the plate onto the outer pins: the
+    middle one carries nothing (to the pull of the nominal open penalty on
+    its open points: measured 1.2e-6 of the load) and pin 3's x reaction
+    is the moment balance (to 1e-6)."""
+    assert np.linalg.norm(rf[PIN2]) < 1e-5 * np.linalg.norm(force), rf[PIN2]
+    assert rel_err(rf[PIN3][0], statics) < 1e-6, (rf[PIN3][0], statics)
+
+
 def test_pinned_plate_cps8_pins_carry_the_loads():
     """CPS8: runs to the end; reactions balance the loads to 1e-6 in every
-    increment; the middle pin free; pin 3's x reaction the plate's moment
-    balance to 1e-8."""
-    check_pinned_plate("pinned_plate_cps8")
+    increment and the plate's moment to 1e-6; the middle pin free."""
+    rf, _, force, statics = check_pinned_plate("pinned_plate_cps8")
+    middle_pin_free(rf, force, statics)
 
 
 def test_pinned_plate_cps8_agrees_with_calculix():
@@ -239,7 +265,8 @@ def test_pinned_plate_cps8_agrees_with_calculix():
 
 def test_pinned_plate_cps6_pins_carry_the_loads():
     """CPS6: the same checks."""
-    check_pinned_plate("pinned_plate_cps6")
+    rf, _, force, statics = check_pinned_plate("pinned_plate_cps6")
+    middle_pin_free(rf, force, statics)
 
 
 def test_pinned_plate_cps6_agrees_with_calculix():
@@ -250,10 +277,66 @@ def test_pinned_plate_cps6_agrees_with_calculix():
     check_against_calculix(rf, ccx, force, statics, 0.148)
 
 
+def test_pinned_plate_cps8_full_solve():
+    """The full (not condensed) contact solve, UMFPACK: the same
+    checks, and the same reactions as the condensed solve to 1e-9 of the
+    load."""
+    rf, _, force, _ = check_pinned_plate("pinned_plate_cps8", solver="umfpack")
+    assert "contact_solve full" in open(run_pinned("pinned_plate_cps8", solver="umfpack").listing_path).read()
+    rf_condensed = reactions(run_pinned("pinned_plate_cps8").listing.increments[-1])
+    for s in PINS:
+        assert np.linalg.norm(rf[s] - rf_condensed[s]) < 1e-9 * np.linalg.norm(force), (s, rf[s], rf_condensed[s])
+
+
+def test_pinned_plate_smaller_side_loads():
+    """A fifth, a tenth and a five-hundredth of the side load (0.1, 0.05
+    and 0.001 N a node; the weight stays 0.906 N): the plate moves less in
+    each stage of the stabilisation and needs more stages (measured with
+    CPS8: 14, 18 and 15 stages, the lighter ones put ahead while the plate
+    drifts freely); the same balance of forces and moment. The middle pin
+    stays free under the heavier two; under the lightest load the plate
+    hangs on all three pins (its weight's moment about the outer pins
+    outweighs the side load's), as the hanging plate of
+    test_settle_decks does."""
+    for side in (0.1, 0.05, 0.001):
+        for name in ("pinned_plate_cps8", "pinned_plate_cps6"):
+            rf, _, force, statics = check_pinned_plate(name, side=side)
+            if side > 0.01:
+                middle_pin_free(rf, force, statics)
+            else:
+                # each pin carries a share of the weight (along +x on the pins)
+                assert all(rf[s][0] > 0.2 * -force[0] for s in PINS), rf
+
+
+def test_pinned_plate_debug_build_agrees():
+    """The debug build (-O0 -fcheck=all) on both decks: no runtime error,
+    the same stages, statuses and increments, reactions to 1e-9 of the
+    load."""
+    debug = os.path.join(ROOT, "build-debug", "cfe2d")
+    if not os.path.exists(debug):
+        raise Skip("build-debug/cfe2d not built (make debug)")
+    for name in ("pinned_plate_cps8", "pinned_plate_cps6"):
+        out = os.path.join(WORK, "fall_debug_" + name)
+        os.makedirs(out, exist_ok=True)
+        r = subprocess.run([debug, "-q", "-d", "16", "-o", out, os.path.join(DECKS, name + ".inp")],
+                           capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0 and "Fortran runtime" not in r.stderr, r.stderr
+        opt = run_pinned(name).ok()
+        dbg_text = open(os.path.join(out, name + ".out")).read()
+        opt_text = open(opt.listing_path).read()
+        for key in ("came to rest", "=== INCREMENT", " CLOSED "):
+            assert dbg_text.count(key) == opt_text.count(key), (name, key)
+        a, b = read_listing(os.path.join(out, name + ".out")).increments, opt.listing.increments
+        assert [i.number for i in a] == [i.number for i in b]
+        force = np.linalg.norm(loads(read_deck(os.path.join(DECKS, name + ".inp")))[0])
+        for s in PINS:
+            assert np.linalg.norm(reactions(a[-1])[s] - reactions(b[-1])[s]) < 1e-9 * force, (name, s)
+
+
 def test_plate_without_loads_still_stops_clearly():
     """The same plate with its loads taken out: nothing brings it into
-    contact; the softer stabilisations are tried, down to the softest, and
-    the run stops with today's message, writing no increment."""
+    contact, the stabilisation carries nothing and ends at once; the run
+    stops with today's message, writing no increment."""
     with open(os.path.join(DECKS, "pinned_plate_cps6.inp")) as f:
         deck = f.read()
     deck, n = re.subn(r"\*DLOAD\n[^*]*|\*CLOAD\n[^*]*", "", deck)
@@ -264,5 +347,4 @@ def test_plate_without_loads_still_stops_clearly():
     assert "Traceback" not in run.stderr and "NaN" not in run.stderr
     text = open(run.listing_path).read()
     assert "=== INCREMENT" not in text
-    assert text.count("stabilising again with a softer open penalty") == 4, text.count("softer")
-    assert "(1.00E-10 of the closed one)" in text
+    assert "stabilising the open contact elements" in text
