@@ -308,6 +308,26 @@ def test_pinned_plate_smaller_side_loads():
                 assert all(rf[s][0] > 0.2 * -force[0] for s in PINS), rf
 
 
+def test_pinned_plate_nlgeom():
+    """The same decks with *STEP, NLGEOM (the Newton iteration, the contact
+    searched again on x + u): main stopped with a singular tangent; now
+    they run, the pins carrying the loads to 1e-6 and the middle pin
+    nothing (to 1e-5 of the load)."""
+    for name in ("pinned_plate_cps8", "pinned_plate_cps6"):
+        with open(os.path.join(DECKS, name + ".inp")) as f:
+            deck = f.read()
+        assert deck.count("*STEP\n") == 1
+        run = run_deck("fall_nlgeom_" + name, deck.replace("*STEP\n", "*STEP, NLGEOM\n")).ok()
+        force = loads(read_deck(run.deck))[0]
+        incs = run.listing.increments
+        assert incs and abs(incs[-1].time - 1.0) < 1e-12
+        assert "stabilising again from where it came to rest" in open(run.listing_path).read()
+        for inc in incs:
+            total = sum(reactions(inc).values())
+            assert np.linalg.norm(total + inc.time * force) < 1e-6 * inc.time * np.linalg.norm(force), (name, total)
+        assert np.linalg.norm(reactions(incs[-1])[PIN2]) < 1e-5 * np.linalg.norm(force)
+
+
 def test_pinned_plate_debug_build_agrees():
     """The debug build (-O0 -fcheck=all) on both decks: no runtime error,
     the same stages, statuses and increments, reactions to 1e-9 of the
