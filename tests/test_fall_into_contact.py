@@ -368,3 +368,18 @@ def test_plate_without_loads_still_stops_clearly():
     text = open(run.listing_path).read()
     assert "=== INCREMENT" not in text
     assert "stabilising the open contact elements" in text
+
+
+def test_body_pulled_away_takes_no_stage():
+    """test_contact's upper block pulled away from the lower one: its first
+    stabilised search moves no open point towards its master, so no stage
+    follows (nor would one bring it into contact); the run stops at once
+    with today's message, as before."""
+    import test_contact as tc
+    deck, _ = tc.force_driven_deck()
+    deck = deck.replace(f"TOP, 2, {-2.0 / (tc.NX2 + 1)}", f"TOP, 2, {2.0 / (tc.NX2 + 1)}")
+    run = run_deck("fall_pulled_away", deck)
+    assert run.rc != 0
+    assert "singular stiffness at node" in run.stderr and "held only by open contact" in run.stderr, run.stderr
+    text = open(run.listing_path).read()
+    assert "stabilising the open contact elements" in text and "came to rest" not in text

@@ -1003,7 +1003,8 @@ contains
   !> loads move it on by as much again; at rest in contact, the next
   !> stage carries almost nothing), or ahead of it while the body drifts
   !> freely (see stage_tolerance). False, and nothing changed, where
-  !> the stabilisation carries less, or after max_stabilised_stages stages.
+  !> the stabilisation carries less, where the first stage moved no open
+  !> point towards its master, or after max_stabilised_stages stages.
   !> Arguments: cs - the contact set (gaps of the settled status);
   !> force_scale - the force scale of the increment (contact_status);
   !> again - whether a new stage begins.
@@ -1022,6 +1023,9 @@ contains
                                                     abs(motion(j) - cs%c(j)%stab_anchor)
     end do
     if (.not. carried > stage_tolerance * force_scale) return
+    ! the first stage moved no open point towards its master (the loads
+    ! pull the body away from every contact): nor would the next ones
+    if (cs%stages%n == 0 .and. .not. any(.not. cs%c(1:cs%n)%closed .and. motion < -cs%c(1:cs%n)%gap_round)) return
     ! drifting freely: the status of the last stage, and the stabilisation
     ! carrying what it did then (the loads' share that no contact takes)
     associate(st => cs%stages)
