@@ -21,7 +21,7 @@ module condensed_equilibrium
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy, direct_multipliers, condensed_multipliers
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, report_iteration, describe, singular, &
-                                contact_force_scale, take_back, stabilise_open, set_aside_or_stop
+                                contact_force_scale, take_back, stabilise_open, set_aside_or_stop, next_stage
   use analysis_events, only: observer_ref_t, tell_note, wall_time
   implicit none
   private
@@ -109,6 +109,11 @@ contains
       eq%iterations = eq%iterations + 1
       call report_iteration(eq, cs, obs, it, nchanged)
       if (nchanged == 0 .and. cs%stabilised) then
+        if (next_stage(eq, cs, contact_force_scale(eq, cs, fext_norm), obs)) then
+          u = eq%cd%u0
+          whole = .false.
+          cycle
+        end if
         ! settled while stabilised: a new search with the nominal open penalty
         cs%stabilised = .false.
         call begin_status_search(eq%search)

@@ -24,7 +24,7 @@ module equilibrium
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
                                 report_iteration, describe, singular, contact_force_scale, take_back, &
                                 stabilise_open, set_aside_or_stop, newton_begin, newton_test, newton_converged, &
-                                newton_failed
+                                newton_failed, next_stage
   use condensed_equilibrium, only: solve_condensed
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
   use messages, only: warn, fatal
@@ -278,6 +278,10 @@ contains
         res1 = eq%residual
       end if
       if (nchanged == 0 .and. cs%stabilised) then
+        if (next_stage(eq, cs, contact_force_scale(eq, cs, norm2(fext)), obs)) then
+          call internal_forces(m, body, cs, u, fint, eq%counts)
+          cycle
+        end if
         ! settled while stabilised: a new search with the nominal open penalty
         cs%stabilised = .false.
         call begin_status_search(eq%search)

@@ -9,7 +9,7 @@ module equilibrium_common
   use kinds, only: dp
   use strings, only: itoa
   use model, only: model_t, node_label, controls_t
-  use contact, only: contact_set_t, contact_forces
+  use contact, only: contact_set_t, contact_forces, reset_stabilisation, restabilise
   use contact_status, only: status_search_t, reject_pivot, begin_status_search
   use assembly, only: element_counts_t, body_t, body_forces, nonlinear_body_forces
   use dof_numbering, only: dofmap_t
@@ -21,7 +21,7 @@ module equilibrium_common
   implicit none
   private
   public :: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, report_iteration, &
-            describe, singular, contact_force_scale, take_back, stabilise_open, set_aside_or_stop, newton_t, &
+            describe, singular, contact_force_scale, take_back, stabilise_open, next_stage, set_aside_or_stop, newton_t, &
             newton_begin, newton_test, newton_converged, newton_failed, newton_new_step
 
   !> The state of the Newton iteration of a nonlinear increment and its
@@ -363,6 +363,7 @@ contains
     logical :: pivoted
     done = .not. eq%stabilisation_used .and. any(.not. cs%c(1:cs%n)%closed)
     if (.not. done) return
+    call reset_stabilisation(cs)
     cs%stabilised = .true.
     eq%stabilisation_used = .true.
     pivoted = eq%search%pivoted
@@ -371,6 +372,24 @@ contains
     call tell_note(obs, 'singular stiffness with open contact: stabilising the open contact elements ' // &
                         'until the status settles')
   end function stabilise_open
+
+  !> Purpose: the stabilised search has settled: where the stabilisation,
+  !> not the contact, still holds the body, a new stage of it, anchored
+  !> where the body came to rest (contact's restabilise), and a new
+  !> search; true if so (the caller searches again from the increment's
+  !> start), false to go on with the nominal open penalty.
+  !> Arguments: force_scale as contact_switch.
+  logical function next_stage(eq, cs, force_scale, obs) result(again)
+    type(equilibrium_t), intent(inout) :: eq
+    type(contact_set_t), intent(inout) :: cs
+    real(dp), intent(in) :: force_scale
+    type(observer_ref_t), intent(in) :: obs(:)
+    again = restabilise(cs, force_scale)
+    if (.not. again) return
+    call begin_status_search(eq%search)
+    call tell_note(obs, 'the settled status holds the body only through the stabilisation: stabilising ' // &
+                        'again from where it came to rest')
+  end function next_stage
 
   !> Purpose: a singular stiffness that stabilising cannot mend: where the
   !> status comes from a pivot of the search, the factor is set aside

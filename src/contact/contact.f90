@@ -33,7 +33,8 @@ module contact
   implicit none
   private
   public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
-            coupling_node, cfe_nodes, cfe_max_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes
+            coupling_node, cfe_nodes, cfe_max_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes, &
+            reset_stabilisation, restabilise, open_shift
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -55,6 +56,21 @@ module contact
   !> Open penalty (fraction of the closed one) while a body that only open
   !> contact holds is being brought into contact; see contact_set_t.
   real(dp), parameter :: stabilised_open_ratio = 1.0e-6_dp
+  !> A status that the stabilised search settled while the stabilisation
+  !> still carries more than stage_tolerance of the force scale holds the
+  !> body through the stabilisation, not the contact (its loads moved it
+  !> less than its clearances): it is searched again with the stabilised
+  !> penalty anchored where the body came to rest (restabilise), a
+  !> proximal-point step under which the loads move it on by as much
+  !> again, until contact holds it; while it drifts freely (a stage ends
+  !> with the status of the one before and the stabilisation carrying
+  !> what it did then, to a tenth), the anchor is put ahead, by 1, 3, 7,
+  !> ... (at most max_stage_lead) times that stage's motion, so that a
+  !> light load crosses a wide clearance in a few stages; at most
+  !> max_stabilised_stages stages in an increment.
+  real(dp), parameter :: stage_tolerance = 1.0e-4_dp
+  integer, parameter :: max_stabilised_stages = 60
+  real(dp), parameter :: max_stage_lead = 1.0e6_dp
   !> A segment-to-segment CFE whose covered dual weight D_j is below this
   !> share of its node's whole int N_j da is not made: its support hardly
   !> faces the master, and its weights M_jm / D_j would be large.
@@ -96,6 +112,9 @@ module contact
     real(dp) :: gap_round = 0.0_dp
     real(dp) :: k_closed = 0.0_dp    ! normal penalty of the CFE (force/length)
     real(dp) :: k_open = 0.0_dp
+    !> The normal relative motion at which the stabilised open penalty
+    !> carries nothing (reset_stabilisation, restabilise).
+    real(dp) :: stab_anchor = 0.0_dp
     logical :: closed = .false.
     !> Exact enforcement: the Lagrange multiplier (normal force, <= 0) the
     !> penalty is augmented with, and whether the pair asks for it: a
@@ -120,6 +139,16 @@ module contact
     real(dp) :: slide = 0.0_dp, tforce = 0.0_dp    ! t.[[U]], tangential force
   end type cfe_t
 
+  !> The stages of the stabilisation in an increment (restabilise): how
+  !> many, the status the last one settled, the force its stabilisation
+  !> carried, and how far ahead of the rest point its anchor was put (in
+  !> that stage's motions).
+  type :: stabilisation_stages_t
+    integer :: n = 0
+    logical, allocatable :: closed(:)
+    real(dp) :: carried = 0.0_dp, lead = 0.0_dp
+  end type stabilisation_stages_t
+
   type :: contact_set_t
     integer :: n = 0
     type(cfe_t), allocatable :: c(:)
@@ -129,13 +158,16 @@ module contact
     !> closed penalty. The equilibrium iteration turns this on when the
     !> stiffness is singular with open CFEs (a body that only open contact
     !> holds, e.g. starting apart under a load) and off again once the
-    !> status has settled, so that converged answers always have the
-    !> nominal open penalty; the open state resists relative motion only,
-    !> so it biases nothing at zero relative motion.
+    !> status has settled with the contact holding the body (in stages:
+    !> restabilise), so that converged answers always have the nominal
+    !> open penalty; the open state resists relative motion only (from its
+    !> anchor while stabilised), so it biases nothing at zero relative
+    !> motion.
     logical :: stabilised = .false.
     !> Notes for the listing from the search (a pair whose coarse slave
     !> resolves the pressure less well than the pair swapped would).
     character(len=600), allocatable :: notes(:)
+    type(stabilisation_stages_t) :: stages
   end type contact_set_t
 
 contains
@@ -690,8 +722,10 @@ contains
     stabilised = cs%stabilised
     call move_alloc(cs%c, old%c)
     old%n = cs%n
+    old%stages = cs%stages
     call contact_search(m, x, cs)
     cs%stabilised = stabilised
+    cs%stages = old%stages
     allocate(head(m%nn), next(old%n), matched(old%n))
     head = 0
     matched = .false.
@@ -751,6 +785,7 @@ contains
     end if
     c%closed = oc%closed
     c%lambda = oc%lambda
+    c%stab_anchor = oc%stab_anchor
     ! friction: the elastic tangential offset carries over to the
     ! new coupling, whose t.[[U]] is evaluated where the point is now
     ! (zero on a straight edge; not at a blended corner normal)
@@ -985,6 +1020,7 @@ contains
       ein%penalty = c%k_closed
     else
       ein%penalty = open_penalty(c, stabilised)
+      ein%open_shift = open_shift(c, stabilised)
     end if
     ein%mu = c%mu
     ein%k_tan = c%k_tan
@@ -1001,6 +1037,74 @@ contains
     open_penalty = c%k_open
     if (stabilised) open_penalty = max(c%k_open, stabilised_open_ratio * c%k_closed)
   end function open_penalty
+
+  !> Purpose: the normal relative motion at which CFE c's open penalty
+  !> carries nothing: the stabilised penalty's anchor, else 0.
+  pure real(dp) function open_shift(c, stabilised)
+    type(cfe_t), intent(in) :: c
+    logical, intent(in) :: stabilised
+    open_shift = 0.0_dp
+    if (stabilised) open_shift = c%stab_anchor
+  end function open_shift
+
+  !> Purpose: the stabilisation of an increment's first singular status:
+  !> anchored at no motion.
+  !> Arguments: cs - the contact set.
+  subroutine reset_stabilisation(cs)
+    type(contact_set_t), intent(inout) :: cs
+    type(stabilisation_stages_t) :: none
+    if (cs%n > 0) cs%c(1:cs%n)%stab_anchor = 0.0_dp
+    cs%stages = none
+  end subroutine reset_stabilisation
+
+  !> Purpose: the next stage of the stabilisation, once the stabilised
+  !> search has settled: where the open CFEs' stabilised penalties still
+  !> carry more than stage_tolerance of the force scale in all, the
+  !> stabilisation, not the contact, holds the body; each CFE's penalty is
+  !> then anchored at its normal relative motion of the last evaluation
+  !> (where the body came to rest: a proximal-point step, so that the
+  !> loads move it on by as much again; at rest in contact, the next
+  !> stage carries almost nothing), or ahead of it while the body drifts
+  !> freely (see stage_tolerance). False, and nothing changed, where
+  !> the stabilisation carries less, where the first stage moved no open
+  !> point towards its master, or after max_stabilised_stages stages.
+  !> Arguments: cs - the contact set (gaps of the settled status);
+  !> force_scale - the force scale of the increment (contact_status);
+  !> again - whether a new stage begins.
+  logical function restabilise(cs, force_scale) result(again)
+    type(contact_set_t), intent(inout) :: cs
+    real(dp), intent(in) :: force_scale
+    real(dp) :: motion(cs%n), carried
+    logical :: same
+    integer :: j
+    again = .false.
+    if (cs%n == 0 .or. cs%stages%n >= max_stabilised_stages) return
+    carried = 0.0_dp
+    do j = 1, cs%n
+      motion(j) = cs%c(j)%gap - dot_product(cs%c(j)%normal, cs%c(j)%gap0)
+      if (.not. cs%c(j)%closed) carried = carried + open_penalty(cs%c(j), .true.) * &
+                                                    abs(motion(j) - cs%c(j)%stab_anchor)
+    end do
+    if (.not. carried > stage_tolerance * force_scale) return
+    ! the first stage moved no open point towards its master (the loads
+    ! pull the body away from every contact): nor would the next ones
+    if (cs%stages%n == 0 .and. .not. any(.not. cs%c(1:cs%n)%closed .and. motion < -cs%c(1:cs%n)%gap_round)) return
+    ! drifting freely: the status of the last stage, and the stabilisation
+    ! carrying what it did then (the loads' share that no contact takes)
+    associate(st => cs%stages)
+      same = .false.
+      if (allocated(st%closed)) then
+        if (size(st%closed) == cs%n) same = all(st%closed .eqv. cs%c(1:cs%n)%closed)
+      end if
+      same = same .and. abs(carried - st%carried) <= 0.1_dp * carried
+      st%lead = merge(min(2.0_dp * st%lead + 1.0_dp, max_stage_lead), 0.0_dp, same)
+      st%carried = carried
+      cs%c(1:cs%n)%stab_anchor = motion + st%lead * (motion - cs%c(1:cs%n)%stab_anchor)
+      st%closed = cs%c(1:cs%n)%closed
+      st%n = st%n + 1
+    end associate
+    again = .true.
+  end function restabilise
 
   !> Purpose: evaluates every CFE at displacements u with its current
   !> status: stores its gap and normal force and adds its internal force

@@ -55,7 +55,7 @@
 module contact_status
   use kinds, only: dp
   use model, only: model_t
-  use contact, only: contact_set_t, cfe_label, open_penalty, frictional_set
+  use contact, only: contact_set_t, cfe_label, open_penalty, open_shift, frictional_set
   implicit none
   private
   public :: status_search_t, begin_status_search, contact_switch, reject_pivot, shifted_gap, contact_energy, &
@@ -113,7 +113,8 @@ contains
       d = c%k_closed - ko
       gh = c%gap
       ! (lambda: exact enforcement's multiplier, see augment_multipliers)
-      if (d > 0.0_dp) gh = c%gap + (ko * dot_product(c%normal, c%gap0) + c%lambda) / d
+      if (d > 0.0_dp) gh = c%gap + (ko * (dot_product(c%normal, c%gap0) + open_shift(c, cs%stabilised)) + &
+                                    c%lambda) / d
     end associate
   end function shifted_gap
 
@@ -286,7 +287,7 @@ contains
     do j = 1, cs%n
       associate(c => cs%c(j))
         ko = open_penalty(c, cs%stabilised)
-        e = e + 0.5_dp * ko * (c%gap - dot_product(c%normal, c%gap0))**2 + &
+        e = e + 0.5_dp * ko * (c%gap - dot_product(c%normal, c%gap0) - open_shift(c, cs%stabilised))**2 + &
             0.5_dp * max(c%k_closed - ko, 0.0_dp) * min(0.0_dp, shifted_gap(cs, j))**2
       end associate
     end do

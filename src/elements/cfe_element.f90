@@ -119,8 +119,9 @@ contains
         ! relative motion: without the [[U]]_0 term an open element pulls
         ! nothing across an initial gap, so it stabilises a body held only
         ! by contact without biasing it.
-        eout%normal_force = ein%penalty * dot_product(ein%normal, rel)
-        eout%fe(1:nd) = matmul(transpose(b), matmul(c, rel))
+        ! (from the relative motion open_shift on: a stabilised penalty's anchor)
+        eout%normal_force = ein%penalty * (dot_product(ein%normal, rel) - ein%open_shift)
+        eout%fe(1:nd) = matmul(transpose(b), matmul(c, rel) - (ein%penalty * ein%open_shift) * ein%normal)
       end if
     end if
   end subroutine cfe

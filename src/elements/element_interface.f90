@@ -123,6 +123,10 @@ module element_interface
     !> the relative motion B_e D_e only, so that an open CFE carries no
     !> force at zero relative motion whatever its initial gap.
     logical :: closed = .true.
+    !> Open: the normal relative motion n . B_e D_e at which the penalty
+    !> carries nothing (0; the anchor of a stabilised open penalty,
+    !> contact's restabilise).
+    real(dp) :: open_shift = 0.0_dp
     !> Coulomb friction of a closed coupling element (mu = 0: none): the
     !> tangential penalty, sliding or sticking, the direction of sliding
     !> (+-1 along t = (-n_y, n_x)) and the anchor, the tangential relative
