@@ -27,6 +27,7 @@ import concurrent.futures
 import os
 import re
 import shutil
+import stat
 import subprocess
 import sys
 
@@ -42,9 +43,20 @@ MESHES = ("coarse", "default", "fine")
 COUPLINGS = ("NODE TO SURFACE", "SURFACE TO SURFACE")
 
 
+def regular(path):
+    """A regular file (not a FIFO or device a fuzz test made: opening
+    one would wait for a writer)."""
+    try:
+        return stat.S_ISREG(os.lstat(path).st_mode)
+    except OSError:
+        return False
+
+
 def included_names(path):
     """The file names a deck's *INCLUDE cards name (to keep a .msh input)."""
     names = set()
+    if not regular(path):
+        return names
     try:
         with open(path, errors="replace") as f:
             for line in f:
@@ -60,7 +72,7 @@ def collect(src, dest):
     """Copy the input files of every folder below src that holds a deck."""
     n = 0
     for dirpath, _, files in os.walk(src):
-        decks = [f for f in files if f.endswith(".inp")]
+        decks = [f for f in files if f.endswith(".inp") and regular(os.path.join(dirpath, f))]
         if not decks:
             continue
         keep = set()
@@ -70,7 +82,7 @@ def collect(src, dest):
         os.makedirs(out, exist_ok=True)
         for f in files:
             p = os.path.join(dirpath, f)
-            if not os.path.isfile(p) or os.path.islink(p):
+            if not regular(p):
                 continue
             if f.endswith(OUTPUT_ENDINGS) and f not in keep:
                 continue

@@ -16,7 +16,7 @@ module analysis
   use constraints, only: mpc_t, resolve_equations, constraint_label
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment, renumber_couplings, note_numbering, &
                          numbering_fits
-  use equilibrium_common, only: newton_new_step
+  use newton_control, only: newton_new_step
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use linear_solver, only: linear_system_t

@@ -1,11 +1,13 @@
-!> The equilibrium iteration of one increment by the condensed contact
-!> solve (condensed_contact): the bodies factored once per numbering, the
-!> status iterations on the contact equations only, the other equations
-!> recovered once the status has settled. Its observable behaviour is the
-!> full iteration's (module equilibrium): the same switching rule, the
-!> same stabilisation of a body held only by open contact, the same
-!> events, reactions and contact results, and the convergence judged on
-!> the recovered solution by the same test.
+!> The condensed path of the equilibrium iteration (a linear_path_t of
+!> equilibrium_loop): the contact equations condensed out of one
+!> factorisation of the bodies (condensed_contact), each status solved
+!> on the contact equations only, the other equations recovered once the
+!> status has settled. Its observable behaviour is the full path's
+!> (module equilibrium): the same switching rule, the same stabilisation
+!> of a body held only by open contact, the same events, reactions and
+!> contact results, and the convergence judged on the recovered solution
+!> by the same test (a correction with the same matrix follows while the
+!> out-of-balance is above the tolerance).
 !> Work per status iteration is O(m + CFEs): nothing here touches all the
 !> nodes between the increment's start and the recovery.
 module condensed_equilibrium
@@ -13,142 +15,150 @@ module condensed_equilibrium
   use kinds, only: dp
   use model, only: model_t
   use contact, only: contact_set_t, contact_forces, status_codes
-  use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
   use assembly, only: body_t, body_forces, free_residual
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use linear_solver, only: linear_system_t, sys_analyse, factor_singular
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy, direct_multipliers, condensed_multipliers
-  use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, report_iteration, describe, singular, &
-                                contact_force_scale, take_back, stabilise_open, set_aside_or_stop
+  use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, &
+                                stabilise_open, set_aside_or_stop
+  use iteration_state, only: iteration_t, linear_path_t
   use analysis_events, only: observer_ref_t, tell_note, wall_time
   implicit none
   private
-  public :: solve_condensed
+  public :: condensed_path_t
+
+  !> The condensed path's state in an increment. Exact enforcement solves
+  !> the multipliers directly per status (no augmentation: augmented
+  !> false) unless friction needs the augmented Lagrangian, or the active
+  !> rows are dependent.
+  type, extends(linear_path_t) :: condensed_path_t
+    real(dp), allocatable :: fold(:)    ! the CFE forces on the contact equations before the switch
+    logical :: whole = .false.          ! u holds every equation's solution (recovered)
+    integer :: nsolves = 0              ! direct multiplier solves of the increment
+  contains
+    procedure :: begin => condensed_begin_increment
+    procedure :: factor => condensed_factor
+    procedure :: solve => condensed_solve_status
+    procedure :: solution_energy => condensed_solution_energy
+    procedure :: residual => condensed_residual
+    procedure :: status_changed => condensed_status_changed
+    procedure :: restart => condensed_restart
+    procedure :: converged => condensed_converged
+  end type condensed_path_t
 
 contains
 
-  !> Purpose: equilibrium at the prescribed values and loads already in u
-  !> and fext by the condensed contact solve (arguments as
-  !> equilibrium's solve_increment). Each status iteration solves the
-  !> contact equations for the current status and switches; once no
-  !> status changes, the other equations are recovered, forces and
-  !> reactions computed and the out-of-balance judged as the full
-  !> iteration judges it (a correction with the same matrix follows if it
-  !> is not yet below the tolerance).
-  subroutine solve_condensed(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, obs, ok, iters)
-    type(equilibrium_t), intent(inout) :: eq
-    type(model_t), intent(in) :: m
-    integer, intent(in) :: is, inc
-    type(body_t), intent(in) :: body
-    type(contact_set_t), intent(inout) :: cs
-    type(dofmap_t), intent(in) :: dm
-    type(linear_system_t), intent(inout) :: sys
-    real(dp), intent(in) :: fext(:, :)
-    real(dp), intent(inout) :: u(:, :)
-    real(dp), intent(out) :: rf(:, :)
-    type(observer_ref_t), intent(in) :: obs(:)
-    logical, intent(out) :: ok
-    integer, intent(out) :: iters
-    real(dp), allocatable :: fold(:)
-    integer :: it, nchanged, naug, nactive, nsolves
-    logical :: whole                    ! u holds every equation's solution
-    logical :: finite, usable, direct, solved
+  !> Purpose: the start of the increment: the bodies' factor (once per
+  !> numbering), the free equations from the last converged solution, the
+  !> condensed right-hand side; whether the multipliers are solved directly.
+  subroutine condensed_begin_increment(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    call k0_if_needed(st%eq, st%m, st%is, st%body, st%cs, st%dm, st%sys, st%obs)
+    allocate(path%fold(st%eq%cd%m))
+    call start_from_last(st%eq, st%m, st%body, st%dm, st%sys, st%fext, st%u)
+    path%whole = .false.
+    path%augmented = .not. direct_multipliers(st%cs)
+    path%nsolves = 0
+  end subroutine condensed_begin_increment
+
+  !> Purpose: the condensed matrix of the status factored unless the one
+  !> in hand is for it; nothing to factor for a correction of the whole
+  !> solution (the same matrix).
+  subroutine condensed_factor(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    st%usable = .true.
+    st%restabilised = .false.
+    if (path%whole) return
+    call condensed_factor_if_needed(st%eq, st%m, st%body, st%cs, st%dm, st%obs, st%usable)
+  end subroutine condensed_factor
+
+  !> Purpose: the status solved on the contact equations (with its
+  !> multipliers where they are solved directly), or, once the whole
+  !> solution is recovered but not yet in balance, a correction with the
+  !> same matrix. A displacement that is not finite stops the run.
+  subroutine condensed_solve_status(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    integer :: nactive
+    logical :: finite, solved
+    st%c_max = 0.0_dp
+    if (path%whole) then
+      call correct(st%eq, st%m, st%dm, st%sys, st%fext, st%rf, st%u)
+      call check_finite(st%m, st%is, st%inc, st%u)
+      return
+    end if
+    call condensed_solve(st%eq%cd, st%m, st%cs, st%dm, st%u, finite, st%eq%counts%coupling)
+    if (.not. finite) call check_finite(st%m, st%is, st%inc, st%u)
+    if (path%augmented) return
+    call condensed_multipliers(st%eq%cd, st%m, st%cs, st%dm, st%u, nactive, solved)
+    if (nactive > 0) path%nsolves = path%nsolves + 1
+    ! dependent active rows: the augmented updates instead
+    if (.not. solved) path%augmented = .true.
+    if (.not. all(ieee_is_finite(st%eq%cd%x2))) call check_finite(st%m, st%is, st%inc, st%u)
+  end subroutine condensed_solve_status
+
+  !> Purpose: the CFE forces on the contact equations before the switch,
+  !> and the bodies' part of the potential energy of the solution.
+  subroutine condensed_solution_energy(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    call contact_part_forces(st%eq%cd, st%m, st%cs, st%dm, st%u, path%fold, st%eq%counts%coupling)
+    st%energy = condensed_energy(st%eq%cd, st%dm, st%cs, st%u)
+  end subroutine condensed_solution_energy
+
+  !> Purpose: the out-of-balance after the switch: of the change of the
+  !> CFE forces where a status changed (the next solve starts from the
+  !> increment's start), of the recovered solution where none did.
+  subroutine condensed_residual(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    if (st%nchanged > 0) then
+      if (path%whole) st%u = st%eq%cd%u0
+      path%whole = .false.
+      st%eq%residual = change_residual(st%eq, st%m, st%cs, st%dm, st%u, path%fold, st%fext_norm)
+    else
+      call settled_residual(st%eq, st%m, st%is, st%inc, st%body, st%cs, st%dm, st%sys, st%fext, st%u, st%rf, &
+                            path%whole, st%scale)
+    end if
+  end subroutine condensed_residual
+
+  !> Purpose: a status changed outside the switch: nothing to do, the
+  !> next solve makes its forces.
+  subroutine condensed_status_changed(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+  end subroutine condensed_status_changed
+
+  !> Purpose: a new status search starts from the increment's start.
+  subroutine condensed_restart(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    st%u = st%eq%cd%u0
+    path%whole = .false.
+  end subroutine condensed_restart
+
+  !> Purpose: the increment converged: the direct solves said, the
+  !> solution and the bodies' forces kept for the next increment's start.
+  subroutine condensed_converged(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
     character(len=12) :: buf
-    real(dp) :: scale, fext_norm, energy
-    ok = .false.
-    cs%stabilised = .false.
-    eq%stabilisation_used = .false.
-    call k0_if_needed(eq, m, is, body, cs, dm, sys, obs)
-    allocate(fold(eq%cd%m))
-    call begin(eq, m, body, dm, sys, fext, u)
-    fext_norm = norm2(fext)
-    call begin_status_search(eq%search)
-    whole = .false.
-    it = 0
-    naug = 0
-    ! exact enforcement by multipliers solved directly per status (no
-    ! augmentation), unless friction needs the augmented Lagrangian
-    direct = direct_multipliers(cs)
-    nsolves = 0
-    ! MAXIT counts the iterations of each status search
-    do while (eq%search%iterations < m%contact_max_iter)
-      it = it + 1
-      if (whole) then
-        ! settled but not yet in balance: a correction with the same matrix
-        call correct(eq, m, dm, sys, fext, rf, u)
-        call check_finite(m, is, inc, u)
-      else
-        call condensed_factor_if_needed(eq, m, body, cs, dm, obs, usable)
-        if (.not. usable) then
-          call take_back(eq, m, cs, dm, obs)
-          cycle
-        end if
-        call condensed_solve(eq%cd, m, cs, dm, u, finite, eq%counts%coupling)
-        if (.not. finite) call check_finite(m, is, inc, u)
-        if (direct) then
-          call condensed_multipliers(eq%cd, m, cs, dm, u, nactive, solved)
-          if (nactive > 0) nsolves = nsolves + 1
-          ! dependent active rows: the augmented updates instead
-          if (.not. solved) direct = .false.
-          if (.not. all(ieee_is_finite(eq%cd%x2))) call check_finite(m, is, inc, u)
-        end if
-      end if
-      call contact_part_forces(eq%cd, m, cs, dm, u, fold, eq%counts%coupling)
-      ! the potential energy of this status's solution, eqs. (1) and (9)
-      energy = condensed_energy(eq%cd, dm, cs, u) + contact_energy(cs)
-      call contact_switch(m, cs, eq%search, contact_force_scale(eq, cs, fext_norm), energy, nchanged, eq%changed)
-      if (nchanged > 0) then
-        if (whole) u = eq%cd%u0          ! the next solve starts from the increment's start
-        whole = .false.
-        eq%residual = change_residual(eq, m, cs, dm, u, fold, fext_norm)
-      else
-        call settled_residual(eq, m, is, inc, body, cs, dm, sys, fext, u, rf, whole, scale)
-      end if
-      eq%iterations = eq%iterations + 1
-      call report_iteration(eq, cs, obs, it, nchanged)
-      if (nchanged == 0 .and. cs%stabilised) then
-        ! settled while stabilised: a new search with the nominal open penalty
-        cs%stabilised = .false.
-        call begin_status_search(eq%search)
-        u = eq%cd%u0
-        whole = .false.
-        call tell_note(obs, 'contact status settled with the stabilised open penalty; ' // &
-                            'iterating on with the nominal one')
-        cycle
-      end if
-      if (nchanged == 0 .and. eq%residual < m%contact_tolerance .and. naug < max_augmentations .and. &
-          .not. direct) then
-        ! exact enforcement: the multipliers updated, the search again
-        if (augment_multipliers(cs, contact_force_scale(eq, cs, fext_norm))) then
-          naug = naug + 1
-          u = eq%cd%u0
-          whole = .false.
-          call begin_status_search(eq%search)
-          cycle
-        end if
-      end if
-      if (nchanged == 0 .and. eq%residual < m%contact_tolerance) then
-        ok = .true.
-        iters = it
-        if (nsolves > 0) then
-          write(buf, '(i0)') nsolves
-          call tell_note(obs, 'exact contact: ' // trim(buf) // ' direct multiplier solves in the increment')
-        end if
-        eq%force_history = max(eq%force_history, scale)
-        eq%u_last = u
-        eq%fbody_last = eq%fbody
-        return
-      end if
-    end do
-    iters = it
-  end subroutine solve_condensed
+    if (path%nsolves > 0) then
+      write(buf, '(i0)') path%nsolves
+      call tell_note(st%obs, 'exact contact: ' // trim(buf) // ' direct multiplier solves in the increment')
+    end if
+    st%eq%u_last = st%u
+    st%eq%fbody_last = st%eq%fbody
+  end subroutine condensed_converged
 
   !> The start of the increment: the free equations from the last
   !> converged solution, the bodies' internal forces there (updated where
   !> prescribed values moved), the condensed right-hand side.
-  subroutine begin(eq, m, body, dm, sys, fext, u)
+  subroutine start_from_last(eq, m, body, dm, sys, fext, u)
     type(equilibrium_t), intent(inout) :: eq
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
@@ -167,7 +177,7 @@ contains
       call body_forces(m, body, u, fbody)
     end if
     call condensed_begin(eq%cd, m, dm, sys, fext, u, fbody)
-  end subroutine begin
+  end subroutine start_from_last
 
   !> The status has settled: the other equations (unless u already holds
   !> them), then forces, reactions and the out-of-balance as the full
