@@ -12,13 +12,13 @@
 module equilibrium
   use kinds, only: dp
   use model, only: model_t
-  use contact, only: contact_set_t, status_codes, contact_forces
+  use contact, only: contact_set_t, contact_forces
   use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use constraints, only: mpc_t
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
   use equilibrium_common, only: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, &
-                                describe, stabilise_open, set_aside_or_stop
+                                describe, stabilise_open, set_aside_or_stop, factor_fits, factor_made
   use iteration_state, only: iteration_t, linear_path_t
   use equilibrium_loop, only: iterate
   use condensed_equilibrium, only: condensed_path_t
@@ -205,10 +205,7 @@ contains
     st%restabilised = .false.
     st%usable = .true.
     associate(eq => st%eq, cs => st%cs)
-      ! (with every CFE closed, stabilising changes no penalty)
-      if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
-        if (all(eq%factor_states == status_codes(cs))) return
-      end if
+      if (factor_fits(eq, cs)) return
       call assemble_and_factor(st, u, status, bad, at_converged)
       if (status == factor_singular) then
         st%restabilised = stabilise_open(eq, cs, st%obs)
@@ -232,9 +229,7 @@ contains
         call warn(st%sys%note)
       end if
       call describe(eq, st%is, cs, st%sys, st%obs)
-      eq%factor_states = status_codes(cs)
-      eq%factor_stabilised = cs%stabilised
-      eq%factor_valid = .true.
+      call factor_made(eq, cs)
     end associate
   end subroutine factor_if_needed
 

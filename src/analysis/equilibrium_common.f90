@@ -9,7 +9,7 @@ module equilibrium_common
   use kinds, only: dp
   use strings, only: itoa
   use model, only: model_t, node_label
-  use contact, only: contact_set_t, contact_forces
+  use contact, only: contact_set_t, contact_forces, status_codes
   use contact_status, only: status_search_t, reject_pivot, begin_status_search
   use assembly, only: element_counts_t, body_t, body_forces, nonlinear_body_forces
   use dof_numbering, only: dofmap_t
@@ -22,7 +22,8 @@ module equilibrium_common
   implicit none
   private
   public :: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, report_iteration, &
-            describe, singular, contact_force_scale, take_back, stabilise_open, set_aside_or_stop
+            describe, singular, contact_force_scale, take_back, stabilise_open, set_aside_or_stop, factor_fits, &
+            factor_made
 
   type :: equilibrium_t
     ! factor reuse policy: the factor is valid for the statuses it was made for
@@ -139,6 +140,27 @@ contains
               1.0e-6_dp * kmax * maxval(abs(u)), tiny(1.0_dp))
     r = norm2(pack(rf, dm%eq > 0)) / max(ref, history)
   end function relative_residual
+
+  !> Purpose: is the factor in hand (eq%factor_*) the one of the current
+  !> contact status of cs? (With every CFE closed, stabilising changes no
+  !> penalty.)
+  logical function factor_fits(eq, cs)
+    type(equilibrium_t), intent(in) :: eq
+    type(contact_set_t), intent(in) :: cs
+    factor_fits = .false.
+    if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
+      factor_fits = all(eq%factor_states == status_codes(cs))
+    end if
+  end function factor_fits
+
+  !> Purpose: the factor just made is that of the current status of cs.
+  subroutine factor_made(eq, cs)
+    type(equilibrium_t), intent(inout) :: eq
+    type(contact_set_t), intent(in) :: cs
+    eq%factor_states = status_codes(cs)
+    eq%factor_stabilised = cs%stabilised
+    eq%factor_valid = .true.
+  end subroutine factor_made
 
   !> The force scale that the contact status search judges round-off
   !> against: loads, contact forces and the forces of the history.

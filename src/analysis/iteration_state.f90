@@ -28,7 +28,7 @@ module iteration_state
 
   !> One increment's equilibrium iteration. The first part is the
   !> problem, associated by solve_increment for the increment (the
-  !> objects belong to the driver); the rest is the iteration's own.
+  !> objects belong to the caller); the rest is the iteration's own.
   type :: iteration_t
     type(equilibrium_t), pointer :: eq => null()
     type(model_t), pointer :: m => null()
