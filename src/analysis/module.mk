@@ -1,14 +1,16 @@
 # Layer: analysis. Modules and the objects of the modules each one uses.
-MODULES += analysis analysis_events assembly body_elements condensed_contact condensed_equilibrium contact_repairing \
-           dof_numbering equilibrium equilibrium_common equilibrium_loop increment_results iteration_state load_state \
-           newton_control
-$(OBJDIR)/analysis.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/condensed_contact.o $(OBJDIR)/constraints.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/equilibrium.o $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/load_state.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/newton_control.o $(OBJDIR)/strings.o
+MODULES += analysis analysis_events analysis_field assembly body_elements condensed_contact condensed_equilibrium \
+           contact_repairing displacement_field dof_numbering equilibrium equilibrium_common equilibrium_loop \
+           increment_results iteration_state load_state newton_control
+$(OBJDIR)/analysis.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/analysis_field.o $(OBJDIR)/displacement_field.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/analysis_events.o: $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
+$(OBJDIR)/analysis_field.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
 $(OBJDIR)/assembly.o: $(OBJDIR)/body_elements.o $(OBJDIR)/contact.o $(OBJDIR)/distributed_loads.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/element_library.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/body_elements.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
 $(OBJDIR)/condensed_contact.o: $(OBJDIR)/assembly.o $(OBJDIR)/cfe_element.o $(OBJDIR)/constraints.o $(OBJDIR)/contact.o $(OBJDIR)/dense_cholesky.o $(OBJDIR)/dense_lu.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/element_interface.o $(OBJDIR)/element_library.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/model.o $(OBJDIR)/solver_codes.o
 $(OBJDIR)/condensed_equilibrium.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/condensed_contact.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/equilibrium_common.o $(OBJDIR)/iteration_state.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o
 $(OBJDIR)/contact_repairing.o: $(OBJDIR)/condensed_contact.o $(OBJDIR)/constraints.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/element_interface.o $(OBJDIR)/equilibrium_common.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/model.o
+$(OBJDIR)/displacement_field.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/analysis_field.o $(OBJDIR)/assembly.o $(OBJDIR)/condensed_contact.o $(OBJDIR)/constraints.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/equilibrium.o $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/load_state.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/newton_control.o $(OBJDIR)/strings.o
 $(OBJDIR)/dof_numbering.o: $(OBJDIR)/constraints.o $(OBJDIR)/contact.o $(OBJDIR)/element_interface.o $(OBJDIR)/growable.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/ordering.o $(OBJDIR)/strings.o
 $(OBJDIR)/equilibrium.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/condensed_equilibrium.o $(OBJDIR)/constraints.o $(OBJDIR)/contact.o $(OBJDIR)/contact_repairing.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/equilibrium_common.o $(OBJDIR)/equilibrium_loop.o $(OBJDIR)/iteration_state.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o
 $(OBJDIR)/equilibrium_common.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/condensed_contact.o $(OBJDIR)/contact.o $(OBJDIR)/contact_status.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/newton_control.o $(OBJDIR)/strings.o
