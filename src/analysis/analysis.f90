@@ -28,6 +28,7 @@ module analysis
     !> increments (advance_automatic).
     logical :: nonlinear = .false.
     integer :: cutbacks = 0             ! increments cut back in the current step
+    integer :: failed = 0               ! the field whose solve failed last (solve_fields)
     type(run_timing_t) :: timing        ! where the run's time went
   end type run_state_t
 
@@ -153,7 +154,10 @@ contains
     iters = 0
     do k = 1, size(rs%fields)
       call rs%fields(k)%f%solve(m, is, rs%inc + 1, obs, ok, iters)
-      if (.not. ok) return
+      if (.not. ok) then
+        rs%failed = k
+        return
+      end if
     end do
   end subroutine solve_fields
 
@@ -177,7 +181,7 @@ contains
   end subroutine increment_done
 
   !> Purpose: the increment failed: every field back to the state it
-  !> started from; reason, cut and changing those of the first field that
+  !> started from; reason, cut and changing those of the field that
   !> failed (field_t's failure).
   subroutine restore_fields(m, rs, reason, cut, changing)
     type(model_t), intent(in) :: m
@@ -188,7 +192,7 @@ contains
     do k = 1, size(rs%fields)
       call rs%fields(k)%f%restore(m)
     end do
-    call rs%fields(size(rs%fields))%f%failure(reason, cut, changing)
+    call rs%fields(rs%failed)%f%failure(reason, cut, changing)
   end subroutine restore_fields
 
   !> Purpose: takes the solution from step time t0 to t1, halving the

@@ -1,9 +1,12 @@
-!> What the two ways of solving the equilibrium iteration share (module
+!> What the two linear paths of the equilibrium iteration share (module
 !> equilibrium: the whole stiffness factored for every contact status;
 !> condensed_equilibrium: the contact equations condensed out of one
 !> factorisation of the bodies): the state of the iteration carried from
 !> increment to increment, internal forces, the out-of-balance test, the
-!> events told to the observers, and the stop on a singular stiffness.
+!> reuse of a factor while the status is the one it was made for
+!> (factor_fits, factor_made), the stabilisation of open contact and the
+!> taking back of a pivot, the events told to the observers, and the stop
+!> on a singular stiffness.
 module equilibrium_common
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
