@@ -1,15 +1,18 @@
-!> What the two ways of solving the equilibrium iteration share (module
+!> What the two linear paths of the equilibrium iteration share (module
 !> equilibrium: the whole stiffness factored for every contact status;
 !> condensed_equilibrium: the contact equations condensed out of one
 !> factorisation of the bodies): the state of the iteration carried from
 !> increment to increment, internal forces, the out-of-balance test, the
-!> events told to the observers, and the stop on a singular stiffness.
+!> reuse of a factor while the status is the one it was made for
+!> (factor_fits, factor_made), the stabilisation of open contact and the
+!> taking back of a pivot, the events told to the observers, and the stop
+!> on a singular stiffness.
 module equilibrium_common
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use strings, only: itoa
-  use model, only: model_t, node_label, controls_t
-  use contact, only: contact_set_t, contact_forces, reset_stabilisation, restabilise
+  use model, only: model_t, node_label
+  use contact, only: contact_set_t, contact_forces, status_codes, reset_stabilisation, restabilise
   use contact_status, only: status_search_t, reject_pivot, begin_status_search
   use assembly, only: element_counts_t, body_t, body_forces, nonlinear_body_forces
   use dof_numbering, only: dofmap_t
@@ -17,37 +20,13 @@ module equilibrium_common
   use condensed_contact, only: condensed_t
   use analysis_events, only: observer_ref_t, iteration_info_t, solver_info_t, run_timing_t, tell_iteration, &
                              tell_solver_ready, tell_note
+  use newton_control, only: newton_t
   use messages, only: fatal
   implicit none
   private
   public :: equilibrium_t, begin_equilibrium, internal_forces, relative_residual, check_finite, report_iteration, &
-            describe, singular, contact_force_scale, take_back, stabilise_open, next_stage, set_aside_or_stop, newton_t, &
-            newton_begin, newton_test, newton_converged, newton_failed, newton_new_step
-
-  !> The state of the Newton iteration of a nonlinear increment and its
-  !> tests (CalculiX's manual, "Convergence criteria" and *CONTROLS, with
-  !> its default constants): the reference force q-tilde is the average
-  !> force q-bar (the mean |f| over the element dofs) averaged over the
-  !> converged increments of the step and the current iteration (a new
-  !> step starts from the average of the steps before); the largest
-  !> residual force r_max of the last three iterations; why the increment
-  !> failed: reason, and the factor to cut it by: cut.
-  type :: newton_t
-    real(dp) :: q_sum = 0.0_dp          ! sum of q-bar over the converged increments counted in q_count
-    integer :: q_count = 0
-    real(dp) :: q_last = 0.0_dp         ! q-bar of the last iteration
-    real(dp) :: r(3) = 0.0_dp           ! r_max of iterations i, i-1, i-2
-    integer :: it = 0                   ! Newton iterations since the last contact status change
-    !> iterations of this attempt at the increment, and those of them that
-    !> changed a contact status (each one adds an iteration to I_C, as
-    !> CalculiX does for node-to-face contact)
-    integer :: attempt = 0, changes = 0
-    integer :: total = 0                ! Newton iterations of the step (all increments, cut ones too)
-    real(dp) :: cut = 1.0_dp            ! when the increment failed: the factor to cut it by
-    character(len=:), allocatable :: reason
-    type(controls_t) :: ctl             ! the step's *CONTROLS
-    logical :: singular = .false.       ! the last factorisation of the tangent was singular
-  end type newton_t
+            describe, singular, contact_force_scale, take_back, stabilise_open, next_stage, set_aside_or_stop, &
+            factor_fits, factor_made
 
   type :: equilibrium_t
     ! factor reuse policy: the factor is valid for the statuses it was made for
@@ -165,117 +144,26 @@ contains
     r = norm2(pack(rf, dm%eq > 0)) / max(ref, history)
   end function relative_residual
 
-  !> Purpose: the start of a nonlinear increment's Newton iteration.
-  subroutine newton_begin(nt)
-    type(newton_t), intent(inout) :: nt
-    nt%singular = .false.
-    nt%attempt = 0
-    nt%changes = 0
-    nt%r = 0.0_dp
-    nt%it = 0
-    nt%cut = 1.0_dp
-    nt%reason = ''
-  end subroutine newton_begin
+  !> Purpose: is the factor in hand (eq%factor_*) the one of the current
+  !> contact status of cs? (With every CFE closed, stabilising changes no
+  !> penalty.)
+  logical function factor_fits(eq, cs)
+    type(equilibrium_t), intent(in) :: eq
+    type(contact_set_t), intent(in) :: cs
+    factor_fits = .false.
+    if (eq%factor_valid .and. ((eq%factor_stabilised .eqv. cs%stabilised) .or. all(cs%c(1:cs%n)%closed))) then
+      factor_fits = all(eq%factor_states == status_codes(cs))
+    end if
+  end function factor_fits
 
-  !> Purpose: CalculiX's convergence test of Newton iteration nt%it (its
-  !> manual, "Convergence criteria"): q-bar the average force of this
-  !> iteration, r_max the largest residual force on a free dof, c_max the
-  !> largest correction of this iteration, du_max the largest change of
-  !> the increment so far; the constants are the step's *CONTROLS
-  !> (nt%ctl, model's controls_t, CalculiX's names). The reference force
-  !> q-tilde is the mean of q-bar over the converged increments of the
-  !> step and this iteration (newton_t), or q_u if given. Converged when r_max <= c1 q-tilde and one
-  !> of: c_max <= c2 du_max; the estimate of the next correction
-  !> r_max c_max / min(r_{i-1}, r_{i-2}) < c2 du_max; r_max <= R_l
-  !> q-tilde (a linear increment); zero force; c_max < 1e-8 of the
-  !> displacement scale. Otherwise nt%cut and nt%reason say whether to cut
-  !> the increment back: divergence (from I_0 on, r_max grew twice: D_F)
-  !> or too slow (from I_R on, the estimated iterations exceed I_C, or the
-  !> attempt's iterations reach I_C plus one for each iteration that
-  !> changed a contact status: D_C); the counts of I_0 and I_R start again
-  !> after a status change (CalculiX's rule for node-to-face contact);
-  !> nt%cut = 1 means iterate on. The returned ratio is
-  !> r_max / q-tilde (the listing's residual).
-  subroutine newton_test(nt, qbar, r_max, c_max, du_max, converged, ratio)
-    type(newton_t), intent(inout) :: nt
-    real(dp), intent(in) :: qbar, r_max, c_max, du_max
-    logical, intent(out) :: converged
-    real(dp), intent(out) :: ratio
-    real(dp) :: q, c1, c2, est
-    integer :: i
-    nt%q_last = qbar
-    q = max((nt%q_sum + qbar) / (nt%q_count + 1), tiny(1.0_dp))
-    if (nt%ctl%qu > 0.0_dp) q = nt%ctl%qu
-    nt%r = [r_max, nt%r(1), nt%r(2)]
-    i = nt%it
-    if (qbar > nt%ctl%eps * q) then
-      c1 = nt%ctl%rn
-      if (i > nt%ctl%ip) c1 = nt%ctl%rp
-      c2 = nt%ctl%cn
-    else
-      c1 = nt%ctl%eps
-      c2 = nt%ctl%ceps
-    end if
-    ratio = r_max / q
-    converged = .false.
-    nt%cut = 1.0_dp
-    if (r_max <= c1 * q) then
-      converged = c_max <= c2 * du_max .or. r_max <= nt%ctl%rl * q .or. qbar <= nt%ctl%eps * q .or. &
-                  c_max <= 1.0e-8_dp * max(du_max, tiny(1.0_dp))
-      if (.not. converged .and. i >= 3) then
-        if (min(nt%r(2), nt%r(3)) > 0.0_dp) converged = r_max * c_max / min(nt%r(2), nt%r(3)) < c2 * du_max
-      end if
-      if (converged) return
-    end if
-    if (i >= nt%ctl%i0 .and. r_max > 1.0e-20_dp .and. c_max > 1.0e-20_dp .and. nt%r(2) > nt%r(3) .and. &
-        r_max > nt%r(3) .and. r_max > c1 * q) then
-      nt%cut = nt%ctl%df
-      nt%reason = 'the residual force grew in two successive iterations (divergence)'
-      return
-    end if
-    if (nt%attempt >= nt%ctl%ic + nt%changes) then
-      nt%cut = nt%ctl%dc
-      nt%reason = 'no convergence in ' // itoa(nt%attempt) // ' iterations'
-      return
-    end if
-    if (i >= nt%ctl%ir .and. nt%r(2) > 0.0_dp .and. r_max < nt%r(2) .and. r_max > 0.0_dp) then
-      est = i + log(nt%ctl%rn * q / r_max) / log(r_max / nt%r(2))
-      if (est > nt%ctl%ic) then
-        nt%cut = nt%ctl%dc
-        nt%reason = 'convergence too slow (' // itoa(nt%ctl%ic) // ' iterations would not do)'
-      end if
-    end if
-  end subroutine newton_test
-
-  !> Purpose: a converged increment: its average force joins the step's
-  !> time average.
-  subroutine newton_converged(nt)
-    type(newton_t), intent(inout) :: nt
-    nt%q_sum = nt%q_sum + nt%q_last
-    nt%q_count = nt%q_count + 1
-  end subroutine newton_converged
-
-  !> Purpose: a new step starts from the time average of the steps
-  !> before (one sample of it), CalculiX's q_0, with its *CONTROLS ctl.
-  subroutine newton_new_step(nt, ctl)
-    type(newton_t), intent(inout) :: nt
-    type(controls_t), intent(in) :: ctl
-    nt%ctl = ctl
-    if (nt%q_count > 0) then
-      nt%q_sum = nt%q_sum / nt%q_count
-      nt%q_count = 1
-    end if
-    nt%total = 0
-  end subroutine newton_new_step
-
-  !> Purpose: the increment failed for reason (cut back by cut).
-  subroutine newton_failed(nt, cut, reason)
-    type(newton_t), intent(inout) :: nt
-    real(dp), intent(in) :: cut
-    character(len=*), intent(in) :: reason
-    nt%cut = cut
-    nt%reason = reason
-  end subroutine newton_failed
+  !> Purpose: the factor just made is that of the current status of cs.
+  subroutine factor_made(eq, cs)
+    type(equilibrium_t), intent(inout) :: eq
+    type(contact_set_t), intent(in) :: cs
+    eq%factor_states = status_codes(cs)
+    eq%factor_stabilised = cs%stabilised
+    eq%factor_valid = .true.
+  end subroutine factor_made
 
   !> The force scale that the contact status search judges round-off
   !> against: loads, contact forces and the forces of the history.

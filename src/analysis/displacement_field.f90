@@ -1,0 +1,336 @@
+!> The displacement field of the driver (an analysis_field's field_t):
+!> the bodies, the contact set, the equations and the load state of the
+!> mechanical problem, solved per increment by the equilibrium iteration
+!> (equilibrium's solve_increment). It commits the friction and material
+!> history of a converged increment, restores the contact set (and its
+!> equation numbering) and the displacements of a failed one, and hands
+!> the results of a converged one to the observers.
+module displacement_field
+  use kinds, only: dp
+  use model
+  use contact, only: contact_set_t, cfe_t, contact_search, contact_research, contact_commit
+  use assembly, only: body_t, element_counts_t, body_setup, commit_history
+  use dof_numbering, only: dofmap_t
+  use condensed_contact, only: number_equations
+  use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
+                        follower_loads
+  use constraints, only: mpc_t, resolve_equations, constraint_label
+  use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment, renumber_couplings, note_numbering, &
+                         numbering_fits
+  use newton_control, only: newton_new_step
+  use increment_results, only: increment_results_t, compute_increment_results
+  use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
+  use analysis_field, only: field_t
+  use linear_solver, only: linear_system_t
+  use strings, only: itoa
+  use messages, only: fatal
+  implicit none
+  private
+  public :: displacement_field_t
+
+  type, extends(field_t) :: displacement_field_t
+    real(dp), allocatable :: u(:, :), fext(:, :), rf(:, :)   ! (2, nn)
+    type(contact_set_t) :: cs
+    type(dofmap_t) :: dm
+    type(linear_system_t) :: sys
+    type(load_state_t) :: ls
+    type(equilibrium_t) :: eq
+    type(body_t) :: body
+    type(mpc_t) :: mpc                  ! the linear constraints, resolved once
+    logical :: update_search = .false.  ! UPDATE SEARCH on a contact pair
+    !> The current step is nonlinear (NLGEOM or a nonlinear material):
+    !> Newton with automatic increments; research_each: NLGEOM with
+    !> contact, the contact searched in every Newton iteration.
+    logical :: step_nonlinear = .false., research_each = .false.
+    !> Element routine calls made before the step (the body stiffness,
+    !> for the first step).
+    type(element_counts_t) :: counts_before
+    !> The state the increment started from (restore): the couplings'
+    !> statuses, or under NLGEOM with contact the whole contact set, and u.
+    type(cfe_t), allocatable :: saved(:)
+    type(contact_set_t) :: saved_cs
+    real(dp), allocatable :: u_saved(:, :)
+  contains
+    procedure :: setup
+    procedure :: begin_step => begin_mechanical_step
+    procedure :: nonlinear
+    procedure :: step_notes
+    procedure :: begin_increment
+    procedure :: solve
+    procedure :: commit
+    procedure :: restore
+    procedure :: failure
+    procedure :: report
+    procedure :: end_step
+    procedure :: finish
+  end type displacement_field_t
+
+contains
+
+  !> Purpose: the bodies' stored stiffness, the linear constraints
+  !> resolved for elimination (the deck's checks have reported what
+  !> cannot be, naming its line) and, small deformation, one contact
+  !> search on the initial configuration.
+  subroutine setup(f, m, timing)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    type(run_timing_t), intent(inout) :: timing
+    integer :: bad
+    character(len=:), allocatable :: msg
+    real(dp) :: t0
+    t0 = wall_time()
+    allocate(f%u(2, m%nn), f%fext(2, m%nn), f%rf(2, m%nn))
+    f%u = 0.0_dp
+    f%fext = 0.0_dp
+    f%rf = 0.0_dp
+    call body_setup(m, f%body, f%counts_before)
+    call resolve_equations(m, f%mpc, bad, msg)
+    if (bad > 0) call fatal(constraint_label(m, bad) // ': ' // msg)
+    call contact_search(m, m%x, f%cs)
+    if (size(m%pairs) > 0) f%update_search = any(m%pairs%update_search)
+    timing%setup = timing%setup + (wall_time() - t0)
+  end subroutine setup
+
+  !> Purpose: the contact search's notes for the listing (a pair whose
+  !> coarse slave resolves the pressure less well than the pair swapped
+  !> would), told after the step's header.
+  subroutine step_notes(f, obs)
+    class(displacement_field_t), intent(in) :: f
+    type(observer_ref_t), intent(in) :: obs(:)
+    integer :: k
+    if (.not. allocated(f%cs%notes)) return
+    do k = 1, size(f%cs%notes)
+      call tell_note(obs, trim(f%cs%notes(k)))
+    end do
+  end subroutine step_notes
+
+  !> Purpose: a step of the displacements: its load state, whether it is
+  !> nonlinear (NLGEOM, or a hyperelastic or plastic material), its
+  !> equations (after a search on the deformed configuration where NLGEOM
+  !> with contact follows another step), the Newton controls; the
+  !> equations and couplings in info.
+  subroutine begin_mechanical_step(f, m, is, total_time, info, timing)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is
+    real(dp), intent(in) :: total_time
+    type(step_info_t), intent(inout) :: info
+    type(run_timing_t), intent(inout) :: timing
+    real(dp) :: t0, ta
+    t0 = wall_time()
+    call begin_step(m, is, f%u, f%fext, total_time, f%ls)
+    f%step_nonlinear = m%steps(is)%nlgeom .or. nonlinear_material(m)
+    f%body%nonlinear = f%step_nonlinear
+    f%body%nlgeom = m%steps(is)%nlgeom
+    f%research_each = f%step_nonlinear .and. m%steps(is)%nlgeom .and. size(m%pairs) > 0
+    call newton_new_step(f%eq%newton, m%steps(is)%controls)
+    if (f%research_each .and. is > 1) call research(f, m, timing)
+    call number_equations(m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys, f%eq%cd, ta, f%step_nonlinear)
+    call check_loads_reached(m, f%ls, f%dm%inactive)
+    call begin_equilibrium(f%eq, f%dm%neq, f%cs%n, .true.)
+    call note_numbering(f%eq, m, f%cs)
+    timing%setup = timing%setup + (wall_time() - t0 - ta)
+    timing%analyse = timing%analyse + ta
+    f%eq%counts = f%counts_before
+    f%counts_before = element_counts_t()
+    info%equations = f%dm%neq
+    info%prescribed = count(f%ls%presc)
+    info%coupling_elements = f%cs%n
+    info%uncoupled = f%cs%uncoupled
+    info%uncoupled_pair = f%cs%uncoupled_pair
+  end subroutine begin_mechanical_step
+
+  !> Purpose: is the step nonlinear (Newton with automatic increments)?
+  logical function nonlinear(f)
+    class(displacement_field_t), intent(in) :: f
+    nonlinear = f%step_nonlinear
+  end function nonlinear
+
+  !> Purpose: an increment to step time t1 begins. The contact is paired
+  !> again where a search is due: under NLGEOM with contact on the
+  !> converged configuration, without the closed couplings the last
+  !> increment's iterations kept for points that found no master edge
+  !> (contact_research), the equations renumbered only if the couplings'
+  !> node lists changed; with UPDATE SEARCH otherwise (research). The
+  !> state to restore is saved, the prescribed values and loads of t1
+  !> set; in a nonlinear step the free dofs start where the last
+  !> increment left them, face pressures follow the deformed faces
+  !> (NLGEOM) and the temperatures of t0 and t1 are those of the load
+  !> state.
+  subroutine begin_increment(f, m, t0, t1, search_due, timing)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: t0, t1
+    logical, intent(in) :: search_due
+    type(run_timing_t), intent(inout) :: timing
+    if (f%research_each) then
+      if (search_due) then
+        call contact_research(m, m%x + f%u, f%cs)
+        if (.not. numbering_fits(f%eq, m, f%cs)) &
+          call renumber_couplings(f%eq, m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys)
+      end if
+      f%saved_cs = f%cs
+    else
+      if (f%update_search .and. search_due) call research(f, m, timing)
+      f%saved = f%cs%c(1:f%cs%n)
+    end if
+    f%u_saved = f%u
+    call values_at(m, f%ls, t1, f%u, f%fext)
+    if (.not. f%step_nonlinear) return
+    where (.not. f%ls%presc) f%u = f%u_saved
+    call follower_loads(m, f%ls, t1, f%body%fl_ptr, f%body%fl_face, f%body%fl_mag)
+    if (f%ls%thermal) then
+      if (.not. allocated(f%body%dtemp)) allocate(f%body%dtemp(m%nn), f%body%dtemp0(m%nn))
+      call temperature_change_at(m, f%ls, t1, f%body%dtemp)
+      call temperature_change_at(m, f%ls, t0, f%body%dtemp0)
+    end if
+  end subroutine begin_increment
+
+  !> Purpose: the equilibrium of the increment (solve_increment): in a
+  !> nonlinear step linearised about the saved converged state, under
+  !> NLGEOM with contact searching the contact in every iteration.
+  subroutine solve(f, m, is, inc, obs, ok, iters)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is, inc
+    type(observer_ref_t), intent(in) :: obs(:)
+    logical, intent(out) :: ok
+    integer, intent(out) :: iters
+    if (f%research_each) then
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters, &
+                           f%u_saved, f%ls%presc, f%mpc)
+    else if (f%step_nonlinear) then
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters, &
+                           f%u_saved)
+    else
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters)
+    end if
+  end subroutine solve
+
+  !> Purpose: a converged increment's history becomes the state the next
+  !> increment starts from: the one place where state that depends on
+  !> the loading path is committed (the contact layer's friction anchors
+  !> and slips; the bodies' material history at their integration
+  !> points, plastic strain and hardening). An increment that does not
+  !> converge commits nothing: its bisected or cut-back parts start again
+  !> from the last committed state.
+  subroutine commit(f)
+    class(displacement_field_t), intent(inout) :: f
+    call contact_commit(f%cs)
+    if (f%step_nonlinear) call commit_history(f%body)
+  end subroutine commit
+
+  !> Purpose: nothing of the failed attempt is kept: the statuses and
+  !> displacements the increment started with (the friction history is
+  !> committed only by converged increments); under NLGEOM with contact
+  !> the whole contact set (the number of couplings, geometry, statuses,
+  !> friction state) and, where the failed attempt renumbered the
+  !> equations for other couplings, the numbering for the restored ones.
+  subroutine restore(f, m)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    if (f%research_each) then
+      f%cs = f%saved_cs
+      if (.not. numbering_fits(f%eq, m, f%cs)) &
+        call renumber_couplings(f%eq, m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys)
+    else
+      f%cs%c(1:f%cs%n) = f%saved
+    end if
+    f%u = f%u_saved
+  end subroutine restore
+
+  !> Purpose: why the last solve failed (newton_control's reason) and by
+  !> how much to cut the increment; the contact nodes still switching.
+  subroutine failure(f, reason, cut, changing)
+    class(displacement_field_t), intent(in) :: f
+    character(len=:), allocatable, intent(out) :: reason, changing
+    real(dp), intent(out) :: cut
+    reason = f%eq%newton%reason
+    cut = f%eq%newton%cut
+    changing = f%eq%changed
+  end subroutine failure
+
+  !> Purpose: UPDATE SEARCH: the contact layer pairs again on the deformed
+  !> configuration; the equations are renumbered for the new couplings.
+  subroutine research(f, m, timing)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    type(run_timing_t), intent(inout) :: timing
+    real(dp) :: t0, ta
+    t0 = wall_time()
+    call contact_research(m, m%x + f%u, f%cs)
+    call number_equations(m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys, f%eq%cd, ta, f%step_nonlinear)
+    call begin_equilibrium(f%eq, f%dm%neq, f%cs%n, .false.)
+    call note_numbering(f%eq, m, f%cs)
+    timing%setup = timing%setup + (wall_time() - t0 - ta)
+    timing%analyse = timing%analyse + ta
+  end subroutine research
+
+  !> Purpose: the results of a converged increment at step time t,
+  !> computed once, to every observer.
+  subroutine report(f, m, is, inc, t, total_time, iters, dt, obs, timing)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is, inc, iters
+    real(dp), intent(in) :: t, total_time, dt
+    type(observer_ref_t), intent(in) :: obs(:)
+    type(run_timing_t), intent(inout) :: timing
+    type(increment_results_t) :: res
+    integer :: k
+    real(dp) :: t0, t1
+    real(dp), allocatable :: dtemp(:)
+    t0 = wall_time()
+    if (f%ls%thermal) then
+      allocate(dtemp(m%nn))
+      call temperature_change_at(m, f%ls, t, dtemp)
+      call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &
+                                     f%eq%counts, dtemp, f%body, dt)
+    else
+      call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &
+                                     f%eq%counts, body=f%body, dt=dt)
+    end if
+    t1 = wall_time()
+    do k = 1, size(obs)
+      call obs(k)%o%increment_done(m, res)
+    end do
+    timing%results = timing%results + (t1 - t0)
+    timing%output = timing%output + (wall_time() - t1)
+  end subroutine report
+
+  !> Purpose: the step's counts of factorisations, iterations, pivots and
+  !> element calls; under NLGEOM with contact a note of the searches and
+  !> renumberings of the Newton iterations.
+  subroutine end_step(f, obs, summary)
+    class(displacement_field_t), intent(inout) :: f
+    type(observer_ref_t), intent(in) :: obs(:)
+    type(step_summary_t), intent(inout) :: summary
+    if (f%step_nonlinear .and. f%eq%searches > 0) call tell_note(obs, 'contact searched again in ' // &
+      itoa(f%eq%searches) // ' Newton iterations; equations renumbered ' // itoa(f%eq%renumberings) // &
+      ' times for changed couplings')
+    summary%factorisations = f%eq%factorisations
+    summary%condensed_factorisations = f%eq%condensed_factorisations
+    summary%iterations = f%eq%iterations
+    summary%block_pivots = f%eq%search%block_pivots
+    summary%single_pivots = f%eq%search%single_pivots
+    summary%continuum_tangent = f%eq%counts%continuum_tangent
+    summary%continuum_stresses = f%eq%counts%continuum_stresses
+    summary%coupling = f%eq%counts%coupling
+    summary%newton_iterations = f%eq%newton%total
+  end subroutine end_step
+
+  !> Purpose: the iteration's parts of the run's timing.
+  subroutine finish(f, timing)
+    class(displacement_field_t), intent(in) :: f
+    type(run_timing_t), intent(inout) :: timing
+    associate(t => timing, e => f%eq%timing)
+      t%assembly = e%assembly
+      t%analyse = t%analyse + e%analyse
+      t%factor = e%factor
+      t%condensed = e%condensed
+      t%solve = e%solve
+      t%recovery = e%recovery
+      t%numeric_factorisations = e%numeric_factorisations
+      t%condensed_factorisations = e%condensed_factorisations
+    end associate
+  end subroutine finish
+end module displacement_field
