@@ -9,6 +9,7 @@ program cfe2d
   use analysis_events, only: observer_ref_t, run_timing_t, wall_time
   use results_gmsh, only: result_file_t, open_result_file
   use results_vtu, only: vtu_series_t, open_vtu_series
+  use results_frd, only: frd_file_t, open_frd_file
   use progress, only: progress_t
   use messages, only: fatal, terminate, warn
   use directories, only: make_directories
@@ -24,9 +25,10 @@ program cfe2d
   type(result_file_t), target :: res
   type(progress_t), target :: prog
   type(vtu_series_t), target :: vtu
+  type(frd_file_t), target :: frd
   type(observer_ref_t), allocatable :: observers(:)
   type(run_timing_t) :: timing
-  logical :: quiet, want_vtu, made, worker
+  logical :: quiet, want_vtu, made, worker, exists
   integer :: i, k, ios, digits, nobs, solver, ranks
 
   ! Under mpirun the ranks other than 0 only join the solver's jobs.
@@ -71,6 +73,13 @@ program cfe2d
       if (solver == 0) call fatal('--solver ' // trim(arg) // ': not a solver (CHOLMOD, UMFPACK, SKYLINE, MUMPS)')
       if (.not. solver_in_build(solver)) call fatal('--solver MUMPS: this cfe2d was built without MUMPS ' // &
                                                     '(no MPI or libmumps-dev where it was built; see README)')
+    case ('-i')
+      ! CalculiX's command line: ccx -i job (job.inp)
+      i = i + 1
+      if (i > command_argument_count()) call fatal('-i needs a job name (job.inp is read)')
+      call get_command_argument(i, arg)
+      if (len(deck) > 0) call fatal('only one deck per run')
+      deck = trim(arg)
     case ('-o', '--output-dir')
       i = i + 1
       if (i > command_argument_count()) call fatal('--output-dir needs a directory')
@@ -88,6 +97,12 @@ program cfe2d
     call fatal('no deck given')
   end if
 
+  ! As ccx: a job name without extension names job.inp.
+  inquire(file=deck, exist=exists)
+  if (.not. exists) then
+    inquire(file=deck // '.inp', exist=exists)
+    if (exists) deck = deck // '.inp'
+  end if
   ! Job name: the deck without its directory and .inp extension.
   k = index(deck, '/', back=.true.)
   base = deck(k + 1:)
@@ -120,13 +135,17 @@ program cfe2d
   end if
   call write_header(lst, m)
   ! The writers that observe the analysis; a new output format is one more line here.
-  allocate(observers(4))
+  allocate(observers(5))
   nobs = 1
   observers(1)%o => lst
   if (any_file_request(m)) then
     call open_result_file(job // '.msh', m, res)
     nobs = nobs + 1
     observers(nobs)%o => res
+    ! CalculiX's result file beside the gmsh one, for cgx, ccx2paraview, pycalculix
+    call open_frd_file(job // '.frd', m, frd)
+    nobs = nobs + 1
+    observers(nobs)%o => frd
   end if
   if (want_vtu .or. m%vtu) then
     call open_vtu_series(job, vtu)
@@ -166,10 +185,11 @@ contains
 
   subroutine usage()
     print '(a)', 'usage: cfe2d [options] deck.inp'
+    print '(a)', '       cfe2d [options] -i job      (as ccx: reads job.inp; so does cfe2d job)'
     print '(a)', ''
     print '(a)', 'Runs the keyword deck and writes <job>.out (listing) and, with contact,'
     print '(a)', '<job>_contact.csv, and with *NODE FILE or *EL FILE the gmsh result file'
-    print '(a)', '<job>.msh, next to the deck or in --output-dir. With --vtu (or FORMAT=VTU on'
+    print '(a)', '<job>.msh and CalculiX''s <job>.frd, next to the deck or in --output-dir. With --vtu (or FORMAT=VTU on'
     print '(a)', '*NODE FILE or *EL FILE) also ParaView files: <job>_NNNN.vtu per increment and'
     print '(a)', 'the time series <job>.pvd.'
     print '(a)', ''
