@@ -26,10 +26,12 @@ module results_frd
 
   type, extends(analysis_observer_t) :: frd_file_t
     character(len=:), allocatable :: path
-    integer :: unit = -1
+    integer :: unit = 0
+    logical :: open = .false.      ! (newunit numbers are negative)
     integer :: blocks = 0          ! result blocks written (the 1PSTEP counter)
     integer :: sets = 0            ! increments written (the 100CL counter)
     integer, allocatable :: ids(:) ! user node ids
+    logical, allocatable :: kept(:) ! the nodes written: those the analysis keeps
     type(schedule_t) :: schedule   ! which increments are written (FREQUENCY=, TIME POINTS=)
   contains
     procedure :: increment_done => write_frd_increment
@@ -55,8 +57,11 @@ contains
     character(len=10) :: time
     f%path = path
     f%ids = m%node_id
+    ! (as CalculiX, nodes of no element, left over from meshing, are not written)
+    f%kept = kept_nodes(m)
     open(newunit=f%unit, file=path, status='replace', action='write', iostat=ios)
     if (ios /= 0) call fatal('cannot write the CalculiX result file "' // path // '"')
+    f%open = .true.
     call date_and_time(date=date, time=time)
     write(f%unit, '(a)') '    1C'
     call user_record(f%unit, 'USER', '')
@@ -71,7 +76,7 @@ contains
     do k = 1, size(m%materials)
       write(f%unit, '(a, i5, a56)') '    1UMAT', k, m%materials(k)%name
     end do
-    call write_nodes(f%unit, m)
+    call write_nodes(f%unit, m, f%kept)
     call write_elements(f%unit, m)
   end subroutine open_frd_file
 
@@ -97,14 +102,15 @@ contains
     s = trim(names(k))
   end function month_name
 
-  !> The node block 2C: every node, z = 0.
-  subroutine write_nodes(u, m)
+  !> The node block 2C: the nodes kept, z = 0.
+  subroutine write_nodes(u, m, kept)
     integer, intent(in) :: u
     type(model_t), intent(in) :: m
+    logical, intent(in) :: kept(:)
     integer :: a
-    write(u, '(a, i30, i38)') '    2C', m%nn, 1
+    write(u, '(a, i30, i38)') '    2C', count(kept), 1
     do a = 1, m%nn
-      write(u, '(a, i10, 3a12)') ' -1', m%node_id(a), num(m%x(1, a)), num(m%x(2, a)), num(0.0_dp)
+      if (kept(a)) write(u, '(a, i10, 3a12)') ' -1', m%node_id(a), num(m%x(1, a)), num(m%x(2, a)), num(0.0_dp)
     end do
     write(u, '(a)') ' -3'
   end subroutine write_nodes
@@ -182,8 +188,7 @@ contains
     w = wants(m, res%step)
     if (.not. (w%u .or. w%s .or. w%e .or. w%rf .or. w%pe .or. w%contact)) return
     self%sets = self%sets + 1
-    allocate(at(m%nn))
-    at = .true.
+    at = self%kept
     if (w%u) then
       allocate(v(3, m%nn))
       v = 0.0_dp
@@ -441,9 +446,9 @@ contains
   subroutine close_frd_file(self, timing)
     class(frd_file_t), intent(inout) :: self
     type(run_timing_t), intent(in) :: timing
-    if (self%unit < 0) return
+    if (.not. self%open) return
     write(self%unit, '(a)') ' 9999'
     close(self%unit)
-    self%unit = -1
+    self%open = .false.
   end subroutine close_frd_file
 end module results_frd
