@@ -10,6 +10,8 @@ program cfe2d
   use results_gmsh, only: result_file_t, open_result_file
   use results_vtu, only: vtu_series_t, open_vtu_series
   use results_frd, only: frd_file_t, open_frd_file
+  use results_dat, only: dat_file_t, open_dat_file
+  use results_sta, only: status_files_t, open_status_files
   use progress, only: progress_t
   use messages, only: fatal, terminate, warn
   use directories, only: make_directories
@@ -26,6 +28,8 @@ program cfe2d
   type(progress_t), target :: prog
   type(vtu_series_t), target :: vtu
   type(frd_file_t), target :: frd
+  type(dat_file_t), target :: dat
+  type(status_files_t), target :: sta
   type(observer_ref_t), allocatable :: observers(:)
   type(run_timing_t) :: timing
   logical :: quiet, want_vtu, made, worker, exists
@@ -135,9 +139,15 @@ program cfe2d
   end if
   call write_header(lst, m)
   ! The writers that observe the analysis; a new output format is one more line here.
-  allocate(observers(5))
+  allocate(observers(7))
   nobs = 1
   observers(1)%o => lst
+  ! CalculiX's print and status files, as ccx writes them for every run
+  call open_dat_file(job // '.dat', dat)
+  call open_status_files(job, sta)
+  observers(2)%o => dat
+  observers(3)%o => sta
+  nobs = 3
   if (any_file_request(m)) then
     call open_result_file(job // '.msh', m, res)
     nobs = nobs + 1
@@ -187,7 +197,8 @@ contains
     print '(a)', 'usage: cfe2d [options] deck.inp'
     print '(a)', '       cfe2d [options] -i job      (as ccx: reads job.inp; so does cfe2d job)'
     print '(a)', ''
-    print '(a)', 'Runs the keyword deck and writes <job>.out (listing) and, with contact,'
+    print '(a)', 'Runs the keyword deck and writes <job>.out (listing), CalculiX''s <job>.dat'
+    print '(a)', '(*NODE PRINT, *EL PRINT, *CONTACT PRINT), <job>.sta and <job>.cvg, and, with contact,'
     print '(a)', '<job>_contact.csv, and with *NODE FILE or *EL FILE the gmsh result file'
     print '(a)', '<job>.msh and CalculiX''s <job>.frd, next to the deck or in --output-dir. With --vtu (or FORMAT=VTU on'
     print '(a)', '*NODE FILE or *EL FILE) also ParaView files: <job>_NNNN.vtu per increment and'
