@@ -59,6 +59,11 @@ program cfe2d
     case ('-v', '--version')
       print '(a)', 'cfe2d ' // program_version
       call terminate(0)
+    case ('-version')
+      ! ccx's spelling; tools that drive ccx (pycalculix) read the layout
+      ! version of the result files from the last number
+      print '(a)', 'cfe2d ' // program_version // ', result files as CalculiX Version 2.20'
+      call terminate(0)
     case ('-q', '--quiet')
       quiet = .true.
     case ('--vtu')

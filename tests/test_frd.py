@@ -4,9 +4,11 @@ values of a uniform plane-stress tension field against the closed form, and
 the real clients: ccx2paraview (its VTU equals cfe2d's own VTU to the
 printed digits) and cgx (reads the file in batch mode). ccx is never run
 here."""
+import json
 import os
 import shutil
 import subprocess
+import sys
 
 import numpy as np
 
@@ -296,3 +298,80 @@ def test_frd_cgx_reads_batch():
     assert "record: 9999" in out
     nodes, elems, _ = read_frd(os.path.join(d, "frd_cgx.frd"))
     assert f"n:{len(nodes)} e:{len(elems)}" in out, out[-800:]
+
+
+PYCALCULIX_SCRIPT = r'''
+"""A plate 100 x 20 mm drawn, meshed (CPS6) and written by pycalculix,
+solved by the "ccx" it is given (cfe2d), read back by its result reader."""
+import json, sys, types
+import numpy
+if not hasattr(numpy.lib, "polynomial"):
+    # pycalculix 1.1.4 imports numpy.lib.polynomial.roots, gone in numpy 2
+    shim = types.ModuleType("numpy.lib.polynomial")
+    shim.roots = numpy.roots
+    sys.modules["numpy.lib.polynomial"] = shim
+import matplotlib
+matplotlib.use("Agg")
+import pycalculix as pyc
+pyc.environment.CCX, pyc.environment.GMSH = sys.argv[1], sys.argv[2]
+model = pyc.FeaModel("plate")
+model.set_units("mm")
+part = pyc.Part(model)
+part.goto(0.0, 0.0)
+part.draw_line_ax(20.0)
+part.draw_line_rad(100.0)
+part.draw_line_ax(-20.0)
+part.draw_line_rad(-100.0)
+model.set_etype("plstress", part, 10.0)
+model.set_eshape("tri", 2)
+model.mesh(1.0, "gmsh")
+model.set_constr("fix", part.bottom, "x")
+model.set_constr("fix", part.left, "y")
+model.set_load("press", part.right, -10.0)
+mat = pyc.Material("steel")
+mat.set_mech_props(7.8e-9, 210000.0, 0.3)
+model.set_matl(mat, part)
+prob = pyc.Problem(model, "struct")
+prob.solve()
+r = prob.rfile
+out = {k: [r.get_nmax(k), r.get_nmin(k)] for k in ("Sx", "Sy", "ux", "uy", "ez")}
+out["Sy_elem"] = [r.get_emax("Sy", 1.0), r.get_emin("Sy", 1.0)]
+print("RESULTS " + json.dumps(out))
+'''
+
+
+def test_frd_pycalculix_reads_what_cfe2d_solves():
+    """pycalculix (PyPI) writes a plate deck (CPS6, plane stress, pulled
+    by 10 MPa), runs cfe2d as its ccx (`cfe2d plate`, `cfe2d -version`)
+    and reads cfe2d's .frd (nodal) and .dat (integration points) with its
+    own reader: Sy = 10 at every node and point, uy = 10 * 20 / E,
+    ux = -nu 10 * 100 / E and ez = -nu 10 / E, to the printed digits."""
+    gmsh = shutil.which("gmsh")
+    if gmsh is None:
+        raise Skip("gmsh is not installed (scripts/install-deps.sh installs it); pycalculix meshes with it")
+    probe = subprocess.run([sys.executable, "-c", "import dxfgrabber, requests, matplotlib"], capture_output=True)
+    if probe.returncode != 0 or subprocess.run([sys.executable, "-c", "import importlib.util, sys; "
+                                                "sys.exit(importlib.util.find_spec('pycalculix') is None)"]).returncode:
+        raise Skip("pycalculix is not installed (scripts/install-deps.sh installs it from PyPI)")
+    d = workdir("frd_pycalculix")
+    # gmsh 4.8 crashes (segfault) meshing pycalculix's .geo with the
+    # Mesh.Algorithm 8 it writes; the wrapper meshes it with algorithm 6
+    wrapper = os.path.join(d, "gmsh_wrapper")
+    with open(wrapper, "w") as f:
+        f.write(f'#!/bin/sh\nsed -i "s/Mesh.Algorithm = 8;/Mesh.Algorithm = 6;/" "$1"\nexec {gmsh} "$@"\n')
+    os.chmod(wrapper, 0o755)
+    with open(os.path.join(d, "drive.py"), "w") as f:
+        f.write(PYCALCULIX_SCRIPT)
+    proc = subprocess.run([sys.executable, "drive.py", CFE2D, wrapper], cwd=d, capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    line = [ln for ln in proc.stdout.splitlines() if ln.startswith("RESULTS ")]
+    assert line, proc.stdout[-2000:]
+    r = json.loads(line[0][8:])
+    close = lambda a, b: abs(a - b) <= 5e-6 * abs(b)      # noqa: E731
+    assert close(r["Sy"][0], 10.0) and close(r["Sy"][1], 10.0), r
+    assert close(r["Sy_elem"][0], 10.0) and close(r["Sy_elem"][1], 10.0), r
+    assert close(r["uy"][0], 10.0 * 20.0 / 210000.0) and r["uy"][1] == 0.0, r
+    assert close(r["ux"][1], -0.3 * 10.0 * 100.0 / 210000.0) and r["ux"][0] == 0.0, r
+    assert close(r["ez"][0], -0.3 * 10.0 / 210000.0) and close(r["ez"][1], -0.3 * 10.0 / 210000.0), r
+    assert max(abs(v) for v in r["Sx"]) < 1e-6, r
