@@ -863,10 +863,11 @@ contains
 
   !> Purpose: *CONTACT PRINT and *CONTACT FILE. The listing gives the
   !> contact tables (gap, status, force, area, pressure, friction) of
-  !> every pair at every increment, so *CONTACT PRINT asks for nothing
-  !> more (CSTR, CDIS, CFN, CFS, CNUM; its TOTALS= are the pair
-  !> summaries); *CONTACT FILE with CSTR or CDIS writes the contact
-  !> pressure (and shear) views of the result file. Other quantities
+  !> every pair at every increment; *CONTACT PRINT's CDIS and CSTR add the
+  !> blocks of CalculiX's .dat (step_t's contact_print_cdis/_cstr; CFN,
+  !> CFS, CNUM are read; its TOTALS= are the pair summaries); *CONTACT
+  !> FILE with CSTR or CDIS writes the contact pressure (and shear) views
+  !> of the result files (gmsh, VTU, the .frd's CONTACT block). Other quantities
   !> (CELS, PCON, ...) are warned about; FREQUENCY= and TIME POINTS= as
   !> on the other output cards.
   subroutine contact_request(p, m, kw)
