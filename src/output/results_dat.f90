@@ -45,6 +45,7 @@ contains
     f%open = .true.
   end subroutine open_dat_file
 
+  !> Purpose: close the file at the end of the run (the timing is not used).
   subroutine close_dat_file(self, timing)
     class(dat_file_t), intent(inout) :: self
     type(run_timing_t), intent(in) :: timing

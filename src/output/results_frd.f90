@@ -91,6 +91,7 @@ contains
     write(u, '(a)') '    1U' // k // v
   end subroutine user_record
 
+  !> The month's name as CalculiX writes the date (27.november.2026).
   pure function month_name(mm) result(s)
     character(len=2), intent(in) :: mm
     character(len=:), allocatable :: s
@@ -290,6 +291,7 @@ contains
     call values(self%unit, self%ids, v, at)
   end subroutine tensor_block
 
+  !> Purpose: a scalar block (PE): its one component and the values.
   subroutine scalar_block(self, res, name, v, at)
     class(frd_file_t), intent(inout) :: self
     type(increment_results_t), intent(in) :: res

@@ -53,6 +53,7 @@ contains
     flush(f%cvg)
   end subroutine open_status_files
 
+  !> Purpose: a step starts: its iterations are reported from increment 1.
   subroutine sta_step(self, m, info)
     class(status_files_t), intent(inout) :: self
     type(model_t), intent(in) :: m
@@ -87,6 +88,7 @@ contains
     self%increment = res%increment + 1
   end subroutine sta_increment
 
+  !> Purpose: close both files at the end of the run.
   subroutine close_status_files(self, timing)
     class(status_files_t), intent(inout) :: self
     type(run_timing_t), intent(in) :: timing
