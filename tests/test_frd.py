@@ -37,7 +37,7 @@ def read_frd(path):
     nodes, elems, sets = {}, {}, []
     i = 1
     while lines[i].startswith("    1U"):
-        assert len(lines[i]) == 70 or lines[i].startswith("    1UMAT"), repr(lines[i])
+        assert len(lines[i]) <= 80, repr(lines[i])
         i += 1
     while i < len(lines) - 2:
         ln = lines[i]
@@ -64,7 +64,8 @@ def read_frd(path):
             block, inc, step = int(ln[10:36]), int(ln[36:48]), int(ln[48:60])
             head = lines[i + 1]
             assert head[:7] == "  100CL" and len(head) == 75, repr(head)
-            kode, time, n = int(head[7:12]), num(head[12:24]), int(head[24:36])
+            # the time: E12.5 (cfe2d, and ccx for most values) or F12.9 (ccx near 1)
+            kode, time, n = int(head[7:12]), float(head[12:24]), int(head[24:36])
             assert int(head[58:63]) == kode - 100 and head[63:] == " " * 11 + "1", repr(head)
             if not sets or sets[-1][3] != kode:
                 sets.append((step, inc, time, kode, {}))
@@ -375,3 +376,33 @@ def test_frd_pycalculix_reads_what_cfe2d_solves():
     assert close(r["ux"][1], -0.3 * 10.0 * 100.0 / 210000.0) and r["ux"][0] == 0.0, r
     assert close(r["ez"][0], -0.3 * 10.0 / 210000.0) and close(r["ez"][1], -0.3 * 10.0 / 210000.0), r
     assert max(abs(v) for v in r["Sx"]) < 1e-6, r
+
+
+def test_frd_as_ccx_writes_it():
+    """The same deck (tests/calculix/frd_plate_cps8.inp, CPS8) in ccx 2.20's
+    .frd (tests/calculix/frd_plate_cps8.frd, made once) and in cfe2d's:
+    the strict reader above takes both; the same nodes (ccx too leaves out
+    the unused cell centres), element types and connectivity, the blocks in
+    the same order (ccx adds its ERROR estimate, cfe2d has none), DISP,
+    STRESS and TOSTRAIN equal to 1e-4 of each block's largest value (ccx's
+    strains are extrapolated from the points of its expanded element), FORC
+    at the supported nodes too (ccx's FORC also holds the applied load at
+    the loaded nodes, cfe2d's is the reaction: zero there)."""
+    ref = os.path.join(os.path.dirname(os.path.abspath(__file__)), "calculix")
+    cnodes, celems, csets = read_frd(os.path.join(ref, "frd_plate_cps8.frd"))
+    with open(os.path.join(ref, "frd_plate_cps8.inp")) as f:
+        run = run_deck("frd_as_ccx", f.read()).ok()
+    nodes, elems, sets = read_frd(os.path.join(os.path.dirname(run.listing_path), "frd_as_ccx.frd"))
+    assert nodes == cnodes and elems == celems
+    assert len(sets) == len(csets) == 1
+    blocks, cblocks = sets[0][3], csets[0][3]
+    assert list(cblocks) == list(blocks) + ["ERROR"], (list(cblocks), list(blocks))
+    assert sets[0][:3] == csets[0][:3]
+    for name in ("DISP", "STRESS", "TOSTRAIN", "FORC"):
+        big = max(np.max(np.abs(v)) for v in cblocks[name].values())
+        keys = [n for n in cblocks[name] if name != "FORC" or cnodes[n][0] == 0.0]
+        assert sorted(blocks[name]) == sorted(cblocks[name])
+        worst = max(np.max(np.abs(blocks[name][n] - cblocks[name][n])) for n in keys) / big
+        assert worst <= 1e-4, (name, worst)
+    loaded = [n for n in cnodes if cnodes[n][0] == LX]
+    assert all(abs(blocks["FORC"][n][0]) < 1e-9 * SIG < abs(cblocks["FORC"][n][0]) for n in loaded)

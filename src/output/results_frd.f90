@@ -74,18 +74,19 @@ contains
     call user_record(f%unit, 'DIR', '')
     call user_record(f%unit, 'DBN', '')
     do k = 1, size(m%materials)
-      write(f%unit, '(a, i5, a56)') '    1UMAT', k, m%materials(k)%name
+      write(f%unit, '(a, i5, a58)') '    1UMAT', k, m%materials(k)%name
     end do
     call write_nodes(f%unit, m, f%kept)
     call write_elements(f%unit, m)
   end subroutine open_frd_file
 
-  !> A 1U record: key in 18 columns, the value after it.
+  !> A 1U record: key in 18 columns, the value after it (72 columns in
+  !> all, as CalculiX pads them).
   subroutine user_record(u, key, value)
     integer, intent(in) :: u
     character(len=*), intent(in) :: key, value
     character(len=18) :: k
-    character(len=46) :: v
+    character(len=48) :: v
     k = key
     v = value
     write(u, '(a)') '    1U' // k // v
