@@ -178,3 +178,25 @@ def test_dat_contact_print_and_status_files():
     its = [ln.split() for ln in cvg[4:] if ln]
     assert its and {r[1] for r in its} == {"1", "2"}, its
     assert all(int(r[3]) >= 1 for r in its)
+
+
+def test_dat_node_print_local_axes():
+    """*NODE PRINT of nodes with *TRANSFORM: U in their local axes by
+    default (GLOBAL=NO, CalculiX's), in global ones with GLOBAL=YES; the
+    right edge of the plate in tension turned by 90 degrees (x' = y,
+    y' = -x): (u1', u2') = (uy, -ux) = (-nu S y / E, -S LX / E)."""
+    from test_frd import LX
+    right = ", ".join(str(5 * j + 5) for j in range(3))
+    transform = f"*NSET, NSET=RIGHTN\n{right}\n*TRANSFORM, NSET=RIGHTN\n0., 1., 0., -1., 0., 0.\n*MATERIAL"
+    cards = "*NODE PRINT, NSET=RIGHTN\nU\n*NODE PRINT, NSET=RIGHTN, GLOBAL=YES\nU\n"
+    deck = plate("CPS4", cards, step="1.0, 1.0").replace("*MATERIAL", transform, 1)
+    run = run_deck("dat_local", deck).ok()
+    got = blocks_of(os.path.join(os.path.dirname(run.listing_path), "dat_local.dat"))
+    assert [c for c, _, _ in got] == ["displacements (vx,vy,vz) for set RIGHTN"] * 2, got
+    tol = 1e-6 * SIG * LX / E
+    for (_, _, local), (_, _, glob) in [(got[0], got[1])]:
+        assert [r[0] for r in local] == ["5", "10", "15"]
+        for j, (rl, rg) in enumerate(zip(local, glob)):
+            y = LY * j / 2
+            assert abs(float(rl[1]) + NU * SIG * y / E) <= tol and abs(float(rl[2]) + SIG * LX / E) <= tol, rl
+            assert abs(float(rg[1]) - SIG * LX / E) <= tol and abs(float(rg[2]) + NU * SIG * y / E) <= tol, rg

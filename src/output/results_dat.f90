@@ -3,7 +3,8 @@
 !> so that scripts and tools that parse CalculiX's .dat (FreeCAD, pycalculix,
 !> the comparison of CalculiX's test suite with .dat.ref) read cfe2d's:
 !>   displacements (vx,vy,vz), forces (fx,fy,fz) and total force of a node
-!>   set (TOTALS=YES|ONLY); stresses, strains and the equivalent plastic
+!>   set (TOTALS=YES|ONLY; U and RF of a node with *TRANSFORM in its local
+!>   axes unless GLOBAL=YES, as CalculiX); stresses, strains and the equivalent plastic
 !>   strain at the integration points of an element set (cfe2d's points of
 !>   the 2D element, where CalculiX prints those of the 3D element it
 !>   expands a 2D element into); relative contact displacement and contact
@@ -129,22 +130,41 @@ contains
       if (r%order(q:q) == 'U' .and. .not. r%only_totals) then
         call caption(u, 'displacements (vx,vy,vz) for set ' // sname, res%total_time)
         do k = 1, size(sel)
-          write(u, '(i10, 1p, 3(1x, e13.6))') m%node_id(sel(k)), res%u(:, sel(k)), 0.0_dp
+          write(u, '(i10, 1p, 3(1x, e13.6))') m%node_id(sel(k)), shown(res%u(:, sel(k)), sel(k)), 0.0_dp
         end do
       else if (r%order(q:q) == 'R') then
         if (.not. r%only_totals) then
           call caption(u, 'forces (fx,fy,fz) for set ' // sname, res%total_time)
           do k = 1, size(sel)
-            write(u, '(i10, 1p, 3(1x, e13.6))') m%node_id(sel(k)), res%rf(:, sel(k)), 0.0_dp
+            write(u, '(i10, 1p, 3(1x, e13.6))') m%node_id(sel(k)), shown(res%rf(:, sel(k)), sel(k)), 0.0_dp
           end do
         end if
         if (r%totals .or. r%only_totals) then
+          ! (the total in global components, as CalculiX sums it)
           call caption(u, 'total force (fx,fy,fz) for set ' // sname, res%total_time)
-          write(u, '(6x, 1p, 3(1x, e13.6))') sum(res%rf(1, sel)), sum(res%rf(2, sel)), 0.0_dp
+          write(u, '(6x, 1p, 3(1x, e13.6))') tidy(sum(res%rf(1, sel))), tidy(sum(res%rf(2, sel))), 0.0_dp
         end if
       end if
     end do
+  contains
+    !> A nodal vector as printed: in the node's local axes (*TRANSFORM)
+    !> unless GLOBAL=YES, as CalculiX's *NODE PRINT.
+    function shown(v, a) result(w)
+      real(dp), intent(in) :: v(2)
+      integer, intent(in) :: a
+      real(dp) :: w(2)
+      w = v
+      if (.not. r%global .and. size(m%transforms) > 0) w = matmul(transpose(node_axes(m, a)), v)
+      w = tidy(w)
+    end function shown
   end subroutine node_blocks
+
+  !> Purpose: a value as printed: magnitudes below 1e-99 as zero, so that
+  !> the exponent keeps CalculiX's two digits (round-off only).
+  elemental real(dp) function tidy(x)
+    real(dp), intent(in) :: x
+    tidy = merge(0.0_dp, x, abs(x) < 1.0e-99_dp)
+  end function tidy
 
   !> Purpose: *EL PRINT's blocks in the order of the card, at the
   !> integration points as CalculiX numbers those of the 3D element it
@@ -191,12 +211,12 @@ contains
           ip = pts(j)
           select case (what)
           case ('S')
-            write(u, '(i10, i4, 1p, 6(1x, e13.6))') m%elem_id(e), j, res%sig_ip(1:4, ip, e), 0.0_dp, 0.0_dp
+            write(u, '(i10, i4, 1p, 6(1x, e13.6))') m%elem_id(e), j, tidy(res%sig_ip(1:4, ip, e)), 0.0_dp, 0.0_dp
           case ('E')
-            write(u, '(i10, i4, 1p, 6(1x, e13.6))') m%elem_id(e), j, res%eps_ip(1:2, ip, e), &
-              strain_zz(m, res, e, ip), 0.5_dp * res%eps_ip(3, ip, e), 0.0_dp, 0.0_dp
+            write(u, '(i10, i4, 1p, 6(1x, e13.6))') m%elem_id(e), j, tidy(res%eps_ip(1:2, ip, e)), &
+              tidy(strain_zz(m, res, e, ip)), tidy(0.5_dp * res%eps_ip(3, ip, e)), 0.0_dp, 0.0_dp
           case ('P')
-            write(u, '(i10, i4, 1p, 1x, e13.6)') m%elem_id(e), j, res%peeq_ip(ip, e)
+            write(u, '(i10, i4, 1p, 1x, e13.6)') m%elem_id(e), j, tidy(res%peeq_ip(ip, e))
           end select
         end do
       end do
@@ -288,11 +308,11 @@ contains
           if (cdis) then
             t = 0.0_dp
             if (p%frictional) t = p%slave_slip(j)
-            write(u, '(i10, 1p, 3(1x, e13.6))') m%node_id(p%slave_node(j)), p%slave_gap(j), t, 0.0_dp
+            write(u, '(i10, 1p, 3(1x, e13.6))') m%node_id(p%slave_node(j)), tidy(p%slave_gap(j)), tidy(t), 0.0_dp
           else
             t = 0.0_dp
             if (p%frictional) t = p%slave_traction(j)
-            write(u, '(i10, 1p, 3(1x, e13.6))') m%node_id(p%slave_node(j)), p%slave_pressure(j), t, 0.0_dp
+            write(u, '(i10, 1p, 3(1x, e13.6))') m%node_id(p%slave_node(j)), tidy(p%slave_pressure(j)), tidy(t), 0.0_dp
           end if
         end do
       end associate
