@@ -13,7 +13,7 @@
 !> Written at the increments the step's FREQUENCY= or TIME POINTS= select.
 module results_dat
   use kinds, only: dp
-  use model
+  use model, only: model_t, request_t, elem_nodes, node_axes
   use element_catalogue, only: catalogue, state_plane_stress, state_axisymmetric, shape_quad4, shape_quad8, &
                                shape_tri3, shape_tri6
   use messages, only: fatal

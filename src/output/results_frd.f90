@@ -13,9 +13,9 @@
 module results_frd
   use kinds, only: dp, program_version
   use strings, only: itoa
-  use model
+  use model, only: model_t, carries_stiffness, elem_nodes, kept_nodes
   use element_catalogue, only: catalogue, file_node_order, shape_tri3, shape_tri6, shape_quad4, shape_quad8, &
-                               shape_line2, shape_line3, state_plane_strain, state_plane_stress, state_axisymmetric
+                               shape_line2, shape_line3, state_plane_stress, state_axisymmetric
   use messages, only: fatal
   use analysis_events, only: analysis_observer_t, run_timing_t
   use increment_results, only: increment_results_t
