@@ -240,7 +240,11 @@ def test_cli_as_ccx():
 
 def test_frd_ccx2paraview_equals_vtu():
     """ccx2paraview (PyPI) converts cfe2d's .frd; its U, S and RF equal cfe2d's
-    own VTU at every node to the digits the .frd prints (5e-6 relative)."""
+    own VTU at every node to the digits the .frd prints (5e-6 relative).
+    One increment: ccx2paraview 3.2.0 writes each increment's file from a
+    thread while it already fills the same grid with the next increment's
+    values (so its files of a series may hold later values, or the
+    conversion crash), for ccx's own .frd as for cfe2d's."""
     exe = shutil.which("ccx2paraview")
     if exe is None:
         raise Skip("ccx2paraview is not installed (scripts/install-deps.sh installs it from PyPI)")
@@ -248,7 +252,7 @@ def test_frd_ccx2paraview_equals_vtu():
         import meshio
     except ImportError:
         raise Skip("meshio is not installed (scripts/install-deps.sh installs it)")
-    deck = plate("CPS8", "*NODE FILE, FORMAT=VTU\nU, RF, S\n*EL FILE\nS, E\n", step="0.5, 1.0")
+    deck = plate("CPS8", "*NODE FILE, FORMAT=VTU\nU, RF, S\n*EL FILE\nS, E\n", step="1.0, 1.0")
     run = run_deck("frd_c2p", deck).ok()
     d = os.path.dirname(run.listing_path)
     conv = os.path.join(d, "conv")
@@ -257,28 +261,21 @@ def test_frd_ccx2paraview_equals_vtu():
     proc = subprocess.run([exe, "frd_c2p.frd", "vtu"], cwd=conv, capture_output=True, text=True, timeout=120)
     if "Module vtk is not available" in proc.stderr + proc.stdout:
         raise Skip("ccx2paraview needs the vtk module (PyPI vtk; scripts/install-deps.sh installs it)")
-    assert proc.returncode == 0, proc.stderr
+    assert proc.returncode == 0, (proc.returncode, proc.stderr[-2000:])
     frd_ids = list(read_frd(os.path.join(d, "frd_c2p.frd"))[0])
-    with open(os.path.join(conv, "frd_c2p.pvd")) as f:
-        pvd = f.read()
-    assert 'file="frd_c2p.1.vtu" timestep="0.5"' in pvd and 'file="frd_c2p.2.vtu" timestep="1.0"' in pvd, pvd
-    # ccx2paraview 3.2.0 puts the last increment's values into every .vtu it
-    # writes (so it does with a .frd of ccx 2.20 itself, of two increments,
-    # checked by hand): its last file is compared.
-    for k in (2,):
-        theirs = meshio.read(os.path.join(conv, f"frd_c2p.{k}.vtu"))
-        ours = meshio.read(os.path.join(d, f"frd_c2p_{k:04d}.vtu"))
-        # ccx2paraview's points are the .frd's nodes in its order; cfe2d's VTU
-        # holds every node of the deck (the cell centres unused by CPS8 too)
-        row = {nid: r for r, nid in enumerate(ours.point_data["NodeId"])}
-        pick = [row[nid] for nid in frd_ids]
-        assert len(theirs.points) == len(frd_ids) < len(ours.points)
-        assert np.array_equal(theirs.points[:, :2], ours.points[pick, :2])
-        for name, ncomp in (("U", 3), ("RF", 3), ("S", 4)):
-            a, b = theirs.point_data[name][:, :ncomp], ours.point_data[name][pick, :ncomp]
-            tol = 5.0001e-6 * np.abs(b) + 1e-99
-            assert np.all(np.abs(a - b) <= tol), (name, np.max(np.abs(a - b) - tol))
-        assert np.max(np.abs(theirs.point_data["S"][:, 0])) > 0.4 * SIG
+    theirs = meshio.read(os.path.join(conv, "frd_c2p.vtu"))
+    ours = meshio.read(os.path.join(d, "frd_c2p_0001.vtu"))
+    # ccx2paraview's points are the .frd's nodes in its order; cfe2d's VTU
+    # holds every node of the deck (the cell centres unused by CPS8 too)
+    row = {nid: r for r, nid in enumerate(ours.point_data["NodeId"])}
+    pick = [row[nid] for nid in frd_ids]
+    assert len(theirs.points) == len(frd_ids) < len(ours.points)
+    assert np.array_equal(theirs.points[:, :2], ours.points[pick, :2])
+    for name, ncomp in (("U", 3), ("RF", 3), ("S", 4)):
+        a, b = theirs.point_data[name][:, :ncomp], ours.point_data[name][pick, :ncomp]
+        tol = 5.0001e-6 * np.abs(b) + 1e-99
+        assert np.all(np.abs(a - b) <= tol), (name, np.max(np.abs(a - b) - tol))
+    assert np.max(np.abs(theirs.point_data["S"][:, 0])) > 0.9 * SIG
 
 
 def test_frd_cgx_reads_batch():
