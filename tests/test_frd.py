@@ -236,6 +236,14 @@ def test_cli_as_ccx():
         assert proc.returncode == 0, proc.stderr
         assert os.path.exists(os.path.join(d, "job.out")) and os.path.exists(os.path.join(d, "job.frd")), args
         read_frd(os.path.join(d, "job.frd"))
+    # -i without a job, and a job without its deck: an error, no traceback
+    proc = subprocess.run([CFE2D, "-i"], cwd=d, capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 1 and "cfe2d: error: -i needs a job name" in proc.stderr, proc.stderr
+    proc = subprocess.run([CFE2D, "-q", "nojob"], cwd=d, capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 1 and "error" in proc.stderr and "nojob" in proc.stderr, proc.stderr
+    # ccx's -version, read by pycalculix: the last number is the layout's version
+    proc = subprocess.run([CFE2D, "-version"], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0 and proc.stdout.split()[-1] == "2.20", proc.stdout
 
 
 def test_frd_ccx2paraview_equals_vtu():
