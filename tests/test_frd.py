@@ -411,3 +411,34 @@ def test_frd_as_ccx_writes_it():
         assert worst <= 1e-4, (name, worst)
     loaded = [n for n in cnodes if cnodes[n][0] == LX]
     assert all(abs(blocks["FORC"][n][0]) < 1e-9 * SIG < abs(cblocks["FORC"][n][0]) for n in loaded)
+
+
+def test_frd_contact_block_with_friction():
+    """A block pressed, then slid on a base (Coulomb, mu = 0.3; the deck of
+    tests/test_friction_output.py): the CONTACT block's CSHEAR1 is the
+    VTU's CSHEAR and CPRESS its CSTRESS at every slave node of every
+    increment (5e-6), the shear reaches mu times the pressure where the
+    block slides, and CSLIP1, the accumulated slip, never decreases."""
+    from test_friction_output import slide_deck
+    try:
+        import meshio
+    except ImportError:
+        raise Skip("meshio is not installed (scripts/install-deps.sh installs it)")
+    run = run_deck("frd_friction", slide_deck(), args=("--vtu",)).ok()
+    d = os.path.dirname(run.listing_path)
+    _, _, sets = read_frd(os.path.join(d, "frd_friction.frd"))
+    assert len(sets) == 12, len(sets)
+    slipping = 0
+    last_slip = {}
+    for k, (step, _, _, blk) in enumerate(sets):
+        vtu = meshio.read(os.path.join(d, f"frd_friction_{k + 1:04d}.vtu"))
+        ids = list(vtu.point_data["NodeId"])
+        assert len(blk["CONTACT"]) == 8, sorted(blk["CONTACT"])
+        for nid, v in blk["CONTACT"].items():
+            p, t = vtu.point_data["CSTRESS"][ids.index(nid)], vtu.point_data["CSHEAR"][ids.index(nid)]
+            assert abs(v[3] - p) <= 5e-6 * abs(p) + 1e-90 and abs(v[4] - t) <= 5e-6 * abs(t) + 1e-90, (nid, v, p, t)
+            assert v[1] >= last_slip.get(nid, 0.0) - 1e-12, (nid, v, last_slip)
+            last_slip[nid] = v[1]
+            if step == 2 and v[3] > 0 and abs(abs(v[4]) - 0.3 * v[3]) <= 1e-4 * v[3]:
+                slipping += 1
+    assert slipping > 0
