@@ -110,7 +110,7 @@ $(BUILD)/tests/%: tests/unit/%.f90 $(OBJS) $(BUILD)/tests/test_report.o | $(BUIL
 	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(BUILD)/tests/test_report.o $(OBJS) $(LIBS)
 
 $(OBJDIR)/cfe2d.o: $(OBJDIR)/directories.o $(OBJDIR)/deck_parser.o $(OBJDIR)/listing.o $(OBJDIR)/analysis.o $(OBJDIR)/results_gmsh.o \
-                   $(OBJDIR)/results_vtu.o $(OBJDIR)/tie_constraints.o
+                   $(OBJDIR)/results_vtu.o $(OBJDIR)/results_frd.o $(OBJDIR)/results_dat.o $(OBJDIR)/results_sta.o $(OBJDIR)/tie_constraints.o
 
 deps:
 	bash scripts/install-deps.sh

@@ -54,3 +54,27 @@ if [ ${#py_missing[@]} -gt 0 ]; then
 else
   echo "install-deps: Python packages present (numpy matplotlib meshio)"
 fi
+
+# The clients of CalculiX's result files the tests run on cfe2d's .frd
+# (tests/test_frd.py; skipped with a message where missing): cgx from
+# Debian, ccx2paraview and the vtk module it needs and pycalculix from
+# PyPI. A failure here is not fatal: the tests say what is missing.
+if ! command -v cgx >/dev/null 2>&1; then
+  echo "install-deps: installing cgx (calculix-cgx)"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1; then SUDO="sudo"; fi
+  if ! { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq \
+         --no-install-recommends calculix-cgx >/dev/null; }; then
+    echo "install-deps: calculix-cgx not installed: the cgx test of the .frd is skipped" >&2
+  fi
+fi
+if ! "$PYTHON" -c "import ccx2paraview, vtk" 2>/dev/null; then
+  echo "install-deps: installing ccx2paraview and vtk from PyPI"
+  "$PYTHON" -m pip install --quiet --disable-pip-version-check ccx2paraview vtk || \
+    echo "install-deps: ccx2paraview not installed: its test of the .frd is skipped" >&2
+fi
+if ! "$PYTHON" -c "import importlib.util, sys; sys.exit(importlib.util.find_spec('pycalculix') is None)" 2>/dev/null; then
+  echo "install-deps: installing pycalculix from PyPI"
+  "$PYTHON" -m pip install --quiet --disable-pip-version-check pycalculix || \
+    echo "install-deps: pycalculix not installed: its test of the .frd and .dat is skipped" >&2
+fi

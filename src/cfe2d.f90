@@ -9,6 +9,9 @@ program cfe2d
   use analysis_events, only: observer_ref_t, run_timing_t, wall_time
   use results_gmsh, only: result_file_t, open_result_file
   use results_vtu, only: vtu_series_t, open_vtu_series
+  use results_frd, only: frd_file_t, open_frd_file
+  use results_dat, only: dat_file_t, open_dat_file
+  use results_sta, only: status_files_t, open_status_files
   use progress, only: progress_t
   use messages, only: fatal, terminate, warn
   use directories, only: make_directories
@@ -24,9 +27,12 @@ program cfe2d
   type(result_file_t), target :: res
   type(progress_t), target :: prog
   type(vtu_series_t), target :: vtu
+  type(frd_file_t), target :: frd
+  type(dat_file_t), target :: dat
+  type(status_files_t), target :: sta
   type(observer_ref_t), allocatable :: observers(:)
   type(run_timing_t) :: timing
-  logical :: quiet, want_vtu, made, worker
+  logical :: quiet, want_vtu, made, worker, exists
   integer :: i, k, ios, digits, nobs, solver, ranks
 
   ! Under mpirun the ranks other than 0 only join the solver's jobs.
@@ -53,6 +59,11 @@ program cfe2d
     case ('-v', '--version')
       print '(a)', 'cfe2d ' // program_version
       call terminate(0)
+    case ('-version')
+      ! ccx's spelling; tools that drive ccx (pycalculix) read the layout
+      ! version of the result files from the last number
+      print '(a)', 'cfe2d ' // program_version // ', result files as CalculiX Version 2.20'
+      call terminate(0)
     case ('-q', '--quiet')
       quiet = .true.
     case ('--vtu')
@@ -71,6 +82,13 @@ program cfe2d
       if (solver == 0) call fatal('--solver ' // trim(arg) // ': not a solver (CHOLMOD, UMFPACK, SKYLINE, MUMPS)')
       if (.not. solver_in_build(solver)) call fatal('--solver MUMPS: this cfe2d was built without MUMPS ' // &
                                                     '(no MPI or libmumps-dev where it was built; see README)')
+    case ('-i')
+      ! CalculiX's command line: ccx -i job (job.inp)
+      i = i + 1
+      if (i > command_argument_count()) call fatal('-i needs a job name (job.inp is read)')
+      call get_command_argument(i, arg)
+      if (len(deck) > 0) call fatal('only one deck per run')
+      deck = trim(arg)
     case ('-o', '--output-dir')
       i = i + 1
       if (i > command_argument_count()) call fatal('--output-dir needs a directory')
@@ -88,6 +106,12 @@ program cfe2d
     call fatal('no deck given')
   end if
 
+  ! As ccx: a job name without extension names job.inp.
+  inquire(file=deck, exist=exists)
+  if (.not. exists) then
+    inquire(file=deck // '.inp', exist=exists)
+    if (exists) deck = deck // '.inp'
+  end if
   ! Job name: the deck without its directory and .inp extension.
   k = index(deck, '/', back=.true.)
   base = deck(k + 1:)
@@ -120,13 +144,23 @@ program cfe2d
   end if
   call write_header(lst, m)
   ! The writers that observe the analysis; a new output format is one more line here.
-  allocate(observers(4))
+  allocate(observers(7))
   nobs = 1
   observers(1)%o => lst
+  ! CalculiX's print and status files, as ccx writes them for every run
+  call open_dat_file(job // '.dat', dat)
+  call open_status_files(job, sta)
+  observers(2)%o => dat
+  observers(3)%o => sta
+  nobs = 3
   if (any_file_request(m)) then
     call open_result_file(job // '.msh', m, res)
     nobs = nobs + 1
     observers(nobs)%o => res
+    ! CalculiX's result file beside the gmsh one, for cgx, ccx2paraview, pycalculix
+    call open_frd_file(job // '.frd', m, frd)
+    nobs = nobs + 1
+    observers(nobs)%o => frd
   end if
   if (want_vtu .or. m%vtu) then
     call open_vtu_series(job, vtu)
@@ -166,11 +200,14 @@ contains
 
   subroutine usage()
     print '(a)', 'usage: cfe2d [options] deck.inp'
+    print '(a)', '       cfe2d [options] -i job      (as ccx: reads job.inp; so does cfe2d job)'
     print '(a)', ''
-    print '(a)', 'Runs the keyword deck and writes <job>.out (listing) and, with contact,'
-    print '(a)', '<job>_contact.csv, and with *NODE FILE or *EL FILE the gmsh result file'
-    print '(a)', '<job>.msh, next to the deck or in --output-dir. With --vtu (or FORMAT=VTU on'
-    print '(a)', '*NODE FILE or *EL FILE) also ParaView files: <job>_NNNN.vtu per increment and'
+    print '(a)', 'Runs the keyword deck and writes <job>.out (listing), CalculiX''s <job>.dat'
+    print '(a)', '(*NODE PRINT, *EL PRINT, *CONTACT PRINT), <job>.sta and <job>.cvg, with'
+    print '(a)', 'contact <job>_contact.csv, and with *NODE FILE or *EL FILE the gmsh result'
+    print '(a)', 'file <job>.msh and CalculiX''s <job>.frd, next to the deck or in'
+    print '(a)', '--output-dir. With --vtu (or FORMAT=VTU on *NODE FILE or *EL FILE) also'
+    print '(a)', 'ParaView files: <job>_NNNN.vtu per increment and'
     print '(a)', 'the time series <job>.pvd.'
     print '(a)', ''
     print '(a)', '  -o, --output-dir DIR   write the results into DIR (made, with its parents, if missing)'

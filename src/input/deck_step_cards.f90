@@ -730,11 +730,15 @@ contains
       do k = 1, n
         q = to_upper(f(k)%s)
         select case (q)
-        case ('U'); r%u = .true.
-        case ('RF'); r%rf = .true.
-        case ('S'); r%s = .true.
-        case ('E'); r%e = .true.
-        case ('PEEQ'); r%peeq = .true.
+        case ('U', 'RF', 'S', 'E', 'PEEQ')
+          r%u = r%u .or. q == 'U'
+          r%rf = r%rf .or. q == 'RF'
+          r%s = r%s .or. q == 'S'
+          r%e = r%e .or. q == 'E'
+          r%peeq = r%peeq .or. q == 'PEEQ'
+          ! the order of the card (that of CalculiX's .dat blocks)
+          if (index(r%order, q(1:1)) == 0 .and. len_trim(r%order) < len(r%order)) &
+            r%order = trim(r%order) // merge('P', q(1:1), q == 'PEEQ')
         case ('CSTRESS', 'CDISP', 'CONTACT'); r%cstress = .true.
         case ('')
         case default
@@ -859,10 +863,11 @@ contains
 
   !> Purpose: *CONTACT PRINT and *CONTACT FILE. The listing gives the
   !> contact tables (gap, status, force, area, pressure, friction) of
-  !> every pair at every increment, so *CONTACT PRINT asks for nothing
-  !> more (CSTR, CDIS, CFN, CFS, CNUM; its TOTALS= are the pair
-  !> summaries); *CONTACT FILE with CSTR or CDIS writes the contact
-  !> pressure (and shear) views of the result file. Other quantities
+  !> every pair at every increment; *CONTACT PRINT's CDIS and CSTR add the
+  !> blocks of CalculiX's .dat (step_t's contact_print_cdis/_cstr; CFN,
+  !> CFS, CNUM are read; its TOTALS= are the pair summaries); *CONTACT
+  !> FILE with CSTR or CDIS writes the contact pressure (and shear) views
+  !> of the result files (gmsh, VTU, the .frd's CONTACT block). Other quantities
   !> (CELS, PCON, ...) are warned about; FREQUENCY= and TIME POINTS= as
   !> on the other output cards.
   subroutine contact_request(p, m, kw)
@@ -889,7 +894,11 @@ contains
       do k = 1, n
         q = to_upper(f(k)%s)
         select case (q)
-        case ('CSTR', 'CDIS', 'CSTRESS', 'CDISP'); r%cstress = .true.
+        case ('CSTR', 'CDIS', 'CSTRESS', 'CDISP')
+          r%cstress = .true.
+          ! *CONTACT PRINT: the blocks of <job>.dat
+          if (.not. r%to_file .and. p%step > 0 .and. q(1:4) == 'CSTR') m%steps(p%step)%contact_print_cstr = .true.
+          if (.not. r%to_file .and. p%step > 0 .and. q(1:4) == 'CDIS') m%steps(p%step)%contact_print_cdis = .true.
         case ('CFN', 'CFS', 'CNUM')
           if (r%to_file) call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not written to the ' // &
             'result files and is ignored (the listing''s contact tables give the contact forces)')
@@ -901,6 +910,10 @@ contains
       if (.not. next_data(p)) exit
     end do
     call output_schedule(p, m, kw, card, every)
+    if (.not. r%to_file .and. every == 0 .and. p%step > 0) then
+      m%steps(p%step)%contact_print_cstr = .false.
+      m%steps(p%step)%contact_print_cdis = .false.
+    end if
     if (.not. r%to_file .or. .not. r%cstress .or. every == 0) return
     call grow(m%steps(p%step)%requests, p%nreq + 1)
     p%nreq = p%nreq + 1

@@ -177,6 +177,9 @@ module model
     !> TOTALS= of *NODE PRINT: YES lists the sum of RF over the set after
     !> the rows, ONLY the sum alone (and no row of U or RF), as CalculiX.
     logical :: totals = .false., only_totals = .false.
+    !> The quantities in the order the card lists them (U, R for RF, S, E,
+    !> P for PEEQ), the order of CalculiX's blocks in <job>.dat.
+    character(len=8) :: order = ''
   end type request_t
 
   !> *CONTROLS of a nonlinear step (CalculiX's names and defaults, its
@@ -224,6 +227,9 @@ module model
     integer :: out_every = 1
     real(dp), allocatable :: out_times(:)
     logical :: out_total_time = .false.
+    !> *CONTACT PRINT of the step: CDIS and CSTR of the closed slave nodes
+    !> in <job>.dat (the listing's contact tables are written anyway).
+    logical :: contact_print_cdis = .false., contact_print_cstr = .false.
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.

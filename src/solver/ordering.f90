@@ -14,13 +14,15 @@ module ordering
 contains
 
   !> perm(new) = old. xadj/adj: neighbours of node i are adj(xadj(i):xadj(i+1)-1).
+  !> Each connected component is numbered from a pseudo-peripheral node by
+  !> Cuthill-McKee and reversed.
   subroutine rcm_order(n, xadj, adj, perm)
     integer, intent(in) :: n, xadj(:), adj(:)
     integer, intent(out) :: perm(n)
     logical, allocatable :: done(:)
-    integer, allocatable :: deg(:), level(:)
-    integer :: nordered, start, i, head, tail, v, k, w, first_in_comp, ecc, last_ecc
-    allocate(done(n), deg(n), level(n))
+    integer, allocatable :: deg(:)
+    integer :: nordered, i, first_in_comp
+    allocate(done(n), deg(n))
     do i = 1, n
       deg(i) = xadj(i + 1) - xadj(i)
     end do
@@ -28,87 +30,105 @@ contains
     nordered = 0
     do i = 1, n
       if (done(i)) cycle
-      ! George-Liu: restart the breadth-first search from a node of the
-      ! last level until the eccentricity stops growing.
-      start = i
-      last_ecc = -1
-      do
-        call bfs_levels(start, ecc, w)
-        if (ecc <= last_ecc) exit
-        last_ecc = ecc
-        start = w
-      end do
       first_in_comp = nordered + 1
-      nordered = nordered + 1
-      perm(nordered) = start
-      done(start) = .true.
-      head = nordered
-      tail = nordered
-      do while (head <= tail)
-        v = perm(head)
-        head = head + 1
-        ! Unvisited neighbours by increasing degree.
-        k = tail
-        do w = xadj(v), xadj(v + 1) - 1
-          if (done(adj(w))) cycle
-          done(adj(w)) = .true.
-          tail = tail + 1
-          perm(tail) = adj(w)
-        end do
-        call sort_by_degree(perm(k + 1:tail))
-      end do
-      nordered = tail
+      call cuthill_mckee(xadj, adj, deg, peripheral_node(n, xadj, adj, deg, i), done, perm, nordered)
       perm(first_in_comp:nordered) = perm(nordered:first_in_comp:-1)
     end do
-
-  contains
-
-    !> Level structure from s; ecc = its depth, far = a node of least
-    !> degree in the last level.
-    subroutine bfs_levels(s, depth, far)
-      integer, intent(in) :: s
-      integer, intent(out) :: depth, far
-      integer, allocatable :: q(:)
-      integer :: h, t, u, j
-      allocate(q(n))
-      level = -1
-      level(s) = 0
-      q(1) = s
-      h = 1
-      t = 1
-      do while (h <= t)
-        u = q(h)
-        h = h + 1
-        do j = xadj(u), xadj(u + 1) - 1
-          if (level(adj(j)) < 0) then
-            level(adj(j)) = level(u) + 1
-            t = t + 1
-            q(t) = adj(j)
-          end if
-        end do
-      end do
-      depth = level(q(t))
-      far = q(t)
-      do j = 1, t
-        if (level(q(j)) == depth .and. deg(q(j)) < deg(far)) far = q(j)
-      end do
-    end subroutine bfs_levels
-
-    subroutine sort_by_degree(a)
-      integer, intent(inout) :: a(:)
-      integer :: p, q, x
-      do p = 2, size(a)
-        x = a(p)
-        q = p - 1
-        do while (q >= 1)
-          if (deg(a(q)) <= deg(x)) exit
-          a(q + 1) = a(q)
-          q = q - 1
-        end do
-        a(q + 1) = x
-      end do
-    end subroutine sort_by_degree
   end subroutine rcm_order
+
+  !> Purpose: a pseudo-peripheral node of the component of node i
+  !> (George-Liu: the breadth-first search restarted from a node of its
+  !> last level until the eccentricity stops growing).
+  integer function peripheral_node(n, xadj, adj, deg, i) result(start)
+    integer, intent(in) :: n, xadj(:), adj(:), deg(:), i
+    integer :: ecc, last_ecc, w
+    start = i
+    last_ecc = -1
+    do
+      call bfs_levels(n, xadj, adj, deg, start, ecc, w)
+      if (ecc <= last_ecc) exit
+      last_ecc = ecc
+      start = w
+    end do
+  end function peripheral_node
+
+  !> Purpose: the Cuthill-McKee numbering of the component of start,
+  !> appended to perm(nordered+1:) (nordered updated): breadth first, the
+  !> unvisited neighbours of each node by increasing degree; done marks
+  !> the numbered nodes.
+  subroutine cuthill_mckee(xadj, adj, deg, start, done, perm, nordered)
+    integer, intent(in) :: xadj(:), adj(:), deg(:), start
+    logical, intent(inout) :: done(:)
+    integer, intent(inout) :: perm(:), nordered
+    integer :: head, tail, v, k, w
+    nordered = nordered + 1
+    perm(nordered) = start
+    done(start) = .true.
+    head = nordered
+    tail = nordered
+    do while (head <= tail)
+      v = perm(head)
+      head = head + 1
+      k = tail
+      do w = xadj(v), xadj(v + 1) - 1
+        if (done(adj(w))) cycle
+        done(adj(w)) = .true.
+        tail = tail + 1
+        perm(tail) = adj(w)
+      end do
+      call sort_by_degree(perm(k + 1:tail), deg)
+    end do
+    nordered = tail
+  end subroutine cuthill_mckee
+
+  !> Purpose: the level structure from s; depth its depth (the
+  !> eccentricity of s), far a node of least degree in the last level.
+  subroutine bfs_levels(n, xadj, adj, deg, s, depth, far)
+    integer, intent(in) :: n, xadj(:), adj(:), deg(:), s
+    integer, intent(out) :: depth, far
+    integer, allocatable :: q(:), level(:)
+    integer :: h, t, u, j
+    allocate(q(n), level(n))
+    level = -1
+    level(s) = 0
+    q(1) = s
+    h = 1
+    t = 1
+    do while (h <= t)
+      u = q(h)
+      h = h + 1
+      do j = xadj(u), xadj(u + 1) - 1
+        if (level(adj(j)) < 0) then
+          level(adj(j)) = level(u) + 1
+          t = t + 1
+          q(t) = adj(j)
+        end if
+      end do
+    end do
+    depth = level(q(t))
+    far = q(t)
+    do j = 1, t
+      if (level(q(j)) == depth .and. deg(q(j)) < deg(far)) far = q(j)
+    end do
+  end subroutine bfs_levels
+
+  !> Purpose: a sorted by increasing deg (insertion sort: stable, so ties
+  !> keep their order).
+  pure subroutine sort_by_degree(a, deg)
+    integer, intent(inout) :: a(:)
+    integer, intent(in) :: deg(:)
+    integer :: p, q, x
+    do p = 2, size(a)
+      x = a(p)
+      q = p - 1
+      do while (q >= 1)
+        if (deg(a(q)) <= deg(x)) exit
+        a(q + 1) = a(q)
+        q = q - 1
+      end do
+      a(q + 1) = x
+    end do
+  end subroutine sort_by_degree
 
   !> Nested-dissection order (METIS_NodeND) of the symmetric matrix whose
   !> upper triangle has the 1-based compressed-column pattern colptr,

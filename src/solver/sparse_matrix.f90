@@ -34,14 +34,30 @@ contains
     integer, intent(in) :: n, xeq(:), eqs(:)
     logical, intent(in) :: upper
     logical, intent(in), optional :: with_map
-    integer :: ne, e, i, j, k, gi, gj, col, cnt, pass
-    integer, allocatable :: xel(:), el(:), mark(:), fill(:)
-    integer(8) :: npairs
-    ne = size(xeq) - 1
+    integer, allocatable :: xel(:), el(:)
     a%n = n
     a%upper = upper
-    ! elements of each equation (transpose of the element lists)
-    allocate(xel(n + 1), mark(n), fill(n))
+    call equation_elements(n, xeq, eqs, xel, el)
+    call column_rows(a, n, xeq, eqs, upper, xel, el)
+    allocate(a%val(a%colptr(n + 1) - 1))
+    a%val = 0.0_dp
+    if (present(with_map)) then
+      if (.not. with_map) return
+    end if
+    call element_entry_map(a, xeq, eqs, upper)
+  end subroutine csc_build
+
+  !> Purpose: the elements of each equation, the transpose of the element
+  !> lists (csc_build).
+  !> Arguments: n equations; xeq, eqs the element lists (eqs <= 0: no
+  !> equation); el(xel(i):xel(i+1)-1) the elements holding equation i.
+  subroutine equation_elements(n, xeq, eqs, xel, el)
+    integer, intent(in) :: n, xeq(:), eqs(:)
+    integer, allocatable, intent(out) :: xel(:), el(:)
+    integer :: ne, e, i, k
+    integer, allocatable :: fill(:)
+    ne = size(xeq) - 1
+    allocate(xel(n + 1), fill(n))
     xel = 0
     do k = 1, xeq(ne + 1) - 1
       if (eqs(k) > 0) xel(eqs(k) + 1) = xel(eqs(k) + 1) + 1
@@ -60,39 +76,57 @@ contains
         end if
       end do
     end do
-    ! rows of each column: the equations of the elements that hold it
+  end subroutine equation_elements
+
+  !> Purpose: the rows of each column of a (colptr, rowind, sorted): the
+  !> equations of the elements that hold it, the upper triangle only if
+  !> upper; counted in a first pass, stored in a second (csc_build).
+  !> Arguments: xel, el from equation_elements.
+  subroutine column_rows(a, n, xeq, eqs, upper, xel, el)
+    type(csc_t), intent(inout) :: a
+    integer, intent(in) :: n, xeq(:), eqs(:), xel(:), el(:)
+    logical, intent(in) :: upper
+    integer :: e, j, k, gi, col, cnt, pass
+    integer, allocatable :: mark(:)
+    allocate(mark(n))
     mark = 0
     allocate(a%colptr(n + 1))
     a%colptr(1) = 1
-      do pass = 1, 2
-        do col = 1, n
-          cnt = 0
-          do k = xel(col), xel(col + 1) - 1
-            e = el(k)
-            do j = xeq(e), xeq(e + 1) - 1
-              gi = eqs(j)
-              if (gi <= 0) cycle
-              if (upper .and. gi > col) cycle
-              if (mark(gi) == col + (pass - 1) * n) cycle
-              mark(gi) = col + (pass - 1) * n
-              cnt = cnt + 1
-              if (pass == 2) a%rowind(a%colptr(col) + cnt - 1) = gi
-            end do
+    do pass = 1, 2
+      do col = 1, n
+        cnt = 0
+        do k = xel(col), xel(col + 1) - 1
+          e = el(k)
+          do j = xeq(e), xeq(e + 1) - 1
+            gi = eqs(j)
+            if (gi <= 0) cycle
+            if (upper .and. gi > col) cycle
+            if (mark(gi) == col + (pass - 1) * n) cycle
+            mark(gi) = col + (pass - 1) * n
+            cnt = cnt + 1
+            if (pass == 2) a%rowind(a%colptr(col) + cnt - 1) = gi
           end do
-          if (pass == 1) then
-            a%colptr(col + 1) = a%colptr(col) + cnt
-          else
-            call sort_int(a%rowind(a%colptr(col):a%colptr(col + 1) - 1))
-          end if
         end do
-        if (pass == 1) allocate(a%rowind(a%colptr(n + 1) - 1))
+        if (pass == 1) then
+          a%colptr(col + 1) = a%colptr(col) + cnt
+        else
+          call sort_int(a%rowind(a%colptr(col):a%colptr(col + 1) - 1))
+        end if
       end do
-    allocate(a%val(a%colptr(n + 1) - 1))
-    a%val = 0.0_dp
-    if (present(with_map)) then
-      if (.not. with_map) return
-    end if
-    ! value positions of every element entry
+      if (pass == 1) allocate(a%rowind(a%colptr(n + 1) - 1))
+    end do
+  end subroutine column_rows
+
+  !> Purpose: the value position of every element entry (a%eptr, a%emap:
+  !> element e's entries, row by row of its equation list, the upper
+  !> triangle's (min, max) if upper), for assembly without searching.
+  subroutine element_entry_map(a, xeq, eqs, upper)
+    type(csc_t), intent(inout) :: a
+    integer, intent(in) :: xeq(:), eqs(:)
+    logical, intent(in) :: upper
+    integer :: ne, e, i, j, k, gi, gj, col, cnt
+    integer(8) :: npairs
+    ne = size(xeq) - 1
     allocate(a%eptr(ne + 1))
     a%eptr(1) = 1
     do e = 1, ne
@@ -127,7 +161,7 @@ contains
         end do
       end do
     end do
-  end subroutine csc_build
+  end subroutine element_entry_map
 
   !> Index in rowind/val of entry (row, col), which must be in the pattern.
   pure integer function csc_position(a, row, col) result(lo)
