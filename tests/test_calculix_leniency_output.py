@@ -154,8 +154,9 @@ def test_time_points_write_the_increments_that_reach_them():
     and 0.6: U at 0.3, 0.6 (once for both points) and 1.0, one point
     inside an increment. GENERATE makes the points 0.25, 0.5, 0.75: U at
     0.3, 0.5, 0.8, 1.0, two inside. Points 0.2, 0.5: no warning. Under
-    NLGEOM (automatic increments) one warning says so, and U is written
-    at the first increment ending at or after each point. An undefined
+    NLGEOM (automatic increments) the increments are shortened to end on
+    the points, as CalculiX's (0.2, 0.3, 0.55, 0.6, 1.0, its .sta kept),
+    no warning, U at each point and the end. An undefined
     name warns at the line and the step's output stays every increment."""
     step = "*STEP\n*STATIC\n0.1, 1."
     cases = (("*TIME POINTS, NAME=TP\n0.3, 0.55\n0.6\n", [0.3, 0.6, 1.0], "1 time point lies"),
@@ -176,12 +177,20 @@ def test_time_points_write_the_increments_that_reach_them():
     # increments that reach the points
     deck = bar("*STEP, NLGEOM\n*STATIC\n0.2, 1.", "*NODE PRINT, NSET=ALLN, TIME POINTS=TP\nU\n") + cases[0][0]
     run = run_deck("lenient_time_points_automatic", deck).ok()
-    w = warnings(run)
-    assert len(w) == 1 and "TIME POINTS: the increments of this step are automatic" in w[0], run.stderr
+    assert warnings(run) == [], run.stderr
+    # the increments end where CalculiX 2.20's do (its .sta on the same
+    # deck, tests/calculix/time_points_automatic.csv): shortened to end on
+    # each point, the next growing from the size it would have had
+    ref = {"sta": [], "dat": []}
+    with open(os.path.join(HERE, "calculix", "time_points_automatic.csv")) as f:
+        for line in f:
+            if line.startswith("#") or line.startswith("file"):
+                continue
+            kind, t = line.strip().split(",")
+            ref[kind].append(float(t))
     times = [inc.time for inc in run.listing.increments]
-    for t in (0.3, 0.55, 0.6):
-        first = min(x for x in times if x >= t - 1e-12)
-        assert any(abs(first - x) < 1e-12 for x in block_times(run, "NODE U")), (t, times)
+    assert np.allclose(times, ref["sta"], rtol=0, atol=1e-12), (times, ref["sta"])
+    assert np.allclose(block_times(run, "NODE U"), ref["dat"], rtol=0, atol=1e-12), block_times(run, "NODE U")
     deck = bar(step, "*NODE PRINT, NSET=ALLN, TIME POINTS=NONE\nU\n")
     run = run_deck("lenient_time_points_undefined", deck).ok()
     assert warnings(run) == [f"{run.deck}:{line_of(deck, 'TIME POINTS=NONE')}: warning: undefined *TIME POINTS "
@@ -329,3 +338,18 @@ def test_frequency_applies_to_the_vtu_files_and_excludes_time_points():
     run = run_deck("lenient_frequency_and_time_points", bad)
     assert run.rc == 1 and f"{run.deck}:{line_of(bad, 'FREQUENCY=2, TIME POINTS=TP')}: error: FREQUENCY= and TIME " \
         "POINTS= exclude each other" in run.stderr, run.stderr
+
+
+def test_time_points_in_total_time_shorten_a_later_steps_increments():
+    """TIME=TOTAL TIME: the points are in total time, so in a second
+    NLGEOM step (after a first of period 1) the point 1.3 ends the
+    increment at step time 0.3 (0.2, then 0.1 to the point), and 1.0, the
+    first step's end, shortens nothing there."""
+    step2 = "*STEP, NLGEOM\n*STATIC\n0.2, 1.\n*CLOAD\n3, 1, 6.0\n*NODE PRINT, NSET=ALLN, TIME POINTS=TP\nU\n*END STEP\n"
+    deck = bar("*STEP, NLGEOM\n*STATIC\n0.5, 1.", "") + step2 + "*TIME POINTS, NAME=TP, TIME=TOTAL TIME\n1.0, 1.3\n"
+    run = run_deck("lenient_time_points_total_time", deck).ok()
+    assert warnings(run) == [], run.stderr
+    second = [inc for inc in run.listing.increments if inc.step == 2]
+    # (a listing increment's time is its total time)
+    assert [round(inc.time, 12) for inc in second[:2]] == [1.2, 1.3], [inc.time for inc in second]
+    assert any(abs(t - 1.3) < 1e-12 for t in block_times(run, "NODE U")), block_times(run, "NODE U")

@@ -10,7 +10,7 @@
 module analysis
   use kinds, only: dp
   use strings, only: itoa, rtoa
-  use model, only: model_t
+  use model, only: model_t, step_t
   use analysis_field, only: field_ref_t
   use displacement_field, only: displacement_field_t
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
@@ -257,7 +257,7 @@ contains
     integer, intent(in) :: is
     type(run_state_t), intent(inout) :: rs
     type(observer_ref_t), intent(in) :: obs(:)
-    real(dp) :: t, dt, dt_try, period
+    real(dp) :: t, dt, dt_try, dt_full, period
     integer :: iters, fast
     logical :: ok
     period = m%steps(is)%period
@@ -268,6 +268,10 @@ contains
       dt_try = min(dt, period - t)
       ! a last sliver of the step joins this increment
       if (period - (t + dt_try) < 1.0e-6_dp * dt_try) dt_try = period - t
+      ! shortened to end on a time point of the output (the size it would
+      ! have had is the one the next increment grows from, as CalculiX)
+      dt_full = dt_try
+      if (.not. m%steps(is)%direct) dt_try = to_time_point(m%steps(is), rs%total_time, t, dt_try)
       call solve_fields(m, is, rs, obs, t, t + dt_try, rs%inc > 0, ok, iters)
       if (.not. ok) then
         fast = 0
@@ -282,9 +286,29 @@ contains
         ' increments done at step time ' // rtoa(t, 6) // ' of ' // rtoa(period, 6) // ', the most INC= ' // &
         'of *STEP allows (default 1000)')
       if (m%steps(is)%direct) cycle
-      call next_increment(m, is, iters, dt_try, fast, dt)
+      call next_increment(m, is, iters, dt_full, fast, dt)
     end do
   end subroutine advance_automatic
+
+  !> Purpose: the automatic increment from step time t of size dt,
+  !> shortened to end on the first of the step's output time points
+  !> (TIME POINTS=, s%out_times: step time, or total time from start, the
+  !> total time at the step's start) that lies inside it, as CalculiX
+  !> shortens its increments; dt where none does.
+  pure real(dp) function to_time_point(s, start, t, dt) result(dtp)
+    type(step_t), intent(in) :: s
+    real(dp), intent(in) :: start, t, dt
+    real(dp) :: tp, tol
+    integer :: k
+    dtp = dt
+    if (.not. allocated(s%out_times)) return
+    tol = 1.0e-9_dp * s%period
+    do k = 1, size(s%out_times)
+      tp = s%out_times(k)
+      if (s%out_total_time) tp = tp - start
+      if (tp > t + tol .and. tp < t + dtp - tol) dtp = tp - t
+    end do
+  end function to_time_point
 
   !> Purpose: the size of the next increment after one of dt_try that
   !> converged in iters iterations: after two increments in a row that

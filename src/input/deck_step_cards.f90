@@ -1022,11 +1022,11 @@ contains
   !> Purpose: where the step's output follows TIME POINTS= (read at line
   !> p%time_points_line), say at that line what cfe2d writes where
   !> CalculiX would write elsewhere: CalculiX shortens its increments to
-  !> end on the time points, cfe2d keeps its increments and writes the
-  !> first increment ending at or after each point (output_schedule). A
-  !> step of fixed increments (linear, or DIRECT) warns about the points
-  !> that fall inside an increment; a step of automatic increments (NLGEOM,
-  !> a nonlinear material) warns once.
+  !> end on the time points, and so does cfe2d with automatic increments
+  !> (NLGEOM, a nonlinear material: the driver's to_time_point); a step of
+  !> fixed increments (linear, or DIRECT) keeps them and writes the first
+  !> increment ending at or after each point (output_schedule), and warns
+  !> about the points that fall inside an increment.
   subroutine check_time_points(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(in) :: m
@@ -1044,9 +1044,7 @@ contains
       if (s%period <= 0.0_dp) then
         ! (no *STATIC: the step is refused elsewhere)
       else if (.not. fixed) then
-        call deck_warning(p%deck, p%i, 'TIME POINTS: the increments of this step are automatic and are not ' // &
-          'shortened to end on the time points (CalculiX shortens them): the output of each point is that of ' // &
-          'the first increment ending at or after it')
+        ! (automatic increments end on the points)
       else
         missed = 0
         do k = 1, size(s%out_times)
