@@ -12,7 +12,7 @@
 !> Numbers are written as CalculiX writes them (1X,I2,I10,6E12.5 records).
 module results_frd
   use kinds, only: dp, program_version
-  use strings, only: itoa
+  use strings, only: itoa, e12_5, int_field
   use model, only: model_t, carries_stiffness, elem_nodes, kept_nodes
   use element_catalogue, only: catalogue, file_node_order, shape_tri3, shape_tri6, shape_quad4, shape_quad8, &
                                shape_line2, shape_line3, state_plane_stress, state_axisymmetric
@@ -112,7 +112,7 @@ contains
     integer :: a
     write(u, '(a, i30, i38)') '    2C', count(kept), 1
     do a = 1, m%nn
-      if (kept(a)) write(u, '(a, i10, 3a12)') ' -1', m%node_id(a), num(m%x(1, a)), num(m%x(2, a)), num(0.0_dp)
+      if (kept(a)) write(u, '(a)') ' -1' // int_field(m%node_id(a), 10) // e12_5(m%x(1, a)) // e12_5(m%x(2, a)) // e12_5(0.0_dp)
     end do
     write(u, '(a)') ' -3'
   end subroutine write_nodes
@@ -165,17 +165,6 @@ contains
     written = carries_stiffness(m, e) .and. frd_type(m%etype(e)) > 0
   end function written
 
-  !> Purpose: a real as CalculiX writes it (E12.5); magnitudes below 1e-99
-  !> as zero, so that the exponent keeps two digits.
-  pure function num(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=12) :: s
-    if (abs(x) < 1.0e-99_dp) then
-      write(s, '(es12.5e2)') 0.0_dp
-    else
-      write(s, '(es12.5e2)') x
-    end if
-  end function num
 
   !> Purpose: the result blocks of a converged increment, at the
   !> increments the step's FREQUENCY= or TIME POINTS= select.
@@ -242,7 +231,7 @@ contains
     character(len=8) :: nm
     self%blocks = self%blocks + 1
     write(self%unit, '(a, i26, i12, i12, a)') '    1PSTEP', self%blocks, res%increment, res%step, repeat(' ', 10)
-    write(self%unit, '(a, i5, a12, i12, a20, i2, i5, i12)') '  100CL', 100 + self%sets, num(res%total_time), n, &
+    write(self%unit, '(a, i5, a12, i12, a20, i2, i5, i12)') '  100CL', 100 + self%sets, e12_5(res%total_time), n, &
       '', 0, self%sets, 1
     nm = name
     write(self%unit, '(a, a8, 2i5)') ' -4  ', nm, ncomp, 1
@@ -311,8 +300,15 @@ contains
     real(dp), intent(in) :: v(:, :)
     logical, intent(in) :: at(:)
     integer :: a, k
+    character(len=:), allocatable :: line
+    allocate(character(len=13 + 12 * size(v, 1)) :: line)
     do a = 1, size(at)
-      if (at(a)) write(u, '(a, i10, *(a12))') ' -1', ids(a), (num(v(k, a)), k = 1, size(v, 1))
+      if (.not. at(a)) cycle
+      line(1:13) = ' -1' // int_field(ids(a), 10)
+      do k = 1, size(v, 1)
+        line(14 + 12 * (k - 1):13 + 12 * k) = e12_5(v(k, a))
+      end do
+      write(u, '(a)') line(1:13 + 12 * size(v, 1))
     end do
     write(u, '(a)') ' -3'
   end subroutine values
