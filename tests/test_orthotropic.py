@@ -443,3 +443,45 @@ def test_calculix_strips():
         err = max(max(abs(u["U1"][k] - ref[int(n)][0]), abs(u["U2"][k] - ref[int(n)][1])) / umax
                   for k, n in enumerate(u["node"]))
         assert err < tol, f"{name}: displacements differ from CalculiX's by {err:.2e} of the largest"
+
+
+def test_errors_name_the_line():
+    """Bad anisotropic input stops at its line with file:line: error: and
+    exit status 1 (no NaN, no crash)."""
+    good = open(os.path.join(HERE, "calculix", "ortho_strip_cpe8.inp")).read()
+    eng_line = "140000., 10000., 12000., 0.3, 0.28, 0.45, 5000., 4800.,"
+    ori = "*ORIENTATION, NAME=OR"
+    cases = [
+        ("undefined", good.replace("ORIENTATION=OR", "ORIENTATION=NONE"),
+         "*SOLID SECTION, ELSET=EALL, MATERIAL=LAMINA, ORIENTATION=NONE", "undefined orientation NONE"),
+        ("nonpd", good.replace(eng_line, "140000., 10000., 12000., 4., 0.28, 0.45, 5000., 4800.,"),
+         "3600.", "no positive definite compliance"),
+        ("negative", good.replace(eng_line, "140000., -10000., 12000., 0.3, 0.28, 0.45, 5000., 4800.,"),
+         "3600.", "must be positive"),
+        ("short", good.replace("\n3600.\n", "\n"), eng_line, "missing data line"),
+        ("long", good.replace("\n3600.\n", "\n3600., 20., 1.\n"), "3600., 20., 1.", "too many constants"),
+        ("temperature", good.replace("\n3600.\n", "\n3600., 20.\n" + eng_line + "\n3600., 100.\n"), eng_line,
+         "temperature-dependent"),
+        ("ortho_nonpd", good.replace("*ELASTIC, TYPE=ENGINEERING CONSTANTS\n" + eng_line + "\n3600.\n",
+                                     "*ELASTIC, TYPE=ORTHO\n1., 2., 1., 0., 0., 1., 1., 1.,\n1.\n"),
+         "1.", "not positive definite"),
+        ("type", good.replace("TYPE=ENGINEERING CONSTANTS", "TYPE=LAMINA"),
+         "*ELASTIC, TYPE=LAMINA", "TYPE=LAMINA is not implemented"),
+        ("system", good.replace(ori, ori + ", SYSTEM=SPHERICAL"), ori + ", SYSTEM=SPHERICAL", "SYSTEM=SPHERICAL"),
+        ("points", good.replace("0.86602540378443865, 0.5, 0., -0.5, 0.86602540378443865, 0.",
+                                "1., 0., 0., 2., 0., 0."), "1., 0., 0., 2., 0., 0.", "off the line of a"),
+        ("axis", good.replace("0.86602540378443865, 0.5, 0., -0.5, 0.86602540378443865, 0.",
+                              "1., 0., 0., 0., 1., 0.\n4, 30."), "4, 30.", "must be 1, 2 or 3"),
+        ("duplicate", good.replace(ori, ori + "\n1., 0., 0., 0., 1., 0.\n" + ori), ori, "duplicate orientation"),
+        ("nlgeom", good.replace("*STEP", "*STEP, NLGEOM"), "*MATERIAL, NAME=LAMINA", "under NLGEOM"),
+        ("plastic", good.replace("*SOLID SECTION", "*PLASTIC\n100., 0.\n*SOLID SECTION"), "*MATERIAL, NAME=LAMINA",
+         "plasticity or hyperelasticity of an anisotropic material"),
+    ]
+    for tag, deck, line_text, fragment in cases:
+        run = run_deck("ortho_err_" + tag, deck)
+        lines = deck.splitlines()
+        line = next(k for k, t in enumerate(lines, 1) if t == line_text)
+        if tag in ("duplicate", "temperature"):   # the second occurrence
+            line = max(k for k, t in enumerate(lines, 1) if t == line_text)
+        assert run.rc == 1 and f"ortho_err_{tag}.inp:{line}: error:" in run.stderr, (tag, line, run.stderr)
+        assert fragment in run.stderr, (tag, run.stderr)
