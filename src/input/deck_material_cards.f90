@@ -363,8 +363,9 @@ contains
   !> Purpose: once the deck is read (the sections' materials bound by
   !> check_model): each ORIENTATION= of a *SOLID SECTION names an
   !> *ORIENTATION, and an anisotropic material (*ELASTIC, TYPE=ORTHO,
-  !> ENGINEERING CONSTANTS or ANISO) is linear elastic on continuum
-  !> elements: plasticity, NLGEOM and trusses are errors.
+  !> ENGINEERING CONSTANTS or ANISO) is elastic on continuum elements
+  !> (St Venant-Kirchhoff under NLGEOM): plasticity, hyperelasticity and
+  !> trusses are errors.
   module subroutine check_orientations(p, m)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -389,8 +390,6 @@ contains
       if (m%materials(imat)%nyield > 0 .or. m%materials(imat)%law /= law_elastic) call err(p, 'material ' // &
           trim(m%materials(imat)%name) // ': plasticity or hyperelasticity of an anisotropic material ' // &
           '(*ELASTIC, TYPE=' // 'ORTHO, ENGINEERING CONSTANTS or ANISO) is not implemented')
-      if (any(m%steps%nlgeom)) call err(p, 'material ' // trim(m%materials(imat)%name) // ': anisotropic ' // &
-          'elasticity under NLGEOM (St Venant-Kirchhoff) is not implemented; it is without NLGEOM')
     end do
   end subroutine check_orientations
 
