@@ -431,13 +431,16 @@ def test_calculix_strips():
     an axisymmetric CAX8 ring of ANISO constants turned on the
     orientation's second line, and the same ring of ENGINEERING
     CONSTANTS in cylindrical axes about its symmetry axis y (local 2 the
-    hoop direction). Displacements relative to the largest: CPE8 1e-6
-    (CalculiX prints 7 digits; measured 1.0e-7), CPS8 1e-3 (measured
+    hoop direction); and the CPE8 strip's material turned by 30 degrees
+    written out as ANISO in the global axes (D1112, D2212, D3312 not
+    zero: CalculiX's order of the 21 constants). Displacements relative
+    to the largest: CPE8 1e-6 (CalculiX prints 7 digits; measured 1.0e-7
+    both), CPS8 1e-3 (measured
     1.3e-4: CalculiX runs plane stress as a 3D layer of the section's
     thickness), CAX8 1e-4 (measured 2.7e-5 and 1.3e-5: CalculiX runs an
     axisymmetric element as a thin 3D wedge)."""
-    for name, tol in (("ortho_strip_cpe8", 1e-6), ("ortho_strip_cps8", 1e-3), ("ortho_strip_cax8", 1e-4),
-                      ("ortho_ring_cax8_cyl", 1e-4)):
+    for name, tol in (("ortho_strip_cpe8", 1e-6), ("ortho_strip_cpe8_aniso", 1e-6), ("ortho_strip_cps8", 1e-3),
+                      ("ortho_strip_cax8", 1e-4), ("ortho_ring_cax8_cyl", 1e-4)):
         ref = calculix_displacements(os.path.join(HERE, "calculix", name + ".dat"))
         inc = run_deck(name, path=os.path.join(HERE, "calculix", name + ".inp")).ok().listing.increments[-1]
         u = inc.block("NODE U")

@@ -82,7 +82,7 @@ contains
   !> Purpose: *ELASTIC, TYPE=t for t ORTHO (or ORTHOTROPIC: D1111, D1122,
   !> D2222, D1133, D2233, D3333, D1212, D1313, D2323), ENGINEERING
   !> CONSTANTS (E1, E2, E3, nu12, nu13, nu23, G12, G13, G23) or ANISO (or
-  !> ANISOTROPIC: the 21 Dijkl, materials' aniso_stiffness), each then an
+  !> ANISOTROPIC: the 21 Dijkl, aniso_stiffness), each then an
   !> optional temperature, eight to a line as CalculiX reads them. The
   !> stiffness must be positive definite. The material keeps it (c6) and,
   !> for contact penalties and hourglass control, the isotropic E and nu
