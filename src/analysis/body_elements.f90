@@ -6,7 +6,7 @@
 !> build their element input here.
 module body_elements
   use kinds, only: dp
-  use model, only: model_t, elem_nodes, elem_thickness, is_truss
+  use model, only: model_t, elem_nodes, elem_thickness, is_truss, elastic_iso
   use element_catalogue, only: catalogue
   use element_interface, only: elem_in_t, max_hist
   use element_catalogue, only: max_ip
@@ -59,6 +59,7 @@ contains
         ein%d1 = mat%d1
         ein%nyield = mat%nyield
         if (mat%nyield > 0) ein%yield(:, 1:mat%nyield) = mat%yield(:, 1:mat%nyield)
+        if (mat%elastic_type /= elastic_iso) call anisotropic_input(m, sec%orientation, mat%c6, ein)
       end associate
       if (present(nlgeom)) ein%nlgeom = nlgeom
       ! (elem_in_t's history has no default: a plastic law reads it)
@@ -78,6 +79,27 @@ contains
       end if
     end associate
   end subroutine body_input
+
+  !> Purpose: the anisotropic stiffness c6 (material axes) and the
+  !> section's *ORIENTATION (index orient into m%orientations, 0 the
+  !> global axes) into the element data.
+  pure subroutine anisotropic_input(m, orient, c6, ein)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: orient
+    real(dp), intent(in) :: c6(6, 6)
+    type(elem_in_t), intent(inout) :: ein
+    ein%aniso = .true.
+    ein%c6 = c6
+    ein%orient_system = 0
+    if (orient == 0) return
+    associate(o => m%orientations(orient))
+      ein%orient_system = o%system
+      ein%orient_a = o%a
+      ein%orient_b = o%b
+      ein%orient_axis = o%axis
+      ein%orient_angle = o%angle
+    end associate
+  end subroutine anisotropic_input
 
   !> Purpose: the expansion coefficient of body element e's material (0
   !> for a spring, which has none).

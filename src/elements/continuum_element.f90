@@ -35,9 +35,10 @@ module continuum_element
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, &
                                act_thermal, wants
   use shape_functions, only: shape_at, gauss_rule, extrapolation, quad4_shape
-  use materials, only: elastic_matrix
+  use materials, only: elastic_matrix, rotate_stiffness, state_matrix, orientation_axes
   implicit none
   private
+  public :: material_matrix
   public :: continuum, volume_factor, strain_matrix, is_one_point_quad, uniform_strain, hourglass_modes, &
             hourglass_stiffness
 
@@ -125,6 +126,7 @@ contains
       if (ein%state /= state_axisymmetric .and. .not. t_ip > 0.0_dp) eout%detj_min = min(eout%detj_min, t_ip)
       dv = volume_factor(ein%state, detj, r, t_ip) * wg(ip)
       if (is_one_point_quad(ein)) call uniform_strain(ein, n, b(:, 1:nd), dv, eps0)
+      if (ein%aniso) d = material_matrix(ein, matmul(ein%xy(:, 1:nen), n(1:nen)), ein%state)
       if (wants(action, act_thermal)) eout%fe(1:nd) = eout%fe(1:nd) + matmul(matmul(eps0, d), b(:, 1:nd)) * dv
       if (need_k) then
         ! upper triangle of B^T D B, mirrored below after the loop
@@ -157,6 +159,28 @@ contains
       eout%sig_node(:, 1:nen) = matmul(eout%sig_ip(:, 1:ein%nip), transpose(ex(1:nen, 1:ein%nip)))
     end if
   end subroutine continuum
+
+  !> Purpose: the 4x4 stress-strain matrix of an anisotropic material
+  !> (ein%aniso) at the point xp: its stiffness turned from the axes of its
+  !> *ORIENTATION there to the global ones, in the element's stress state
+  !> (materials: rotate_stiffness, state_matrix). Without orientation
+  !> the material axes are the global ones.
+  !> Arguments: ein (c6, orient_*), xp the point (global x, y; reference
+  !> coordinates under NLGEOM), state the stress state (the element's;
+  !> plane strain for St Venant-Kirchhoff, whose law meets s33 = 0 itself).
+  pure function material_matrix(ein, xp, state) result(d)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(in) :: xp(2)
+    integer, intent(in) :: state
+    real(dp) :: d(4, 4), q(3, 3)
+    if (ein%orient_system == 0) then
+      d = state_matrix(ein%c6, state)
+    else
+      q = orientation_axes(ein%orient_system, ein%orient_a, ein%orient_b, ein%orient_axis, ein%orient_angle, &
+                           [xp, 0.0_dp])
+      d = state_matrix(rotate_stiffness(ein%c6, q), state)
+    end if
+  end function material_matrix
 
   !> Purpose: is the element a one-point bilinear quadrilateral (CPS4R,
   !> CPE4R, CAX4R), which needs hourglass_stiffness?

@@ -77,6 +77,16 @@ module element_interface
     integer :: nyield = 0
     real(dp) :: yield(2, max_yield)
     real(dp) :: hist(max_hist, max_ip)
+    !> Anisotropic elasticity (*ELASTIC TYPE=ORTHO, ENGINEERING CONSTANTS,
+    !> ANISO): c6 the 6x6 stiffness in the material axes (materials'
+    !> Voigt order; no default, read only where aniso), and the
+    !> *ORIENTATION that gives those axes at a point (materials'
+    !> orientation_axes: system 0 the global axes, else model's
+    !> orient_*; points a, b; the extra rotation by angle about axis).
+    logical :: aniso = .false.
+    real(dp) :: c6(6, 6)
+    integer :: orient_system = 0, orient_axis = 0
+    real(dp) :: orient_a(3) = 0.0_dp, orient_b(3) = 0.0_dp, orient_angle = 0.0_dp
   end type elem_in_t
 
   type :: elem_out_t

@@ -11,7 +11,8 @@
 !>
 !> Laws (docs/nonlinear.md, "Elements and materials"):
 !> - *ELASTIC under NLGEOM: St Venant-Kirchhoff, S = D E with D the
-!>   isotropic elastic_matrix and E the Green-Lagrange strain (CalculiX's
+!>   isotropic elastic_matrix (or an anisotropic material's matrix at the
+!>   point, given as dmat) and E the Green-Lagrange strain (CalculiX's
 !>   reading of *ELASTIC with NLGEOM).
 !> - NEO HOOKE and MOONEY-RIVLIN with CalculiX's strain energy
 !>   W = C10 (I1bar - 3) + C01 (I2bar - 3) + (J - 1)^2 / D1, I1bar, I2bar
@@ -185,7 +186,12 @@ contains
   !> df33df (optional, plane stress with the tangent): dF33/dF_c for the
   !> four in-plane components, -A(5, c) / A(5, 5) of the uncondensed
   !> tangent (the implicit function of P33 = 0; zero where A(5, 5) is).
-  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok, tangent, df33df)
+  !> dmat (optional): St Venant-Kirchhoff's matrix on (E11, E22, 2 E12,
+  !> E33) in place of the isotropic one, an anisotropic material's at the
+  !> point in the global (reference) axes (continuum_element's
+  !> material_matrix in plane strain).
+  pure subroutine finite_strain_response(ein, state, f, eth, hist_in, p, a, tau, hist_out, ok, tangent, df33df, &
+                                         dmat)
     type(elem_in_t), intent(in) :: ein
     integer, intent(in) :: state
     real(dp), intent(inout) :: f(3, 3)
@@ -194,6 +200,7 @@ contains
     logical, intent(out) :: ok
     logical, intent(in), optional :: tangent
     real(dp), intent(out), optional :: df33df(4)
+    real(dp), intent(in), optional :: dmat(4, 4)
     real(dp) :: e2(4), d(4, 4), e33, df33, j2
     integer :: it
     logical :: want
@@ -206,8 +213,12 @@ contains
         ! St Venant-Kirchhoff: S33 = 0 is linear in the mechanical E33
         ! (closed form); Em33 = ((F33 - eth)^2 - 1) / 2 (saint_venant)
         e2 = green_lagrange(f - eth * eye)
-        d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
-        e33 = -(d(4, 1) * e2(1) + d(4, 2) * e2(2)) / d(4, 4)
+        if (present(dmat)) then
+          d = dmat
+        else
+          d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
+        end if
+        e33 = -(d(4, 1) * e2(1) + d(4, 2) * e2(2) + d(4, 3) * e2(3)) / d(4, 4)
         ! no real thickness stretch when 1 + 2 Em33 <= 0 (an in-plane
         ! stretch of about 1.5 each way for nu = 0.3): reported, not used
         ok = 1.0_dp + 2.0_dp * e33 > 0.0_dp
@@ -232,7 +243,7 @@ contains
         ! max_local steps): the point is reported, not used
         ok = abs(df33) <= 1e-10_dp * f(3, 3)
       end if
-      call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out)
+      call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out, dmat)
       if (present(df33df)) then
         df33df = 0.0_dp
         if (abs(a(5, 5)) > 0.0_dp) df33df = -a(5, 1:4) / a(5, 5)
@@ -240,7 +251,7 @@ contains
       call condense(a)
       p(5) = 0.0_dp
     else
-      call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out)
+      call response_3d(ein, f, eth, hist_in, want, p, a, tau, hist_out, dmat)
     end if
   end subroutine finite_strain_response
 
@@ -250,11 +261,12 @@ contains
   !> dP = dtau F^-T - tau F^-T dF^T F^-T; for the unit dF = e_i (x) e_j
   !> the last term is (P e_j) (x) (F^-1 e_i)^T, its (k, l) entry
   !> P_kj Finv_li, taken so instead of two 3x3 products. tangent false:
-  !> P only (a = 0).
-  pure subroutine response_3d(ein, f, eth, hist_in, tangent, p, a, tau, hist_out)
+  !> P only (a = 0). dmat (optional) as finite_strain_response's.
+  pure subroutine response_3d(ein, f, eth, hist_in, tangent, p, a, tau, hist_out, dmat)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth, hist_in(max_hist)
     logical, intent(in) :: tangent
+    real(dp), intent(in), optional :: dmat(4, 4)
     real(dp), intent(out) :: p(5), a(5, 5), tau(3, 3), hist_out(max_hist)
     real(dp) :: dtau(3, 3, 5), finv(3, 3), fit(3, 3), pm(3, 3), dpm(3, 3)
     integer :: c, r, i, j
@@ -266,7 +278,7 @@ contains
     if (ein%nyield > 0) then
       call hencky_plastic(ein, f, hist_in, tangent, tau, dtau, hist_out)
     else if (ein%law == law_elastic) then
-      call saint_venant(ein, f, eth, tangent, tau, dtau)
+      call saint_venant(ein, f, eth, tangent, tau, dtau, dmat)
     else
       call mooney_rivlin(ein, f, tangent, tau, dtau)
     end if
@@ -298,15 +310,21 @@ contains
   !> unit component dF of F
   !>   dtau = dF S F^T + F S dF^T + F (D dEm) F^T,
   !>   dEm = sym(Fm^T dF)
-  !> (dtau zero when tangent is false).
-  pure subroutine saint_venant(ein, f, eth, tangent, tau, dtau)
+  !> (dtau zero when tangent is false). dmat (optional): D of an
+  !> anisotropic material at the point (finite_strain_response).
+  pure subroutine saint_venant(ein, f, eth, tangent, tau, dtau, dmat)
     type(elem_in_t), intent(in) :: ein
     real(dp), intent(in) :: f(3, 3), eth
     logical, intent(in) :: tangent
     real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
+    real(dp), intent(in), optional :: dmat(4, 4)
     real(dp) :: d(4, 4), s(3, 3), ds(3, 3), de(3, 3), fm(3, 3), sf(3, 3)
     integer :: c, i, j
-    d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
+    if (present(dmat)) then
+      d = dmat
+    else
+      d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
+    end if
     fm = f - eth * eye
     s = voigt_stress(matmul(d, green_lagrange(fm)))
     sf = matmul(s, transpose(f))

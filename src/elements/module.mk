@@ -12,7 +12,7 @@ $(OBJDIR)/material_laws.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_inter
 $(OBJDIR)/nonlinear_continuum.o: $(OBJDIR)/continuum_element.o $(OBJDIR)/element_catalogue.o \
                                  $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/material_laws.o \
                                  $(OBJDIR)/model.o $(OBJDIR)/shape_functions.o $(OBJDIR)/small_matrices.o
-$(OBJDIR)/materials.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o
+$(OBJDIR)/materials.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/small_matrices.o
 $(OBJDIR)/shape_functions.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o
 $(OBJDIR)/spring_element.o: $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o
 $(OBJDIR)/truss_element.o: $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o

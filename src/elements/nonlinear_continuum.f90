@@ -67,10 +67,12 @@ module nonlinear_continuum
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use model, only: law_elastic
-  use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
+  use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4, &
+                               state_plane_strain
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants, max_hist
   use shape_functions, only: shape_at, gauss_rule, extrapolation
-  use continuum_element, only: volume_factor, strain_matrix, is_one_point_quad, uniform_strain, hourglass_modes
+  use continuum_element, only: volume_factor, strain_matrix, is_one_point_quad, uniform_strain, hourglass_modes, &
+                               material_matrix
   use material_laws, only: material_response, hist_peeq, fc_i, fc_j
   use small_matrices, only: det3, inv3
   implicit none
@@ -170,7 +172,12 @@ contains
       call deformation(ein, n, dndx, r, f, g)
       if (.not. (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) > 0.0_dp) return
       eth = ein%alpha * dot_product(n(1:ein%nen), ein%dtemp(1:ein%nen))
-      call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, h, ok, .true., d33)
+      if (ein%aniso) then
+        call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, h, ok, .true., d33, &
+                               material_matrix(ein, matmul(ein%xy(:, 1:ein%nen), n(1:ein%nen)), state_plane_strain))
+      else
+        call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, h, ok, .true., d33)
+      end if
       if (.not. (ok .and. ieee_is_finite(f(3, 3)) .and. f(3, 3) > 0.0_dp)) return
       sw = sw + dv
       swl = swl + dv * f(3, 3)
@@ -476,7 +483,14 @@ contains
       if (fbar) then
         call fbar_point(ein, ip, tangent, f, g, dv, eth, j0, w0, nexp, eout, tau, jac, ok)
       else
-        call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
+        if (ein%aniso) then
+          ! St Venant-Kirchhoff in the material's axes at the reference point
+          call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, &
+                                 tangent, dmat=material_matrix(ein, matmul(ein%xy(:, 1:ein%nen), n(1:ein%nen)), &
+                                                               state_plane_strain))
+        else
+          call material_response(ein, ein%state, f, eth, committed(ein, ip), p, a, tau, eout%hist(:, ip), ok, tangent)
+        end if
         eout%fe(1:nd) = eout%fe(1:nd) + matmul(p, g(:, 1:nd)) * dv
         if (tangent) eout%ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd) &
                                            + matmul(transpose(g(:, 1:nd)), matmul(a, g(:, 1:nd))) * dv

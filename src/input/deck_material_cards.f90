@@ -9,7 +9,9 @@ submodule (deck_parser) deck_material_cards
   use element_catalogue, only: catalogue, state_plane_stress, state_plane_strain, state_axisymmetric, &
                                shape_spring1, shape_spring2, is_spring_shape, shape_mass
   use model, only: material_t, section_t, find_name, elem_label, law_elastic, law_neo_hooke, law_mooney_rivlin, &
-                   max_yield
+                   max_yield, orientation_t, orient_rectangular, orient_cylindrical, elastic_iso, elastic_ortho, &
+                   elastic_aniso, is_truss
+  use small_matrices, only: inv3
   use model_growth, only: grow
   implicit none
 
@@ -42,22 +44,26 @@ contains
     if (is_isotropic) is_isotropic = v == 'ISOTROPIC'(1:len(v))
   end function is_isotropic
 
-  !> Purpose: *ELASTIC (isotropic): `E, nu` of the current material, one
-  !> data line (temperature dependence is not implemented). TYPE=ISO is
-  !> TYPE=ISOTROPIC, as CalculiX reads it (it compares the first three
-  !> letters).
+  !> Purpose: *ELASTIC of the current material. TYPE=ISOTROPIC (the
+  !> default; ISO as CalculiX reads it, comparing the first three
+  !> letters): `E, nu`, one data line. TYPE=ORTHO (ORTHOTROPIC),
+  !> ENGINEERING CONSTANTS and ANISO (ANISOTROPIC): read_anisotropic.
+  !> Temperature dependence (a second set of lines) is not implemented.
   module subroutine read_elastic(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
+    character(len=:), allocatable :: t
     integer :: n
     call allow_params(p, kw, 'TYPE')
-    if (has_param(kw, 'TYPE')) then
-      if (.not. is_isotropic(to_upper(param_value(kw, 'TYPE')))) call err(p, 'only TYPE=ISOTROPIC (or ISO) is ' // &
-                                                                          'implemented')
-    end if
     if (p%material == 0) call err(p, '*ELASTIC outside a *MATERIAL')
+    t = 'ISOTROPIC'
+    if (has_param(kw, 'TYPE')) t = to_upper(param_value(kw, 'TYPE'))
+    if (.not. is_isotropic(t)) then
+      call read_anisotropic(p, m, t)
+      return
+    end if
     call require_data(p, 'E, nu')
     call split_fields(line_text(p), f, n)
     if (n < 2) call err(p, '*ELASTIC data line needs: E, nu')
@@ -68,9 +74,324 @@ contains
       if (mat%e <= 0.0_dp) call err(p, 'Young''s modulus must be positive')
       if (mat%nu <= -1.0_dp .or. mat%nu >= 0.5_dp) call err(p, 'Poisson''s ratio must lie in (-1, 0.5)')
       mat%has_elastic = .true.
+      mat%elastic_type = elastic_iso
     end associate
     if (next_data(p)) call err(p, 'temperature-dependent *ELASTIC data is not implemented')
   end subroutine read_elastic
+
+  !> Purpose: *ELASTIC, TYPE=t for t ORTHO (or ORTHOTROPIC: D1111, D1122,
+  !> D2222, D1133, D2233, D3333, D1212, D1313, D2323), ENGINEERING
+  !> CONSTANTS (E1, E2, E3, nu12, nu13, nu23, G12, G13, G23) or ANISO (or
+  !> ANISOTROPIC: the 21 Dijkl, aniso_stiffness), each then an
+  !> optional temperature, eight to a line as CalculiX reads them. The
+  !> stiffness must be positive definite. The material keeps it (c6) and,
+  !> for contact penalties and hourglass control, the isotropic E and nu
+  !> of its mean compliance (model's material_t).
+  subroutine read_anisotropic(p, m, t)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    character(len=*), intent(in) :: t
+    real(dp) :: v(21), c(6, 6)
+    logical :: ok
+    associate(mat => m%materials(p%material))
+      if (is_prefix(t, 'ORTHOTROPIC', 5)) then
+        call read_constants(p, 9, v)
+        c = ortho_stiffness(v(1:9))
+        mat%elastic_type = elastic_ortho
+      else if (t == 'ENGINEERING CONSTANTS' .or. t == 'ENGINEERINGCONSTANTS') then
+        call read_constants(p, 9, v)
+        if (.not. all(v([1, 2, 3, 7, 8, 9]) > 0.0_dp)) call err(p, 'the moduli E1, E2, E3, G12, G13, G23 ' // &
+                                                                 'must be positive')
+        call engineering_stiffness(v(1:9), c, ok)
+        if (.not. ok) call err(p, 'the Poisson''s ratios give no positive definite compliance (|nu_ij| < ' // &
+                               'sqrt(Ei / Ej) and 1 - nu12 nu21 - nu23 nu32 - nu13 nu31 - 2 nu21 nu32 nu13 > 0)')
+        mat%elastic_type = elastic_ortho
+      else if (is_prefix(t, 'ANISOTROPIC', 5)) then
+        call read_constants(p, 21, v)
+        c = aniso_stiffness(v)
+        mat%elastic_type = elastic_aniso
+      else
+        call err(p, 'TYPE=' // t // ' is not implemented on *ELASTIC: ISOTROPIC, ORTHO, ENGINEERING ' // &
+                 'CONSTANTS and ANISO are')
+      end if
+      if (.not. is_positive_definite(c)) call err(p, 'the *ELASTIC, TYPE=' // t // ' stiffness is not ' // &
+                                                 'positive definite (no stable material)')
+      mat%c6 = c
+      call mean_isotropic(c, mat%e, mat%nu)
+      mat%has_elastic = .true.
+    end associate
+  end subroutine read_anisotropic
+
+  !> Purpose: 6x6 stiffness of *ELASTIC, TYPE=ORTHO from its nine
+  !> constants in CalculiX's order D1111, D1122, D2222, D1133, D2233,
+  !> D3333, D1212, D1313, D2323.
+  pure function ortho_stiffness(dc) result(c)
+    real(dp), intent(in) :: dc(9)
+    real(dp) :: c(6, 6)
+    c = 0.0_dp
+    c(1, 1) = dc(1)
+    c(1, 2) = dc(2)
+    c(2, 2) = dc(3)
+    c(1, 3) = dc(4)
+    c(2, 3) = dc(5)
+    c(3, 3) = dc(6)
+    c(4, 4) = dc(7)
+    c(5, 5) = dc(8)
+    c(6, 6) = dc(9)
+    call mirror(c)
+  end function ortho_stiffness
+
+  !> Purpose: 6x6 stiffness of *ELASTIC, TYPE=ENGINEERING CONSTANTS,
+  !> ec = (E1, E2, E3, nu12, nu13, nu23, G12, G13, G23): the inverse of the
+  !> compliance S11 = 1/E1, S12 = -nu12/E1, S13 = -nu13/E1, S22 = 1/E2,
+  !> S23 = -nu23/E2, S33 = 1/E3, S44 = 1/G12, S55 = 1/G13, S66 = 1/G23
+  !> (Jones 1999, eq. 2.61; nu_ij = -eps_j / eps_i under s_i). ok is false
+  !> where the compliance is not positive definite (no stiffness).
+  pure subroutine engineering_stiffness(ec, c, ok)
+    real(dp), intent(in) :: ec(9)
+    real(dp), intent(out) :: c(6, 6)
+    logical, intent(out) :: ok
+    real(dp) :: s(3, 3)
+    c = 0.0_dp
+    ok = all(ec([1, 2, 3, 7, 8, 9]) > 0.0_dp)
+    if (.not. ok) return
+    s = reshape([1.0_dp / ec(1), -ec(4) / ec(1), -ec(5) / ec(1), &
+                 -ec(4) / ec(1), 1.0_dp / ec(2), -ec(6) / ec(2), &
+                 -ec(5) / ec(1), -ec(6) / ec(2), 1.0_dp / ec(3)], [3, 3])
+    ok = is_positive_definite(s)
+    if (.not. ok) return
+    c(1:3, 1:3) = inv3(s)
+    c(1:3, 1:3) = 0.5_dp * (c(1:3, 1:3) + transpose(c(1:3, 1:3)))
+    c(4, 4) = ec(7)
+    c(5, 5) = ec(8)
+    c(6, 6) = ec(9)
+  end subroutine engineering_stiffness
+
+  !> Purpose: 6x6 stiffness of *ELASTIC, TYPE=ANISO from its 21 constants
+  !> in CalculiX's (and Abaqus's) order, the upper triangle by columns:
+  !> D1111, D1122, D2222, D1133, D2233, D3333, D1112, D2212, D3312, D1212,
+  !> D1113, D2213, D3313, D1213, D1313, D1123, D2223, D3323, D1223, D1323,
+  !> D2323.
+  pure function aniso_stiffness(dc) result(c)
+    real(dp), intent(in) :: dc(21)
+    real(dp) :: c(6, 6)
+    integer :: i, j, k
+    c = 0.0_dp
+    k = 0
+    do j = 1, 6
+      do i = 1, j
+        k = k + 1
+        c(i, j) = dc(k)
+      end do
+    end do
+    call mirror(c)
+  end function aniso_stiffness
+
+  !> Purpose: copy the upper triangle of c to its lower one.
+  pure subroutine mirror(c)
+    real(dp), intent(inout) :: c(6, 6)
+    integer :: j
+    do j = 1, 5
+      c(j + 1:6, j) = c(j, j + 1:6)
+    end do
+  end subroutine mirror
+
+  !> Purpose: is the symmetric 3x3 or 6x6 matrix a positive definite
+  !> (Cholesky without breakdown; a relative pivot floor of 1e-12)?
+  pure logical function is_positive_definite(a)
+    real(dp), intent(in) :: a(:, :)
+    real(dp) :: l(size(a, 1), size(a, 1)), piv, scale
+    integer :: j, n
+    n = size(a, 1)
+    l = 0.0_dp
+    scale = maxval(abs([(a(j, j), j = 1, n)]))
+    is_positive_definite = scale > 0.0_dp .and. scale <= huge(1.0_dp)
+    do j = 1, n
+      if (.not. is_positive_definite) return
+      piv = a(j, j) - dot_product(l(j, 1:j - 1), l(j, 1:j - 1))
+      is_positive_definite = piv > 1e-12_dp * scale
+      if (.not. is_positive_definite) return
+      l(j, j) = sqrt(piv)
+      l(j + 1:n, j) = (a(j + 1:n, j) - matmul(l(j + 1:n, 1:j - 1), l(j, 1:j - 1))) / l(j, j)
+    end do
+  end function is_positive_definite
+
+  !> Is t a shortening of word to at least nmin letters?
+  pure logical function is_prefix(t, word, nmin)
+    character(len=*), intent(in) :: t, word
+    integer, intent(in) :: nmin
+    is_prefix = len(t) >= nmin .and. len(t) <= len(word)
+    if (is_prefix) is_prefix = t == word(1:len(t))
+  end function is_prefix
+
+  !> Purpose: nreq constants v(1:nreq) of *ELASTIC from as many data lines
+  !> as they fill (CalculiX: eight to a line), and after the last one an
+  !> optional temperature (read, not used: one temperature only). A
+  !> further data line is a temperature-dependent table: an error.
+  subroutine read_constants(p, nreq, v)
+    type(parser_t), intent(inout) :: p
+    integer, intent(in) :: nreq
+    real(dp), intent(out) :: v(:)
+    type(field_t), allocatable :: f(:)
+    integer :: n, got, k
+    real(dp) :: temperature
+    v = 0.0_dp
+    got = 0
+    do while (got < nreq)
+      call require_data(p, itoa(nreq) // ' elastic constants, eight to a line')
+      call split_fields(line_text(p), f, n)
+      if (got + n > nreq + 1) call err(p, 'too many constants on *ELASTIC''s line: ' // itoa(nreq) // &
+                                       ' and a temperature in all, eight to a line')
+      do k = 1, min(n, nreq - got)
+        v(got + k) = get_real(p, f(k), 'elastic constant ' // itoa(got + k))
+      end do
+      if (got + n == nreq + 1) temperature = get_real(p, f(n), 'temperature')
+      got = got + n
+    end do
+    if (next_data(p)) call err(p, 'temperature-dependent *ELASTIC data is not implemented')
+  end subroutine read_constants
+
+  !> Purpose: the isotropic E and nu of the mean compliance of stiffness c
+  !> (3 / (S11 + S22 + S33) and -(S12 + S13 + S23) / (S11 + S22 + S33), S
+  !> = c^-1; exact for an isotropic c), nu kept in [-0.9, 0.49] for the
+  !> isotropic formulas that take it (hourglass control).
+  subroutine mean_isotropic(c, e, nu)
+    real(dp), intent(in) :: c(6, 6)
+    real(dp), intent(out) :: e, nu
+    real(dp) :: s(6, 6), tr
+    s = inverse6(c)
+    tr = s(1, 1) + s(2, 2) + s(3, 3)
+    e = 3.0_dp / tr
+    nu = min(0.49_dp, max(-0.9_dp, -(s(1, 2) + s(1, 3) + s(2, 3)) / tr))
+  end subroutine mean_isotropic
+
+  !> Purpose: inverse of a positive definite 6x6 matrix (Gauss-Jordan,
+  !> no pivoting needed for positive definite matrices).
+  pure function inverse6(a) result(b)
+    real(dp), intent(in) :: a(6, 6)
+    real(dp) :: b(6, 6), w(6, 12)
+    integer :: i, k
+    w = 0.0_dp
+    w(:, 1:6) = a
+    do i = 1, 6
+      w(i, 6 + i) = 1.0_dp
+    end do
+    do k = 1, 6
+      w(k, :) = w(k, :) / w(k, k)
+      do i = 1, 6
+        if (i /= k) w(i, :) = w(i, :) - w(i, k) * w(k, :)
+      end do
+    end do
+    b = w(:, 7:12)
+  end function inverse6
+
+  !> Purpose: *ORIENTATION, NAME=, SYSTEM= (RECTANGULAR, the default, or
+  !> CYLINDRICAL; DEFINITION=COORDINATES only): the points a, b on its
+  !> first data line (model's orientation_t) and, optionally, a second
+  !> line `axis, angle`: an extra rotation by angle (degrees) about local
+  !> axis 1, 2 or 3. The sections that name it (ORIENTATION=) are bound
+  !> to it once the deck is read (check_orientations).
+  module subroutine read_orientation(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    type(orientation_t) :: o
+    type(orientation_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: sys
+    integer :: n, k
+    call allow_params(p, kw, 'NAME,SYSTEM,DEFINITION')
+    if (.not. allocated(m%orientations)) allocate(m%orientations(0))
+    o%name = name_param(p, kw, 'NAME')
+    if (find_name(m%orientations%name, o%name) > 0) call err(p, 'duplicate orientation ' // trim(o%name))
+    o%src%line = p%i
+    sys = 'RECTANGULAR'
+    if (has_param(kw, 'SYSTEM')) sys = to_upper(param_value(kw, 'SYSTEM'))
+    if (is_prefix(sys, 'RECTANGULAR', 1)) then
+      o%system = orient_rectangular
+    else if (is_prefix(sys, 'CYLINDRICAL', 1)) then
+      o%system = orient_cylindrical
+    else
+      call err(p, 'SYSTEM=' // sys // ' is not implemented on *ORIENTATION: RECTANGULAR and CYLINDRICAL are')
+    end if
+    if (has_param(kw, 'DEFINITION')) then
+      if (to_upper(param_value(kw, 'DEFINITION')) /= 'COORDINATES') call err(p, 'DEFINITION=' // &
+          param_value(kw, 'DEFINITION') // ' is not implemented on *ORIENTATION: only COORDINATES is')
+    end if
+    call require_data(p, 'xa, ya, za, xb, yb, zb')
+    call split_fields(line_text(p), f, n)
+    if (n /= 6) call err(p, '*ORIENTATION''s first data line needs six coordinates: xa, ya, za, xb, yb, zb')
+    do k = 1, 3
+      o%a(k) = get_real(p, f(k), 'coordinate of point a')
+      o%b(k) = get_real(p, f(k + 3), 'coordinate of point b')
+    end do
+    call check_points(p, o)
+    if (next_data(p)) then
+      call split_fields(line_text(p), f, n)
+      if (n /= 2 .or. .not. is_int(f(1)%s)) call err(p, '*ORIENTATION''s second data line is: local axis ' // &
+                                                      '(1, 2 or 3), rotation angle in degrees')
+      o%axis = get_int(p, f(1), 'local axis')
+      if (o%axis < 1 .or. o%axis > 3) call err(p, 'the local axis of the extra rotation must be 1, 2 or 3')
+      o%angle = get_real(p, f(2), 'rotation angle')
+      if (abs(o%angle) > 1e6_dp) call err(p, 'the rotation angle (degrees) is beyond 1e6')
+    end if
+    allocate(tmp(size(m%orientations) + 1))
+    tmp(1:size(m%orientations)) = m%orientations
+    tmp(size(tmp)) = o
+    call move_alloc(tmp, m%orientations)
+  end subroutine read_orientation
+
+  !> Purpose: the points of an *ORIENTATION define axes: rectangular, a
+  !> not zero and b not along a; cylindrical, b apart from a. Scales are
+  !> the points' own, so that any unit of length is taken.
+  subroutine check_points(p, o)
+    type(parser_t), intent(in) :: p
+    type(orientation_t), intent(in) :: o
+    real(dp) :: axb(3), sc
+    sc = max(norm2(o%a), norm2(o%b))
+    if (o%system == orient_cylindrical) then
+      if (.not. norm2(o%b - o%a) > 1e-12_dp * sc) call err(p, 'a cylindrical *ORIENTATION needs two ' // &
+                                                           'distinct points a and b on its axis')
+    else
+      axb = [o%a(2) * o%b(3) - o%a(3) * o%b(2), o%a(3) * o%b(1) - o%a(1) * o%b(3), &
+             o%a(1) * o%b(2) - o%a(2) * o%b(1)]
+      if (.not. norm2(axb) > 1e-12_dp * sc**2) call err(p, 'a rectangular *ORIENTATION needs point a (on ' // &
+          'local axis 1) apart from the origin and point b (in the local 1-2 plane) off the line of a')
+    end if
+  end subroutine check_points
+
+  !> Purpose: once the deck is read (the sections' materials bound by
+  !> check_model): each ORIENTATION= of a *SOLID SECTION names an
+  !> *ORIENTATION, and an anisotropic material (*ELASTIC, TYPE=ORTHO,
+  !> ENGINEERING CONSTANTS or ANISO) is elastic on continuum elements
+  !> (St Venant-Kirchhoff under NLGEOM): plasticity, hyperelasticity and
+  !> trusses are errors.
+  module subroutine check_orientations(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer :: s, k, imat
+    if (.not. allocated(m%orientations)) allocate(m%orientations(0))
+    do s = 1, size(m%sections)
+      if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
+      p%i = m%sections(s)%src%line
+      if (len_trim(m%sections(s)%orientation_name) > 0) then
+        m%sections(s)%orientation = find_name(m%orientations%name, m%sections(s)%orientation_name)
+        if (m%sections(s)%orientation == 0) call err(p, 'undefined orientation ' // &
+                                                     trim(m%sections(s)%orientation_name))
+      end if
+      imat = m%sections(s)%material
+      if (m%materials(imat)%elastic_type == elastic_iso) cycle
+      do k = 1, size(m%elsets(m%sections(s)%elset)%items)
+        if (is_truss(m, m%elsets(m%sections(s)%elset)%items(k))) call err(p, 'element ' // &
+            elem_label(m, m%elsets(m%sections(s)%elset)%items(k)) // ' is a truss of anisotropic material ' // &
+            trim(m%materials(imat)%name) // ': a truss takes an isotropic *ELASTIC')
+      end do
+      p%i = m%materials(imat)%src%line
+      if (m%materials(imat)%nyield > 0 .or. m%materials(imat)%law /= law_elastic) call err(p, 'material ' // &
+          trim(m%materials(imat)%name) // ': plasticity or hyperelasticity of an anisotropic material ' // &
+          '(*ELASTIC, TYPE=' // 'ORTHO, ENGINEERING CONSTANTS or ANISO) is not implemented')
+    end do
+  end subroutine check_orientations
 
   !> Purpose: *HYPERELASTIC of the current material, with CalculiX's
   !> strain energy (its manual, *HYPERELASTIC) and constants:
@@ -261,7 +582,7 @@ contains
     integer :: n
     ! (CONTROLS= names an Abaqus *SECTION CONTROLS, read for CPS4R's
     ! hourglass control: deck_parser's read_hourglass_card)
-    call allow_params(p, kw, 'ELSET,MATERIAL,STATE,OFFSET,NODAL THICKNESS,CONTROLS')
+    call allow_params(p, kw, 'ELSET,MATERIAL,STATE,OFFSET,NODAL THICKNESS,CONTROLS,ORIENTATION')
     call grow(m%sections, p%nsec + 1)
     p%nsec = p%nsec + 1
     m%sections(p%nsec) = section_t()
@@ -272,6 +593,7 @@ contains
       s%src%line = p%i
       s%state = state_param(p, kw)
       s%nodal_thickness = has_param(kw, 'NODAL THICKNESS')
+      if (has_param(kw, 'ORIENTATION')) s%orientation_name = name_param(p, kw, 'ORIENTATION')
       if (param_real(p, kw, 'OFFSET', 0.0_dp) /= 0.0_dp) call deck_warning(p%deck, p%i, 'OFFSET= moves the ' // &
           'mid-plane of a plane-stress layer out of the plane; it cannot change a 2D answer and is ignored')
       s%thickness = 1.0_dp

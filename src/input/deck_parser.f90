@@ -76,6 +76,15 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_elastic
+    module subroutine read_orientation(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_orientation
+    module subroutine check_orientations(p, m)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+    end subroutine check_orientations
     module subroutine read_expansion(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -362,6 +371,7 @@ contains
     call finish_kinematic_cards(p, m)
     call cut_pretension_sections(p, m)
     call check_model(p, m)
+    call check_orientations(p, m)
   end subroutine read_model
 
   !> Purpose: CalculiX reads a deck in passes, its nodes first, then its
@@ -570,6 +580,7 @@ contains
     case ('INITIAL CONDITIONS'); call in_step(p, kw, .false.); call read_initial_conditions(p, m, kw)
     case ('TEMPERATURE');   call in_step(p, kw, .true.); call read_temperature(p, m, kw)
     case ('SOLID SECTION'); call in_step(p, kw, .false.); call read_section(p, m, kw)
+    case ('ORIENTATION');   call in_step(p, kw, .false.); call read_orientation(p, m, kw)
     case ('SPRING');        call in_step(p, kw, .false.); call read_spring(p, m, kw)
     case ('MASS');          call in_step(p, kw, .false.); call read_mass(p, m, kw)
     case ('AMPLITUDE');     call read_amplitude(p, m, kw)

@@ -21,6 +21,7 @@ module model
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
             law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield, controls_t, nonlinear_material
+  public :: orientation_t, orient_rectangular, orient_cylindrical, elastic_iso, elastic_ortho, elastic_aniso
   public :: kept_nodes
 
   integer, parameter :: surf_element = 1, surf_node = 2
@@ -38,6 +39,12 @@ module model
   !> Venant-Kirchhoff under NLGEOM, as CalculiX), *HYPERELASTIC NEO HOOKE
   !> and MOONEY-RIVLIN (CalculiX's strain energy and constants).
   integer, parameter :: law_elastic = 0, law_neo_hooke = 1, law_mooney_rivlin = 2
+  !> TYPE= of *ELASTIC (material_t%elastic_type): isotropic (E, nu),
+  !> orthotropic (ORTHO or ENGINEERING CONSTANTS) or fully anisotropic
+  !> (ANISO); the last two keep the stiffness in material_t%c6.
+  integer, parameter :: elastic_iso = 0, elastic_ortho = 1, elastic_aniso = 2
+  !> SYSTEM= of *ORIENTATION (orientation_t%system).
+  integer, parameter :: orient_rectangular = 1, orient_cylindrical = 2
   !> Points of a *PLASTIC hardening table.
   integer, parameter :: max_yield = 64
 
@@ -86,7 +93,29 @@ module model
     !> no plasticity.
     integer :: nyield = 0
     real(dp) :: yield(2, max_yield) = 0.0_dp
+    !> *ELASTIC, TYPE=ORTHO, ENGINEERING CONSTANTS or ANISO: the 6x6
+    !> stiffness in the material's axes, Voigt order (11, 22, 33, 12, 13,
+    !> 23) with engineering shear strains, so that c6(i, j) is CalculiX's
+    !> Dijkl; e and nu then hold the isotropic values of its mean
+    !> compliance (3 / (S11 + S22 + S33) and -(S12 + S13 + S23) / (S11 +
+    !> S22 + S33)), which contact penalties and hourglass control take.
+    integer :: elastic_type = elastic_iso
+    real(dp) :: c6(6, 6) = 0.0_dp
   end type material_t
+
+  !> *ORIENTATION: local material axes, rectangular (point a on local
+  !> 1, point b in the local 1-2 plane) or cylindrical (a and b on the
+  !> axis, local 1 radial, 2 tangential, 3 along b - a), as CalculiX and
+  !> Abaqus define them; then a rotation by angle (degrees) about local
+  !> axis `axis` (0: none) from the optional second data line.
+  type :: orientation_t
+    character(len=name_len) :: name = ''
+    integer :: system = orient_rectangular
+    real(dp) :: a(3) = [1.0_dp, 0.0_dp, 0.0_dp], b(3) = [0.0_dp, 1.0_dp, 0.0_dp]
+    integer :: axis = 0
+    real(dp) :: angle = 0.0_dp
+    type(src_t) :: src
+  end type orientation_t
 
   !> A *SOLID SECTION (continuum elements and trusses) or a *SPRING
   !> (spring elements): what gives the elements of a set their stiffness.
@@ -116,6 +145,10 @@ module model
     !> set (the whole ring's in an axisymmetric model, as a point load).
     logical :: point_mass = .false.
     real(dp) :: mass = 0.0_dp
+    !> ORIENTATION= of *SOLID SECTION: the *ORIENTATION (index into
+    !> model_t%orientations, 0 the global axes) of its material's axes.
+    character(len=name_len) :: orientation_name = ''
+    integer :: orientation = 0
   end type section_t
 
   !> One prescribed dof. set is the node set it came from (0 for a single
@@ -418,6 +451,8 @@ module model
     !> (0 none: made only for a node whose dofs a card names), of which
     !> its own are dependent: u = axes u(local node).
     type(transform_t), allocatable :: transforms(:)
+    !> *ORIENTATION cards (the sections name them).
+    type(orientation_t), allocatable :: orientations(:)
     integer, allocatable :: node_transform(:), local_node(:)
   end type model_t
 
