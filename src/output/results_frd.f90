@@ -294,22 +294,36 @@ contains
   end subroutine scalar_block
 
   !> The -1 records of the nodes at(a) (user ids), and the closing -3.
+  !> The records go out batch_lines at a time, joined by newlines in one
+  !> write: a write statement per record cost more than the records.
   subroutine values(u, ids, v, at)
     integer, intent(in) :: u
     integer, intent(in) :: ids(:)
     real(dp), intent(in) :: v(:, :)
     logical, intent(in) :: at(:)
-    integer :: a, k
-    character(len=:), allocatable :: line
-    allocate(character(len=13 + 12 * size(v, 1)) :: line)
+    integer, parameter :: batch_lines = 512
+    integer :: a, k, width, pos, nlines
+    character(len=:), allocatable :: buf
+    width = 14 + 12 * size(v, 1)           ! a record and its newline
+    allocate(character(len=width * batch_lines) :: buf)
+    pos = 0
+    nlines = 0
     do a = 1, size(at)
       if (.not. at(a)) cycle
-      line(1:13) = ' -1' // int_field(ids(a), 10)
+      buf(pos + 1:pos + 13) = ' -1' // int_field(ids(a), 10)
       do k = 1, size(v, 1)
-        line(14 + 12 * (k - 1):13 + 12 * k) = e12_5(v(k, a))
+        buf(pos + 2 + 12 * k:pos + 13 + 12 * k) = e12_5(v(k, a))
       end do
-      write(u, '(a)') line(1:13 + 12 * size(v, 1))
+      buf(pos + width:pos + width) = new_line('a')
+      pos = pos + width
+      nlines = nlines + 1
+      if (nlines == batch_lines) then
+        write(u, '(a)') buf(1:pos - 1)
+        pos = 0
+        nlines = 0
+      end if
     end do
+    if (pos > 0) write(u, '(a)') buf(1:pos - 1)
     write(u, '(a)') ' -3'
   end subroutine values
 
