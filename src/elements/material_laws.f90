@@ -48,13 +48,13 @@
 module material_laws
   use kinds, only: dp
   use small_matrices, only: det3, inv3
-  use model, only: law_elastic, law_mooney_rivlin
+  use model, only: law_elastic, law_neo_hooke, law_mooney_rivlin
   use element_catalogue, only: state_plane_stress, state_plane_strain
   use element_interface, only: elem_in_t, max_hist
   use materials, only: elastic_matrix
   implicit none
   private
-  public :: material_response, hist_peeq, fc_i, fc_j
+  public :: material_response, hist_peeq, fc_i, fc_j, is_hyperelastic
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
   !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
@@ -86,6 +86,15 @@ module material_laws
   end type return_t
 
 contains
+
+  !> Purpose: is the element's law hyperelastic (an energy of finite
+  !> strain, so always on the finite-strain path, and its initial moduli
+  !> not e and nu)?
+  !> Arguments: ein the element data (its law).
+  pure logical function is_hyperelastic(ein)
+    type(elem_in_t), intent(in) :: ein
+    is_hyperelastic = ein%law == law_neo_hooke .or. ein%law == law_mooney_rivlin
+  end function is_hyperelastic
 
   ! ------------------------------------------------------------------
   ! Small strain

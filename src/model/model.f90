@@ -20,7 +20,7 @@ module model
             surf_element, surf_node, coupling_nts, coupling_mortar, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
-            law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield, controls_t, nonlinear_material
+            law_elastic, law_neo_hooke, law_mooney_rivlin, law_deformation_plasticity, max_yield, controls_t, nonlinear_material
   public :: kept_nodes
 
   integer, parameter :: surf_element = 1, surf_node = 2
@@ -38,6 +38,9 @@ module model
   !> Venant-Kirchhoff under NLGEOM, as CalculiX), *HYPERELASTIC NEO HOOKE
   !> and MOONEY-RIVLIN (CalculiX's strain energy and constants).
   integer, parameter :: law_elastic = 0, law_neo_hooke = 1, law_mooney_rivlin = 2
+  !> *DEFORMATION PLASTICITY: Ramberg-Osgood, J2 deformation theory (a
+  !> nonlinear elastic law of the total strain; E and nu are its linear part).
+  integer, parameter :: law_deformation_plasticity = 3
   !> Points of a *PLASTIC hardening table.
   integer, parameter :: max_yield = 64
 
@@ -86,6 +89,10 @@ module model
     !> no plasticity.
     integer :: nyield = 0
     real(dp) :: yield(2, max_yield) = 0.0_dp
+    !> *DEFORMATION PLASTICITY (law_deformation_plasticity): the yield
+    !> offset sigma0, the exponent n and the yield offset factor alpha of
+    !> eps = sig / E + alpha (sigma0 / E) (sig / sigma0)^n.
+    real(dp) :: ro_sigma0 = 0.0_dp, ro_n = 1.0_dp, ro_alpha = 0.0_dp
   end type material_t
 
   !> A *SOLID SECTION (continuum elements and trusses) or a *SPRING
