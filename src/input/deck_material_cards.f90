@@ -1,5 +1,6 @@
 !> Material and property cards: *MATERIAL, *ELASTIC, *EXPANSION,
-!> *HYPERELASTIC, *PLASTIC, *SOLID SECTION, *SPRING, *MASS.
+!> *HYPERELASTIC, *PLASTIC, *DEFORMATION PLASTICITY, *SOLID SECTION,
+!> *SPRING, *MASS.
 submodule (deck_parser) deck_material_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
@@ -9,7 +10,7 @@ submodule (deck_parser) deck_material_cards
   use element_catalogue, only: catalogue, state_plane_stress, state_plane_strain, state_axisymmetric, &
                                shape_spring1, shape_spring2, is_spring_shape, shape_mass
   use model, only: material_t, section_t, find_name, elem_label, law_elastic, law_neo_hooke, law_mooney_rivlin, &
-                   max_yield
+                   max_yield, law_deformation_plasticity
   use model_growth, only: grow
   implicit none
 
@@ -186,6 +187,8 @@ contains
     if (p%material == 0) call err(p, '*PLASTIC outside a *MATERIAL')
     associate(mat => m%materials(p%material))
       if (mat%nyield > 0) call err(p, 'second *PLASTIC in material ' // trim(mat%name))
+      if (mat%law == law_deformation_plasticity) call err(p, '*PLASTIC in material ' // trim(mat%name) // &
+                                                          ', which has *DEFORMATION PLASTICITY')
       if (mat%law /= law_elastic) call err(p, 'plasticity of a hyperelastic material is not implemented')
       call require_data(p, 'yield stress, equivalent plastic strain')
       k = 0
@@ -219,6 +222,51 @@ contains
       mat%nyield = k
     end associate
   end subroutine read_plastic
+
+  !> Purpose: *DEFORMATION PLASTICITY of the current material (Abaqus'
+  !> and CalculiX's card): one data line `E, nu, sigma0, n, alpha[,
+  !> temperature]`, the Ramberg-Osgood law eps = sig / E + alpha (sigma0 /
+  !> E) (sig / sigma0)^n in uniaxial stress, J2 deformation theory in
+  !> general (elements' deformation_plasticity). The card gives the
+  !> elastic constants itself, so the material has no *ELASTIC, and no
+  !> *HYPERELASTIC or *PLASTIC. E > 0, -1 < nu < 0.5, sigma0 > 0, n >= 1,
+  !> alpha >= 0; temperature dependence (a second data line) stops there.
+  !> The steps of a model with it are nonlinear (Newton), without NLGEOM
+  !> unless the step asks for it.
+  module subroutine read_deformation_plasticity(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call allow_params(p, kw, '')
+    if (p%material == 0) call err(p, '*DEFORMATION PLASTICITY outside a *MATERIAL')
+    associate(mat => m%materials(p%material))
+      if (mat%has_elastic) call err(p, 'material ' // trim(mat%name) // ' has *ELASTIC: *DEFORMATION ' // &
+                                    'PLASTICITY gives E and nu itself')
+      if (mat%law == law_deformation_plasticity) call err(p, 'second *DEFORMATION PLASTICITY in material ' // &
+                                                          trim(mat%name))
+      if (mat%law /= law_elastic .or. mat%nyield > 0) call err(p, '*DEFORMATION PLASTICITY of a material with ' // &
+                                                               '*HYPERELASTIC or *PLASTIC')
+      call require_data(p, 'E, nu, sigma0, n, alpha')
+      call split_fields(line_text(p), f, n)
+      if (n < 5) call err(p, '*DEFORMATION PLASTICITY data line needs: E, nu, sigma0, n, alpha')
+      if (n > 6) call err(p, 'too many fields: *DEFORMATION PLASTICITY data line is E, nu, sigma0, n, ' // &
+                          'alpha[, temperature]')
+      mat%e = get_real(p, f(1), 'Young''s modulus')
+      mat%nu = get_real(p, f(2), 'Poisson''s ratio')
+      mat%ro_sigma0 = get_real(p, f(3), 'yield offset sigma0')
+      mat%ro_n = get_real(p, f(4), 'exponent n')
+      mat%ro_alpha = get_real(p, f(5), 'yield offset factor alpha')
+      if (.not. mat%e > 0.0_dp) call err(p, 'Young''s modulus must be positive')
+      if (mat%nu <= -1.0_dp .or. mat%nu >= 0.5_dp) call err(p, 'Poisson''s ratio must lie in (-1, 0.5)')
+      if (.not. mat%ro_sigma0 > 0.0_dp) call err(p, 'the yield offset sigma0 must be positive')
+      if (.not. mat%ro_n >= 1.0_dp) call err(p, 'the exponent n must be at least 1')
+      if (.not. mat%ro_alpha >= 0.0_dp) call err(p, 'the yield offset factor alpha must not be negative')
+      mat%law = law_deformation_plasticity
+    end associate
+    if (next_data(p)) call err(p, 'temperature-dependent *DEFORMATION PLASTICITY data is not implemented')
+  end subroutine read_deformation_plasticity
 
   !> Purpose: *EXPANSION (isotropic): `alpha` of the current material,
   !> one data line; ZERO= (the temperature at which alpha was measured,
