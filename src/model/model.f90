@@ -412,6 +412,11 @@ module model
     integer :: contact_solve = 0
     !> *INITIAL CONDITIONS, TYPE=TEMPERATURE (nodes not named start at 0).
     type(temp_t), allocatable :: initial_temps(:)
+    !> *INITIAL CONDITIONS, TYPE=STRESS: the initial stress of element e at
+    !> its integration point ip, sig0(:, ip, e) = (s11, s22, s12, s33) in the
+    !> order of the strain vector (element_catalogue's max_ip points, ne
+    !> elements as the card found them); not allocated without the card.
+    real(dp), allocatable :: sig0(:, :, :)
     !> *NODAL THICKNESS by node (nn), for the sections with NODAL
     !> THICKNESS; allocated only when a section asks for it.
     real(dp), allocatable :: node_thickness(:)
