@@ -71,6 +71,12 @@ contains
       if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
       imat = m%sections(s)%material
       if (m%materials(imat)%law == law_elastic .and. m%materials(imat)%nyield == 0) cycle
+      ! the initial stress is a load of the linear path (assembly)
+      if (allocated(m%sig0)) then
+        p%i = m%sections(s)%src%line
+        call err(p, '*INITIAL CONDITIONS, TYPE=STRESS with the nonlinear material ' // &
+                 trim(m%materials(imat)%name) // ' is not implemented (only with *ELASTIC)')
+      end if
       ! (*DEFORMATION PLASTICITY is a law of small strain unless NLGEOM)
       hyper = hyper .or. m%materials(imat)%law == law_neo_hooke .or. m%materials(imat)%law == law_mooney_rivlin
       ! the element routines have no thermal strain for these laws
@@ -91,6 +97,10 @@ contains
       end do
     end do
     if (hyper) m%steps(:)%nlgeom = .true.
+    if (allocated(m%sig0) .and. any(m%steps%nlgeom)) then
+      p%i = m%steps(findloc(m%steps%nlgeom, .true., 1))%src%line
+      call err(p, '*INITIAL CONDITIONS, TYPE=STRESS under NLGEOM is not implemented (only in small-deformation steps)')
+    end if
   end subroutine check_nonlinear_materials
 
   !> Purpose: nodes that no element, contact surface or constraint uses
