@@ -144,7 +144,7 @@ def test_no_initial_conditions_starts_at_zero():
 BAD = [
     ("type", "*EXPANSION, TYPE=ORTHO\n1e-5\n", "only TYPE=ISO"),
     ("table", "*EXPANSION\n1e-5, 20.\n1.2e-5, 100.\n", "temperature-dependent *EXPANSION"),
-    ("initial type", "*INITIAL CONDITIONS, TYPE=STRESS\nALL, 1.\n", "TYPE=STRESS is not implemented"),
+    ("initial type", "*INITIAL CONDITIONS, TYPE=PLASTIC STRAIN\nALL, 1.\n", "TYPE=PLASTIC STRAIN is not implemented"),
     ("initial set", "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNOSUCH, 1.\n", "NOSUCH"),
     ("initial fields", "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nALL\n", "node or set, temperature"),
     ("initial empty", "*INITIAL CONDITIONS, TYPE=TEMPERATURE\n", "missing data line"),

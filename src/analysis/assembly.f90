@@ -11,7 +11,9 @@
 !> one only by commit_history. Stresses are computed by the element
 !> routines once per converged increment. A thermal strain enters as a
 !> load (`thermal_forces`) and in the stresses; the stiffness does not
-!> change.
+!> change. So does an initial stress (*INITIAL CONDITIONS, TYPE=STRESS,
+!> linear steps only): sig = D eps + sig0, its load -integral B^T sig0 dV
+!> (`initial_stress_forces`) and sig0 added to the recovered stresses.
 module assembly
   use kinds, only: dp
   use strings, only: itoa
@@ -24,6 +26,8 @@ module assembly
   use element_catalogue, only: max_ip, max_nodes, state_plane_stress
   use distributed_loads, only: follower_pressure_load
   use element_library, only: element_routine, thickness_stretch
+  use continuum_element, only: strain_matrix, volume_factor, is_one_point_quad, uniform_strain
+  use shape_functions, only: shape_at, gauss_rule, extrapolation
   use cfe_element, only: cfe
   use body_elements, only: body_input, body_alpha
   use linear_solver, only: linear_system_t, sys_zero, sys_add
@@ -32,7 +36,7 @@ module assembly
   private
   public :: body_t, element_counts_t, body_setup, assemble_stiffness, body_forces, free_residual, &
             stress_recovery, thermal_forces, nonlinear_body_forces, commit_history, nonlinear_model, &
-            body_predictor_forces
+            body_predictor_forces, initial_stress_forces
 
   !> Stored element stiffness of every body element: the upper
   !> triangle of the symmetric nd x nd matrix of element e, column by
@@ -114,6 +118,44 @@ contains
       end do
     end do
   end subroutine thermal_forces
+
+  !> Purpose: f = f - integral B^T sig0 dV over every element with an
+  !> initial stress (m%sig0): with sig = D eps + sig0 the internal force is
+  !> K u + integral B^T sig0 dV, so the initial stress is a load, and a
+  !> self-equilibrated one (no net nodal force) leaves u = 0. Each
+  !> element's own rule and B matrix (the one-point quadrilateral's mean
+  !> B, as its stiffness).
+  !> Arguments: m the model; f(2, nn) the nodal loads, added to.
+  subroutine initial_stress_forces(m, f)
+    type(model_t), intent(in) :: m
+    real(dp), intent(inout) :: f(:, :)
+    type(elem_in_t) :: ein
+    real(dp) :: xg(2, max_ip), wg(max_ip), n(max_nodes), dn(2, max_nodes), b(4, 2 * max_nodes), detj, r, dv, &
+                eps0(4), fe(2 * max_nodes)
+    integer :: e, k, ip, nen, nd, nodes(max_en)
+    real(dp), allocatable :: u0(:, :)
+    if (.not. allocated(m%sig0)) return
+    allocate(u0(2, m%nn))
+    u0 = 0.0_dp
+    do e = 1, min(m%ne, size(m%sig0, 3))
+      if (.not. any(m%sig0(:, :, e) /= 0.0_dp)) cycle
+      call body_input(m, e, u0, ein, nodes)
+      nen = ein%nen
+      nd = 2 * nen
+      call gauss_rule(ein%kind, ein%nip, xg, wg)
+      fe = 0.0_dp
+      do ip = 1, ein%nip
+        call shape_at(ein%kind, xg(:, ip), n, dn)
+        call strain_matrix(nen, ein%xy(:, 1:nen), n(1:nen), dn(:, 1:nen), ein%state, b(:, 1:nd), detj, r)
+        dv = volume_factor(ein%state, detj, r, dot_product(n(1:nen), ein%thickness(1:nen))) * wg(ip)
+        if (is_one_point_quad(ein)) call uniform_strain(ein, n, b(:, 1:nd), dv, eps0)
+        fe(1:nd) = fe(1:nd) + matmul(m%sig0(:, ip, e), b(:, 1:nd)) * dv
+      end do
+      do k = 1, nen
+        f(:, nodes(k)) = f(:, nodes(k)) - fe(2 * k - 1:2 * k)
+      end do
+    end do
+  end subroutine initial_stress_forces
 
   !> Purpose: computes and keeps the stiffness of every body element
   !> (continuum elements, trusses, springs).
@@ -520,6 +562,7 @@ contains
       end if
       call element_routine(act_stresses, ein, eout)
       counts%continuum_stresses = counts%continuum_stresses + 1
+      call add_initial_stress(m, e, ein, eout)
       if (present(peeq_ip)) peeq_ip(:, e) = eout%peeq_ip
       nip(e) = eout%nip
       sig_ip(:, 1:eout%nip, e) = eout%sig_ip(:, 1:eout%nip)
@@ -534,4 +577,25 @@ contains
       if (cnt(i) > 0) sig_node(:, i) = sig_node(:, i) / cnt(i)
     end do
   end subroutine stress_recovery
+
+  !> Purpose: the initial stress of element e (m%sig0, linear steps) added
+  !> to the stresses act_stresses gave: at the integration points, and
+  !> extrapolated to the nodes as the element's own stresses are.
+  !> Arguments: m, e; ein the element's input; eout its output, updated.
+  subroutine add_initial_stress(m, e, ein, eout)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    type(elem_in_t), intent(in) :: ein
+    type(elem_out_t), intent(inout) :: eout
+    real(dp) :: ex(max_nodes, max_ip), s0(4, max_ip)
+    if (.not. allocated(m%sig0)) return
+    if (e > size(m%sig0, 3)) return
+    if (.not. any(m%sig0(:, :, e) /= 0.0_dp)) return
+    ! (s11, s22, s12, s33) -> the output order (s11, s22, s33, s12)
+    s0(:, 1:eout%nip) = m%sig0([1, 2, 4, 3], 1:eout%nip, e)
+    eout%sig_ip(:, 1:eout%nip) = eout%sig_ip(:, 1:eout%nip) + s0(:, 1:eout%nip)
+    call extrapolation(ein%kind, ein%nen, eout%nip, ex)
+    eout%sig_node(:, 1:ein%nen) = eout%sig_node(:, 1:ein%nen) + &
+                                  matmul(s0(:, 1:eout%nip), transpose(ex(1:ein%nen, 1:eout%nip)))
+  end subroutine add_initial_stress
 end module assembly

@@ -57,6 +57,9 @@ contains
         ein%c10 = mat%c10
         ein%c01 = mat%c01
         ein%d1 = mat%d1
+        ein%ro_sigma0 = mat%ro_sigma0
+        ein%ro_n = mat%ro_n
+        ein%ro_alpha = mat%ro_alpha
         ein%nyield = mat%nyield
         if (mat%nyield > 0) ein%yield(:, 1:mat%nyield) = mat%yield(:, 1:mat%nyield)
         if (mat%elastic_type /= elastic_iso) call anisotropic_input(m, sec%orientation, mat%c6, ein)

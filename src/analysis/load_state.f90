@@ -23,7 +23,7 @@ module load_state
   use model
   use element_catalogue, only: catalogue, max_nodes, state_axisymmetric
   use distributed_loads, only: face_pressure_load, body_force_load
-  use assembly, only: thermal_forces
+  use assembly, only: thermal_forces, initial_stress_forces
   implicit none
   private
   public :: load_state_t, load_pattern_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
@@ -498,6 +498,7 @@ contains
         call thermal_forces(m, dtemp, fext, ls%nlgeom)
       end block
     end if
+    call initial_stress_forces(m, fext)
   end subroutine values_at
 
   !> Purpose: stops if a concentrated load of the step acts on a dof

@@ -74,6 +74,8 @@ module element_interface
     logical :: nlgeom = .false.
     integer :: law = law_elastic
     real(dp) :: c10 = 0.0_dp, c01 = 0.0_dp, d1 = 0.0_dp
+    !> *DEFORMATION PLASTICITY's sigma0, n and alpha (model's material_t)
+    real(dp) :: ro_sigma0 = 0.0_dp, ro_n = 1.0_dp, ro_alpha = 0.0_dp
     integer :: nyield = 0
     real(dp) :: yield(2, max_yield)
     real(dp) :: hist(max_hist, max_ip)

@@ -19,6 +19,11 @@
 !>   the invariants of bbar = J^(-2/3) b; D1 = 0 (|D1| < 1e-10) takes
 !>   CalculiX's default 0.1 / mu0, mu0 = 2 (C10 + C01), the compressibility
 !>   of an initial Poisson ratio of 0.475 (hyperelastics.f).
+!> - *DEFORMATION PLASTICITY: Ramberg-Osgood by J2 deformation theory
+!>   (module deformation_plasticity), a nonlinear elastic law without
+!>   history: sig(eps) at small strain; under NLGEOM the Cauchy stress
+!>   as the same function of the Euler-Almansi strain, CalculiX 2.20's
+!>   reading (almansi_ramberg_osgood).
 !> - *PLASTIC: von Mises with isotropic hardening on the piecewise-linear
 !>   table yield(1, k) (yield stress) at yield(2, k) (equivalent plastic
 !>   strain), perfectly plastic beyond its last point; radial return with
@@ -49,13 +54,14 @@
 module material_laws
   use kinds, only: dp
   use small_matrices, only: det3, inv3
-  use model, only: law_elastic, law_mooney_rivlin
+  use model, only: law_elastic, law_neo_hooke, law_mooney_rivlin, law_deformation_plasticity
   use element_catalogue, only: state_plane_stress, state_plane_strain
   use element_interface, only: elem_in_t, max_hist
   use materials, only: elastic_matrix
+  use deformation_plasticity, only: ramberg_osgood
   implicit none
   private
-  public :: material_response, hist_peeq, fc_i, fc_j
+  public :: material_response, hist_peeq, fc_i, fc_j, is_hyperelastic
 
   !> material_response(ein, state, eps, hist_in, sig, d, hist_out) small
   !> strain; material_response(ein, state, f, eth, hist_in, p, a, tau,
@@ -88,6 +94,15 @@ module material_laws
 
 contains
 
+  !> Purpose: is the element's law hyperelastic (an energy of finite
+  !> strain, so always on the finite-strain path, and its initial moduli
+  !> not e and nu)?
+  !> Arguments: ein the element data (its law).
+  pure logical function is_hyperelastic(ein)
+    type(elem_in_t), intent(in) :: ein
+    is_hyperelastic = ein%law == law_neo_hooke .or. ein%law == law_mooney_rivlin
+  end function is_hyperelastic
+
   ! ------------------------------------------------------------------
   ! Small strain
   ! ------------------------------------------------------------------
@@ -110,7 +125,7 @@ contains
     integer :: it
     e = eps
     if (state == state_plane_stress) then
-      if (ein%nyield == 0) then
+      if (ein%nyield == 0 .and. ein%law == law_elastic) then
         d = elastic_matrix(ein%e, ein%nu, state_plane_stress)
         sig = matmul(d, [eps(1:3), 0.0_dp])
         hist_out = hist_in
@@ -143,14 +158,18 @@ contains
     type(return_t) :: rm
     integer :: c
     hist_out = hist_in
-    if (ein%nyield == 0) then
+    if (ein%law == law_deformation_plasticity) then
+      call ramberg_osgood(ein%e, ein%nu, ein%ro_sigma0, ein%ro_n, ein%ro_alpha, voigt_to_tensor(eps), rm%sig, &
+                          rm%k, rm%c1, rm%c2, rm%nhat)
+    else if (ein%nyield == 0) then
       d = elastic_matrix(ein%e, ein%nu, state_plane_strain)
       sig = matmul(d, eps)
       return
+    else
+      ep = tensor_of(hist_in(1:4))
+      et = voigt_to_tensor(eps) - ep
+      call radial_return(ein, et, hist_in(hist_peeq), rm)
     end if
-    ep = tensor_of(hist_in(1:4))
-    et = voigt_to_tensor(eps) - ep
-    call radial_return(ein, et, hist_in(hist_peeq), rm)
     sig = [rm%sig(1, 1), rm%sig(2, 2), rm%sig(1, 2), rm%sig(3, 3)]
     ! columns of the tangent: the return's derivative along each unit
     ! strain component (gamma12 = 2 e12)
@@ -158,6 +177,7 @@ contains
       ds = return_tangent(rm, voigt_to_tensor(unit4(c)))
       d(:, c) = [ds(1, 1), ds(2, 2), ds(1, 2), ds(3, 3)]
     end do
+    if (ein%law == law_deformation_plasticity) return
     ep = ep + rm%dgamma * rm%flow
     hist_out(1:4) = [ep(1, 1), ep(2, 2), ep(3, 3), ep(1, 2)]
     hist_out(hist_peeq) = rm%peeq
@@ -227,7 +247,7 @@ contains
         ! local Newton on tau33(F33) = 0 from an incompressible guess for
         ! rubber, and from 1 otherwise; halved steps keep F33 positive
         f(3, 3) = 1.0_dp
-        if (ein%law /= law_elastic .and. j2 > 0.0_dp) f(3, 3) = 1.0_dp / j2
+        if (is_hyperelastic(ein) .and. j2 > 0.0_dp) f(3, 3) = 1.0_dp / j2
         df33 = huge(1.0_dp)
         do it = 1, max_local
           call response_3d(ein, f, eth, hist_in, .true., p, a, tau, hist_out)
@@ -277,6 +297,8 @@ contains
     if (.not. det3(f) > 0.0_dp) return
     if (ein%nyield > 0) then
       call hencky_plastic(ein, f, hist_in, tangent, tau, dtau, hist_out)
+    else if (ein%law == law_deformation_plasticity) then
+      call almansi_ramberg_osgood(ein, f, tangent, tau, dtau)
     else if (ein%law == law_elastic) then
       call saint_venant(ein, f, eth, tangent, tau, dtau, dmat)
     else
@@ -345,6 +367,43 @@ contains
       dtau(:, i, c) = dtau(:, i, c) + sf(j, :)
     end do
   end subroutine saint_venant
+
+  !> Purpose: *DEFORMATION PLASTICITY under finite strain as CalculiX
+  !> 2.20 computes it: the Cauchy stress sigma = RO(e), the Ramberg-Osgood
+  !> law (deformation_plasticity) of the Euler-Almansi strain
+  !> e = (I - b^-1) / 2, b = F F^T (measured: ccx on a plane-stress square
+  !> in uniaxial tension to 2 sigma0 gives the Almansi strain of the
+  !> Cauchy stress's curve to 1e-6, the .dat's digits; not the Lagrange
+  !> strain of the second Piola-Kirchhoff stress). tau = J sigma; along a
+  !> unit component dF = e_i (x) e_j of F,
+  !>   dJ = J Finv_ji,  de = sym(b^-1 dF F^-1) = sym(b^-1(:, i) Finv(j, :)),
+  !>   dtau = dJ sigma + J (k tr(de) I + c1 dev(de) + c2 (nhat : de) nhat)
+  !> (the law's tangent; dtau zero when tangent is false). It is isotropic
+  !> in the spatial e, hence objective. The thermal strain is not taken
+  !> (deck_model_checks refuses *EXPANSION with it under NLGEOM).
+  pure subroutine almansi_ramberg_osgood(ein, f, tangent, tau, dtau)
+    type(elem_in_t), intent(in) :: ein
+    real(dp), intent(in) :: f(3, 3)
+    logical, intent(in) :: tangent
+    real(dp), intent(out) :: tau(3, 3), dtau(3, 3, 5)
+    real(dp) :: finv(3, 3), binv(3, 3), sig(3, 3), jac, x(3, 3)
+    type(return_t) :: ro
+    integer :: c, i, j
+    jac = det3(f)
+    finv = inv3(f)
+    binv = matmul(transpose(finv), finv)
+    call ramberg_osgood(ein%e, ein%nu, ein%ro_sigma0, ein%ro_n, ein%ro_alpha, 0.5_dp * (eye - binv), sig, &
+                        ro%k, ro%c1, ro%c2, ro%nhat)
+    tau = jac * sig
+    dtau = 0.0_dp
+    if (.not. tangent) return
+    do c = 1, 5
+      i = fc_i(c)
+      j = fc_j(c)
+      x = spread(binv(:, i), 2, 3) * spread(finv(j, :), 1, 3)
+      dtau(:, :, c) = jac * finv(j, i) * sig + jac * return_tangent(ro, 0.5_dp * (x + transpose(x)))
+    end do
+  end subroutine almansi_ramberg_osgood
 
   !> Purpose: Mooney-Rivlin (neo-Hooke: C01 = 0) with CalculiX's energy
   !> W = C10 (I1bar - 3) + C01 (I2bar - 3) + (J - 1)^2 / D1. Kirchhoff

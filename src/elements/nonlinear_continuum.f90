@@ -73,7 +73,7 @@ module nonlinear_continuum
   use shape_functions, only: shape_at, gauss_rule, extrapolation
   use continuum_element, only: volume_factor, strain_matrix, is_one_point_quad, uniform_strain, hourglass_modes, &
                                material_matrix
-  use material_laws, only: material_response, hist_peeq, fc_i, fc_j
+  use material_laws, only: material_response, hist_peeq, fc_i, fc_j, is_hyperelastic
   use small_matrices, only: det3, inv3
   implicit none
   private
@@ -103,7 +103,7 @@ contains
     eout%ndof = 2 * nen
     eout%ke(1:eout%ndof, 1:eout%ndof) = 0.0_dp
     eout%nip = ein%nip
-    if (ein%nlgeom .or. ein%law /= law_elastic) then
+    if (ein%nlgeom .or. is_hyperelastic(ein)) then
       call finite_strain(ein, wants(action, act_tangent), eout)
     else
       call small_strain(ein, eout)
@@ -160,7 +160,7 @@ contains
     logical :: ok
     lam = 1.0_dp
     dlam = 0.0_dp
-    if (ein%state /= state_plane_stress .or. .not. (ein%nlgeom .or. ein%law /= law_elastic)) return
+    if (ein%state /= state_plane_stress .or. .not. (ein%nlgeom .or. is_hyperelastic(ein))) return
     nd = 2 * ein%nen
     call gauss_rule(ein%kind, ein%nip, xg, wg)
     sw = 0.0_dp
@@ -252,7 +252,7 @@ contains
     d = matmul(gm, ein%ue(1:8))
     rot = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
     nth = 0.0_dp
-    if (ein%nlgeom .or. ein%law /= law_elastic) then
+    if (ein%nlgeom .or. is_hyperelastic(ein)) then
       call reference_point(ein, [0.0_dp, 0.0_dp], n, dndx, detj, r)
       call deformation(ein, n, dndx, r, f, g)
       c = f(1, 1) + f(2, 2)
@@ -334,7 +334,7 @@ contains
     real(dp) :: mu0, k0, d1
     e0 = ein%e
     nu0 = ein%nu
-    if (ein%law == law_elastic) return
+    if (.not. is_hyperelastic(ein)) return
     mu0 = 2.0_dp * (ein%c10 + ein%c01)
     d1 = ein%d1
     if (abs(d1) < 1e-10_dp) d1 = 0.1_dp / mu0

@@ -180,10 +180,11 @@ contains
           'VISCO', 'HEAT TRANSFER', 'COUPLED TEMPERATURE-DISPLACEMENT', 'UNCOUPLED TEMPERATURE-DISPLACEMENT', &
           'ELECTROMAGNETICS', 'GREEN', 'SENSITIVITY', 'CFD', 'SOIL')
       call err(p, 'the procedure *' // kw%name // ' is not implemented: cfe2d runs static (*STATIC) steps')
-    case ('CYCLIC HARDENING', 'CREEP', 'HYPERFOAM', 'DEFORMATION PLASTICITY', &
+    case ('CYCLIC HARDENING', 'CREEP', 'HYPERFOAM', &
           'USER MATERIAL', 'DEPVAR', 'ANISOTROPIC HYPERELASTIC', 'VISCOELASTIC', 'MOHR COULOMB')
       call err(p, 'the material law *' // kw%name // ' is not implemented: cfe2d''s materials are *ELASTIC, ' // &
-               '*HYPERELASTIC (NEO HOOKE, MOONEY-RIVLIN) and *PLASTIC (von Mises, isotropic hardening)')
+               '*HYPERELASTIC (NEO HOOKE, MOONEY-RIVLIN), *PLASTIC (von Mises, isotropic hardening) and ' // &
+               '*DEFORMATION PLASTICITY')
     case ('CHANGE FRICTION', 'CHANGE SURFACE BEHAVIOR', 'CHANGE CONTACT TYPE', 'CONTACT DAMPING', &
           'GAP CONDUCTANCE', 'GAP HEAT GENERATION')
       call err(p, '*' // kw%name // ' is not implemented: cfe2d''s contact is static and keeps the law ' // &

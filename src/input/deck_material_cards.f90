@@ -1,16 +1,18 @@
 !> Material and property cards: *MATERIAL, *ELASTIC, *EXPANSION,
-!> *HYPERELASTIC, *PLASTIC, *SOLID SECTION, *SPRING, *MASS.
+!> *HYPERELASTIC, *PLASTIC, *DEFORMATION PLASTICITY, *SOLID SECTION,
+!> *SPRING, *MASS, and *INITIAL CONDITIONS, TYPE=STRESS (a property of the
+!> elements).
 submodule (deck_parser) deck_material_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
-                         name_param, get_real, get_int, is_int, need_elset, param_real, warn_empty_set
-  use element_catalogue, only: catalogue, state_plane_stress, state_plane_strain, state_axisymmetric, &
+                         name_param, get_real, get_int, is_int, need_elset, param_real, warn_empty_set, elem_ref
+  use element_catalogue, only: catalogue, max_ip, state_plane_stress, state_plane_strain, state_axisymmetric, &
                                shape_spring1, shape_spring2, is_spring_shape, shape_mass
   use model, only: material_t, section_t, find_name, elem_label, law_elastic, law_neo_hooke, law_mooney_rivlin, &
                    max_yield, orientation_t, orient_rectangular, orient_cylindrical, elastic_iso, elastic_ortho, &
-                   elastic_aniso, is_truss
+                   elastic_aniso, is_truss, law_deformation_plasticity, is_continuum
   use small_matrices, only: inv3
   use model_growth, only: grow
   implicit none
@@ -507,6 +509,8 @@ contains
     if (p%material == 0) call err(p, '*PLASTIC outside a *MATERIAL')
     associate(mat => m%materials(p%material))
       if (mat%nyield > 0) call err(p, 'second *PLASTIC in material ' // trim(mat%name))
+      if (mat%law == law_deformation_plasticity) call err(p, '*PLASTIC in material ' // trim(mat%name) // &
+                                                          ', which has *DEFORMATION PLASTICITY')
       if (mat%law /= law_elastic) call err(p, 'plasticity of a hyperelastic material is not implemented')
       call require_data(p, 'yield stress, equivalent plastic strain')
       k = 0
@@ -540,6 +544,109 @@ contains
       mat%nyield = k
     end associate
   end subroutine read_plastic
+
+  !> Purpose: *DEFORMATION PLASTICITY of the current material (Abaqus'
+  !> and CalculiX's card): one data line `E, nu, sigma0, n, alpha[,
+  !> temperature]`, the Ramberg-Osgood law eps = sig / E + alpha (sigma0 /
+  !> E) (sig / sigma0)^n in uniaxial stress, J2 deformation theory in
+  !> general (elements' deformation_plasticity). The card gives the
+  !> elastic constants itself, so the material has no *ELASTIC, and no
+  !> *HYPERELASTIC or *PLASTIC. E > 0, -1 < nu < 0.5, sigma0 > 0, n >= 1,
+  !> alpha >= 0, E and sigma0 and E / sigma0 at most 1e100; temperature
+  !> dependence (a second data line) stops there.
+  !> The steps of a model with it are nonlinear (Newton), without NLGEOM
+  !> unless the step asks for it.
+  module subroutine read_deformation_plasticity(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call allow_params(p, kw, '')
+    if (p%material == 0) call err(p, '*DEFORMATION PLASTICITY outside a *MATERIAL')
+    associate(mat => m%materials(p%material))
+      if (mat%has_elastic) call err(p, 'material ' // trim(mat%name) // ' has *ELASTIC: *DEFORMATION ' // &
+                                    'PLASTICITY gives E and nu itself')
+      if (mat%law == law_deformation_plasticity) call err(p, 'second *DEFORMATION PLASTICITY in material ' // &
+                                                          trim(mat%name))
+      if (mat%law /= law_elastic .or. mat%nyield > 0) call err(p, '*DEFORMATION PLASTICITY of a material with ' // &
+                                                               '*HYPERELASTIC or *PLASTIC')
+      call require_data(p, 'E, nu, sigma0, n, alpha')
+      call split_fields(line_text(p), f, n)
+      if (n < 5) call err(p, '*DEFORMATION PLASTICITY data line needs: E, nu, sigma0, n, alpha')
+      if (n > 6) call err(p, 'too many fields: *DEFORMATION PLASTICITY data line is E, nu, sigma0, n, ' // &
+                          'alpha[, temperature]')
+      mat%e = get_real(p, f(1), 'Young''s modulus')
+      mat%nu = get_real(p, f(2), 'Poisson''s ratio')
+      mat%ro_sigma0 = get_real(p, f(3), 'yield offset sigma0')
+      mat%ro_n = get_real(p, f(4), 'exponent n')
+      mat%ro_alpha = get_real(p, f(5), 'yield offset factor alpha')
+      if (.not. mat%e > 0.0_dp) call err(p, 'Young''s modulus must be positive')
+      if (mat%nu <= -1.0_dp .or. mat%nu >= 0.5_dp) call err(p, 'Poisson''s ratio must lie in (-1, 0.5)')
+      if (.not. mat%ro_sigma0 > 0.0_dp) call err(p, 'the yield offset sigma0 must be positive')
+      if (.not. mat%ro_n >= 1.0_dp) call err(p, 'the exponent n must be at least 1')
+      if (.not. mat%ro_alpha >= 0.0_dp) call err(p, 'the yield offset factor alpha must not be negative')
+      ! beyond these the law's powers overflow before any load is applied
+      if (mat%e > 1.0e100_dp .or. mat%ro_sigma0 > 1.0e100_dp .or. mat%ro_sigma0 < 1.0e-100_dp * mat%e) &
+        call err(p, 'E and sigma0 must not exceed 1e100, nor E / sigma0 1e100')
+      mat%law = law_deformation_plasticity
+    end associate
+    if (next_data(p)) call err(p, 'temperature-dependent *DEFORMATION PLASTICITY data is not implemented')
+  end subroutine read_deformation_plasticity
+
+  !> Purpose: *INITIAL CONDITIONS, TYPE=STRESS, CalculiX's data lines
+  !> `element or elset, integration point, S11, S22, S33, S12[, S13, S23]`:
+  !> the stress at that point of the element (cfe2d's rule: 1 to the
+  !> element type's nip; a point beyond it is an error at the line), zero
+  !> at the points not named. S13 and S23 must be zero (2D), the others at
+  !> most 1e100 in magnitude (a load beyond overflows). Only
+  !> continuum elements; a later line for the same point replaces it.
+  module subroutine read_initial_stress(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: elems(:)
+    integer :: n, k, ip, e
+    real(dp) :: s(6)
+    call allow_params(p, kw, 'TYPE')
+    if (.not. allocated(m%sig0)) then
+      allocate(m%sig0(4, max_ip, m%ne))
+      m%sig0 = 0.0_dp
+    end if
+    call require_data(p, 'element or elset, integration point, S11, S22, S33, S12')
+    do
+      call split_fields(line_text(p), f, n)
+      if (n < 6) call err(p, '*INITIAL CONDITIONS, TYPE=STRESS data line needs: element or elset, ' // &
+                          'integration point, S11, S22, S33, S12')
+      if (n > 8) call err(p, 'too many fields: the data line is element or elset, integration point, S11, ' // &
+                          'S22, S33, S12[, S13, S23]')
+      ! an element number, INSTANCE.NUMBER (Abaqus/CAE decks), or an elset
+      if (is_int(f(1)%s) .or. is_int(f(1)%s(index(f(1)%s, '.', back=.true.) + 1:))) then
+        elems = [elem_ref(p, m, f(1), 'element')]
+      else
+        elems = m%elsets(need_elset(p, m, f(1)%s))%items
+      end if
+      ip = get_int(p, f(2), 'integration point')
+      s = 0.0_dp
+      do k = 3, n
+        if (len(f(k)%s) > 0) s(k - 2) = get_real(p, f(k), 'stress component')
+      end do
+      if (s(5) /= 0.0_dp .or. s(6) /= 0.0_dp) call err(p, 'S13 and S23 must be zero in a 2D model')
+      if (any(abs(s) > 1.0e100_dp)) call err(p, 'the stress components must not exceed 1e100 in magnitude')
+      do k = 1, size(elems)
+        e = elems(k)
+        if (e > size(m%sig0, 3)) call err(p, 'element ' // elem_label(m, e) // ' is defined after the first ' // &
+                                          '*INITIAL CONDITIONS, TYPE=STRESS')
+        if (.not. is_continuum(m, e)) call err(p, 'element ' // elem_label(m, e) // ' is not a continuum ' // &
+                                               'element: an initial stress is for continuum elements')
+        if (ip < 1 .or. ip > catalogue(m%etype(e))%nip) call err(p, 'element ' // elem_label(m, e) // &
+          ' has integration points 1 to ' // itoa(catalogue(m%etype(e))%nip) // ', not ' // itoa(ip))
+        m%sig0(:, ip, e) = [s(1), s(2), s(4), s(3)]
+      end do
+      if (.not. next_data(p)) exit
+    end do
+  end subroutine read_initial_stress
 
   !> Purpose: *EXPANSION (isotropic): `alpha` of the current material,
   !> one data line; ZERO= (the temperature at which alpha was measured,

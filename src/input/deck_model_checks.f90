@@ -9,7 +9,8 @@ submodule (deck_parser) deck_model_checks
   use deck_input, only: deck_warning
   use deck_cursor, only: err
   use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t, kept_nodes, &
-                   node_label, elem_label, law_elastic, step_dloads
+                   node_label, elem_label, law_elastic, step_dloads, law_neo_hooke, law_mooney_rivlin, &
+                   law_deformation_plasticity
   use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
                                state_axisymmetric, shape_springa, max_edges
@@ -70,11 +71,19 @@ contains
       if (m%sections(s)%spring .or. m%sections(s)%point_mass) cycle
       imat = m%sections(s)%material
       if (m%materials(imat)%law == law_elastic .and. m%materials(imat)%nyield == 0) cycle
-      hyper = hyper .or. m%materials(imat)%law /= law_elastic
+      ! the initial stress is a load of the linear path (assembly)
+      if (allocated(m%sig0)) then
+        p%i = m%sections(s)%src%line
+        call err(p, '*INITIAL CONDITIONS, TYPE=STRESS with the nonlinear material ' // &
+                 trim(m%materials(imat)%name) // ' is not implemented (only with *ELASTIC)')
+      end if
+      ! (*DEFORMATION PLASTICITY is a law of small strain unless NLGEOM)
+      hyper = hyper .or. m%materials(imat)%law == law_neo_hooke .or. m%materials(imat)%law == law_mooney_rivlin
       ! the element routines have no thermal strain for these laws
       if (m%materials(imat)%has_expansion .and. m%materials(imat)%alpha /= 0.0_dp) then
         p%i = m%materials(imat)%src%line
-        if (m%materials(imat)%law /= law_elastic) call err(p, 'material ' // trim(m%materials(imat)%name) // &
+        if (m%materials(imat)%law == law_neo_hooke .or. m%materials(imat)%law == law_mooney_rivlin) call err(p, &
+          'material ' // trim(m%materials(imat)%name) // &
           ': the thermal strain (*EXPANSION) of a hyperelastic material is not implemented')
         if (any(m%steps%nlgeom)) call err(p, 'material ' // trim(m%materials(imat)%name) // ': the thermal ' // &
           'strain (*EXPANSION) of a plastic material under NLGEOM is not implemented (it is without NLGEOM)')
@@ -88,6 +97,10 @@ contains
       end do
     end do
     if (hyper) m%steps(:)%nlgeom = .true.
+    if (allocated(m%sig0) .and. any(m%steps%nlgeom)) then
+      p%i = m%steps(findloc(m%steps%nlgeom, .true., 1))%src%line
+      call err(p, '*INITIAL CONDITIONS, TYPE=STRESS under NLGEOM is not implemented (only in small-deformation steps)')
+    end if
   end subroutine check_nonlinear_materials
 
   !> Purpose: nodes that no element, contact surface or constraint uses
@@ -200,6 +213,11 @@ contains
         if (.not. m%materials(imat)%has_elastic .and. m%materials(imat)%law == law_elastic) then
           p%i = m%materials(imat)%src%line
           call err(p, 'material ' // trim(m%materials(imat)%name) // ' has no *ELASTIC (nor *HYPERELASTIC)')
+        end if
+        if (m%materials(imat)%has_elastic .and. m%materials(imat)%law == law_deformation_plasticity) then
+          p%i = m%materials(imat)%src%line
+          call err(p, 'material ' // trim(m%materials(imat)%name) // ' has *ELASTIC and *DEFORMATION PLASTICITY, ' // &
+                   'which gives E and nu itself')
         end if
         if (m%materials(imat)%nyield > 0 .and. .not. m%materials(imat)%has_elastic) then
           p%i = m%materials(imat)%src%line

@@ -105,6 +105,16 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_plastic
+    module subroutine read_deformation_plasticity(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_deformation_plasticity
+    module subroutine read_initial_stress(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_initial_stress
     module subroutine read_initial_conditions(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -487,7 +497,7 @@ contains
     character(len=*), intent(in) :: name
     select case (name)
     case ('ELASTIC', 'EXPANSION', 'HYPERELASTIC', 'PLASTIC', 'DENSITY', 'SPECIFIC HEAT', 'CONDUCTIVITY', &
-          'DAMPING')
+          'DAMPING', 'DEFORMATION PLASTICITY')
       is_material_card = .true.
     case default
       is_material_card = .false.
@@ -577,7 +587,14 @@ contains
     case ('EXPANSION');     call in_step(p, kw, .false.); call read_expansion(p, m, kw)
     case ('HYPERELASTIC');  call in_step(p, kw, .false.); call read_hyperelastic(p, m, kw)
     case ('PLASTIC');       call in_step(p, kw, .false.); call read_plastic(p, m, kw)
-    case ('INITIAL CONDITIONS'); call in_step(p, kw, .false.); call read_initial_conditions(p, m, kw)
+    case ('DEFORMATION PLASTICITY'); call in_step(p, kw, .false.); call read_deformation_plasticity(p, m, kw)
+    case ('INITIAL CONDITIONS')
+      call in_step(p, kw, .false.)
+      if (to_upper(param_value(kw, 'TYPE')) == 'STRESS') then
+        call read_initial_stress(p, m, kw)
+      else
+        call read_initial_conditions(p, m, kw)
+      end if
     case ('TEMPERATURE');   call in_step(p, kw, .true.); call read_temperature(p, m, kw)
     case ('SOLID SECTION'); call in_step(p, kw, .false.); call read_section(p, m, kw)
     case ('ORIENTATION');   call in_step(p, kw, .false.); call read_orientation(p, m, kw)

@@ -312,7 +312,7 @@ contains
     call allow_params(p, kw, 'TYPE')
     kind = to_upper(required_param(p, kw, 'TYPE'))
     if (kind /= 'TEMPERATURE') call err(p, '*INITIAL CONDITIONS, TYPE=' // kind // &
-      ' is not implemented (only TYPE=TEMPERATURE)')
+      ' is not implemented (only TYPE=TEMPERATURE and TYPE=STRESS)')
     if (.not. allocated(m%initial_temps)) allocate(m%initial_temps(0))
     call read_temperature_lines(p, m, kw%name, 0, .false., m%initial_temps)
   end subroutine read_initial_conditions

@@ -20,7 +20,8 @@ module model
             surf_element, surf_node, coupling_nts, coupling_mortar, &
             amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
-            law_elastic, law_neo_hooke, law_mooney_rivlin, max_yield, controls_t, nonlinear_material
+            law_elastic, law_neo_hooke, law_mooney_rivlin, law_deformation_plasticity, max_yield, controls_t, &
+            nonlinear_material
   public :: orientation_t, orient_rectangular, orient_cylindrical, elastic_iso, elastic_ortho, elastic_aniso
   public :: kept_nodes
 
@@ -45,6 +46,9 @@ module model
   integer, parameter :: elastic_iso = 0, elastic_ortho = 1, elastic_aniso = 2
   !> SYSTEM= of *ORIENTATION (orientation_t%system).
   integer, parameter :: orient_rectangular = 1, orient_cylindrical = 2
+  !> *DEFORMATION PLASTICITY: Ramberg-Osgood, J2 deformation theory (a
+  !> nonlinear elastic law of the total strain; E and nu are its linear part).
+  integer, parameter :: law_deformation_plasticity = 3
   !> Points of a *PLASTIC hardening table.
   integer, parameter :: max_yield = 64
 
@@ -101,6 +105,10 @@ module model
     !> S22 + S33)), which contact penalties and hourglass control take.
     integer :: elastic_type = elastic_iso
     real(dp) :: c6(6, 6) = 0.0_dp
+    !> *DEFORMATION PLASTICITY (law_deformation_plasticity): the yield
+    !> offset sigma0, the exponent n and the yield offset factor alpha of
+    !> eps = sig / E + alpha (sigma0 / E) (sig / sigma0)^n.
+    real(dp) :: ro_sigma0 = 0.0_dp, ro_n = 1.0_dp, ro_alpha = 0.0_dp
   end type material_t
 
   !> *ORIENTATION: local material axes, rectangular (point a on local
@@ -438,6 +446,11 @@ module model
     integer :: contact_solve = 0
     !> *INITIAL CONDITIONS, TYPE=TEMPERATURE (nodes not named start at 0).
     type(temp_t), allocatable :: initial_temps(:)
+    !> *INITIAL CONDITIONS, TYPE=STRESS: the initial stress of element e at
+    !> its integration point ip, sig0(:, ip, e) = (s11, s22, s12, s33) in the
+    !> order of the strain vector (element_catalogue's max_ip points, ne
+    !> elements as the card found them); not allocated without the card.
+    real(dp), allocatable :: sig0(:, :, :)
     !> *NODAL THICKNESS by node (nn), for the sections with NODAL
     !> THICKNESS; allocated only when a section asks for it.
     real(dp), allocatable :: node_thickness(:)
