@@ -40,6 +40,10 @@ module increment_results
     logical :: has_peeq = .false.
     real(dp), allocatable :: peeq_ip(:, :)
     real(dp), allocatable :: peeq_elem(:)             ! (ne) element averages when has_peeq
+    !> A heat transfer step's increment (temperature_field): nt(nn) the
+    !> temperatures, rfl(nn) the reaction fluxes; u and rf are zero.
+    logical :: heat = .false.
+    real(dp), allocatable :: nt(:), rfl(:)
   end type increment_results_t
 
 contains

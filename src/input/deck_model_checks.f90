@@ -197,7 +197,7 @@ contains
       if (.not. (m%sections(s)%spring .or. m%sections(s)%point_mass)) then
         imat = find_name(m%materials%name, m%sections(s)%material_name)
         if (imat == 0) call err(p, 'undefined material ' // trim(m%sections(s)%material_name))
-        if (.not. m%materials(imat)%has_elastic .and. m%materials(imat)%law == law_elastic) then
+        if (.not. m%materials(imat)%has_elastic .and. m%materials(imat)%law == law_elastic .and. .not. m%heat) then
           p%i = m%materials(imat)%src%line
           call err(p, 'material ' // trim(m%materials(imat)%name) // ' has no *ELASTIC (nor *HYPERELASTIC)')
         end if

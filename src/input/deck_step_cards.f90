@@ -740,6 +740,9 @@ contains
           if (index(r%order, q(1:1)) == 0 .and. len_trim(r%order) < len(r%order)) &
             r%order = trim(r%order) // merge('P', q(1:1), q == 'PEEQ')
         case ('CSTRESS', 'CDISP', 'CONTACT'); r%cstress = .true.
+        ! heat transfer (temperature_field): temperatures, reaction fluxes
+        case ('NT'); r%nt = .true.
+        case ('RFL'); r%rfl = .true.
         case ('')
         case default
           call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
