@@ -145,6 +145,8 @@ contains
     f%factored_dt = -1.0_dp
     info%equations = f%neq
     info%prescribed = count(f%presc)
+    info%coupling_elements = 0
+    allocate(info%uncoupled(0), info%uncoupled_pair(0))
     timing%setup = timing%setup + (wall_time() - t0)
   end subroutine begin_heat_step
 

@@ -1,6 +1,6 @@
 !> Element arrays of heat conduction on the plane and axisymmetric
 !> continuum shapes (catalogue: CPS*/CPE*/CAX* in a *HEAT TRANSFER step,
-!> DC2D*/DCAX*): the conduction matrix K_ij = int k grad N_i . grad N_j dV,
+!> DC2D*/DCAX*): the conduction matrix K_ij = int grad N_i . k grad N_j dV (k diagonal),
 !> the capacity matrix C_ij = int rho c N_i N_j dV (consistent), the film
 !> matrix H_ij = int h N_i N_j dS and the nodal fluxes int N_j q dS (a face)
 !> and int N_j r dV (the body). dV is the thickness times dA in the plane
@@ -23,12 +23,13 @@ contains
   !> Purpose: conduction ke, capacity ce and unit body flux fe (int N dV)
   !> of an element of catalogue type et.
   !> Arguments: xy(2, nodes) the node coordinates; thick(nodes) the nodal
-  !> thicknesses (plane); cond the conductivity k; cap rho c.
+  !> thicknesses (plane); cond the conductivities along x and y (r and z);
+  !> cap rho c.
   pure subroutine heat_volume_arrays(et, xy, thick, cond, cap, ke, ce, fe)
     integer, intent(in) :: et
-    real(dp), intent(in) :: xy(:, :), thick(:), cond, cap
+    real(dp), intent(in) :: xy(:, :), thick(:), cond(2), cap
     real(dp), intent(out) :: ke(max_nodes, max_nodes), ce(max_nodes, max_nodes), fe(max_nodes)
-    real(dp) :: xi(2, max_ip), w(max_ip), n(max_nodes), dx(2, max_nodes), detj, dv
+    real(dp) :: xi(2, max_ip), w(max_ip), n(max_nodes), dx(2, max_nodes), kdx(2, max_nodes), detj, dv
     integer :: ip, nen, nip, i
     nen = catalogue(et)%nodes
     ke = 0.0_dp
@@ -40,7 +41,9 @@ contains
       call physical_gradients(et, xy, xi(:, ip), n, dx, detj)
       dv = w(ip) * volume_factor(catalogue(et)%state, detj, dot_product(n(1:nen), xy(1, 1:nen)), &
                                  dot_product(n(1:nen), thick(1:nen)))
-      ke(1:nen, 1:nen) = ke(1:nen, 1:nen) + cond * dv * matmul(transpose(dx(:, 1:nen)), dx(:, 1:nen))
+      kdx(1, 1:nen) = cond(1) * dx(1, 1:nen)
+      kdx(2, 1:nen) = cond(2) * dx(2, 1:nen)
+      ke(1:nen, 1:nen) = ke(1:nen, 1:nen) + dv * matmul(transpose(dx(:, 1:nen)), kdx(:, 1:nen))
       do i = 1, nen
         ce(i, 1:nen) = ce(i, 1:nen) + cap * dv * n(i) * n(1:nen)
       end do

@@ -75,18 +75,34 @@ contains
     end associate
   end subroutine read_heat_transfer
 
-  !> Purpose: *CONDUCTIVITY[, TYPE=ISO]: `k[, temperature]`, one data line.
+  !> Purpose: *CONDUCTIVITY[, TYPE=ISO]: `k[, temperature]`;
+  !> TYPE=ORTHO: `k11, k22, k33[, temperature]` along the global axes
+  !> (k33, out of the plane or the hoop direction, plays no part in 2D
+  !> conduction); one data line.
   subroutine read_conductivity(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    character(len=:), allocatable :: kind
+    integer :: n
     call allow_params(p, kw, 'TYPE')
-    if (has_param(kw, 'TYPE')) then
-      if (to_upper(param_value(kw, 'TYPE')) /= 'ISO') call err(p, 'only TYPE=ISO is implemented on ' // &
-          '*CONDUCTIVITY (orthotropic and anisotropic conductivity are not)')
-    end if
+    kind = 'ISO'
+    if (has_param(kw, 'TYPE')) kind = to_upper(param_value(kw, 'TYPE'))
+    if (kind /= 'ISO' .and. kind /= 'ORTHO') call err(p, 'TYPE=' // kind // ' of *CONDUCTIVITY is not ' // &
+        'implemented (ISO and ORTHO are)')
     if (p%material == 0) call err(p, '*CONDUCTIVITY outside a *MATERIAL')
-    m%materials(p%material)%conductivity = constant_value(p, 'CONDUCTIVITY', 'conductivity')
+    if (kind == 'ISO') then
+      m%materials(p%material)%conductivity = constant_value(p, 'CONDUCTIVITY', 'conductivity')
+    else
+      call require_data(p, 'k11, k22, k33')
+      call split_fields(line_text(p), f, n)
+      if (n < 3 .or. n > 4) call err(p, '*CONDUCTIVITY, TYPE=ORTHO data line needs: k11, k22, k33[, temperature]')
+      m%materials(p%material)%conductivity = [get_real(p, f(1), 'k11'), get_real(p, f(2), 'k22')]
+      if (any(m%materials(p%material)%conductivity <= 0.0_dp) .or. get_real(p, f(3), 'k33') <= 0.0_dp) &
+        call err(p, 'the conductivities must be positive')
+      if (next_data(p)) call err(p, 'temperature-dependent *CONDUCTIVITY data is not implemented')
+    end if
     m%materials(p%material)%has_conductivity = .true.
   end subroutine read_conductivity
 

@@ -87,10 +87,12 @@ module model
     !> no plasticity.
     integer :: nyield = 0
     real(dp) :: yield(2, max_yield) = 0.0_dp
-    !> Heat transfer (docs/heat.md): *CONDUCTIVITY k (isotropic) and
-    !> *SPECIFIC HEAT c, constant; the capacity is density * c.
+    !> Heat transfer (docs/heat.md): *CONDUCTIVITY, constant, along the
+    !> global axes x and y (r and z in axisymmetry): k11 = k22 = k when
+    !> isotropic, k11 and k22 of TYPE=ORTHO; *SPECIFIC HEAT c, constant;
+    !> the capacity is density * c.
     logical :: has_conductivity = .false., has_specific_heat = .false.
-    real(dp) :: conductivity = 0.0_dp, specific_heat = 0.0_dp
+    real(dp) :: conductivity(2) = 0.0_dp, specific_heat = 0.0_dp
   end type material_t
 
   !> A *SOLID SECTION (continuum elements and trusses) or a *SPRING
