@@ -332,6 +332,8 @@ contains
     logical :: stress(size(m%sections))
     integer :: e
     stress = .false.
+    ! (heat transfer: the stress state plays no part)
+    if (m%heat) return
     do e = 1, m%ne
       if (m%elem_section(e) == 0) cycle
       if (catalogue(m%etype(e))%state == state_plane_stress) stress(m%elem_section(e)) = .true.

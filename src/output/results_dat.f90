@@ -126,6 +126,13 @@ contains
       sel = [(k, k = 1, m%nn)]
       sname = 'NALL'
     end if
+    ! heat transfer: CalculiX's temperature block (temperature_field)
+    if (r%nt .and. res%heat) then
+      call caption(u, 'temperatures for set ' // sname, res%total_time)
+      do k = 1, size(sel)
+        write(u, '(i10, 1p, 1x, e13.6)') m%node_id(sel(k)), tidy(res%nt(sel(k)))
+      end do
+    end if
     do q = 1, len_trim(r%order)
       if (r%order(q:q) == 'U' .and. .not. r%only_totals) then
         call caption(u, 'displacements (vx,vy,vz) for set ' // sname, res%total_time)
