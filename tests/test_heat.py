@@ -221,7 +221,7 @@ def test_heat_errors():
         (base + "*STEP\n*STATIC\n*END STEP\n", "mechanical and heat transfer steps"),
         (base.replace("*CONDUCTIVITY\n10.\n", "*ELASTIC\n1000., 0.3\n"), "has no *CONDUCTIVITY"),
         (base.replace("*HEAT TRANSFER, STEADY STATE", "*HEAT TRANSFER\n0.1, 1."), "needs *DENSITY and *SPECIFIC"),
-        (base.replace("*HEAT TRANSFER, STEADY STATE", "*STATIC"), "needs a *HEAT TRANSFER step"),
+        (base.replace("*HEAT TRANSFER, STEADY STATE", "*STATIC"), "it belongs to a *HEAT TRANSFER step"),
     ]
     for i, (deck, msg) in enumerate(cases):
         run = run_deck("heat_error_%d" % i, deck)

@@ -167,11 +167,12 @@ contains
     integer :: n, d1, d2, amp, iset
     real(dp) :: v
     call allow_params(p, kw, 'OP,AMPLITUDE,TYPE')
-    amp = heat_options(p, m, kw, 'BOUNDARY')
     if (p%step > 0) then
-      if (.not. m%steps(p%step)%heat) call err(p, 'dof 11 is the temperature: *BOUNDARY on it needs a ' // &
-          '*HEAT TRANSFER step (before it in the step); *COUPLED TEMPERATURE-DISPLACEMENT is not implemented')
+      if (.not. m%steps(p%step)%heat) call err(p, 'dof 11 is the temperature (*BOUNDARY on it is a ' // &
+          'prescribed temperature): it belongs to a *HEAT TRANSFER step (before it in the step; docs/heat.md); ' // &
+          'heat transfer in a mechanical step (*COUPLED TEMPERATURE-DISPLACEMENT) is not implemented')
     end if
+    amp = heat_options(p, m, kw, 'BOUNDARY')
     if (p%step == 0 .and. amp > 0) call err(p, 'AMPLITUDE= is only allowed inside *STEP')
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
