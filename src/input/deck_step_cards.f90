@@ -226,13 +226,14 @@ contains
   end function zero_dof_message
 
   !> Purpose: the message for dof 11 (CalculiX's temperature dof) on `card`,
-  !> which would be `what` in a heat transfer analysis: that is another
-  !> procedure, not a displacement dof cfe2d lacks.
+  !> which would be `what` in a heat transfer analysis: that belongs to a
+  !> *HEAT TRANSFER step (deck_heat_cards), not a displacement dof.
   pure function heat_transfer_dof(card, what) result(msg)
     character(len=*), intent(in) :: card, what
     character(len=:), allocatable :: msg
-    msg = 'dof 11 is the temperature (' // card // ' on it is ' // what // '): heat transfer is not ' // &
-          'part of cfe2d, which runs static mechanical steps (the temperatures of a thermal strain are ' // &
+    msg = 'dof 11 is the temperature (' // card // ' on it is ' // what // '): it belongs to a *HEAT ' // &
+          'TRANSFER step (docs/heat.md: *BOUNDARY on dof 11, *CFLUX); heat transfer in a mechanical step ' // &
+          '(*COUPLED TEMPERATURE-DISPLACEMENT) is not implemented (the temperatures of a thermal strain are ' // &
           'given by *TEMPERATURE)'
   end function heat_transfer_dof
 
