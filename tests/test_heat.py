@@ -49,7 +49,7 @@ def slab_deck(shape, et, nx, length, height, left, right, material, step_cards, 
         deck += f"*BOUNDARY\nLEFT, 11, 11, {left}\n"
     if films:
         deck += "*FILM\n" + films
-    deck += "*NODE PRINT, NSET=NALL\nNT, RFL\n*END STEP\n"
+    deck += "*NODE PRINT, NSET=NALL\nNT, RFL\n*EL PRINT, ELSET=EALL\nHFL\n*END STEP\n"
     return m, deck
 
 
@@ -63,7 +63,8 @@ def check_linear(m, nt, t_at, tol):
 def test_slab_film_every_element():
     """T0 = 100 at x = 0, film h = 50 to 20 at x = L = 1, k = 10: q = 80 /
     0.12, T(x) = 100 - q x / k, on every plane element and a thickness of
-    0.1; the reaction flux over the left face is q A."""
+    0.1; the reaction flux over the left face is q A; the heat flux HFL
+    (*EL PRINT) is (q, 0) at every integration point (1e-10 of q)."""
     k, h, sink, t0, length, height, thick = 10.0, 50.0, 20.0, 100.0, 1.0, 0.4, 0.1
     q = (t0 - sink) / (length / k + 1.0 / h)
     for shape, et in (("T3", "DC2D3"), ("Q4", "DC2D4"), ("T6", "DC2D6"), ("Q8", "DC2D8"), ("Q4", "CPS4"),
@@ -76,6 +77,8 @@ def test_slab_film_every_element():
         rfl = node_values(run, "RFL")
         total = sum(rfl[n] for n in m.side("left"))
         assert abs(total - q * height * thick) < 1e-9 * q * height * thick, (et, total, q * height * thick)
+        hfl = run.listing.increments[-1].block("ELEMENT HFL")
+        assert len(hfl) > 0 and max(abs(hfl["HFL1"] - q)) < 1e-10 * q and max(abs(hfl["HFL2"])) < 1e-10 * q, et
 
 
 def test_slab_fluxes():
@@ -113,6 +116,8 @@ INNER, 11, 11, {ta}
 OUTER, 11, 11, {tb}
 *NODE PRINT, NSET=NALL
 NT, RFL
+*EL PRINT, ELSET=EALL
+HFL
 *END STEP
 """
 
@@ -123,7 +128,9 @@ def test_cylinder_radial_conduction():
     2 pi k H (Ta - Tb) / ln 2 = 453.236; 8 quadratic elements (CAX8) within
     1e-5 of Ta - Tb, 16 linear ones (DCAX4) within 1e-4 (the mesh's
     error, measured 1.5e-6 and 3.0e-5); the heat within 1e-5 and 5e-4
-    (measured 4.5e-7 and 1.8e-4)."""
+    (measured 4.5e-7 and 1.8e-4); CAX8's HFL at its 3x3 points against
+    k (Ta - Tb) / (r ln 2) within 2e-3 (measured 1.16e-3; 3.1e-4 on 16
+    elements: the gradient's second order)."""
     a, b, height, ta, tb, k = 1.0, 2.0, 0.1, 100.0, 0.0, 5.0
     q_exact = 2 * math.pi * k * height * (ta - tb) / math.log(b / a)
     for shape, et, nr, tol_t, tol_q in (("Q8", "CAX8", 8, 1e-5, 1e-5), ("Q4", "DCAX4", 16, 1e-4, 5e-4)):
@@ -136,6 +143,17 @@ def test_cylinder_radial_conduction():
         rfl = node_values(run, "RFL")
         q = sum(rfl[n] for n in m.side("left"))
         assert abs(q - q_exact) < tol_q * q_exact, f"{et}: heat {q} against {q_exact}"
+        if et == "CAX8":
+            # the radial heat flux k (Ta - Tb) / (r ln(b/a)) at the 3x3 points (xi fastest) of each element
+            g = math.sqrt(0.6)
+            hfl = run.listing.increments[-1].block("ELEMENT HFL")
+            worst = 0.0
+            for e, ip, q1, q2 in zip(hfl["element"], hfl["ip"], hfl["HFL1"], hfl["HFL2"]):
+                xi = (-g, 0.0, g)[(int(ip) - 1) % 3]
+                r = a + (b - a) * (int(e) - 1 + 0.5 * (1 + xi)) / nr
+                exact = k * (ta - tb) / (r * math.log(b / a))
+                worst = max(worst, abs(q1 - exact) / exact, abs(q2) / exact)
+            assert worst < 2e-3, f"HFL: largest error {worst:.2e}"
 
 
 def slab_series(x, t, length, alpha, terms=200):

@@ -19,4 +19,4 @@ $(OBJDIR)/increment_results.o: $(OBJDIR)/assembly.o $(OBJDIR)/contact.o $(OBJDIR
 $(OBJDIR)/iteration_state.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(OBJDIR)/constraints.o $(OBJDIR)/contact.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/equilibrium_common.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/model.o
 $(OBJDIR)/load_state.o: $(OBJDIR)/assembly.o $(OBJDIR)/distributed_loads.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/newton_control.o: $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
-$(OBJDIR)/temperature_field.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/analysis_field.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/heat_element.o $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
+$(OBJDIR)/temperature_field.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/analysis_field.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/heat_element.o $(OBJDIR)/shape_functions.o $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o

@@ -18,8 +18,9 @@ module temperature_field
   use strings, only: itoa, rtoa
   use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amplitude_t, amp_total_time, is_continuum, &
                    elem_nodes, elem_thickness
-  use element_catalogue, only: catalogue, max_nodes
-  use heat_element, only: heat_volume_arrays, heat_face_arrays
+  use element_catalogue, only: catalogue, max_nodes, max_ip
+  use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient
+  use shape_functions, only: gauss_rule
   use linear_solver, only: linear_system_t, sys_setup, sys_zero, sys_add, sys_factor, sys_solve, factor_ok, &
                            factor_fallback
   use increment_results, only: increment_results_t
@@ -509,7 +510,7 @@ contains
     res%rf = 0.0_dp
     allocate(res%nip(m%ne), res%sig_ip(4, 1, 0), res%eps_ip(3, 1, 0), res%sig_node(4, 0), res%sig_elem(4, 0), &
              res%peeq_ip(1, 0), res%peeq_elem(0))
-    res%nip = 0
+    call heat_fluxes(f, m, any(m%steps(is)%requests%hfl), res%nip, res%hfl_ip)
     allocate(res%contact%pairs(0), res%contact%pressure(m%nn), res%contact%shear(m%nn), &
              res%contact%has_pressure(m%nn))
     res%contact%pressure = 0.0_dp
@@ -520,6 +521,34 @@ contains
     end do
     timing%output = timing%output + (wall_time() - t0)
   end subroutine report
+
+  !> The heat flux -k grad T at the integration points of the
+  !> conducting elements (the catalogue's rule of each: CalculiX's points
+  !> of the plane elements), when wanted (HFL); nip(e) their count (0 for
+  !> other elements, and for all when not wanted).
+  subroutine heat_fluxes(f, m, wanted, nip, hfl)
+    class(temperature_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    logical, intent(in) :: wanted
+    integer, intent(out) :: nip(:)
+    real(dp), allocatable, intent(out) :: hfl(:, :, :)
+    real(dp) :: xi(2, max_ip), w(max_ip), cond(2)
+    integer :: k, e, n, ip
+    nip = 0
+    allocate(hfl(2, max_ip, merge(m%ne, 0, wanted)))
+    if (.not. wanted) return
+    hfl = 0.0_dp
+    do k = 1, size(f%elems)
+      e = f%elems(k)
+      n = elem_nodes(m, e)
+      nip(e) = catalogue(m%etype(e))%nip
+      cond = m%materials(m%sections(m%elem_section(e))%material)%conductivity
+      call gauss_rule(catalogue(m%etype(e))%shape, nip(e), xi, w)
+      do ip = 1, nip(e)
+        hfl(:, ip, e) = -cond * heat_gradient(m%etype(e), m%x(:, m%conn(1:n, e)), f%temp(m%conn(1:n, e)), xi(:, ip))
+      end do
+    end do
+  end subroutine heat_fluxes
 
   !> Purpose: the step's factorisations (the increments' solves are its
   !> iterations: one each).

@@ -188,8 +188,9 @@ module model
     !> P for PEEQ), the order of CalculiX's blocks in <job>.dat.
     character(len=8) :: order = ''
     !> Heat transfer: NT (temperatures) and RFL (reaction fluxes) of
-    !> *NODE PRINT / *NODE FILE.
-    logical :: nt = .false., rfl = .false.
+    !> *NODE PRINT / *NODE FILE; HFL (the heat flux at the integration
+    !> points) of *EL PRINT.
+    logical :: nt = .false., rfl = .false., hfl = .false.
   end type request_t
 
   !> face of a heat_load_t that is a body flux (*DFLUX label BF)
