@@ -744,11 +744,16 @@ contains
         ! heat transfer (temperature_field): temperatures, reaction fluxes
         case ('NT'); r%nt = .true.
         case ('RFL'); r%rfl = .true.
+        case ('HFL'); r%hfl = .true.
         case ('')
         case default
           call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
           cycle
         end select
+        if ((r%nodal .or. r%to_file) .and. q == 'HFL') call deck_warning(p%deck, p%i, 'HFL (heat flux) is ' // &
+          'listed at the integration points by *EL PRINT only; ignored here')
+        if (r%to_file .and. q == 'RFL') call deck_warning(p%deck, p%i, 'RFL is listed by *NODE PRINT only ' // &
+          '(not in the result files); ignored here')
         if (.not. r%nodal .and. .not. r%to_file .and. (q == 'U' .or. q == 'RF')) &
           call deck_warning(p%deck, p%i, q // ' is a nodal quantity, which *EL PRINT does not list: ask for it ' // &
                             'in *NODE PRINT; ignored here')

@@ -599,6 +599,16 @@ contains
         end do
       end do
     end if
+    if (req%hfl .and. res%heat) then
+      ! heat transfer: the heat flux -k grad T at the integration points
+      call block_head(self, m, 'ELEMENT HFL', req%set, .false., 'element ip HFL1 HFL2')
+      do k = 1, size(sel)
+        e = sel(k)
+        do ip = 1, res%nip(e)
+          write(un, rowfmt(self, 'i10,i4', 2)) m%elem_id(e), ip, res%hfl_ip(:, ip, e)
+        end do
+      end do
+    end if
     if (req%peeq) then
       ! the equivalent plastic strain (zero for a material without *PLASTIC)
       call block_head(self, m, 'ELEMENT PEEQ', req%set, .false., 'element ip PEEQ' // label_column(m))
