@@ -240,6 +240,12 @@ def test_heat_errors():
         (base.replace("*CONDUCTIVITY\n10.\n", "*ELASTIC\n1000., 0.3\n"), "has no *CONDUCTIVITY"),
         (base.replace("*HEAT TRANSFER, STEADY STATE", "*HEAT TRANSFER\n0.1, 1."), "needs *DENSITY and *SPECIFIC"),
         (base.replace("*HEAT TRANSFER, STEADY STATE", "*STATIC"), "it belongs to a *HEAT TRANSFER step"),
+        # magnitudes that overflow: stopped, never a NaN in the listing
+        (base.replace("*CONDUCTIVITY\n10.\n", "*CONDUCTIVITY\n1e300\n").replace("LEFT, 11, 11, 100.0",
+                                                                              "LEFT, 11, 11, 1e300"),
+         "is not a finite number"),
+        # a region with neither a held temperature nor a film: no steady state
+        (base.replace("*BOUNDARY\nLEFT, 11, 11, 100.0\n", "*CFLUX\n1, 11, 1.\n"), "matrix is singular"),
     ]
     for i, (deck, msg) in enumerate(cases):
         run = run_deck("heat_error_%d" % i, deck)

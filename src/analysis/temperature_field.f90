@@ -14,10 +14,11 @@
 !> exceeds DELTMX fails (failure: the cut factor) and is solved again
 !> smaller, as CalculiX does.
 module temperature_field
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use strings, only: itoa, rtoa
-  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amplitude_t, amp_total_time, is_continuum, &
-                   elem_nodes, elem_thickness
+  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, is_continuum, &
+                   elem_nodes, elem_thickness, node_label, elem_label
   use element_catalogue, only: catalogue, max_nodes, max_ip
   use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient
   use shape_functions, only: gauss_rule
@@ -511,6 +512,7 @@ contains
     allocate(res%nip(m%ne), res%sig_ip(4, 1, 0), res%eps_ip(3, 1, 0), res%sig_node(4, 0), res%sig_elem(4, 0), &
              res%peeq_ip(1, 0), res%peeq_elem(0))
     call heat_fluxes(f, m, any(m%steps(is)%requests%hfl), res%nip, res%hfl_ip)
+    call check_finite(m, res)
     allocate(res%contact%pairs(0), res%contact%pressure(m%nn), res%contact%shear(m%nn), &
              res%contact%has_pressure(m%nn))
     res%contact%pressure = 0.0_dp
@@ -521,6 +523,27 @@ contains
     end do
     timing%output = timing%output + (wall_time() - t0)
   end subroutine report
+
+  !> Stops the run, naming the increment, the quantity and the node or
+  !> element, where a result is not a finite number (magnitudes in the
+  !> deck that overflow): nothing that is not a number is written.
+  subroutine check_finite(m, res)
+    type(model_t), intent(in) :: m
+    type(increment_results_t), intent(in) :: res
+    character(len=:), allocatable :: at
+    integer :: a, e
+    at = 'step ' // itoa(res%step) // ', increment ' // itoa(res%increment) // ': '
+    do a = 1, m%nn
+      if (.not. ieee_is_finite(res%nt(a))) call fatal(at // 'the temperature at node ' // node_label(m, a) // &
+        ' is not a finite number (the magnitudes of the deck overflow)')
+      if (.not. ieee_is_finite(res%rfl(a))) call fatal(at // 'the reaction flux at node ' // node_label(m, a) // &
+        ' is not a finite number (the magnitudes of the deck overflow)')
+    end do
+    do e = 1, size(res%hfl_ip, 3)
+      if (.not. all(ieee_is_finite(res%hfl_ip(:, 1:res%nip(e), e)))) call fatal(at // 'the heat flux in element ' // &
+        elem_label(m, e) // ' is not a finite number (the magnitudes of the deck overflow)')
+    end do
+  end subroutine check_finite
 
   !> The heat flux -k grad T at the integration points of the
   !> conducting elements (the catalogue's rule of each: CalculiX's points
