@@ -308,3 +308,37 @@ def test_result_files_carry_temperatures():
     assert abs(float(row[13:25]) - 100.0) < 1e-9, row
     with open(os.path.join(d, "heat_files_0001.vtu"), "rb") as f:
         assert b'Name="NT"' in f.read()
+
+
+def test_steps_and_amplitudes():
+    """Two steps. Step 1, steady, 4 increments: a *DFLUX of 300 times the
+    amplitude A (0 at t = 0, 2 at t = 1) into the left face of a slab with
+    a film (h = 50, sink 20) on the right: at every increment T(x) = 20 +
+    q/h + q (L - x)/k with q = 600 t, exact (1e-10). Step 2, transient
+    (backward Euler, 3 fixed increments), the same loads held at their end
+    values (OP=MOD: a step's cards add to the earlier ones'; the flux's
+    amplitude stays A, held at 2 beyond t = 1): the steady state of step 1
+    is a fixed point, kept to 1e-10 at every increment."""
+    k, h, sink, length, height = 10.0, 50.0, 20.0, 1.0, 0.4
+    m = Mesh("Q4", 3, 2, lambda s, t: (length * s / 3, height * t / 2), straight=True)
+    flux = "".join(f"{e}, S{f}, 300.\n" for e, f in m.faces("left"))
+    material = "*CONDUCTIVITY\n10.\n*DENSITY\n3.\n*SPECIFIC HEAT\n7.\n"
+    m, deck = slab_deck("Q4", "DC2D4", 3, length, height, None, (h, sink), material, "*DFLUX, AMPLITUDE=A\n" + flux,
+                        step="*HEAT TRANSFER, STEADY STATE\n0.25, 1.",
+                        extra="*AMPLITUDE, NAME=A\n0., 0., 1., 2.\n")
+    deck += """*STEP
+*HEAT TRANSFER, DIRECT
+0.1, 0.3
+*NODE PRINT, NSET=NALL
+NT
+*END STEP
+"""
+    run = run_deck("heat_steps", deck).ok()
+    incs = run.listing.increments
+    assert [i.step for i in incs] == [1] * 4 + [2] * 3, [i.step for i in incs]
+    for inc in incs:
+        q = 600.0 * (min(float(inc.attrs["time"]), 1.0) if inc.step == 1 else 1.0)
+        b = inc.block("NODE NT")
+        nt = dict(zip((int(n) for n in b["node"]), b["NT11"]))
+        worst = max(abs(nt[n] - (sink + q / h + q * (length - x) / k)) for n, (x, _) in m.nodes.items())
+        assert worst < 1e-10 * 100, (inc.attrs, worst)

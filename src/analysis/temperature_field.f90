@@ -69,6 +69,8 @@ module temperature_field
 
   !> CalculiX's dof of the temperature.
   integer, parameter :: dof_temperature = 11
+  !> The amplitude of a load held from an earlier step (hold_loads).
+  integer, parameter :: held = -1
 
 contains
 
@@ -126,7 +128,9 @@ contains
     type(step_info_t), intent(inout) :: info
     type(run_timing_t), intent(inout) :: timing
     real(dp) :: t0
+    integer :: k
     t0 = wall_time()
+    if (f%is > 0) call hold_loads(f, m)
     f%is = is
     f%total_time = total_time
     f%steady = m%steps(is)%steady
@@ -134,13 +138,15 @@ contains
     associate(s => m%steps(is))
       if (is == 1) f%tbcs = pack(m%model_bcs, m%model_bcs%dof == dof_temperature)
       if (s%new_tbcs) f%tbcs = f%tbcs(1:0)
-      if (allocated(s%tbcs)) f%tbcs = [f%tbcs, s%tbcs]
+      if (allocated(s%tbcs)) f%tbcs = [pack(f%tbcs, [(.not. any(s%tbcs%node == f%tbcs(k)%node), &
+                                                      k = 1, size(f%tbcs))]), s%tbcs]
       if (s%new_cfluxes) f%cfluxes = f%cfluxes(1:0)
-      if (allocated(s%cfluxes)) f%cfluxes = [f%cfluxes, s%cfluxes]
+      if (allocated(s%cfluxes)) f%cfluxes = [pack(f%cfluxes, [(.not. any(s%cfluxes%node == f%cfluxes(k)%node), &
+                                                              k = 1, size(f%cfluxes))]), s%cfluxes]
       if (s%new_dfluxes) f%dfluxes = f%dfluxes(1:0)
-      if (allocated(s%dfluxes)) f%dfluxes = [f%dfluxes, s%dfluxes]
+      if (allocated(s%dfluxes)) f%dfluxes = [pack(f%dfluxes, .not. replaced(f%dfluxes, s%dfluxes)), s%dfluxes]
       if (s%new_films) f%films = f%films(1:0)
-      if (allocated(s%films)) f%films = [f%films, s%films]
+      if (allocated(s%films)) f%films = [pack(f%films, .not. replaced(f%films, s%films)), s%films]
     end associate
     call prescribe(f, m)
     call number_temperatures(f, m)
@@ -151,6 +157,44 @@ contains
     allocate(info%uncoupled(0), info%uncoupled_pair(0))
     timing%setup = timing%setup + (wall_time() - t0)
   end subroutine begin_heat_step
+
+  !> The loads of the steps before, as the next step inherits them: held
+  !> at the values they reached at the end of the previous step (their
+  !> amplitudes, which run on that step's time, folded in); a prescribed
+  !> temperature is held where it is.
+  subroutine hold_loads(f, m)
+    class(temperature_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    integer :: k
+    real(dp) :: t_end
+    t_end = m%steps(f%is)%period
+    f%t1 = t_end
+    do k = 1, size(f%tbcs)
+      f%tbcs(k)%value = f%temp(f%tbcs(k)%node)
+      f%tbcs(k)%amp = 0
+    end do
+    do k = 1, size(f%cfluxes)
+      f%cfluxes(k)%value = f%cfluxes(k)%value * load_factor(f, m, f%cfluxes(k)%amp, t_end)
+      f%cfluxes(k)%amp = held
+    end do
+    do k = 1, size(f%dfluxes)
+      f%dfluxes(k)%value = f%dfluxes(k)%value * load_factor(f, m, f%dfluxes(k)%amp, t_end)
+      f%dfluxes(k)%amp = held
+    end do
+    do k = 1, size(f%films)
+      f%films(k)%sink = sink_at(f, m, f%films(k))
+      f%films(k)%amp = 0
+    end do
+  end subroutine hold_loads
+
+  !> The loads of old that a load of new replaces (the same element and
+  !> face, as a *DLOAD replaces one on the same face).
+  pure function replaced(old, new) result(r)
+    type(heat_load_t), intent(in) :: old(:), new(:)
+    logical :: r(size(old))
+    integer :: k
+    r = [(any(new%elem == old(k)%elem .and. new%face == old(k)%face), k = 1, size(old))]
+  end function replaced
 
   !> The prescribed nodes of the step: each starts from its temperature
   !> at the step's start and reaches the value of its last *BOUNDARY.
@@ -258,13 +302,16 @@ contains
   end function prescribed_at
 
   !> The factor of a load at step time t: its amplitude's value, or the
-  !> default amplitude (a ramp over a steady step, a step in a transient).
+  !> default amplitude (a ramp over a steady step, a step in a transient);
+  !> 1 for a load held from an earlier step.
   real(dp) function load_factor(f, m, amp, t) result(v)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
     integer, intent(in) :: amp
     real(dp), intent(in) :: t
-    if (amp > 0) then
+    if (amp == held) then
+      v = 1.0_dp
+    else if (amp > 0) then
       v = amp_at(f, m, amp, t)
     else if (f%steady) then
       v = t / m%steps(f%is)%period
