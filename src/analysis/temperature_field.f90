@@ -43,6 +43,9 @@ module temperature_field
     type(bc_t), allocatable :: tbcs(:)                   ! in force (the step's and the earlier ones)
     type(cload_t), allocatable :: cfluxes(:)
     type(heat_load_t), allocatable :: dfluxes(:), films(:)
+    !> By conducting element k: its films films(ifilm(xfilm(k):xfilm(k+1)-1))
+    !> and its fluxes dfluxes(iflux(xflux(k):xflux(k+1)-1)).
+    integer, allocatable :: xfilm(:), ifilm(:), xflux(:), iflux(:)
     type(linear_system_t) :: sys
     integer :: neq = 0, is = 0
     logical :: steady = .true.
@@ -149,6 +152,8 @@ contains
       if (allocated(s%films)) f%films = [pack(f%films, .not. replaced(f%films, s%films)), s%films]
     end associate
     call prescribe(f, m)
+    call loads_by_element(f, m, f%films%elem, f%xfilm, f%ifilm)
+    call loads_by_element(f, m, f%dfluxes%elem, f%xflux, f%iflux)
     call number_temperatures(f, m)
     f%factored_dt = -1.0_dp
     info%equations = f%neq
@@ -157,6 +162,41 @@ contains
     allocate(info%uncoupled(0), info%uncoupled_pair(0))
     timing%setup = timing%setup + (wall_time() - t0)
   end subroutine begin_heat_step
+
+  !> The loads on each conducting element: the loads with elements
+  !> elems(:) sorted by conducting element k into iload(xload(k):xload(k+1)-1)
+  !> (loads on an element that does not conduct act on nothing).
+  subroutine loads_by_element(f, m, elems, xload, iload)
+    class(temperature_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: elems(:)
+    integer, allocatable, intent(out) :: xload(:), iload(:)
+    integer, allocatable :: kof(:)
+    integer :: j, k, nel
+    nel = size(f%elems)
+    allocate(kof(m%ne))
+    kof = 0
+    kof(f%elems) = [(k, k = 1, nel)]
+    allocate(xload(nel + 1), iload(count(kof(elems) > 0)))
+    xload = 0
+    do j = 1, size(elems)
+      k = kof(elems(j))
+      if (k > 0) xload(k + 1) = xload(k + 1) + 1
+    end do
+    xload(1) = 1
+    do k = 1, nel
+      xload(k + 1) = xload(k + 1) + xload(k)
+    end do
+    do j = size(elems), 1, -1
+      k = kof(elems(j))
+      if (k == 0) cycle
+      xload(k + 1) = xload(k + 1) - 1
+      iload(xload(k + 1)) = j
+    end do
+    ! xload(k + 1) now starts element k's loads: shift back
+    xload(1:nel) = xload(2:nel + 1)
+    xload(nel + 1) = size(iload) + 1
+  end subroutine loads_by_element
 
   !> The loads of the steps before, as the next step inherits them: held
   !> at the values they reached at the end of the previous step (their
@@ -394,13 +434,13 @@ contains
     integer, intent(in) :: k
     real(dp), intent(out) :: ae(max_nodes, max_nodes)
     real(dp) :: he(max_nodes, max_nodes), fe(max_nodes)
-    integer :: j, e, n
+    integer :: i, j, e, n
     e = f%elems(k)
     n = elem_nodes(m, e)
     ae = f%ke(:, :, k)
     if (.not. f%steady) ae = ae + f%ce(:, :, k) / f%dt
-    do j = 1, size(f%films)
-      if (f%films(j)%elem /= e) cycle
+    do i = f%xfilm(k), f%xfilm(k + 1) - 1
+      j = f%ifilm(i)
       call heat_face_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), f%films(j)%face, he, fe)
       ae = ae + f%films(j)%value * he
     end do
@@ -473,13 +513,13 @@ contains
     integer, intent(in) :: k
     real(dp), intent(out) :: fe(max_nodes)
     real(dp) :: he(max_nodes, max_nodes), fs(max_nodes)
-    integer :: j, e, n
+    integer :: i, j, e, n
     e = f%elems(k)
     n = elem_nodes(m, e)
     fe = 0.0_dp
     if (.not. f%steady) fe(1:n) = matmul(f%ce(1:n, 1:n, k), f%saved(m%conn(1:n, e))) / f%dt
-    do j = 1, size(f%dfluxes)
-      if (f%dfluxes(j)%elem /= e) cycle
+    do i = f%xflux(k), f%xflux(k + 1) - 1
+      j = f%iflux(i)
       if (f%dfluxes(j)%face == heat_bf) then
         fs = f%fb(:, k)
       else
@@ -487,8 +527,8 @@ contains
       end if
       fe = fe + f%dfluxes(j)%value * load_factor(f, m, f%dfluxes(j)%amp, f%t1) * fs
     end do
-    do j = 1, size(f%films)
-      if (f%films(j)%elem /= e) cycle
+    do i = f%xfilm(k), f%xfilm(k + 1) - 1
+      j = f%ifilm(i)
       call heat_face_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), f%films(j)%face, he, fs)
       fe = fe + f%films(j)%value * sink_at(f, m, f%films(j)) * fs
     end do
