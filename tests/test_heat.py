@@ -244,6 +244,8 @@ def test_heat_errors():
         (base.replace("*CONDUCTIVITY\n10.\n", "*CONDUCTIVITY\n1e300\n").replace("LEFT, 11, 11, 100.0",
                                                                               "LEFT, 11, 11, 1e300"),
          "is not a finite number"),
+        (base.replace("*HEAT TRANSFER, STEADY STATE", "*HEAT TRANSFER, DIRECT\n1e-9, 1."), "increments"),
+        (base.replace("*HEAT TRANSFER, STEADY STATE", "*HEAT TRANSFER, STEADY STATE, TIME RESET"), "TIME RESET"),
         # a region with neither a held temperature nor a film: no steady state
         (base.replace("*BOUNDARY\nLEFT, 11, 11, 100.0\n", "*CFLUX\n1, 11, 1.\n"), "matrix is singular"),
     ]

@@ -11,8 +11,8 @@ module deck_heat_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: keyword_t, param_value, has_param, is_keyword
-  use deck_cursor, only: parser_t, line_text, err, next_data, require_data, allow_params, get_real, get_int, &
-                         is_int, is_label, node_ref, elem_ref, need_nset, need_elset, warn_empty_set
+  use deck_cursor, only: parser_t, max_increments, line_text, err, next_data, require_data, allow_params, &
+                         get_real, get_int, is_int, is_label, node_ref, elem_ref, need_nset, need_elset, warn_empty_set
   use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, find_name, src_t
   use element_catalogue, only: catalogue
   implicit none
@@ -25,9 +25,10 @@ module deck_heat_cards
 
 contains
 
-  !> Purpose: *HEAT TRANSFER[, STEADY STATE][, DIRECT][, DELTMX=]: the
-  !> step's procedure; data line `initial increment, period[, min, max]`
-  !> (CalculiX's defaults 1, 1). A transient step (no STEADY STATE) with
+  !> Purpose: *HEAT TRANSFER[, STEADY STATE][, DIRECT][, DELTMX=]
+  !> (SOLVER= is read and ignored, as on *STATIC): the step's procedure;
+  !> data line `initial increment, period[, min, max]` (CalculiX's
+  !> defaults 1, 1). A transient step (no STEADY STATE) with
   !> DIRECT takes fixed increments; without DIRECT, DELTMX= (the largest
   !> temperature change of an increment) makes its increments automatic.
   subroutine read_heat_transfer(p, m, kw)
@@ -36,7 +37,8 @@ contains
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     integer :: n
-    call allow_params(p, kw, 'STEADY STATE,DIRECT,DELTMX,SOLVER,TIME RESET,TOTAL TIME AT START')
+    real(dp) :: ratio
+    call allow_params(p, kw, 'STEADY STATE,DIRECT,DELTMX,SOLVER')
     associate(s => m%steps(p%step))
       if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
       m%heat = .true.
@@ -70,8 +72,17 @@ contains
         if (s%dt > s%period) s%dt = s%period
       end if
       if (s%steady) s%deltmx = 0.0_dp
-      ! a steady state or fixed increments: the driver's linear path
+      if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the maximum')
+      ! a steady state or fixed increments: the driver's linear path, whose
+      ! increments are counted here (automatic ones as they are made)
       if (s%steady .or. s%deltmx <= 0.0_dp) s%direct = .true.
+      if (s%deltmx > 0.0_dp) return
+      ratio = s%period / s%dt
+      if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // itoa(nint(min(ratio, &
+          1.0e9_dp))) // ' or more increments (time period / initial increment); at most ' // &
+          itoa(max_increments) // ' are allowed')
+      if (nint(ratio) > s%max_inc) call err(p, 'the step needs ' // itoa(nint(ratio)) // &
+          ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
     end associate
   end subroutine read_heat_transfer
 
