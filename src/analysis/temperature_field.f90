@@ -19,7 +19,7 @@ module temperature_field
   use strings, only: itoa, rtoa
   use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, is_continuum, &
                    elem_nodes, elem_thickness, node_label, elem_label
-  use element_catalogue, only: catalogue, max_nodes, max_ip
+  use element_catalogue, only: catalogue, max_nodes, max_ip, shape_tri6
   use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient
   use shape_functions, only: gauss_rule
   use linear_solver, only: linear_system_t, sys_setup, sys_zero, sys_add, sys_factor, sys_solve, factor_ok, &
@@ -633,9 +633,10 @@ contains
   end subroutine check_finite
 
   !> The heat flux -k grad T at the integration points of the
-  !> conducting elements (the catalogue's rule of each: CalculiX's points
-  !> of the plane elements), when wanted (HFL); nip(e) their count (0 for
-  !> other elements, and for all when not wanted).
+  !> conducting elements (the catalogue's rule of each, 3 points on the
+  !> quadratic triangles: CalculiX's points of the plane and axisymmetric
+  !> elements), when wanted (HFL); nip(e) their count (0 for other
+  !> elements, and for all when not wanted).
   subroutine heat_fluxes(f, m, wanted, nip, hfl)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
@@ -652,6 +653,9 @@ contains
       e = f%elems(k)
       n = elem_nodes(m, e)
       nip(e) = catalogue(m%etype(e))%nip
+      ! a quadratic triangle at the 3 points of CPS6 (CAX6's 6 points are
+      ! its hoop terms' rule; CalculiX lists its flux at 3 points too)
+      if (catalogue(m%etype(e))%shape == shape_tri6) nip(e) = 3
       cond = m%materials(m%sections(m%elem_section(e))%material)%conductivity
       call gauss_rule(catalogue(m%etype(e))%shape, nip(e), xi, w)
       do ip = 1, nip(e)
