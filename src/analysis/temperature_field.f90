@@ -20,7 +20,7 @@ module temperature_field
   use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, is_continuum, &
                    elem_nodes, elem_thickness, node_label, elem_label
   use element_catalogue, only: catalogue, max_nodes, max_ip, shape_tri6
-  use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient
+  use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient, conductivity_at, temperature_at
   use shape_functions, only: gauss_rule
   use linear_solver, only: linear_system_t, sys_setup, sys_zero, sys_add, sys_factor, sys_solve, factor_ok, &
                            factor_fallback
@@ -53,6 +53,8 @@ module temperature_field
     real(dp) :: dt = 0.0_dp, t1 = 0.0_dp                 ! the increment's length and end (step time)
     real(dp) :: factored_dt = -1.0_dp                    ! < 0: no valid factor
     real(dp) :: largest_change = 0.0_dp                  ! of the last solve
+    character(len=:), allocatable :: why                 ! why the last solve failed
+    logical :: tabled = .false.                          ! some conductivity is a table (iterations)
     integer :: factorisations = 0
     real(dp) :: t_factor = 0.0_dp, t_solve = 0.0_dp
   contains
@@ -74,6 +76,11 @@ module temperature_field
   integer, parameter :: dof_temperature = 11
   !> The amplitude of a load held from an earlier step (hold_loads).
   integer, parameter :: held = -1
+  !> Fixed-point iterations of a temperature-dependent conductivity: at
+  !> most max_picard, done when no temperature changes by more than
+  !> picard_tolerance times the largest (at least 1).
+  integer, parameter :: max_picard = 100
+  real(dp), parameter :: picard_tolerance = 1.0e-10_dp
 
 contains
 
@@ -105,6 +112,11 @@ contains
         call heat_volume_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), mat%conductivity, &
                                 cap, f%ke(:, :, k), f%ce(:, :, k), f%fb(:, k))
       end associate
+    end do
+    f%tabled = .false.
+    do k = 1, nel
+      e = f%elems(k)
+      f%tabled = f%tabled .or. m%materials(m%sections(m%elem_section(e))%material)%nk > 1
     end do
     allocate(f%tbcs(0), f%cfluxes(0), f%dfluxes(0), f%films(0))
     timing%setup = timing%setup + (wall_time() - t0)
@@ -293,10 +305,11 @@ contains
   end subroutine number_temperatures
 
   !> Purpose: automatic increments (the driver's nonlinear path) in a
-  !> transient step with DELTMX.
+  !> transient step with DELTMX, and where a conductivity is a table (an
+  !> increment whose iterations do not converge is cut back).
   logical function nonlinear(f)
     class(temperature_field_t), intent(in) :: f
-    nonlinear = .not. f%steady .and. f%deltmx > 0.0_dp
+    nonlinear = (.not. f%steady .and. f%deltmx > 0.0_dp) .or. f%tabled
   end function nonlinear
 
   !> Purpose: the temperature field has no notes on its step.
@@ -397,24 +410,41 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: ok
     integer, intent(out) :: iters
-    real(dp), allocatable :: rhs(:), r(:)
-    real(dp) :: t0
+    real(dp), allocatable :: rhs(:), r(:), before(:)
+    real(dp) :: t0, change
     integer :: a
-    iters = 1
     ok = .true.
-    if (f%neq > 0 .and. (f%factored_dt < 0.0_dp .or. &
-        (.not. f%steady .and. abs(f%dt - f%factored_dt) > 1.0e-12_dp * f%dt))) then
-      call factor(f, m, is, inc, ok)
-      if (.not. ok) return
-    end if
-    t0 = wall_time()
+    f%why = ''
     allocate(rhs(max(f%neq, 1)), r(m%nn))
-    call residual(f, m, .true., rhs, r)
-    if (f%neq > 0) then
-      call sys_solve(f%sys, rhs(1:f%neq))
-      do a = 1, m%nn
-        if (f%eqn(a) > 0) f%temp(a) = rhs(f%eqn(a))
-      end do
+    ! a conductivity table: fixed-point (Picard) iterations, the
+    ! conduction of each at the temperatures of the one before
+    do iters = 1, max_picard
+      if (f%tabled) call refresh_conduction(f, m)
+      if (f%neq > 0 .and. (f%factored_dt < 0.0_dp .or. &
+          (.not. f%steady .and. abs(f%dt - f%factored_dt) > 1.0e-12_dp * f%dt))) then
+        call factor(f, m, is, inc, ok)
+        if (.not. ok) return
+      end if
+      t0 = wall_time()
+      before = f%temp
+      call residual(f, m, .true., rhs, r)
+      if (f%neq > 0) then
+        call sys_solve(f%sys, rhs(1:f%neq))
+        do a = 1, m%nn
+          if (f%eqn(a) > 0) f%temp(a) = rhs(f%eqn(a))
+        end do
+      end if
+      f%t_solve = f%t_solve + (wall_time() - t0)
+      if (.not. f%tabled) exit
+      change = maxval(abs(f%temp - before))
+      if (change <= picard_tolerance * max(1.0_dp, maxval(abs(f%temp)))) exit
+    end do
+    if (iters > max_picard) then
+      iters = max_picard
+      ok = .false.
+      f%why = 'the conduction iterations (temperature-dependent conductivity) did not converge in ' // &
+              itoa(max_picard) // ' iterations'
+      return
     end if
     ! the reaction fluxes: the residual at the prescribed nodes
     call residual(f, m, .false., rhs, r)
@@ -422,9 +452,29 @@ contains
     where (f%presc) f%rfl = -r
     f%largest_change = maxval(abs(f%temp - f%saved), mask=f%eqn > 0, dim=1)
     if (f%neq == 0) f%largest_change = 0.0_dp
-    f%t_solve = f%t_solve + (wall_time() - t0)
     if (f%deltmx > 0.0_dp .and. .not. f%steady) ok = f%largest_change <= f%deltmx
+    if (.not. ok) f%why = 'a temperature changed by ' // rtoa(f%largest_change, 4) // ', more than DELTMX=' // &
+                          rtoa(f%deltmx, 4)
   end subroutine solve
+
+  !> The conduction matrices of the elements whose conductivity is a
+  !> table, at the current temperatures; the factor is made again.
+  subroutine refresh_conduction(f, m)
+    class(temperature_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    real(dp) :: ce(max_nodes, max_nodes), fb(max_nodes)
+    integer :: k, e, n
+    do k = 1, size(f%elems)
+      e = f%elems(k)
+      n = elem_nodes(m, e)
+      associate(mat => m%materials(m%sections(m%elem_section(e))%material))
+        if (mat%nk <= 1) cycle
+        call heat_volume_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), mat%conductivity, &
+                                0.0_dp, f%ke(:, :, k), ce, fb, mat%ktab(:, 1:mat%nk), f%temp(m%conn(1:n, e)))
+      end associate
+    end do
+    f%factored_dt = -1.0_dp
+  end subroutine refresh_conduction
 
   !> The element matrix A_e = K_e + H_e (+ C_e / dt in a transient step)
   !> of the k-th conducting element, with the films of the step on it.
@@ -559,14 +609,15 @@ contains
   end subroutine restore
 
   !> Purpose: the increment changed a temperature by more than DELTMX:
-  !> cut by 0.85 DELTMX / the largest change, kept within [0.1, 0.5].
+  !> cut by 0.85 DELTMX / the largest change, kept within [0.1, 0.5]; the
+  !> conduction iterations did not converge: cut to a quarter.
   subroutine failure(f, reason, cut, changing)
     class(temperature_field_t), intent(in) :: f
     character(len=:), allocatable, intent(out) :: reason, changing
     real(dp), intent(out) :: cut
-    reason = 'a temperature changed by ' // rtoa(f%largest_change, 4) // ', more than DELTMX=' // &
-             rtoa(f%deltmx, 4)
+    reason = f%why
     cut = min(0.5_dp, max(0.1_dp, 0.85_dp * f%deltmx / max(f%largest_change, tiny(1.0_dp))))
+    if (f%deltmx <= 0.0_dp .or. f%largest_change <= f%deltmx) cut = 0.25_dp
     changing = ''
   end subroutine failure
 
@@ -656,11 +707,16 @@ contains
       ! a quadratic triangle at the 3 points of CPS6 (CAX6's 6 points are
       ! its hoop terms' rule; CalculiX lists its flux at 3 points too)
       if (catalogue(m%etype(e))%shape == shape_tri6) nip(e) = 3
-      cond = m%materials(m%sections(m%elem_section(e))%material)%conductivity
       call gauss_rule(catalogue(m%etype(e))%shape, nip(e), xi, w)
-      do ip = 1, nip(e)
-        hfl(:, ip, e) = -cond * heat_gradient(m%etype(e), m%x(:, m%conn(1:n, e)), f%temp(m%conn(1:n, e)), xi(:, ip))
-      end do
+      associate(mat => m%materials(m%sections(m%elem_section(e))%material))
+        do ip = 1, nip(e)
+          cond = mat%conductivity
+          if (mat%nk > 1) cond = conductivity_at(mat%ktab(:, 1:mat%nk), &
+                                                 temperature_at(m%etype(e), f%temp(m%conn(1:n, e)), xi(:, ip)))
+          hfl(:, ip, e) = -cond * heat_gradient(m%etype(e), m%x(:, m%conn(1:n, e)), f%temp(m%conn(1:n, e)), &
+                                                xi(:, ip))
+        end do
+      end associate
     end do
   end subroutine heat_fluxes
 

@@ -16,7 +16,7 @@ module heat_element
   use continuum_element, only: volume_factor
   implicit none
   private
-  public :: heat_volume_arrays, heat_face_arrays, heat_gradient
+  public :: heat_volume_arrays, heat_face_arrays, heat_gradient, conductivity_at, temperature_at
 
 contains
 
@@ -24,14 +24,21 @@ contains
   !> of an element of catalogue type et.
   !> Arguments: xy(2, nodes) the node coordinates; thick(nodes) the nodal
   !> thicknesses (plane); cond the conductivities along x and y (r and z);
-  !> cap rho c.
-  pure subroutine heat_volume_arrays(et, xy, thick, cond, cap, ke, ce, fe)
+  !> cap rho c; ktab(3, nk) and temp(nodes), if present with nk > 1: the
+  !> conductivities at each point from the table at the point's
+  !> temperature (conductivity_at) in place of cond.
+  pure subroutine heat_volume_arrays(et, xy, thick, cond, cap, ke, ce, fe, ktab, temp)
     integer, intent(in) :: et
     real(dp), intent(in) :: xy(:, :), thick(:), cond(2), cap
+    real(dp), intent(in), optional :: ktab(:, :), temp(:)
     real(dp), intent(out) :: ke(max_nodes, max_nodes), ce(max_nodes, max_nodes), fe(max_nodes)
-    real(dp) :: xi(2, max_ip), w(max_ip), n(max_nodes), dx(2, max_nodes), kdx(2, max_nodes), detj, dv
+    real(dp) :: xi(2, max_ip), w(max_ip), n(max_nodes), dx(2, max_nodes), kdx(2, max_nodes), detj, dv, k(2)
     integer :: ip, nen, nip, i
+    logical :: tabled
     nen = catalogue(et)%nodes
+    tabled = present(ktab) .and. present(temp)
+    if (tabled) tabled = size(ktab, 2) > 1
+    k = cond
     ke = 0.0_dp
     ce = 0.0_dp
     fe = 0.0_dp
@@ -41,8 +48,9 @@ contains
       call physical_gradients(et, xy, xi(:, ip), n, dx, detj)
       dv = w(ip) * volume_factor(catalogue(et)%state, detj, dot_product(n(1:nen), xy(1, 1:nen)), &
                                  dot_product(n(1:nen), thick(1:nen)))
-      kdx(1, 1:nen) = cond(1) * dx(1, 1:nen)
-      kdx(2, 1:nen) = cond(2) * dx(2, 1:nen)
+      if (tabled) k = conductivity_at(ktab, dot_product(n(1:nen), temp(1:nen)))
+      kdx(1, 1:nen) = k(1) * dx(1, 1:nen)
+      kdx(2, 1:nen) = k(2) * dx(2, 1:nen)
       ke(1:nen, 1:nen) = ke(1:nen, 1:nen) + dv * matmul(transpose(dx(:, 1:nen)), kdx(:, 1:nen))
       do i = 1, nen
         ce(i, 1:nen) = ce(i, 1:nen) + cap * dv * n(i) * n(1:nen)
@@ -98,6 +106,39 @@ contains
     call physical_gradients(et, xy, xi, n, dx, detj)
     g = matmul(dx(:, 1:nen), temp(1:nen))
   end function heat_gradient
+
+  !> Purpose: the conductivities (k11, k22) of a table ktab(3, nk) (rows:
+  !> temperature, k11, k22; temperatures increasing) at temperature t:
+  !> linear between its points, constant beyond them.
+  pure function conductivity_at(ktab, t) result(k)
+    real(dp), intent(in) :: ktab(:, :), t
+    real(dp) :: k(2), s
+    integer :: j, nk
+    nk = size(ktab, 2)
+    if (t <= ktab(1, 1)) then
+      k = ktab(2:3, 1)
+    else if (t >= ktab(1, nk)) then
+      k = ktab(2:3, nk)
+    else
+      do j = 2, nk
+        if (t <= ktab(1, j)) exit
+      end do
+      s = (t - ktab(1, j - 1)) / (ktab(1, j) - ktab(1, j - 1))
+      k = ktab(2:3, j - 1) + s * (ktab(2:3, j) - ktab(2:3, j - 1))
+    end if
+  end function conductivity_at
+
+  !> Purpose: the temperature at natural point xi of an element of type
+  !> et with nodal temperatures temp.
+  pure real(dp) function temperature_at(et, temp, xi) result(t)
+    integer, intent(in) :: et
+    real(dp), intent(in) :: temp(:), xi(2)
+    real(dp) :: n(max_nodes), dn(2, max_nodes)
+    integer :: nen
+    nen = catalogue(et)%nodes
+    call shape_at(catalogue(et)%shape, xi, n, dn)
+    t = dot_product(n(1:nen), temp(1:nen))
+  end function temperature_at
 
   !> Purpose: shape functions n, their x-y derivatives dx and det J at
   !> natural point xi (det J <= 0: an inverted element, dx left zero; the

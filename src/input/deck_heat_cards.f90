@@ -89,32 +89,53 @@ contains
   !> Purpose: *CONDUCTIVITY[, TYPE=ISO]: `k[, temperature]`;
   !> TYPE=ORTHO: `k11, k22, k33[, temperature]` along the global axes
   !> (k33, out of the plane or the hoop direction, plays no part in 2D
-  !> conduction); one data line.
+  !> conduction). Several data lines, temperatures increasing: a table,
+  !> linear between its points and constant beyond (the conduction then
+  !> depends on the temperature: temperature_field iterates).
   subroutine read_conductivity(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     character(len=:), allocatable :: kind
-    integer :: n
+    integer :: n, nv
+    real(dp) :: k(2), t
     call allow_params(p, kw, 'TYPE')
     kind = 'ISO'
     if (has_param(kw, 'TYPE')) kind = to_upper(param_value(kw, 'TYPE'))
     if (kind /= 'ISO' .and. kind /= 'ORTHO') call err(p, 'TYPE=' // kind // ' of *CONDUCTIVITY is not ' // &
         'implemented (ISO and ORTHO are)')
     if (p%material == 0) call err(p, '*CONDUCTIVITY outside a *MATERIAL')
-    if (kind == 'ISO') then
-      m%materials(p%material)%conductivity = constant_value(p, 'CONDUCTIVITY', 'conductivity')
-    else
-      call require_data(p, 'k11, k22, k33')
-      call split_fields(line_text(p), f, n)
-      if (n < 3 .or. n > 4) call err(p, '*CONDUCTIVITY, TYPE=ORTHO data line needs: k11, k22, k33[, temperature]')
-      m%materials(p%material)%conductivity = [get_real(p, f(1), 'k11'), get_real(p, f(2), 'k22')]
-      if (any(m%materials(p%material)%conductivity <= 0.0_dp) .or. get_real(p, f(3), 'k33') <= 0.0_dp) &
-        call err(p, 'the conductivities must be positive')
-      if (next_data(p)) call err(p, 'temperature-dependent *CONDUCTIVITY data is not implemented')
-    end if
-    m%materials(p%material)%has_conductivity = .true.
+    nv = merge(1, 3, kind == 'ISO')
+    call require_data(p, 'conductivity')
+    associate(mat => m%materials(p%material))
+      mat%nk = 0
+      do
+        call split_fields(line_text(p), f, n)
+        if (n < nv .or. n > nv + 1) call err(p, '*CONDUCTIVITY data line needs: ' // &
+            trim(merge('k[, temperature]            ', 'k11, k22, k33[, temperature]', kind == 'ISO')))
+        k = get_real(p, f(1), 'conductivity')
+        if (nv == 3) k = [k(1), get_real(p, f(2), 'k22')]
+        if (any(k <= 0.0_dp)) call err(p, 'the conductivities must be positive')
+        if (nv == 3) then
+          if (get_real(p, f(3), 'k33') <= 0.0_dp) call err(p, 'the conductivities must be positive')
+        end if
+        t = 0.0_dp
+        if (n == nv + 1) then
+          if (len(f(n)%s) > 0) t = get_real(p, f(n), 'temperature')
+        end if
+        if (mat%nk > 0) then
+          if (t <= mat%ktab(1, mat%nk)) call err(p, 'the temperatures of a *CONDUCTIVITY table must increase')
+        end if
+        if (mat%nk == size(mat%ktab, 2)) call err(p, 'a *CONDUCTIVITY table of more than ' // &
+                                                 itoa(size(mat%ktab, 2)) // ' lines')
+        mat%nk = mat%nk + 1
+        mat%ktab(:, mat%nk) = [t, k]
+        if (.not. next_data(p)) exit
+      end do
+      mat%conductivity = mat%ktab(2:3, 1)
+      mat%has_conductivity = .true.
+    end associate
   end subroutine read_conductivity
 
   !> Purpose: *SPECIFIC HEAT: `c[, temperature]`, one data line.

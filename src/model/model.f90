@@ -93,6 +93,11 @@ module model
     !> the capacity is density * c.
     logical :: has_conductivity = .false., has_specific_heat = .false.
     real(dp) :: conductivity(2) = 0.0_dp, specific_heat = 0.0_dp
+    !> A *CONDUCTIVITY of several data lines: k11, k22 at temperatures
+    !> ktab(1, 1:nk) (increasing; linear between, constant beyond), in
+    !> ktab(2:3, :); nk <= 1: the constant conductivity above.
+    integer :: nk = 0
+    real(dp) :: ktab(3, max_yield) = 0.0_dp
   end type material_t
 
   !> A *SOLID SECTION (continuum elements and trusses) or a *SPRING
