@@ -249,6 +249,10 @@ def test_heat_errors():
          "is not a finite number"),
         (base.replace("*HEAT TRANSFER, STEADY STATE", "*HEAT TRANSFER, DIRECT\n1e-9, 1."), "increments"),
         (base.replace("*HEAT TRANSFER, STEADY STATE", "*HEAT TRANSFER, STEADY STATE, TIME RESET"), "TIME RESET"),
+        # a heat transfer element in a mechanical deck
+        (base.replace("*CONDUCTIVITY\n10.\n", "*ELASTIC\n1000., 0.3\n").replace(
+            "*HEAT TRANSFER, STEADY STATE", "*STATIC").replace("*BOUNDARY\nLEFT, 11, 11, 100.0\n",
+                                                              "*BOUNDARY\nLEFT, 1, 2\n"), "is a heat transfer element"),
         # a region with neither a held temperature nor a film: no steady state
         (base.replace("*BOUNDARY\nLEFT, 11, 11, 100.0\n", "*CFLUX\n1, 11, 1.\n"), "matrix is singular"),
     ]
