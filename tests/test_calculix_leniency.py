@@ -111,11 +111,11 @@ def test_empty_surface_warns():
     same_answer(run, plain)
 
 
-def test_temperature_dof_says_heat_transfer_is_not_part_of_cfe2d():
+def test_temperature_dof_says_it_belongs_to_heat_transfer():
     """CalculiX's dof 11 is the temperature: a *BOUNDARY on it (a
-    prescribed temperature) or a *CLOAD on it (a heat flux) belongs to a
-    heat transfer analysis. The error names the line and says so, instead
-    of the generic message about dofs 1 and 2."""
+    prescribed temperature) or a *CLOAD on it (a heat flux) in a static
+    step belongs to a *HEAT TRANSFER step. The error names the line and
+    says so, instead of the generic message about dofs 1 and 2."""
     cases = [("bc_dof11", replace("LEFT, 1, 2", "LEFT, 1, 2\nLEFT, 11, 11, 293."), "LEFT, 11, 11, 293.",
               "*BOUNDARY on it is a prescribed temperature"),
              ("bc_dof11_alone", replace("LEFT, 1, 2", "LEFT, 1, 2\n4, 11"), "4, 11",
@@ -126,7 +126,7 @@ def test_temperature_dof_says_heat_transfer_is_not_part_of_cfe2d():
         run = run_deck(name, deck)
         assert run.rc == 1, (name, run.stderr)
         assert f"{run.deck}:{line_of(deck, text)}: error: dof 11 is the temperature" in run.stderr, run.stderr
-        assert fragment in run.stderr and "heat transfer is not part of cfe2d" in run.stderr, run.stderr
+        assert fragment in run.stderr and "it belongs to a *HEAT TRANSFER step" in run.stderr, run.stderr
         assert "dofs must satisfy" not in run.stderr and "dof must be 1 or 2" not in run.stderr, run.stderr
     # other dofs keep the generic message
     run = run_deck("bc_dof7", replace("LEFT, 1, 2", "LEFT, 7, 7"))

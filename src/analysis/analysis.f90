@@ -13,6 +13,7 @@ module analysis
   use model, only: model_t, step_t
   use analysis_field, only: field_ref_t
   use displacement_field, only: displacement_field_t
+  use temperature_field, only: temperature_field_t
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use messages, only: fatal
   implicit none
@@ -53,9 +54,14 @@ contains
     integer :: is, k
     if (present(timing)) rs%timing = timing
     if (rs%timing%started == 0.0_dp) rs%timing%started = wall_time()
-    ! the fields of the run: a temperature field joins this list
+    ! the fields of the run: the temperatures in a heat transfer deck (a
+    ! coupled one, later, would have both, the temperatures first)
     allocate(rs%fields(1))
-    allocate(displacement_field_t :: rs%fields(1)%f)
+    if (m%heat) then
+      allocate(temperature_field_t :: rs%fields(1)%f)
+    else
+      allocate(displacement_field_t :: rs%fields(1)%f)
+    end if
     do k = 1, size(rs%fields)
       call rs%fields(k)%f%setup(m, rs%timing)
     end do

@@ -40,6 +40,12 @@ module increment_results
     logical :: has_peeq = .false.
     real(dp), allocatable :: peeq_ip(:, :)
     real(dp), allocatable :: peeq_elem(:)             ! (ne) element averages when has_peeq
+    !> A heat transfer step's increment (temperature_field): nt(nn) the
+    !> temperatures, rfl(nn) the reaction fluxes, hfl_ip(2, max_ip, ne)
+    !> the heat flux -k grad T at the nip(e) integration points (when
+    !> HFL is asked for; empty otherwise); u and rf are zero.
+    logical :: heat = .false.
+    real(dp), allocatable :: nt(:), rfl(:), hfl_ip(:, :, :)
   end type increment_results_t
 
 contains

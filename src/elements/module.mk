@@ -1,6 +1,6 @@
 # Layer: elements. Modules and the objects of the modules each one uses.
 MODULES += cfe_element continuum_element distributed_loads element_interface element_library materials shape_functions \
-           material_laws nonlinear_continuum spring_element truss_element deformation_plasticity
+           material_laws nonlinear_continuum spring_element truss_element deformation_plasticity heat_element
 $(OBJDIR)/cfe_element.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/continuum_element.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/materials.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/distributed_loads.o: $(OBJDIR)/continuum_element.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o
@@ -17,3 +17,4 @@ $(OBJDIR)/materials.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)
 $(OBJDIR)/shape_functions.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o
 $(OBJDIR)/spring_element.o: $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o
 $(OBJDIR)/truss_element.o: $(OBJDIR)/element_interface.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o
+$(OBJDIR)/heat_element.o: $(OBJDIR)/continuum_element.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/shape_functions.o

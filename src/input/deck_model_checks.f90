@@ -210,7 +210,7 @@ contains
       if (.not. (m%sections(s)%spring .or. m%sections(s)%point_mass)) then
         imat = find_name(m%materials%name, m%sections(s)%material_name)
         if (imat == 0) call err(p, 'undefined material ' // trim(m%sections(s)%material_name))
-        if (.not. m%materials(imat)%has_elastic .and. m%materials(imat)%law == law_elastic) then
+        if (.not. m%materials(imat)%has_elastic .and. m%materials(imat)%law == law_elastic .and. .not. m%heat) then
           p%i = m%materials(imat)%src%line
           call err(p, 'material ' // trim(m%materials(imat)%name) // ' has no *ELASTIC (nor *HYPERELASTIC)')
         end if
@@ -350,6 +350,8 @@ contains
     logical :: stress(size(m%sections))
     integer :: e
     stress = .false.
+    ! (heat transfer: the stress state plays no part)
+    if (m%heat) return
     do e = 1, m%ne
       if (m%elem_section(e) == 0) cycle
       if (catalogue(m%etype(e))%state == state_plane_stress) stress(m%elem_section(e)) = .true.

@@ -21,6 +21,8 @@
 !>   deck_part_cards      *PART, *ASSEMBLY, *INSTANCE and their ends (Abaqus/CAE
 !>                        decks: a part's cards are read for each instance)
 !>   deck_model_checks    checks that need the whole deck
+!>   deck_heat_cards      (a module) *HEAT TRANSFER, *CONDUCTIVITY, *SPECIFIC HEAT,
+!>                        *BOUNDARY on dof 11, *CFLUX, *DFLUX, *FILM; check_heat_model
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
   use messages, only: fatal
@@ -29,6 +31,8 @@ module deck_parser
   use deck_cursor, only: parser_t, err, line_text, next_data, allow_params, in_step
   use model, only: model_t
   use element_catalogue, only: max_nodes
+  use deck_heat_cards, only: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, &
+                             read_cflux, read_dflux, read_film, reject_heat_card, is_heat_boundary, check_heat_model
   implicit none
   private
   public :: read_model
@@ -382,6 +386,7 @@ contains
     call cut_pretension_sections(p, m)
     call check_model(p, m)
     call check_orientations(p, m)
+    call check_heat_model(p, m)
   end subroutine read_model
 
   !> Purpose: CalculiX reads a deck in passes, its nodes first, then its
@@ -601,7 +606,12 @@ contains
     case ('SPRING');        call in_step(p, kw, .false.); call read_spring(p, m, kw)
     case ('MASS');          call in_step(p, kw, .false.); call read_mass(p, m, kw)
     case ('AMPLITUDE');     call read_amplitude(p, m, kw)
-    case ('BOUNDARY');      call read_boundary(p, m, kw)
+    case ('BOUNDARY')
+      if (is_heat_boundary(p)) then
+        call read_heat_boundary(p, m, kw)
+      else
+        call read_boundary(p, m, kw)
+      end if
     case ('CLOAD');         call in_step(p, kw, .true.); call read_cload(p, m, kw)
     case ('DLOAD');         call in_step(p, kw, .true.); call read_dload(p, m, kw)
     case ('DSLOAD');        call in_step(p, kw, .true.); call read_dsload(p, m, kw)
@@ -613,6 +623,19 @@ contains
       call in_step(p, kw, .true.)
       call read_request(p, m, kw)
     case ('TIME POINTS');   call read_time_points(p, kw)
+    case default
+      call dispatch_other(p, m, kw)
+    end select
+  end subroutine dispatch
+
+  !> Purpose: dispatch's second half: the cards of contact and solver,
+  !> constraints, parts and instances, controls, heat transfer, the cards
+  !> passed over, and the reason a card is refused.
+  recursive subroutine dispatch_other(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    select case (kw%name)
     case ('SOLVER');        call in_step(p, kw, .false.); call read_solver(p, m, kw)
     case ('CONTACT PAIR');  call in_step(p, kw, .false.); call read_contact_pair(p, m, kw)
     case ('CONTACT CONTROLS'); call read_contact_controls(p, m, kw)
@@ -636,7 +659,16 @@ contains
     case ('END ASSEMBLY');  call read_end_assembly(p, kw)
     case ('CONTROLS');      call read_controls(p, m, kw)
     case ('SECTION CONTROLS', 'HOURGLASS STIFFNESS'); call in_step(p, kw, .false.); call read_hourglass_card(p, kw)
-    case ('SPECIFIC HEAT', 'CONDUCTIVITY', 'DAMPING', 'PHYSICAL CONSTANTS', 'FILE FORMAT')
+    case ('HEAT TRANSFER'); call in_step(p, kw, .true.); call read_heat_transfer(p, m, kw)
+    case ('CONDUCTIVITY');  call in_step(p, kw, .false.); call read_conductivity(p, m, kw)
+    case ('SPECIFIC HEAT'); call in_step(p, kw, .false.); call read_specific_heat(p, m, kw)
+    case ('CFLUX');         call in_step(p, kw, .true.); call read_cflux(p, m, kw)
+    case ('DFLUX');         call in_step(p, kw, .true.); call read_dflux(p, m, kw)
+    case ('FILM');          call in_step(p, kw, .true.); call read_film(p, m, kw)
+    case ('RADIATE', 'CAVITY DEFINITION', 'FLUID SECTION', 'RADIATION VIEWFACTOR', 'FILM PROPERTY', &
+          'FLUID CONSTANTS', 'GAS SPECIFIC HEAT')
+      call reject_heat_card(p, kw)
+    case ('DAMPING', 'PHYSICAL CONSTANTS', 'FILE FORMAT')
       call skip_card(p, kw)
     case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', &
           'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &
@@ -648,7 +680,7 @@ contains
       ! not implemented: the reason when it is another procedure or material law
       call reject_card(p, kw)
     end select
-  end subroutine dispatch
+  end subroutine dispatch_other
 
   !> Purpose: the name of a keyword of several words written without its
   !> blanks (`SOLIDSECTION`), as CalculiX reads it (it drops every blank of

@@ -226,13 +226,14 @@ contains
   end function zero_dof_message
 
   !> Purpose: the message for dof 11 (CalculiX's temperature dof) on `card`,
-  !> which would be `what` in a heat transfer analysis: that is another
-  !> procedure, not a displacement dof cfe2d lacks.
+  !> which would be `what` in a heat transfer analysis: that belongs to a
+  !> *HEAT TRANSFER step (deck_heat_cards), not a displacement dof.
   pure function heat_transfer_dof(card, what) result(msg)
     character(len=*), intent(in) :: card, what
     character(len=:), allocatable :: msg
-    msg = 'dof 11 is the temperature (' // card // ' on it is ' // what // '): heat transfer is not ' // &
-          'part of cfe2d, which runs static mechanical steps (the temperatures of a thermal strain are ' // &
+    msg = 'dof 11 is the temperature (' // card // ' on it is ' // what // '): it belongs to a *HEAT ' // &
+          'TRANSFER step (docs/heat.md: *BOUNDARY on dof 11, *CFLUX); heat transfer in a mechanical step ' // &
+          '(*COUPLED TEMPERATURE-DISPLACEMENT) is not implemented (the temperatures of a thermal strain are ' // &
           'given by *TEMPERATURE)'
   end function heat_transfer_dof
 
@@ -740,11 +741,19 @@ contains
           if (index(r%order, q(1:1)) == 0 .and. len_trim(r%order) < len(r%order)) &
             r%order = trim(r%order) // merge('P', q(1:1), q == 'PEEQ')
         case ('CSTRESS', 'CDISP', 'CONTACT'); r%cstress = .true.
+        ! heat transfer (temperature_field): temperatures, reaction fluxes
+        case ('NT'); r%nt = .true.
+        case ('RFL'); r%rfl = .true.
+        case ('HFL'); r%hfl = .true.
         case ('')
         case default
           call deck_warning(p%deck, p%i, 'output quantity ' // q // ' is not available and is ignored')
           cycle
         end select
+        if ((r%nodal .or. r%to_file) .and. q == 'HFL') call deck_warning(p%deck, p%i, 'HFL (heat flux) is ' // &
+          'listed at the integration points by *EL PRINT only; ignored here')
+        if (r%to_file .and. q == 'RFL') call deck_warning(p%deck, p%i, 'RFL is listed by *NODE PRINT only ' // &
+          '(not in the result files); ignored here')
         if (.not. r%nodal .and. .not. r%to_file .and. (q == 'U' .or. q == 'RF')) &
           call deck_warning(p%deck, p%i, q // ' is a nodal quantity, which *EL PRINT does not list: ask for it ' // &
                             'in *NODE PRINT; ignored here')

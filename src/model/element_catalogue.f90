@@ -76,7 +76,11 @@ module element_catalogue
   !> centre; a one-point bilinear quadrilateral (nip = 1) gets the hourglass
   !> stabilization of continuum_element (its two spurious modes do spread
   !> through a mesh, unlike the 8-node element's).
-  type(element_type_t), parameter :: catalogue(26) = [ &
+  !> DC2D3/4/6/8 and DCAX3/4/6/8 are Abaqus's heat-transfer elements: the
+  !> shapes and rules of the plane (thickness of the section) and the
+  !> axisymmetric continuum elements, for *HEAT TRANSFER steps only
+  !> (temperature_field; a mechanical step refuses them, deck_heat_cards).
+  type(element_type_t), parameter :: catalogue(34) = [ &
     element_type_t('T3D2', shape_line2, 2, 2, 1, line_edges, 1, state_none, 1, 3), &
     element_type_t('T2D2', shape_line2, 2, 2, 1, line_edges, 1, state_none, 1, 3), &
     element_type_t('T3D3', shape_line3, 3, 2, 1, line3_edges, 2, state_none, 8, 21), &
@@ -102,7 +106,15 @@ module element_catalogue
     element_type_t('CAX8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_axisymmetric, 16, 23), &
     element_type_t('CPS8R', shape_quad8, 8, 4, 4, quad8_edges, 4, state_plane_stress, 16, 23), &
     element_type_t('CPE8R', shape_quad8, 8, 4, 4, quad8_edges, 4, state_plane_strain, 16, 23), &
-    element_type_t('CAX8R', shape_quad8, 8, 4, 4, quad8_edges, 4, state_axisymmetric, 16, 23)]
+    element_type_t('CAX8R', shape_quad8, 8, 4, 4, quad8_edges, 4, state_axisymmetric, 16, 23), &
+    element_type_t('DC2D3', shape_tri3, 3, 3, 3, tri_edges, 1, state_plane_stress, 2, 5), &
+    element_type_t('DC2D4', shape_quad4, 4, 4, 4, quad_edges, 4, state_plane_stress, 3, 9), &
+    element_type_t('DC2D6', shape_tri6, 6, 3, 3, tri6_edges, 3, state_plane_stress, 9, 22), &
+    element_type_t('DC2D8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_plane_stress, 16, 23), &
+    element_type_t('DCAX3', shape_tri3, 3, 3, 3, tri_edges, 1, state_axisymmetric, 2, 5), &
+    element_type_t('DCAX4', shape_quad4, 4, 4, 4, quad_edges, 4, state_axisymmetric, 3, 9), &
+    element_type_t('DCAX6', shape_tri6, 6, 3, 3, tri6_edges, 6, state_axisymmetric, 9, 22), &
+    element_type_t('DCAX8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_axisymmetric, 16, 23)]
 
 contains
 

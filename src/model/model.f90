@@ -24,6 +24,7 @@ module model
             nonlinear_material
   public :: orientation_t, orient_rectangular, orient_cylindrical, elastic_iso, elastic_ortho, elastic_aniso
   public :: kept_nodes
+  public :: heat_load_t, heat_bf
 
   integer, parameter :: surf_element = 1, surf_node = 2
   !> contact_pair_t%coupling
@@ -109,6 +110,17 @@ module model
     !> offset sigma0, the exponent n and the yield offset factor alpha of
     !> eps = sig / E + alpha (sigma0 / E) (sig / sigma0)^n.
     real(dp) :: ro_sigma0 = 0.0_dp, ro_n = 1.0_dp, ro_alpha = 0.0_dp
+    !> Heat transfer (docs/heat.md): *CONDUCTIVITY, constant, along the
+    !> global axes x and y (r and z in axisymmetry): k11 = k22 = k when
+    !> isotropic, k11 and k22 of TYPE=ORTHO; *SPECIFIC HEAT c, constant;
+    !> the capacity is density * c.
+    logical :: has_conductivity = .false., has_specific_heat = .false.
+    real(dp) :: conductivity(2) = 0.0_dp, specific_heat = 0.0_dp
+    !> A *CONDUCTIVITY of several data lines: k11, k22 at temperatures
+    !> ktab(1, 1:nk) (increasing; linear between, constant beyond), in
+    !> ktab(2:3, :); nk <= 1: the constant conductivity above.
+    integer :: nk = 0
+    real(dp) :: ktab(3, max_yield) = 0.0_dp
   end type material_t
 
   !> *ORIENTATION: local material axes, rectangular (point a on local
@@ -221,7 +233,23 @@ module model
     !> The quantities in the order the card lists them (U, R for RF, S, E,
     !> P for PEEQ), the order of CalculiX's blocks in <job>.dat.
     character(len=8) :: order = ''
+    !> Heat transfer: NT (temperatures) and RFL (reaction fluxes) of
+    !> *NODE PRINT / *NODE FILE; HFL (the heat flux at the integration
+    !> points) of *EL PRINT.
+    logical :: nt = .false., rfl = .false., hfl = .false.
   end type request_t
+
+  !> face of a heat_load_t that is a body flux (*DFLUX label BF)
+  integer, parameter :: heat_bf = 0
+
+  !> A distributed heat load on one element: *DFLUX (value the flux per
+  !> unit area into face `face`, or per unit volume with face heat_bf) or
+  !> *FILM (value the film coefficient h of face `face`, sink the sink
+  !> temperature). Amplitudes scale value (DFLUX) or the sink (FILM).
+  type :: heat_load_t
+    integer :: elem = 0, face = 0, amp = 0
+    real(dp) :: value = 0.0_dp, sink = 0.0_dp
+  end type heat_load_t
 
   !> *CONTROLS of a nonlinear step (CalculiX's names and defaults, its
   !> manual "Convergence criteria" and *CONTROLS): PARAMETERS=FIELD gives
@@ -271,6 +299,19 @@ module model
     !> *CONTACT PRINT of the step: CDIS and CSTR of the closed slave nodes
     !> in <job>.dat (the listing's contact tables are written anyway).
     logical :: contact_print_cdis = .false., contact_print_cstr = .false.
+    !> *HEAT TRANSFER (docs/heat.md): a step of the temperature field;
+    !> steady (STEADY STATE) or transient (backward Euler); deltmx > 0: the
+    !> largest temperature change of an automatic increment (DELTMX).
+    logical :: heat = .false., steady = .false.
+    real(dp) :: deltmx = 0.0_dp
+    !> Prescribed temperatures (*BOUNDARY on dof 11; bc_t%dof 11),
+    !> concentrated fluxes (*CFLUX; cload_t%dof 11), *DFLUX and *FILM;
+    !> new_*: OP=NEW (the lists of earlier steps dropped); otherwise a
+    !> step's lists add to the previous step's.
+    type(bc_t), allocatable :: tbcs(:)
+    type(cload_t), allocatable :: cfluxes(:)
+    type(heat_load_t), allocatable :: dfluxes(:), films(:)
+    logical :: new_tbcs = .false., new_cfluxes = .false., new_dfluxes = .false., new_films = .false.
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.
@@ -467,6 +508,9 @@ module model
     !> *ORIENTATION cards (the sections name them).
     type(orientation_t), allocatable :: orientations(:)
     integer, allocatable :: node_transform(:), local_node(:)
+    !> A step is *HEAT TRANSFER: the run's field is the temperatures
+    !> (temperature_field) and the materials need no *ELASTIC.
+    logical :: heat = .false.
   end type model_t
 
 contains

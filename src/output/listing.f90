@@ -455,6 +455,7 @@ contains
         call vector_row(res%rf(:, sel(k)), sel(k))
       end do
     end if
+    if (res%heat) call write_heat_rows(self, m, req, res, sel)
     if (req%s) then
       call block_head(self, m, 'NODE S', req%set, .true., 'node S11 S22 S33 S12 MISES' // label_column(m))
       do k = 1, size(sel)
@@ -496,6 +497,29 @@ contains
       end if
     end subroutine vector_row
   end subroutine write_node_request
+
+  !> Purpose: *NODE PRINT of a heat transfer step: NT (temperatures) and
+  !> RFL (reaction fluxes) at the nodes sel of the request's set.
+  subroutine write_heat_rows(self, m, req, res, sel)
+    class(listing_t), intent(in) :: self
+    type(model_t), intent(in) :: m
+    type(request_t), intent(in) :: req
+    type(increment_results_t), intent(in) :: res
+    integer, intent(in) :: sel(:)
+    integer :: k
+    if (req%nt) then
+      call block_head(self, m, 'NODE NT', req%set, .true., 'node NT11')
+      do k = 1, size(sel)
+        write(self%unit, rowfmt(self, 'i10', 1)) m%node_id(sel(k)), res%nt(sel(k))
+      end do
+    end if
+    if (req%rfl) then
+      call block_head(self, m, 'NODE RFL', req%set, .true., 'node RFL11')
+      do k = 1, size(sel)
+        write(self%unit, rowfmt(self, 'i10', 1)) m%node_id(sel(k)), res%rfl(sel(k))
+      end do
+    end if
+  end subroutine write_heat_rows
 
   !> Purpose: TOTALS=YES or ONLY of *NODE PRINT: the sum of RF over the
   !> nodes sel of the set, global components (CalculiX's "total force"),
@@ -572,6 +596,16 @@ contains
           else
             write(un, self%f_ip3) m%elem_id(e), ip, res%eps_ip(:, ip, e)
           end if
+        end do
+      end do
+    end if
+    if (req%hfl .and. res%heat) then
+      ! heat transfer: the heat flux -k grad T at the integration points
+      call block_head(self, m, 'ELEMENT HFL', req%set, .false., 'element ip HFL1 HFL2')
+      do k = 1, size(sel)
+        e = sel(k)
+        do ip = 1, res%nip(e)
+          write(un, rowfmt(self, 'i10,i4', 2)) m%elem_id(e), ip, res%hfl_ip(:, ip, e)
         end do
       end do
     end if

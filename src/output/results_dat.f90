@@ -126,6 +126,13 @@ contains
       sel = [(k, k = 1, m%nn)]
       sname = 'NALL'
     end if
+    ! heat transfer: CalculiX's temperature block (temperature_field)
+    if (r%nt .and. res%heat) then
+      call caption(u, 'temperatures for set ' // sname, res%total_time)
+      do k = 1, size(sel)
+        write(u, '(i10, 1p, 1x, e13.6)') m%node_id(sel(k)), tidy(res%nt(sel(k)))
+      end do
+    end if
     do q = 1, len_trim(r%order)
       if (r%order(q:q) == 'U' .and. .not. r%only_totals) then
         call caption(u, 'displacements (vx,vy,vz) for set ' // sname, res%total_time)
@@ -180,6 +187,7 @@ contains
     character(len=:), allocatable :: sname
     character(len=1) :: what
     integer :: k, e, j, ip, q
+    if (r%hfl .and. res%heat) call heat_flux_block(u, m, r, res)
     if (.not. res%has_stresses) return
     if (r%set > 0) then
       sel = sorted_items(m%elsets(r%set)%items, m%elem_id)
@@ -222,6 +230,32 @@ contains
       end do
     end do
   end subroutine element_blocks
+
+  !> Purpose: *EL PRINT HFL of a heat transfer step: CalculiX's heat flux
+  !> block (qx, qy, qz = 0) at its integration points (ccx_points).
+  subroutine heat_flux_block(u, m, r, res)
+    integer, intent(in) :: u
+    type(model_t), intent(in) :: m
+    type(request_t), intent(in) :: r
+    type(increment_results_t), intent(in) :: res
+    integer, allocatable :: sel(:), pts(:)
+    integer :: k, e, j
+    if (r%set > 0) then
+      sel = sorted_items(m%elsets(r%set)%items, m%elem_id)
+      call caption(u, 'heat flux (elem, integ.pnt.,qx,qy,qz) for set ' // trim(m%elsets(r%set)%name), &
+                   res%total_time)
+    else
+      sel = [(k, k = 1, m%ne)]
+      call caption(u, 'heat flux (elem, integ.pnt.,qx,qy,qz) for set EALL', res%total_time)
+    end if
+    do k = 1, size(sel)
+      e = sel(k)
+      pts = ccx_points(m, e, res%nip(e))
+      do j = 1, size(pts)
+        write(u, '(i10, i4, 1p, 3(1x, e13.6))') m%elem_id(e), j, tidy(res%hfl_ip(:, pts(j), e)), 0.0_dp
+      end do
+    end do
+  end subroutine heat_flux_block
 
   !> Purpose: the integration points CalculiX lists for a 2D element, as
   !> cfe2d's points: CalculiX expands a plane or axisymmetric element into

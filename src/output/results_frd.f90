@@ -41,6 +41,7 @@ module results_frd
   !> What the step's file cards ask for.
   type :: frd_wants_t
     logical :: u = .false., s = .false., e = .false., rf = .false., pe = .false., contact = .false.
+    logical :: nt = .false.   ! heat transfer: the temperatures (NDTEMP)
   end type frd_wants_t
 
 contains
@@ -177,7 +178,7 @@ contains
     logical, allocatable :: at(:)
     if (.not. self%schedule%due(m, res)) return
     w = wants(m, res%step)
-    if (.not. (w%u .or. w%s .or. w%e .or. w%rf .or. w%pe .or. w%contact)) return
+    if (.not. (w%u .or. w%s .or. w%e .or. w%rf .or. w%pe .or. w%contact .or. w%nt)) return
     self%sets = self%sets + 1
     at = self%kept
     if (w%u) then
@@ -198,6 +199,12 @@ contains
     end if
     if (w%pe .and. size(res%peeq_elem) == m%ne) call scalar_block(self, res, 'PE', nodal_peeq(m, res), at)
     if (w%contact) call contact_block(self, m, res)
+    ! heat transfer: CalculiX's NDTEMP block, its one component T
+    if (w%nt .and. res%heat) then
+      call block_head(self, res, 'NDTEMP', 1, count(at))
+      call component(self%unit, 'T', 1, 0, 0)
+      call values(self%unit, self%ids, reshape(res%nt, [1, m%nn]), at)
+    end if
     flush(self%unit)
   end subroutine write_frd_increment
 
@@ -217,6 +224,7 @@ contains
         w%e = w%e .or. r%e
         w%pe = w%pe .or. r%peeq
         w%contact = w%contact .or. r%cstress
+        w%nt = w%nt .or. r%nt
       end associate
     end do
   end function wants

@@ -50,6 +50,7 @@ contains
         fnode%u = fnode%u .or. r%u
         fnode%rf = fnode%rf .or. r%rf
         fnode%cstress = fnode%cstress .or. r%cstress
+        fnode%nt = fnode%nt .or. r%nt
         if (r%nodal) then
           fnode%s = fnode%s .or. r%s
         else
@@ -61,12 +62,15 @@ contains
     end do
     if (.not. self%open) return
     if (.not. self%schedule%due(m, res)) return
-    if (.not. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s .or. felem%e .or. felem%peeq)) &
-      return
+    if (.not. (fnode%u .or. fnode%rf .or. fnode%s .or. fnode%cstress .or. felem%s .or. felem%e .or. felem%peeq &
+               .or. fnode%nt)) return
     call write_result_views(self, m, fnode, felem, res%total_time, res%u, res%rf, res%sig_node, res%sig_elem, &
                             res%contact%pressure, res%contact%has_pressure, res%contact%frictional, &
                             res%contact%shear, res%peeq_elem)
     if (felem%e .and. res%has_stresses) call write_strain_views(self, m, res)
+    ! heat transfer: the temperatures (temperature_field)
+    if (fnode%nt .and. res%heat) call write_view(self, 'NodeData', 'NT', res%total_time, m%node_id, &
+                                                 [(.true., q = 1, m%nn)], reshape(res%nt, [1, m%nn]))
     flush(self%unit)
   end subroutine write_increment_views
 

@@ -107,6 +107,8 @@ contains
               int_array('ElementId', cell_data, m%elem_id(cells)), &
               int_array('Section', cell_data, m%elem_section(cells)), &
               vector_array('U', res%u)]
+    ! heat transfer: the temperatures (temperature_field)
+    if (res%heat) arrays = [arrays, real_array('NT', point_data, res%nt)]
     if (rf) arrays = [arrays, vector_array('RF', res%rf)]
     if (s_node .and. res%has_stresses) arrays = [arrays, tensor_array('S', point_data, res%sig_node), &
         real_array('Mises', point_data, [(von_mises(res%sig_node(:, k)), k = 1, m%nn)])]

@@ -1,0 +1,464 @@
+!> The cards of heat transfer (docs/heat.md): *HEAT TRANSFER (the
+!> procedure of a step of the temperature field), *CONDUCTIVITY and
+!> *SPECIFIC HEAT (constant), *BOUNDARY on dof 11 (prescribed
+!> temperatures), *CFLUX, *DFLUX (faces S1..S4 and the body BF), *FILM
+!> (faces F1..F4: film coefficient and sink temperature); the cards of
+!> heat transfer cfe2d does not have (*RADIATE, cavity radiation, fluid
+!> networks) stop with their reason. check_heat_model checks, once the
+!> deck is read, that the steps of the deck are all of heat transfer
+!> when one is (the coupled analysis is issue 30's item 2).
+module deck_heat_cards
+  use kinds, only: dp
+  use strings, only: split_fields, to_upper, field_t, itoa
+  use deck_input, only: keyword_t, param_value, has_param, is_keyword
+  use deck_cursor, only: parser_t, max_increments, line_text, err, next_data, require_data, allow_params, &
+                         get_real, get_int, is_int, is_label, node_ref, elem_ref, need_nset, need_elset, warn_empty_set
+  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, find_name, src_t
+  use element_catalogue, only: catalogue
+  implicit none
+  private
+  public :: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, read_cflux, &
+            read_dflux, read_film, reject_heat_card, is_heat_boundary, check_heat_model
+
+  !> CalculiX's dof of the temperature.
+  integer, parameter :: dof_temperature = 11
+
+contains
+
+  !> Purpose: *HEAT TRANSFER[, STEADY STATE][, DIRECT][, DELTMX=]
+  !> (SOLVER= is read and ignored, as on *STATIC): the step's procedure;
+  !> data line `initial increment, period[, min, max]` (CalculiX's
+  !> defaults 1, 1). A transient step (no STEADY STATE) with
+  !> DIRECT takes fixed increments; without DIRECT, DELTMX= (the largest
+  !> temperature change of an increment) makes its increments automatic.
+  subroutine read_heat_transfer(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    real(dp) :: ratio
+    call allow_params(p, kw, 'STEADY STATE,DIRECT,DELTMX,SOLVER')
+    associate(s => m%steps(p%step))
+      if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
+      m%heat = .true.
+      s%heat = .true.
+      s%steady = has_param(kw, 'STEADY STATE')
+      s%direct = has_param(kw, 'DIRECT')
+      s%deltmx = 0.0_dp
+      if (has_param(kw, 'DELTMX')) then
+        call split_fields(param_value(kw, 'DELTMX'), f, n)
+        s%deltmx = get_real(p, f(1), 'DELTMX')
+        if (s%deltmx <= 0.0_dp) call err(p, 'DELTMX must be positive')
+      end if
+      s%dt = 1.0_dp
+      s%period = 1.0_dp
+      if (next_data(p)) then
+        call split_fields(line_text(p), f, n)
+        if (n > 5) call err(p, '*HEAT TRANSFER data line needs: initial increment, time period[, min, max]')
+        if (len(f(1)%s) > 0) s%dt = get_real(p, f(1), 'initial time increment')
+        if (n >= 2) then
+          if (len(f(2)%s) > 0) s%period = get_real(p, f(2), 'time period')
+        end if
+        if (n >= 3) then
+          if (len(f(3)%s) > 0) s%dt_min = get_real(p, f(3), 'minimum time increment')
+        end if
+        if (n >= 4) then
+          if (len(f(4)%s) > 0) s%dt_max = get_real(p, f(4), 'maximum time increment')
+        end if
+        if (s%dt <= 0.0_dp .or. s%period <= 0.0_dp) call err(p, 'time increment and period must be positive')
+        if (s%dt_min < 0.0_dp .or. s%dt_max < 0.0_dp) call err(p, 'the minimum and maximum time increments ' // &
+                                                                'must not be negative')
+        if (s%dt > s%period) s%dt = s%period
+      end if
+      if (s%steady) s%deltmx = 0.0_dp
+      if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the maximum')
+      ! a steady state or fixed increments: the driver's linear path, whose
+      ! increments are counted here (automatic ones as they are made)
+      if (s%steady .or. s%deltmx <= 0.0_dp) s%direct = .true.
+      if (s%deltmx > 0.0_dp) return
+      ratio = s%period / s%dt
+      if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // itoa(nint(min(ratio, &
+          1.0e9_dp))) // ' or more increments (time period / initial increment); at most ' // &
+          itoa(max_increments) // ' are allowed')
+      if (nint(ratio) > s%max_inc) call err(p, 'the step needs ' // itoa(nint(ratio)) // &
+          ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
+    end associate
+  end subroutine read_heat_transfer
+
+  !> Purpose: *CONDUCTIVITY[, TYPE=ISO]: `k[, temperature]`;
+  !> TYPE=ORTHO: `k11, k22, k33[, temperature]` along the global axes
+  !> (k33, out of the plane or the hoop direction, plays no part in 2D
+  !> conduction). Several data lines, temperatures increasing: a table,
+  !> linear between its points and constant beyond (the conduction then
+  !> depends on the temperature: temperature_field iterates).
+  subroutine read_conductivity(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    character(len=:), allocatable :: kind
+    integer :: n, nv
+    real(dp) :: k(2), t
+    call allow_params(p, kw, 'TYPE')
+    kind = 'ISO'
+    if (has_param(kw, 'TYPE')) kind = to_upper(param_value(kw, 'TYPE'))
+    if (kind /= 'ISO' .and. kind /= 'ORTHO') call err(p, 'TYPE=' // kind // ' of *CONDUCTIVITY is not ' // &
+        'implemented (ISO and ORTHO are)')
+    if (p%material == 0) call err(p, '*CONDUCTIVITY outside a *MATERIAL')
+    nv = merge(1, 3, kind == 'ISO')
+    call require_data(p, 'conductivity')
+    associate(mat => m%materials(p%material))
+      mat%nk = 0
+      do
+        call split_fields(line_text(p), f, n)
+        if (n < nv .or. n > nv + 1) call err(p, '*CONDUCTIVITY data line needs: ' // &
+            trim(merge('k[, temperature]            ', 'k11, k22, k33[, temperature]', kind == 'ISO')))
+        k = get_real(p, f(1), 'conductivity')
+        if (nv == 3) k = [k(1), get_real(p, f(2), 'k22')]
+        if (any(k <= 0.0_dp)) call err(p, 'the conductivities must be positive')
+        if (nv == 3) then
+          if (get_real(p, f(3), 'k33') <= 0.0_dp) call err(p, 'the conductivities must be positive')
+        end if
+        t = 0.0_dp
+        if (n == nv + 1) then
+          if (len(f(n)%s) > 0) t = get_real(p, f(n), 'temperature')
+        end if
+        if (mat%nk > 0) then
+          if (t <= mat%ktab(1, mat%nk)) call err(p, 'the temperatures of a *CONDUCTIVITY table must increase')
+        end if
+        if (mat%nk == size(mat%ktab, 2)) call err(p, 'a *CONDUCTIVITY table of more than ' // &
+                                                 itoa(size(mat%ktab, 2)) // ' lines')
+        mat%nk = mat%nk + 1
+        mat%ktab(:, mat%nk) = [t, k]
+        if (.not. next_data(p)) exit
+      end do
+      mat%conductivity = mat%ktab(2:3, 1)
+      mat%has_conductivity = .true.
+    end associate
+  end subroutine read_conductivity
+
+  !> Purpose: *SPECIFIC HEAT: `c[, temperature]`, one data line.
+  subroutine read_specific_heat(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    call allow_params(p, kw, '')
+    if (p%material == 0) call err(p, '*SPECIFIC HEAT outside a *MATERIAL')
+    m%materials(p%material)%specific_heat = constant_value(p, 'SPECIFIC HEAT', 'specific heat')
+    m%materials(p%material)%has_specific_heat = .true.
+  end subroutine read_specific_heat
+
+  !> The one positive constant of a material card's data line; a second
+  !> data line (a temperature table) stops at its line.
+  real(dp) function constant_value(p, card, what) result(v)
+    type(parser_t), intent(inout) :: p
+    character(len=*), intent(in) :: card, what
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call require_data(p, what)
+    call split_fields(line_text(p), f, n)
+    if (n > 2) call err(p, '*' // card // ' data line needs: ' // what // '[, temperature]')
+    v = get_real(p, f(1), what)
+    if (v <= 0.0_dp) call err(p, 'the ' // what // ' must be positive')
+    if (next_data(p)) call err(p, 'temperature-dependent *' // card // ' data is not implemented')
+  end function constant_value
+
+  !> Purpose: whether the *BOUNDARY card at line p%i prescribes dof 11 (a
+  !> temperature) on its first data line: then read_heat_boundary reads it.
+  logical function is_heat_boundary(p)
+    type(parser_t), intent(in) :: p
+    type(field_t), allocatable :: f(:)
+    integer :: i, n, d1, d2
+    is_heat_boundary = .false.
+    do i = p%i + 1, p%deck%n
+      if (is_keyword(p%deck%lines(i)%text)) return
+      call split_fields(p%deck%lines(i)%text, f, n)
+      if (n < 2) cycle
+      if (.not. is_int(f(2)%s)) return
+      read(f(2)%s, *) d1
+      d2 = d1
+      if (n >= 3) then
+        if (is_int(f(3)%s)) read(f(3)%s, *) d2
+      end if
+      is_heat_boundary = d1 <= dof_temperature .and. dof_temperature <= d2
+      return
+    end do
+  end function is_heat_boundary
+
+  !> Purpose: *BOUNDARY on dof 11: prescribed temperatures, `node or nset,
+  !> 11[, 11[, temperature]]` (model data: held from the start; in a step:
+  !> from that step on); OP=NEW drops those of earlier steps; AMPLITUDE=.
+  subroutine read_heat_boundary(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    type(bc_t), allocatable :: new(:)
+    integer, allocatable :: nodes(:)
+    integer :: n, d1, d2, amp, iset
+    real(dp) :: v
+    call allow_params(p, kw, 'OP,AMPLITUDE,TYPE')
+    if (p%step > 0) then
+      if (.not. m%steps(p%step)%heat) call err(p, 'dof 11 is the temperature (*BOUNDARY on it is a ' // &
+          'prescribed temperature): it belongs to a *HEAT TRANSFER step (before it in the step; docs/heat.md); ' // &
+          'heat transfer in a mechanical step (*COUPLED TEMPERATURE-DISPLACEMENT) is not implemented')
+    end if
+    amp = heat_options(p, m, kw, 'BOUNDARY')
+    if (p%step == 0 .and. amp > 0) call err(p, 'AMPLITUDE= is only allowed inside *STEP')
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n < 2 .or. n > 4) call err(p, '*BOUNDARY data line needs: node or node set, 11[, 11[, temperature]]')
+      call target_nodes(p, m, f(1)%s, nodes, iset)
+      d1 = get_int(p, f(2), 'first dof')
+      d2 = d1
+      if (n >= 3) then
+        if (len(f(3)%s) > 0) d2 = get_int(p, f(3), 'last dof')
+      end if
+      if (d1 /= dof_temperature .or. d2 /= dof_temperature) call err(p, 'a *BOUNDARY of a heat transfer ' // &
+          'analysis prescribes dof 11 (the temperature) only: 11, 11, temperature')
+      v = 0.0_dp
+      if (n == 4) v = get_real(p, f(4), 'temperature')
+      allocate(new(size(nodes)))
+      new%node = nodes
+      new%dof = dof_temperature
+      new%set = iset
+      new%amp = amp
+      new%value = v
+      if (p%step == 0) then
+        m%model_bcs = [m%model_bcs(1:p%nmbc), new]
+        p%nmbc = p%nmbc + size(new)
+      else
+        if (.not. allocated(m%steps(p%step)%tbcs)) allocate(m%steps(p%step)%tbcs(0))
+        m%steps(p%step)%tbcs = [m%steps(p%step)%tbcs, new]
+      end if
+      deallocate(new)
+    end do
+  end subroutine read_heat_boundary
+
+  !> Purpose: *CFLUX: concentrated heat fluxes, `node or nset, 11, flux`
+  !> (into the body; in axisymmetry over the whole circumference).
+  subroutine read_cflux(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: nodes(:)
+    integer :: n, k, amp, iset
+    real(dp) :: v
+    call allow_params(p, kw, 'OP,AMPLITUDE')
+    amp = heat_options(p, m, kw, 'CFLUX')
+    if (.not. allocated(m%steps(p%step)%cfluxes)) allocate(m%steps(p%step)%cfluxes(0))
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= 3) call err(p, '*CFLUX data line needs: node or node set, 11, flux')
+      call target_nodes(p, m, f(1)%s, nodes, iset)
+      if (get_int(p, f(2), 'dof') /= dof_temperature) call err(p, '*CFLUX acts on dof 11 (the temperature)')
+      v = get_real(p, f(3), 'heat flux')
+      m%steps(p%step)%cfluxes = [m%steps(p%step)%cfluxes, &
+        [(cload_t(node=nodes(k), dof=dof_temperature, amp=amp, value=v, src=src_t(p%i)), k = 1, size(nodes))]]
+    end do
+  end subroutine read_cflux
+
+  !> Purpose: *DFLUX: distributed heat fluxes, `element or elset, label,
+  !> flux`: label S1..S4 a flux per unit area into face k, BF a heat
+  !> source per unit volume.
+  subroutine read_dflux(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: elems(:)
+    integer :: n, k, amp, face
+    character(len=:), allocatable :: label
+    real(dp) :: v
+    call allow_params(p, kw, 'OP,AMPLITUDE')
+    amp = heat_options(p, m, kw, 'DFLUX')
+    if (.not. allocated(m%steps(p%step)%dfluxes)) allocate(m%steps(p%step)%dfluxes(0))
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= 3) call err(p, '*DFLUX data line needs: element or element set, S1..S4 or BF, flux')
+      call target_elements(p, m, f(1)%s, elems)
+      label = to_upper(f(2)%s)
+      if (label == 'BF') then
+        face = heat_bf
+      else
+        face = face_number(p, m, elems, label, 'S')
+      end if
+      v = get_real(p, f(3), 'heat flux')
+      m%steps(p%step)%dfluxes = [m%steps(p%step)%dfluxes, &
+        [(heat_load_t(elem=elems(k), face=face, amp=amp, value=v), k = 1, size(elems))]]
+    end do
+  end subroutine read_dflux
+
+  !> Purpose: *FILM: film conditions, `element or elset, Fk, sink
+  !> temperature, film coefficient h` (the flux h (T_sink - T) into face
+  !> k); AMPLITUDE= scales the sink temperature.
+  subroutine read_film(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: elems(:)
+    integer :: n, k, amp, face
+    real(dp) :: sink, h
+    call allow_params(p, kw, 'OP,AMPLITUDE')
+    amp = heat_options(p, m, kw, 'FILM')
+    if (.not. allocated(m%steps(p%step)%films)) allocate(m%steps(p%step)%films(0))
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= 4) call err(p, '*FILM data line needs: element or element set, F1..F4, sink temperature, ' // &
+                          'film coefficient')
+      call target_elements(p, m, f(1)%s, elems)
+      face = face_number(p, m, elems, to_upper(f(2)%s), 'F')
+      sink = get_real(p, f(3), 'sink temperature')
+      h = get_real(p, f(4), 'film coefficient')
+      if (h < 0.0_dp) call err(p, 'the film coefficient must not be negative')
+      m%steps(p%step)%films = [m%steps(p%step)%films, &
+        [(heat_load_t(elem=elems(k), face=face, amp=amp, value=h, sink=sink), k = 1, size(elems))]]
+    end do
+  end subroutine read_film
+
+  !> Purpose: the cards of heat transfer cfe2d does not have: stop with
+  !> the reason at the card's line.
+  subroutine reject_heat_card(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    select case (kw%name)
+    case ('RADIATE')
+      call err(p, '*RADIATE is not implemented: cfe2d''s heat transfer has conduction, *DFLUX, *CFLUX and ' // &
+               '*FILM (docs/heat.md); radiation to the environment and cavity radiation are not')
+    case default
+      call err(p, '*' // kw%name // ' is not implemented: cfe2d''s heat transfer is conduction with fluxes ' // &
+               'and films (docs/heat.md), without fluid networks or cavity radiation')
+    end select
+  end subroutine reject_heat_card
+
+  !> OP= (NEW: the card's loads of earlier steps dropped) and AMPLITUDE=
+  !> of a heat card; a step's card must be in a *HEAT TRANSFER step.
+  integer function heat_options(p, m, kw, card) result(amp)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: card
+    character(len=:), allocatable :: op
+    op = 'MOD'
+    if (has_param(kw, 'OP')) op = to_upper(param_value(kw, 'OP'))
+    if (op /= 'MOD' .and. op /= 'NEW') call err(p, 'OP must be MOD or NEW')
+    if (p%step > 0) then
+      if (.not. m%steps(p%step)%heat) call err(p, '*' // card // ' needs a *HEAT TRANSFER step (before it in ' // &
+          'the step); *COUPLED TEMPERATURE-DISPLACEMENT is not implemented')
+      select case (card)
+      case ('BOUNDARY'); m%steps(p%step)%new_tbcs = m%steps(p%step)%new_tbcs .or. op == 'NEW'
+      case ('CFLUX'); m%steps(p%step)%new_cfluxes = m%steps(p%step)%new_cfluxes .or. op == 'NEW'
+      case ('DFLUX'); m%steps(p%step)%new_dfluxes = m%steps(p%step)%new_dfluxes .or. op == 'NEW'
+      case ('FILM'); m%steps(p%step)%new_films = m%steps(p%step)%new_films .or. op == 'NEW'
+      end select
+    else if (op == 'NEW') then
+      call err(p, 'OP=NEW is only allowed inside *STEP')
+    end if
+    amp = 0
+    if (has_param(kw, 'AMPLITUDE')) then
+      amp = find_name(m%amplitudes(1:p%namp)%name, to_upper(param_value(kw, 'AMPLITUDE')))
+      if (amp == 0) call err(p, 'undefined amplitude ' // to_upper(param_value(kw, 'AMPLITUDE')))
+    end if
+  end function heat_options
+
+  !> The nodes a data line's first field names (a node or a node set) and
+  !> the set (0 for a node).
+  subroutine target_nodes(p, m, s, nodes, iset)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: s
+    integer, allocatable, intent(out) :: nodes(:)
+    integer, intent(out) :: iset
+    type(field_t) :: f
+    iset = 0
+    if (is_label(s)) then
+      f%s = s
+      nodes = [node_ref(p, m, f, 'node')]
+    else
+      if (len(s) == 0) call err(p, 'missing node or node set')
+      iset = need_nset(p, m, s)
+      nodes = m%nsets(iset)%items
+      call warn_empty_set(p, size(nodes), 'node set', m%nsets(iset)%name, 'data line')
+    end if
+  end subroutine target_nodes
+
+  !> The elements a data line's first field names (an element or a set).
+  subroutine target_elements(p, m, s, elems)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: s
+    integer, allocatable, intent(out) :: elems(:)
+    type(field_t) :: f
+    integer :: es
+    if (is_label(s)) then
+      f%s = s
+      elems = [elem_ref(p, m, f, 'element')]
+    else
+      if (len(s) == 0) call err(p, 'missing element or element set')
+      es = need_elset(p, m, s)
+      elems = m%elsets(es)%items
+      call warn_empty_set(p, size(elems), 'element set', m%elsets(es)%name, 'data line')
+    end if
+  end subroutine target_elements
+
+  !> Face k of label `letter`k (S1.. or F1..), which every element of
+  !> elems must have.
+  integer function face_number(p, m, elems, label, letter) result(k)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: elems(:)
+    character(len=*), intent(in) :: label, letter
+    integer :: j
+    k = 0
+    if (len(label) == 2) then
+      if (label(1:1) == letter) k = index('1234', label(2:2))
+    end if
+    if (k == 0) call err(p, 'load label ' // label // ' is not one of ' // letter // '1..' // letter // '4' // &
+                         trim(merge(' or BF', '      ', letter == 'S')))
+    do j = 1, size(elems)
+      if (k > catalogue(m%etype(elems(j)))%nedges .or. catalogue(m%etype(elems(j)))%nodes < 3) &
+        call err(p, 'element ' // itoa(m%elem_id(elems(j))) // ' (' // trim(catalogue(m%etype(elems(j)))%name) // &
+                 ') has no face ' // label)
+    end do
+  end function face_number
+
+  !> Purpose: once the deck is read: a deck with a *HEAT TRANSFER step has
+  !> only such steps, and every element with a section has a material
+  !> with *CONDUCTIVITY (and *DENSITY and *SPECIFIC HEAT in a transient
+  !> step); a deck without one names no DC2D*/DCAX* element.
+  subroutine check_heat_model(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    integer :: s, e
+    logical :: transient
+    if (.not. m%heat) then
+      do e = 1, m%ne
+        if (catalogue(m%etype(e))%name(1:2) /= 'DC') cycle
+        p%i = m%elem_src(e)%line
+        call err(p, 'element type ' // trim(catalogue(m%etype(e))%name) // ' is a heat transfer element: ' // &
+                 'it needs *HEAT TRANSFER steps')
+      end do
+      return
+    end if
+    transient = .false.
+    do s = 1, size(m%steps)
+      p%i = m%steps(s)%src%line
+      if (.not. m%steps(s)%heat) call err(p, 'a step without *HEAT TRANSFER in a heat transfer deck: ' // &
+          'mechanical and heat transfer steps in one deck (*COUPLED TEMPERATURE-DISPLACEMENT) are not implemented')
+      transient = transient .or. .not. m%steps(s)%steady
+    end do
+    do s = 1, size(m%sections)
+      if (m%sections(s)%spring .or. m%sections(s)%point_mass .or. m%sections(s)%material == 0) cycle
+      associate(mat => m%materials(m%sections(s)%material))
+        p%i = mat%src%line
+        if (.not. mat%has_conductivity) call err(p, 'material ' // trim(mat%name) // ' has no *CONDUCTIVITY ' // &
+                                                 '(heat transfer)')
+        if (transient .and. .not. (mat%has_specific_heat .and. mat%has_density)) call err(p, 'material ' // &
+          trim(mat%name) // ' needs *DENSITY and *SPECIFIC HEAT for a transient *HEAT TRANSFER step')
+      end associate
+    end do
+  end subroutine check_heat_model
+end module deck_heat_cards
