@@ -201,3 +201,61 @@ def test_soft_block_tabular_surface_to_surface():
 def test_soft_block_full_solve():
     check_blocks("EXPONENTIAL", "SURFACE TO SURFACE", "FULL")
     check_blocks("TABULAR", "NODE TO SURFACE", "FULL")
+
+
+# the layer of tests/test_friction.py (periodic: uniform), its contact a
+# tabular law with Coulomb friction
+TABLE_F = [(0.0, 0.0), (0.2, 1.0e-4), (1.0, 2.0e-4), (4.0, 3.0e-4)]
+MU_F, KT_F = 0.3, 4.0e5
+
+
+def test_soft_layer_friction():
+    """The layer pressed by V (its top moved down; the layers touch at the
+    start), then sheared to +U and back to -U: the normal reaction is the
+    law's pressure at the overclosure h of h + 2 p(h) H / M = V (M the
+    constrained modulus, plane strain with periodic sides) times the
+    width, in every increment (the shear leaves it alone); the tangential
+    reaction never exceeds mu times it, and equals it wherever the rows
+    slide (to 1e-9: the law and Coulomb's limit are exact). SMALL SLIDING:
+    the pairing of the initial configuration, as the closed form has it
+    (without it CalculiX's large sliding searches again on the sheared
+    layer, whose edge nodes then leave the periodic master's ends)."""
+    import test_friction as tf
+    rows = "".join(f"{p}, {h}\n" for p, h in TABLE_F)
+    contact = (f"*CONTACT PAIR, INTERACTION=SOFTF, TYPE=NODE TO SURFACE, SMALL SLIDING\nSLAVE, MASTER\n"
+               f"*SURFACE INTERACTION, NAME=SOFTF\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR\n{rows}"
+               f"*FRICTION\n{MU_F}, {KT_F}\n")
+    law_p = [p for p, _ in TABLE_F]
+    law_h = [h for _, h in TABLE_F]
+
+    def law(h):
+        return float(np.interp(h, law_h, law_p, left=0.0)) if h <= law_h[-1] else \
+            law_p[-1] + (law_p[-1] - law_p[-2]) / (law_h[-1] - law_h[-2]) * (h - law_h[-1])
+
+    m_mod = tf.E * (1 - tf.NU) / ((1 + tf.NU) * (1 - 2 * tf.NU))
+    lo, hi = 0.0, tf.V
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if mid + law(mid) * (tf.H1 + tf.H2) / m_mod > tf.V else (mid, hi)
+    p = law(0.5 * (lo + hi))
+    for solve in ("FULL", "CONDENSED"):
+        run = run_deck("soft_layer_friction_" + solve.lower(), tf.layer_deck(solve, contact)).ok()
+        rf = tf.reactions(run, "TOP")
+        err_n = np.max(np.abs(-rf[:, 1] - p * tf.W)) / (p * tf.W)
+        err_limit = err_slip = 0.0
+        nslip = {1: 0, -1: 0}
+        nstick = 0
+        for k, inc in enumerate(run.listing.increments):
+            states = set(inc.block("CONTACT SLAVE", pair=1)["state"])
+            err_limit = max(err_limit, (abs(rf[k, 0]) - MU_F * abs(rf[k, 1])) / (MU_F * p * tf.W))
+            if states == {"SLIP"}:
+                nslip[int(np.sign(rf[k, 0]))] += 1
+                err_slip = max(err_slip, abs(abs(rf[k, 0]) - MU_F * abs(rf[k, 1])) / (MU_F * p * tf.W))
+            elif states == {"STICK"} and k > 0:
+                nstick += 1
+        print(f"  {solve}: pressure {p:.6g} (the law at h = {0.5 * (lo + hi):.6g}); normal reaction {err_n:.1e} "
+              f"of p W; |RF1| - mu |RF2| at most {err_limit:.1e}, at slip {err_slip:.1e} of mu p W; "
+              f"{nslip[1]} + {nslip[-1]} sliding and {nstick} sticking increments")
+        assert law_h[1] < 0.5 * (lo + hi) < law_h[-1], "the press must end inside the table"
+        assert nslip[1] >= 5 and nslip[-1] >= 5 and nstick >= 2, (solve, nslip, nstick)
+        assert err_n < 1e-9 and err_limit < 1e-9 and err_slip < 1e-9, solve

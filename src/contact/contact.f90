@@ -1237,7 +1237,10 @@ contains
   !> closed penalty.
   pure real(dp) function closed_stiffness(c)
     type(cfe_t), intent(in) :: c
-    if (c%soft) then
+    ! (a soft CFE taken as closed outside its law, seg = 0: the contact
+    ! equations' mask, condensed_contact, asks which dofs a closed
+    ! coupling reaches; the closed penalty answers)
+    if (c%soft .and. c%seg > 0) then
       closed_stiffness = c%k_soft
     else
       closed_stiffness = c%k_closed
