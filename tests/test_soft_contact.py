@@ -9,7 +9,8 @@ contact laws").
    compressed by p H / E): the force-approach curve is the law times the
    contact area W t, closed form. Both laws, both couplings (node-to-
    segment on nested meshes, segment-to-segment on meshes that do not
-   match), loading and unloading (through open again), the condensed and
+   match, and with the multiplier on the master mesh where the slave is
+   the finer side), loading and unloading (through open again), the condensed and
    the full solve.
 2. Friction with a soft law: a periodic layer (uniform) pressed through a
    tabular law and sheared until it slides: the tangential reaction is mu
@@ -84,12 +85,12 @@ def behaviour(kind):
     return f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR\n{rows}"
 
 
-def blocks_deck(kind, coupling, solve):
+def blocks_deck(kind, coupling, solve, slave_finer=False):
     """The lower block (master, fixed at its bottom) and the upper one
     (slave, CLEAR above it, its top moved down by D_MAX and back to
     D_BACK), plane stress, thickness T, each held sideways at its left
     bottom or top corner only (the sides free)."""
-    nxm, nxs = (2, 4) if coupling == "NODE TO SURFACE" else (3, 2)
+    nxm, nxs = (2, 4) if coupling == "NODE TO SURFACE" or slave_finer else (3, 2)
     n1, i1, q1 = grid(nxm, 1, 0.0, W, 0.0, H)
     n2, i2, q2 = grid(nxs, 1, 0.0, W, H + CLEAR, 2.0 * H + CLEAR, first_node=101)
     top = ", ".join(str(i2[i, 1]) for i in range(nxs + 1))
@@ -136,12 +137,12 @@ BOT, 2, 2
 {steps}"""
 
 
-def check_blocks(kind, coupling, solve):
+def check_blocks(kind, coupling, solve, slave_finer=False):
     law = exponential if kind == "EXPONENTIAL" else tabular
     tol = 2e-5 if kind == "EXPONENTIAL" else 1e-9
-    tag = f"{kind} {coupling} {solve}"
+    tag = f"{kind} {coupling} {solve}" + (" slave finer" if slave_finer else "")
     run = run_deck("soft_" + "_".join(tag.lower().replace(" ", "_").split()),
-                   blocks_deck(kind, coupling, solve)).ok()
+                   blocks_deck(kind, coupling, solve, slave_finer)).ok()
     incs = run.listing.increments
     assert len(incs) == 2 * INCS, (tag, len(incs))
     err_f = err_law = err_h = err_open = 0.0
@@ -196,6 +197,14 @@ def test_soft_block_tabular_node_to_surface():
 
 def test_soft_block_tabular_surface_to_surface():
     check_blocks("TABULAR", "SURFACE TO SURFACE", "CONDENSED")
+
+
+def test_soft_block_master_mesh_multipliers():
+    """Segment-to-segment where the slave is the finer side (4 faces on
+    2): the multiplier on the master mesh, one coupling per master node
+    (docs/contact.md), its area the hat function's."""
+    check_blocks("TABULAR", "SURFACE TO SURFACE", "CONDENSED", slave_finer=True)
+    check_blocks("EXPONENTIAL", "SURFACE TO SURFACE", "CONDENSED", slave_finer=True)
 
 
 def test_soft_block_full_solve():
