@@ -212,6 +212,61 @@ def test_soft_block_full_solve():
     check_blocks("TABULAR", "NODE TO SURFACE", "FULL")
 
 
+def floating_deck(kind, coupling):
+    """The blocks of blocks_deck with the upper one free (held sideways
+    at one corner only), pressed by a pressure on its top face: 5, then
+    0.05, then 12 times p0, four increments each. Only the law holds it:
+    at the start, with no load, the law's pressure across the clearance
+    pushes it off (the open contact is stabilised until it settles)."""
+    d = blocks_deck(kind, coupling, "CONDENSED")
+    nxs = 4 if coupling == "NODE TO SURFACE" else 2
+    steps = ""
+    for q in FLOAT_LOADS:
+        faces = "".join(f"{101 + k}, P3, {q * P0}\n" for k in range(nxs))
+        steps += f"*STEP\n*STATIC\n0.25, 1.0\n*DLOAD\n{faces}*END STEP\n"
+    return d[:d.index("*STEP")] + steps
+
+
+FLOAT_LOADS = (5.0, 0.05, 12.0)
+
+
+def test_soft_floating_block_under_pressure():
+    """Force-driven: the contact force is the load (equilibrium) and the
+    law at the interface's gap times the area must give it, to the
+    tolerances of the laws (above), on every increment, both laws and
+    couplings; and no increment is bisected (the search settles: block
+    pivots whose rise is bounded and the law's own energy as the merit;
+    docs/contact.md)."""
+    for kind in ("EXPONENTIAL", "TABULAR"):
+        law = exponential if kind == "EXPONENTIAL" else tabular
+        tol = 2e-5 if kind == "EXPONENTIAL" else 1e-9
+        for coupling in ("NODE TO SURFACE", "SURFACE TO SURFACE"):
+            tag = f"{kind} {coupling}"
+            run = run_deck("soft_float_" + "_".join(tag.lower().split()), floating_deck(kind, coupling)).ok()
+            text = open(run.listing_path).read()
+            err_eq = err_law = 0.0
+            iters = []
+            for inc in run.listing.increments:
+                # the listing's time is the total time; each step ramps
+                # from the last step's load to its own
+                t = inc.time - (inc.step - 1)
+                q0 = FLOAT_LOADS[inc.step - 2] * P0 if inc.step > 1 else 0.0
+                q = q0 + (FLOAT_LOADS[inc.step - 1] * P0 - q0) * t
+                total = float(inc.block("CONTACT SUMMARY", pair=1)["total_force"][0])
+                gaps = inc.block("CONTACT SLAVE", pair=1)["gap"]
+                p = law(-float(np.mean(gaps)))
+                scale = p + (0.01 * P0 if kind == "EXPONENTIAL" else 0.0)
+                err_eq = max(err_eq, abs(total - q * W * T) / (q * W * T))
+                err_law = max(err_law, abs(p * W * T - total) / (scale * W * T), np.ptp(gaps) / C0)
+            iters = [int(line.split("iterations=")[1].split()[0]) for line in text.splitlines()
+                     if line.startswith("=== INCREMENT")]
+            print(f"  {tag}: contact force against the load {err_eq:.1e}, against the law at the gap {err_law:.1e}; "
+                  f"{len(iters)} increments, {sum(iters)} status iterations (at most {max(iters)}), "
+                  f"{text.count('increment bisected')} bisected")
+            assert len(iters) == 4 * len(FLOAT_LOADS) and "increment bisected" not in text, tag
+            assert err_eq < 1e-9 and err_law < tol, tag
+
+
 # the layer of tests/test_friction.py (periodic: uniform), its contact a
 # tabular law with Coulomb friction
 TABLE_F = [(0.0, 0.0), (0.2, 1.0e-4), (1.0, 2.0e-4), (4.0, 3.0e-4)]

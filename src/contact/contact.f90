@@ -137,6 +137,10 @@ module contact
     integer :: seg = 0
     real(dp) :: k_soft = 0.0_dp, f_soft = 0.0_dp
     real(dp) :: seg_h = 0.0_dp, seg_len = 0.0_dp, seg_p = 0.0_dp, seg_s = 0.0_dp, seg_w = 0.0_dp
+    !> The law's energy A W(h) at the last evaluation's overclosure, W the
+    !> integral of the law's pressure (whatever the status: the merit of
+    !> the status search, contact_status's contact_energy).
+    real(dp) :: w_law = 0.0_dp
     !> Coulomb friction (mu = 0: none): tangential penalty (force/length);
     !> a closed CFE sticks or slides (slip_sign: +-1 along the tangent
     !> t = (-n_y, n_x)); anchor: the tangential relative displacement t.[[U]]
@@ -1210,17 +1214,34 @@ contains
     c%f_soft = c%area * (c%seg_s * c%seg_h - c%seg_p)
   end subroutine set_segment
 
-  !> Purpose: the energy of soft CFE c's law at its last gap, per its
-  !> segment's quadratic (the integral of the segment's affine pressure
-  !> over the overclosure, from the law's first knot), times the area.
+  !> Purpose: the energy of soft CFE c's law at its last evaluation, A
+  !> W(h) (law_energy), whatever its status: the true potential of the
+  !> law at the status's solution, the status search's merit.
   pure real(dp) function soft_energy(c) result(e)
     type(cfe_t), intent(in) :: c
-    real(dp) :: dh
-    e = 0.0_dp
-    if (.not. c%closed) return
-    dh = -c%gap - c%seg_h
-    e = c%area * (c%seg_w + c%seg_p * dh + 0.5_dp * c%seg_s * dh**2)
+    e = c%w_law
   end function soft_energy
+
+  !> Purpose: W(h), the integral of pair pr's soft law's pressure over the
+  !> overclosure from its first knot to h (0 before it): the trapezoids of
+  !> the segments before h's and the part of h's own.
+  pure real(dp) function law_energy(pr, h) result(w)
+    type(contact_pair_t), intent(in) :: pr
+    real(dp), intent(in) :: h
+    integer :: k, i
+    real(dp) :: dh, s
+    w = 0.0_dp
+    k = soft_segment_at(pr, h)
+    if (k == 0) return
+    associate(kh => pr%soft_h, kp => pr%soft_p)
+      do i = 1, k - 1
+        w = w + 0.5_dp * (kp(i) + kp(i + 1)) * (kh(i + 1) - kh(i))
+      end do
+      dh = h - kh(k)
+      s = (kp(k + 1) - kp(k)) / (kh(k + 1) - kh(k))
+      w = w + kp(k) * dh + 0.5_dp * s * dh**2
+    end associate
+  end function law_energy
 
   !> Purpose: the force of closed CFE c at zero gap: the multiplier of
   !> exact enforcement, or a soft law's segment offset f_soft.
@@ -1270,6 +1291,7 @@ contains
       cs%c(j)%gap = eout%gap
       if (cs%c(j)%closed .and. closed_offset(cs%c(j)) /= 0.0_dp) &
         cs%c(j)%gap = eout%gap - closed_offset(cs%c(j)) / closed_stiffness(cs%c(j))
+      if (cs%c(j)%soft) cs%c(j)%w_law = cs%c(j)%area * law_energy(m%pairs(cs%c(j)%pair), -cs%c(j)%gap)
       cs%c(j)%force = eout%normal_force
       cs%c(j)%slide = eout%slide
       cs%c(j)%tforce = eout%tangential_force

@@ -73,6 +73,9 @@ module contact_status
   !> shrinks the closed gaps by about the ratio of the bodies' stiffness
   !> under a point to the penalty: 1e-3 with the automatic one).
   integer, parameter :: max_augmentations = 30
+  !> A soft law's block pivot raises the pressure at most this many times
+  !> (pivot_soft).
+  real(dp), parameter :: max_rise = 10.0_dp
 
   !> The state of one increment's status search, and the pivots made
   !> since it was made: block (every violated CFE changes) and single (the
@@ -173,9 +176,8 @@ contains
         if (.not. violated(j)) cycle
         call note_change(m, cs, j, nchanged, changed)
         if (cs%c(j)%soft) then
-          ! a soft law: to the segment of its overclosure (a block pivot),
-          ! or one segment towards it (a single pivot: one hinge of the law)
-          call pivot_soft(m, cs%c(j), ss%single == 0)
+          ! a soft law: to the segment of its overclosure
+          call pivot_soft(m, cs%c(j), ss%single == 0, force_scale)
         else
           cs%c(j)%closed = .not. cs%c(j)%closed
         end if
@@ -280,7 +282,7 @@ contains
       if (cs%c(k)%soft) call set_segment(m, cs%c(k), ss%before_seg(k))
     end do
     if (cs%c(j)%soft) then
-      call pivot_soft(m, cs%c(j), .false.)
+      call pivot_soft(m, cs%c(j), .false., 0.0_dp)
     else
       cs%c(j)%closed = .not. cs%c(j)%closed
     end if
@@ -413,24 +415,34 @@ contains
     end if
   end function soft_violation
 
-  !> Purpose: a pivot of soft CFE c whose overclosure left its segment:
-  !> to the segment it lies in (block), or the next one towards it
-  !> (single: Murty's rule on the law's hinges, each segment boundary a
-  !> complementarity pair of its own).
+  !> Purpose: a pivot of soft CFE c whose overclosure left its segment: to
+  !> the segment it lies in, by a block pivot (every violated CFE) or a
+  !> single one (the violated CFE of least index alone; docs/contact.md,
+  !> "Soft contact laws"). A block pivot that raises the pressure goes at
+  !> most to the segment where it reaches max_rise times the larger of
+  !> the pressure at its segment's top and the increment's force scale
+  !> over its area: the status's solution, linear in the old segment,
+  !> overshoots a convex law from below (an exponential by many decades,
+  !> from which its segments bring it back by about one beta per pivot).
   !> Arguments: m the model; c the CFE (its gap of the last evaluation);
-  !> block true for a block pivot.
-  subroutine pivot_soft(m, c, block)
+  !> block true for a block pivot; force_scale the increment's force
+  !> scale F (contact_switch).
+  subroutine pivot_soft(m, c, block, force_scale)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(inout) :: c
     logical, intent(in) :: block
+    real(dp), intent(in) :: force_scale
     integer :: target
+    real(dp) :: p_cap
     target = soft_segment_at(m%pairs(c%pair), -c%gap)
-    if (.not. block) then
-      if (target > c%seg) then
-        target = c%seg + 1
-      else if (target < c%seg) then
-        target = c%seg - 1
-      end if
+    if (block .and. target > c%seg + 1) then
+      associate(kp => m%pairs(c%pair)%soft_p)
+        p_cap = force_scale / max(c%area, tiny(1.0_dp))
+        if (c%seg > 0) p_cap = max(p_cap, kp(c%seg + 1))
+        p_cap = max_rise * p_cap
+        ! the last knot below p_cap (at least the next segment)
+        target = max(min(target, count(kp < p_cap)), c%seg + 1)
+      end associate
     end if
     call set_segment(m, c, target)
   end subroutine pivot_soft
