@@ -141,6 +141,11 @@ module contact
     !> integral of the law's pressure (whatever the status: the merit of
     !> the status search, contact_status's contact_energy).
     real(dp) :: w_law = 0.0_dp
+    !> The law's energy per area w_at at its knot w_knot, from which the
+    !> energy at another knot is summed (knot_energy: a few segments away
+    !> once the search nears its end, not the thousands of an exponential).
+    integer :: w_knot = 1
+    real(dp) :: w_at = 0.0_dp
     !> Coulomb friction (mu = 0: none): tangential penalty (force/length);
     !> a closed CFE sticks or slides (slip_sign: +-1 along the tangent
     !> t = (-n_y, n_x)); anchor: the tangential relative displacement t.[[U]]
@@ -1191,7 +1196,7 @@ contains
     type(model_t), intent(in) :: m
     type(cfe_t), intent(inout) :: c
     integer, intent(in) :: k
-    integer :: n, i
+    integer :: n
     c%seg = k
     c%closed = k > 0
     c%k_soft = 0.0_dp
@@ -1205,10 +1210,9 @@ contains
       c%seg_len = kh(k + 1) - kh(k)
       if (k == n - 1) c%seg_len = huge(1.0_dp)
       ! the energy per area at the segment's start: the trapezoids before it
-      c%seg_w = 0.0_dp
-      do i = 1, k - 1
-        c%seg_w = c%seg_w + 0.5_dp * (kp(i) + kp(i + 1)) * (kh(i + 1) - kh(i))
-      end do
+      c%seg_w = knot_energy(m%pairs(c%pair), c%w_knot, c%w_at, k)
+      c%w_knot = k
+      c%w_at = c%seg_w
     end associate
     c%k_soft = c%area * c%seg_s
     c%f_soft = c%area * (c%seg_s * c%seg_h - c%seg_p)
@@ -1223,25 +1227,43 @@ contains
   end function soft_energy
 
   !> Purpose: W(h), the integral of pair pr's soft law's pressure over the
-  !> overclosure from its first knot to h (0 before it): the trapezoids of
-  !> the segments before h's and the part of h's own.
-  pure real(dp) function law_energy(pr, h) result(w)
+  !> overclosure from its first knot to h (0 before it): the energy at the
+  !> start of h's segment (knot_energy from w_at at knot w_knot) and the
+  !> part of h's own segment.
+  pure real(dp) function law_energy(pr, h, w_knot, w_at) result(w)
     type(contact_pair_t), intent(in) :: pr
-    real(dp), intent(in) :: h
-    integer :: k, i
+    real(dp), intent(in) :: h, w_at
+    integer, intent(in) :: w_knot
+    integer :: k
     real(dp) :: dh, s
     w = 0.0_dp
     k = soft_segment_at(pr, h)
     if (k == 0) return
     associate(kh => pr%soft_h, kp => pr%soft_p)
-      do i = 1, k - 1
-        w = w + 0.5_dp * (kp(i) + kp(i + 1)) * (kh(i + 1) - kh(i))
-      end do
+      w = knot_energy(pr, w_knot, w_at, k)
       dh = h - kh(k)
       s = (kp(k + 1) - kp(k)) / (kh(k + 1) - kh(k))
       w = w + kp(k) * dh + 0.5_dp * s * dh**2
     end associate
   end function law_energy
+
+  !> Purpose: W at knot k of pair pr's soft law, from its value w0 at knot
+  !> k0: the trapezoids of the segments between them.
+  pure real(dp) function knot_energy(pr, k0, w0, k) result(w)
+    type(contact_pair_t), intent(in) :: pr
+    integer, intent(in) :: k0, k
+    real(dp), intent(in) :: w0
+    integer :: i
+    w = w0
+    associate(kh => pr%soft_h, kp => pr%soft_p)
+      do i = k0, k - 1
+        w = w + 0.5_dp * (kp(i) + kp(i + 1)) * (kh(i + 1) - kh(i))
+      end do
+      do i = k0 - 1, k, -1
+        w = w - 0.5_dp * (kp(i) + kp(i + 1)) * (kh(i + 1) - kh(i))
+      end do
+    end associate
+  end function knot_energy
 
   !> Purpose: the force of closed CFE c at zero gap: the multiplier of
   !> exact enforcement, or a soft law's segment offset f_soft.
@@ -1291,7 +1313,8 @@ contains
       cs%c(j)%gap = eout%gap
       if (cs%c(j)%closed .and. closed_offset(cs%c(j)) /= 0.0_dp) &
         cs%c(j)%gap = eout%gap - closed_offset(cs%c(j)) / closed_stiffness(cs%c(j))
-      if (cs%c(j)%soft) cs%c(j)%w_law = cs%c(j)%area * law_energy(m%pairs(cs%c(j)%pair), -cs%c(j)%gap)
+      if (cs%c(j)%soft) cs%c(j)%w_law = cs%c(j)%area * law_energy(m%pairs(cs%c(j)%pair), -cs%c(j)%gap, &
+                                                                   cs%c(j)%w_knot, cs%c(j)%w_at)
       cs%c(j)%force = eout%normal_force
       cs%c(j)%slide = eout%slide
       cs%c(j)%tforce = eout%tangential_force
