@@ -52,6 +52,17 @@
 !> and its gap below round_off * h: either status gives the same answer to
 !> the round-off of the problem, and a decision there no longer depends on
 !> the BLAS kernel. The tolerance changes no answer beyond that.
+!>
+!> Soft laws (*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL or
+!> TABULAR; docs/contact.md, "Soft contact laws"): the law is piecewise
+!> linear and a CFE's status is the segment its overclosure lies in
+!> (contact's set_segment); a violated CFE pivots to the segment of its
+!> overclosure (a block pivot raising the pressure at most max_rise
+!> times), and its share of the merit is the law's own energy. A convex
+!> law is a sum of hinges, each a complementarity pair of the LCP above,
+!> on which a block pivot is block principal pivoting; the single pivot
+!> moves one element whole, which Murty's proof does not cover (MAXIT and
+!> bisection bound it, as with friction).
 module contact_status
   use kinds, only: dp
   use model, only: model_t
@@ -308,8 +319,8 @@ contains
         ko = open_penalty(c, cs%stabilised)
         e = e + 0.5_dp * ko * (c%gap - dot_product(c%normal, c%gap0) - open_shift(c, cs%stabilised))**2
         if (c%soft) then
-          ! a soft law: its energy, the integral of the pressure over the
-          ! overclosure (its segment's quadratic), times the area
+          ! a soft law: its energy at the last evaluation, the integral of
+          ! the law's pressure over the overclosure times the area
           e = e + soft_energy(c)
         else
           e = e + 0.5_dp * max(c%k_closed - ko, 0.0_dp) * min(0.0_dp, shifted_gap(cs, j))**2
