@@ -410,3 +410,46 @@ def test_soft_bolt_against_calculix():
           f"{s_rel:.3e} of the largest ({s_count} points, {unmapped} elements unmapped)")
     assert err["plates"][1] > 300 and err["bolt"][1] > 800 and s_count > 300 and unmapped == 0
     assert err["plates"][0] < 2e-2 and s_rel < 3e-2 and err["bolt"][0] < 0.2
+
+
+def test_soft_exponential_is_calculix_law():
+    """cfe2d's EXPONENTIAL law against CalculiX 2.20's, measured once
+    (tests/calculix/soft_exponential_law.inp, c0 = 0.01, p0 = 1: the
+    clearance CDIS and pressure CSTR of a slave node as one CPE4 block is
+    pushed onto another, kept in soft_exponential_law.csv). The same two
+    blocks with every node prescribed, so that the gap is CalculiX's CDIS
+    exactly, one step per point: where CalculiX overcloses (CDIS <= 0) the
+    pressures are the same, to the knots' 1.25e-5 (held at 2e-5) and
+    CalculiX's 7 printed digits; at a clearance cfe2d's is CalculiX's less
+    the ramp (p0 / 100) (CDIS / c0) (docs/contact.md)."""
+    import csv
+    ref = os.path.join(ROOT, "tests", "calculix", "soft_exponential_law.csv")
+    with open(ref) as f:
+        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+    c0, p0 = 0.01, 1.0
+    deck = open(os.path.join(ROOT, "tests", "calculix", "soft_exponential_law.inp")).read()
+    head = deck[:deck.index("*STEP")].replace("*BOUNDARY\nBOT, 1, 2\nTOP, 1, 1\n", "*BOUNDARY\nNALL, 1, 1\nBOT, 2, 2\n"
+                                                                                     "3, 2, 2\n4, 2, 2\n")
+    assert head != deck[:deck.index("*STEP")]
+    steps = "".join(f"*STEP\n*STATIC\n*BOUNDARY\nTOP, 2, 2, {float(r['cdis']) - 0.02!r}\n*END STEP\n" for r in rows)
+    run = run_deck("soft_calculix_law", head + steps).ok()
+    incs = run.listing.increments
+    assert len(incs) == len(rows)
+    err_over = err_clear = 0.0
+    n_over = n_clear = 0
+    for r, inc in zip(rows, incs):
+        d, p_ccx = float(r["cdis"]), float(r["cstr"])
+        b = inc.block("CONTACT SLAVE", pair=1)
+        assert max(abs(g - d) for g in b["gap"]) < 1e-12, (d, b["gap"])
+        p = float(np.mean(b["pressure"]))
+        digits = 1e-6 * p_ccx
+        if d <= 0.0:
+            n_over += 1
+            err_over = max(err_over, (abs(p - p_ccx) - digits) / p)
+        else:
+            n_clear += 1
+            err_clear = max(err_clear, (abs(p_ccx - p - 0.01 * p0 * d / c0) - digits) / (p + 0.01 * p0))
+    print(f"  against CalculiX's law: {n_over} overclosed points within {err_over:.1e} (relative, beyond its digits), "
+          f"{n_clear} at a clearance within {err_clear:.1e} of p + p0/100 once the ramp is added")
+    assert n_over >= 8 and n_clear >= 3
+    assert err_over < 2e-5 and err_clear < 2e-5
