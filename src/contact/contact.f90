@@ -34,7 +34,8 @@ module contact
   private
   public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
             coupling_node, cfe_nodes, cfe_max_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes, &
-            reset_stabilisation, restabilise, open_shift
+            reset_stabilisation, restabilise, open_shift, closed_offset, closed_stiffness, set_segment, soft_segment_at, &
+            soft_energy
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -124,6 +125,27 @@ module contact
     !> augment_multipliers updates lambda until g vanishes).
     logical :: exact = .false.
     real(dp) :: lambda = 0.0_dp
+    !> A soft pressure-overclosure law (the pair's soft_h, soft_p): the
+    !> status is the law's segment seg the overclosure h = -g lies in (0:
+    !> no pressure, open; k: between knots k and k + 1, the last one
+    !> unbounded), closed = seg > 0. While closed the normal force is
+    !> k_soft g + f_soft, the segment's affine law times the area
+    !> (set_segment): the segment runs from seg_h to seg_h + seg_len
+    !> (huge beyond the last knot), where the pressure is seg_p, the
+    !> energy per area seg_w, and its slope seg_s.
+    logical :: soft = .false.
+    integer :: seg = 0
+    real(dp) :: k_soft = 0.0_dp, f_soft = 0.0_dp
+    real(dp) :: seg_h = 0.0_dp, seg_len = 0.0_dp, seg_p = 0.0_dp, seg_s = 0.0_dp, seg_w = 0.0_dp
+    !> The law's energy A W(h) at the last evaluation's overclosure, W the
+    !> integral of the law's pressure (whatever the status: the merit of
+    !> the status search, contact_status's contact_energy).
+    real(dp) :: w_law = 0.0_dp
+    !> The law's energy per area w_at at its knot w_knot, from which the
+    !> energy at another knot is summed (knot_energy: a few segments away
+    !> once the search nears its end, not the thousands of an exponential).
+    integer :: w_knot = 1
+    real(dp) :: w_at = 0.0_dp
     !> Coulomb friction (mu = 0: none): tangential penalty (force/length);
     !> a closed CFE sticks or slides (slip_sign: +-1 along the tangent
     !> t = (-n_y, n_x)); anchor: the tangential relative displacement t.[[U]]
@@ -268,6 +290,7 @@ contains
       end if
     end do
     cs%c = cs%c(1:cs%n)
+    call start_soft(m, cs)
     if (.not. allocated(cs%notes)) allocate(cs%notes(0))
     cs%uncoupled = unc(1:nunc)
     cs%uncoupled_pair = uncp(1:nunc_p)
@@ -786,6 +809,7 @@ contains
     c%closed = oc%closed
     c%lambda = oc%lambda
     c%stab_anchor = oc%stab_anchor
+    if (c%soft) call set_segment(m, c, oc%seg)
     ! friction: the elastic tangential offset carries over to the
     ! new coupling, whose t.[[U]] is evaluated where the point is now
     ! (zero on a straight edge; not at a blended corner normal)
@@ -1014,10 +1038,11 @@ contains
     ein%gap0 = c%gap0
     ! exact enforcement: the closed force lambda + k_closed g is the
     ! penalty's on the gap shifted by lambda / k_closed along the normal
-    if (c%closed .and. c%lambda /= 0.0_dp) ein%gap0 = c%gap0 + (c%lambda / c%k_closed) * c%normal
+    ! (a soft law: its segment's force k_soft g + f_soft likewise)
+    if (c%closed .and. closed_offset(c) /= 0.0_dp) ein%gap0 = c%gap0 + (closed_offset(c) / closed_stiffness(c)) * c%normal
     ein%closed = c%closed
     if (c%closed) then
-      ein%penalty = c%k_closed
+      ein%penalty = closed_stiffness(c)
     else
       ein%penalty = open_penalty(c, stabilised)
       ein%open_shift = open_shift(c, stabilised)
@@ -1106,6 +1131,165 @@ contains
     again = .true.
   end function restabilise
 
+  !> Purpose: the CFEs of pairs with a soft law (contact_pair_t%soft_h)
+  !> start in the segment of zero overclosure where the search found them
+  !> closed (on or behind the master), open otherwise; the status search
+  !> moves them to the segment of their overclosure.
+  !> Arguments: m the model; cs the contact set just searched.
+  subroutine start_soft(m, cs)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    integer :: j
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        if (.not. allocated(m%pairs(c%pair)%soft_h)) cycle
+        c%soft = .true.
+        c%exact = .false.
+        c%lambda = 0.0_dp
+        if (c%closed) then
+          call set_segment(m, c, soft_segment_at(m%pairs(c%pair), 0.0_dp))
+        else
+          call set_segment(m, c, 0)
+        end if
+      end associate
+    end do
+  end subroutine start_soft
+
+  !> Purpose: the segment of pair pr's soft law that overclosure h lies
+  !> in: 0 before the first knot, k between knots k and k + 1, the last
+  !> knot's index beyond it (binary search).
+  pure integer function soft_segment_at(pr, h) result(k)
+    type(contact_pair_t), intent(in) :: pr
+    real(dp), intent(in) :: h
+    integer :: lo, hi, mid
+    associate(kh => pr%soft_h)
+      if (h < kh(1)) then
+        k = 0
+        return
+      end if
+      lo = 1
+      hi = size(kh)
+      ! invariant: kh(lo) <= h, and h < kh(hi) unless hi is the last knot
+      if (h >= kh(hi)) then
+        k = hi - 1
+        return
+      end if
+      do while (hi - lo > 1)
+        mid = (lo + hi) / 2
+        if (kh(mid) <= h) then
+          lo = mid
+        else
+          hi = mid
+        end if
+      end do
+      k = lo
+    end associate
+  end function soft_segment_at
+
+  !> Purpose: puts soft CFE c in segment k of its pair's law: closed for
+  !> k > 0, with the segment's affine force (eq. 9 with the law): the
+  !> pressure p(h) = seg_p + seg_s (h - seg_h) times the area, so with
+  !> h = -g the normal force -A p = k_soft g + f_soft, k_soft = A seg_s,
+  !> f_soft = A (seg_s seg_h - seg_p) (compression negative).
+  !> Arguments: m the model; c the CFE; k the segment (0: open).
+  subroutine set_segment(m, c, k)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(inout) :: c
+    integer, intent(in) :: k
+    integer :: n
+    c%seg = k
+    c%closed = k > 0
+    c%k_soft = 0.0_dp
+    c%f_soft = 0.0_dp
+    if (k == 0) return
+    associate(kh => m%pairs(c%pair)%soft_h, kp => m%pairs(c%pair)%soft_p)
+      n = size(kh)
+      c%seg_h = kh(k)
+      c%seg_p = kp(k)
+      c%seg_s = (kp(k + 1) - kp(k)) / (kh(k + 1) - kh(k))
+      c%seg_len = kh(k + 1) - kh(k)
+      if (k == n - 1) c%seg_len = huge(1.0_dp)
+      ! the energy per area at the segment's start: the trapezoids before it
+      c%seg_w = knot_energy(m%pairs(c%pair), c%w_knot, c%w_at, k)
+      c%w_knot = k
+      c%w_at = c%seg_w
+    end associate
+    c%k_soft = c%area * c%seg_s
+    c%f_soft = c%area * (c%seg_s * c%seg_h - c%seg_p)
+  end subroutine set_segment
+
+  !> Purpose: the energy of soft CFE c's law at its last evaluation, A
+  !> W(h) (law_energy), whatever its status: the true potential of the
+  !> law at the status's solution, the status search's merit.
+  pure real(dp) function soft_energy(c) result(e)
+    type(cfe_t), intent(in) :: c
+    e = c%w_law
+  end function soft_energy
+
+  !> Purpose: W(h), the integral of pair pr's soft law's pressure over the
+  !> overclosure from its first knot to h (0 before it): the energy at the
+  !> start of h's segment (knot_energy from w_at at knot w_knot) and the
+  !> part of h's own segment.
+  pure real(dp) function law_energy(pr, h, w_knot, w_at) result(w)
+    type(contact_pair_t), intent(in) :: pr
+    real(dp), intent(in) :: h, w_at
+    integer, intent(in) :: w_knot
+    integer :: k
+    real(dp) :: dh, s
+    w = 0.0_dp
+    k = soft_segment_at(pr, h)
+    if (k == 0) return
+    associate(kh => pr%soft_h, kp => pr%soft_p)
+      w = knot_energy(pr, w_knot, w_at, k)
+      dh = h - kh(k)
+      s = (kp(k + 1) - kp(k)) / (kh(k + 1) - kh(k))
+      w = w + kp(k) * dh + 0.5_dp * s * dh**2
+    end associate
+  end function law_energy
+
+  !> Purpose: W at knot k of pair pr's soft law, from its value w0 at knot
+  !> k0: the trapezoids of the segments between them.
+  pure real(dp) function knot_energy(pr, k0, w0, k) result(w)
+    type(contact_pair_t), intent(in) :: pr
+    integer, intent(in) :: k0, k
+    real(dp), intent(in) :: w0
+    integer :: i
+    w = w0
+    associate(kh => pr%soft_h, kp => pr%soft_p)
+      do i = k0, k - 1
+        w = w + 0.5_dp * (kp(i) + kp(i + 1)) * (kh(i + 1) - kh(i))
+      end do
+      do i = k0 - 1, k, -1
+        w = w - 0.5_dp * (kp(i) + kp(i + 1)) * (kh(i + 1) - kh(i))
+      end do
+    end associate
+  end function knot_energy
+
+  !> Purpose: the force of closed CFE c at zero gap: the multiplier of
+  !> exact enforcement, or a soft law's segment offset f_soft.
+  pure real(dp) function closed_offset(c)
+    type(cfe_t), intent(in) :: c
+    if (c%soft) then
+      closed_offset = c%f_soft
+    else
+      closed_offset = c%lambda
+    end if
+  end function closed_offset
+
+  !> The normal stiffness of closed CFE c: its soft segment's, or the
+  !> closed penalty.
+  pure real(dp) function closed_stiffness(c)
+    type(cfe_t), intent(in) :: c
+    ! (a soft CFE taken as closed outside its law, seg = 0: the contact
+    ! equations' mask, condensed_contact, asks which dofs a closed
+    ! coupling reaches; the closed penalty answers)
+    if (c%soft .and. c%seg > 0) then
+      closed_stiffness = c%k_soft
+    else
+      closed_stiffness = c%k_closed
+    end if
+  end function closed_stiffness
+
   !> Purpose: evaluates every CFE at displacements u with its current
   !> status: stores its gap and normal force and adds its internal force
   !> to fint (2, nn). ncalls counts the element routine calls.
@@ -1127,7 +1311,10 @@ contains
         fint(:, nodes(i)) = fint(:, nodes(i)) + eout%fe(2 * i - 1:2 * i)
       end do
       cs%c(j)%gap = eout%gap
-      if (cs%c(j)%closed .and. cs%c(j)%lambda /= 0.0_dp) cs%c(j)%gap = eout%gap - cs%c(j)%lambda / cs%c(j)%k_closed
+      if (cs%c(j)%closed .and. closed_offset(cs%c(j)) /= 0.0_dp) &
+        cs%c(j)%gap = eout%gap - closed_offset(cs%c(j)) / closed_stiffness(cs%c(j))
+      if (cs%c(j)%soft) cs%c(j)%w_law = cs%c(j)%area * law_energy(m%pairs(cs%c(j)%pair), -cs%c(j)%gap, &
+                                                                   cs%c(j)%w_knot, cs%c(j)%w_at)
       cs%c(j)%force = eout%normal_force
       cs%c(j)%slide = eout%slide
       cs%c(j)%tforce = eout%tangential_force
@@ -1135,7 +1322,8 @@ contains
   end subroutine contact_forces
 
   !> Purpose: the status of every CFE as a code that says which tangent
-  !> it has: 0 open, 1 closed (sticking), 2 sliding along +t, 3 along -t.
+  !> it has: 0 open, 1 closed (sticking), 2 sliding along +t, 3 along -t;
+  !> plus 4 times the segment of a soft law.
   pure function status_codes(cs) result(k)
     type(contact_set_t), intent(in) :: cs
     integer :: k(cs%n)
@@ -1144,6 +1332,8 @@ contains
       k(j) = 0
       if (cs%c(j)%closed) k(j) = 1
       if (cs%c(j)%closed .and. cs%c(j)%sliding) k(j) = merge(2, 3, cs%c(j)%slip_sign > 0.0_dp)
+      ! a soft law: each segment its own tangent
+      if (cs%c(j)%soft .and. cs%c(j)%closed) k(j) = k(j) + 4 * cs%c(j)%seg
     end do
   end function status_codes
 

@@ -52,10 +52,22 @@
 !> and its gap below round_off * h: either status gives the same answer to
 !> the round-off of the problem, and a decision there no longer depends on
 !> the BLAS kernel. The tolerance changes no answer beyond that.
+!>
+!> Soft laws (*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL or
+!> TABULAR; docs/contact.md, "Soft contact laws"): the law is piecewise
+!> linear and a CFE's status is the segment its overclosure lies in
+!> (contact's set_segment); a violated CFE pivots to the segment of its
+!> overclosure (a block pivot raising the pressure at most max_rise
+!> times), and its share of the merit is the law's own energy. A convex
+!> law is a sum of hinges, each a complementarity pair of the LCP above,
+!> on which a block pivot is block principal pivoting; the single pivot
+!> moves one element whole, which Murty's proof does not cover (MAXIT and
+!> bisection bound it, as with friction).
 module contact_status
   use kinds, only: dp
   use model, only: model_t
-  use contact, only: contact_set_t, cfe_label, open_penalty, open_shift, frictional_set
+  use contact, only: contact_set_t, cfe_t, cfe_label, open_penalty, open_shift, frictional_set, closed_offset, &
+                     closed_stiffness, set_segment, soft_segment_at, soft_energy
   implicit none
   private
   public :: status_search_t, begin_status_search, contact_switch, reject_pivot, shifted_gap, contact_energy, &
@@ -72,6 +84,9 @@ module contact_status
   !> shrinks the closed gaps by about the ratio of the bodies' stiffness
   !> under a point to the penalty: 1e-3 with the automatic one).
   integer, parameter :: max_augmentations = 30
+  !> A soft law's block pivot raises the pressure at most this many times
+  !> (pivot_soft).
+  real(dp), parameter :: max_rise = 10.0_dp
 
   !> The state of one increment's status search, and the pivots made
   !> since it was made: block (every violated CFE changes) and single (the
@@ -86,6 +101,7 @@ module contact_status
     !> pivot to a status that cannot be factored can be taken back.
     logical :: pivoted = .false.
     logical, allocatable :: before(:), before_sliding(:), violated(:)
+    integer, allocatable :: before_seg(:)
     real(dp), allocatable :: before_sign(:)
     integer :: single = 0
   end type status_search_t
@@ -138,7 +154,7 @@ contains
     ss%iterations = ss%iterations + 1
     frictional = frictional_set(cs)
     do j = 1, cs%n
-      violated(j) = is_violated(cs, j, force_scale)
+      violated(j) = is_violated(m, cs, j, force_scale)
     end do
     nviol = count(violated)
     nchanged = 0
@@ -147,6 +163,7 @@ contains
     ss%before = cs%c(1:cs%n)%closed
     ss%before_sliding = cs%c(1:cs%n)%sliding
     ss%before_sign = cs%c(1:cs%n)%slip_sign
+    ss%before_seg = cs%c(1:cs%n)%seg
     ss%violated = violated
     ss%single = 0
     if (nviol > 0) then
@@ -169,7 +186,12 @@ contains
       do j = 1, cs%n
         if (.not. violated(j)) cycle
         call note_change(m, cs, j, nchanged, changed)
-        cs%c(j)%closed = .not. cs%c(j)%closed
+        if (cs%c(j)%soft) then
+          ! a soft law: to the segment of its overclosure
+          call pivot_soft(m, cs%c(j), ss%single == 0, force_scale)
+        else
+          cs%c(j)%closed = .not. cs%c(j)%closed
+        end if
       end do
     end if
     if (frictional) then
@@ -221,7 +243,8 @@ contains
         if (c%closed) then
           trial = c%k_tan * (c%slide - c%anchor)
           ! (exact enforcement: the normal force is lambda + k_closed g)
-          limit = c%mu * max(-(c%k_closed * c%gap + c%lambda), 0.0_dp)
+          ! (a soft law: its segment's force k_soft g + f_soft)
+          limit = c%mu * max(-(closed_stiffness(c) * c%gap + closed_offset(c)), 0.0_dp)
           if (c%sliding) then
             ! slides on while the trial force exceeds the limit its way;
             ! otherwise it sticks first (never reverses in one pivot,
@@ -253,7 +276,7 @@ contains
     type(status_search_t), intent(inout) :: ss
     logical, intent(out) :: found
     character(len=:), allocatable, intent(out) :: changed
-    integer :: j
+    integer :: j, k
     found = .false.
     changed = ''
     ss%iterations = ss%iterations + 1
@@ -266,7 +289,14 @@ contains
     cs%c(1:cs%n)%closed = ss%before
     cs%c(1:cs%n)%sliding = ss%before_sliding
     cs%c(1:cs%n)%slip_sign = ss%before_sign
-    cs%c(j)%closed = .not. cs%c(j)%closed
+    do k = 1, cs%n
+      if (cs%c(k)%soft) call set_segment(m, cs%c(k), ss%before_seg(k))
+    end do
+    if (cs%c(j)%soft) then
+      call pivot_soft(m, cs%c(j), .false., 0.0_dp)
+    else
+      cs%c(j)%closed = .not. cs%c(j)%closed
+    end if
     ss%single = j
     ss%single_pivots = ss%single_pivots + 1
     ss%tries = -1
@@ -287,8 +317,14 @@ contains
     do j = 1, cs%n
       associate(c => cs%c(j))
         ko = open_penalty(c, cs%stabilised)
-        e = e + 0.5_dp * ko * (c%gap - dot_product(c%normal, c%gap0) - open_shift(c, cs%stabilised))**2 + &
-            0.5_dp * max(c%k_closed - ko, 0.0_dp) * min(0.0_dp, shifted_gap(cs, j))**2
+        e = e + 0.5_dp * ko * (c%gap - dot_product(c%normal, c%gap0) - open_shift(c, cs%stabilised))**2
+        if (c%soft) then
+          ! a soft law: its energy at the last evaluation, the integral of
+          ! the law's pressure over the overclosure times the area
+          e = e + soft_energy(c)
+        else
+          e = e + 0.5_dp * max(c%k_closed - ko, 0.0_dp) * min(0.0_dp, shifted_gap(cs, j))**2
+        end if
       end associate
     end do
   end function contact_energy
@@ -340,13 +376,19 @@ contains
   end function augment_multipliers
 
   !> Is CFE j's complementarity violated beyond round-off: closed and in
-  !> tension, or open and penetrating?
-  logical function is_violated(cs, j, force_scale)
+  !> tension, or open and penetrating? (A soft law: is its overclosure
+  !> outside its segment, soft_violation.)
+  logical function is_violated(m, cs, j, force_scale)
+    type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: j
     real(dp), intent(in) :: force_scale
     real(dp) :: gh, tol
     associate(c => cs%c(j))
+      if (c%soft) then
+        is_violated = soft_violation(m, c, force_scale) /= 0
+        return
+      end if
       gh = shifted_gap(cs, j)
       tol = round_off * min(c%h, force_scale / max(c%k_closed - open_penalty(c, cs%stabilised), tiny(1.0_dp)))
       ! never below the gap's own round-off (without loads F is round-off too)
@@ -358,4 +400,61 @@ contains
       end if
     end associate
   end function is_violated
+
+  !> Purpose: where soft CFE c's overclosure h = -g lies relative to its
+  !> segment (docs/contact.md, "Soft contact laws"): -1 before it, +1
+  !> beyond it, 0 within it, to the round-off of the problem as for the
+  !> penalty law (round_off min(h_mesh, F / k), never below the gap's own
+  !> round-off), k the segment's stiffness (the closed penalty while open).
+  integer function soft_violation(m, c, force_scale) result(v)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(in) :: c
+    real(dp), intent(in) :: force_scale
+    real(dp) :: h, tol, k
+    k = c%k_closed
+    if (c%closed) k = c%k_soft
+    tol = max(round_off * min(c%h, force_scale / max(k, tiny(1.0_dp))), c%gap_round)
+    h = -c%gap
+    v = 0
+    if (c%closed) then
+      if (h < c%seg_h - tol) v = -1
+      if (c%seg_len < huge(1.0_dp)) then
+        if (h > c%seg_h + c%seg_len + tol) v = 1
+      end if
+    else
+      if (h > m%pairs(c%pair)%soft_h(1) + tol) v = 1
+    end if
+  end function soft_violation
+
+  !> Purpose: a pivot of soft CFE c whose overclosure left its segment: to
+  !> the segment it lies in, by a block pivot (every violated CFE) or a
+  !> single one (the violated CFE of least index alone; docs/contact.md,
+  !> "Soft contact laws"). A block pivot that raises the pressure goes at
+  !> most to the segment where it reaches max_rise times the larger of
+  !> the pressure at its segment's top and the increment's force scale
+  !> over its area: the status's solution, linear in the old segment,
+  !> overshoots a convex law from below (an exponential by many decades,
+  !> from which its segments bring it back by about one beta per pivot).
+  !> Arguments: m the model; c the CFE (its gap of the last evaluation);
+  !> block true for a block pivot; force_scale the increment's force
+  !> scale F (contact_switch).
+  subroutine pivot_soft(m, c, block, force_scale)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(inout) :: c
+    logical, intent(in) :: block
+    real(dp), intent(in) :: force_scale
+    integer :: target
+    real(dp) :: p_cap
+    target = soft_segment_at(m%pairs(c%pair), -c%gap)
+    if (block .and. target > c%seg + 1) then
+      associate(kp => m%pairs(c%pair)%soft_p)
+        p_cap = force_scale / max(c%area, tiny(1.0_dp))
+        if (c%seg > 0) p_cap = max(p_cap, kp(c%seg + 1))
+        p_cap = max_rise * p_cap
+        ! the last knot below p_cap (at least the next segment)
+        target = max(min(target, count(kp < p_cap)), c%seg + 1)
+      end associate
+    end if
+    call set_segment(m, c, target)
+  end subroutine pivot_soft
 end module contact_status

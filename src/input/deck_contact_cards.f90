@@ -6,7 +6,7 @@ submodule (deck_parser) deck_contact_cards
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_cutbacks, max_contact_iterations, line_text, err, next_data, no_data, &
                          allow_params, param_real, param_int, need_nset, new_surface, get_real, &
-                         behaviour_linear, add_pair_interaction, check_name_length, warn_empty_set, &
+                         behaviour_linear, behaviour_soft, add_pair_interaction, check_name_length, warn_empty_set, &
                          interaction_t
   use model, only: contact_pair_t, surface_t, surf_element, surf_node, coupling_nts, coupling_mortar, &
                    find_name, edge_nodes, elem_thickness, &
@@ -275,7 +275,13 @@ contains
           c%penalty = -1.0_dp
           if (p%inter(it)%behaviour == behaviour_linear) c%penalty = p%inter(it)%slope
           ! HARD: exact enforcement (the automatic penalty only sets the pace)
-          c%exact = p%inter(it)%behaviour /= behaviour_linear
+          c%exact = p%inter(it)%behaviour /= behaviour_linear .and. p%inter(it)%behaviour /= behaviour_soft
+          ! a soft law: its pressures, halved between the passes of a two-pass pair
+          if (p%inter(it)%behaviour == behaviour_soft) then
+            c%soft_h = p%inter(it)%soft_h
+            c%soft_p = p%inter(it)%soft_p
+            if (c%twin /= 0) c%soft_p = 0.5_dp * c%soft_p
+          end if
           if (c%twin /= 0 .and. c%penalty > 0.0_dp) c%penalty = 0.5_dp * c%penalty
           c%mu = p%inter(it)%mu
           c%stick_slope = p%inter(it)%stick_slope

@@ -17,7 +17,7 @@ module deck_cursor
   implicit none
   private
   public :: parser_t, time_points_t, max_id, max_increments, max_cutbacks, max_contact_iterations
-  public :: interaction_t, behaviour_none, behaviour_linear, behaviour_hard, new_interaction
+  public :: interaction_t, behaviour_none, behaviour_linear, behaviour_hard, behaviour_soft, new_interaction
   public :: pair_interaction_t, add_pair_interaction
   public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
             name_param, check_name_length, get_real, get_int, param_real, param_int, &
@@ -48,7 +48,7 @@ module deck_cursor
 
   !> Pressure-overclosure behaviours of a surface interaction that cfe2d
   !> maps onto its penalty (the others stop at their *SURFACE BEHAVIOR).
-  integer, parameter :: behaviour_none = 0, behaviour_linear = 1, behaviour_hard = 2
+  integer, parameter :: behaviour_none = 0, behaviour_linear = 1, behaviour_hard = 2, behaviour_soft = 3
 
   !> A *SURFACE INTERACTION block as read. Each *CONTACT PAIR naming it
   !> takes its penalty into its contact_pair_t, so the block itself only
@@ -61,6 +61,8 @@ module deck_cursor
     real(dp) :: mu = 0.0_dp         ! *FRICTION: coefficient (0: frictionless)
     real(dp) :: stick_slope = -1.0_dp   ! *FRICTION: shear stress per unit slip; < 0: automatic
     integer :: line = 0             ! the *SURFACE INTERACTION line
+    !> EXPONENTIAL or TABULAR: the soft law's knots (contact_pair_t%soft_h, %soft_p)
+    real(dp), allocatable :: soft_h(:), soft_p(:)
   end type interaction_t
 
   !> INTERACTION= of a *CONTACT PAIR: resolved once the deck is read, as

@@ -1,16 +1,16 @@
 !> Contact interaction cards as CalculiX and Abaqus write them:
 !> *SURFACE INTERACTION opens a block, *SURFACE BEHAVIOR and *FRICTION
 !> describe it, and a *CONTACT PAIR, INTERACTION= takes its penalty and
-!> friction (see docs/contact.md, "Decks written for CalculiX or
-!> Abaqus"). What cfe2d cannot do (a soft exponential or tabular law,
-!> tied contact, friction models other than Coulomb's) stops at the card
-!> that asks for it.
+!> friction, or a soft pressure-overclosure law (see docs/contact.md,
+!> "Decks written for CalculiX or Abaqus" and "Soft contact laws"). What
+!> cfe2d cannot do (tied contact, friction models other than Coulomb's)
+!> stops at the card that asks for it.
 submodule (deck_parser) deck_interaction_cards
   use kinds, only: dp
-  use strings, only: split_fields, to_upper, field_t, rtoa
+  use strings, only: split_fields, to_upper, field_t
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: line_text, err, next_data, require_data, allow_params, name_param, get_real, &
-                         new_interaction, behaviour_linear, behaviour_hard
+                         new_interaction, behaviour_linear, behaviour_hard, behaviour_soft, interaction_t
   implicit none
 
 contains
@@ -50,7 +50,8 @@ contains
   !> at large clearance and the clearance within which it makes contact
   !> springs) are checked as numbers and not used. HARD (Abaqus' default)
   !> is the automatic penalty; with a data line it is LINEAR, as in
-  !> CalculiX. EXPONENTIAL, TABULAR and TIED are errors.
+  !> CalculiX. EXPONENTIAL and TABULAR are soft laws (read_exponential,
+  !> read_tabular); TIED is an error.
   module subroutine read_surface_behavior(p, kw)
     type(parser_t), intent(inout) :: p
     type(keyword_t), intent(in) :: kw
@@ -73,15 +74,14 @@ contains
               'the automatic penalty (as HARD) is used')
         end if
       case ('EXPONENTIAL')
-        call exponential_error(p)
+        call read_exponential(p, it)
       case ('TABULAR')
-        call err(p, 'PRESSURE-OVERCLOSURE=TABULAR is not implemented; LINEAR (K, the slope of the ' // &
-                 'pressure-overclosure curve) or HARD are')
+        call read_tabular(p, it)
       case ('TIED')
         call err(p, 'PRESSURE-OVERCLOSURE=TIED (contact that never separates) is not implemented; ' // &
                  'LINEAR and HARD are')
       case default
-        call err(p, 'PRESSURE-OVERCLOSURE=' // law // ' is not known (LINEAR, HARD)')
+        call err(p, 'PRESSURE-OVERCLOSURE=' // law // ' is not known (LINEAR, HARD, EXPONENTIAL, TABULAR)')
       end select
     end associate
   end subroutine read_surface_behavior
@@ -107,32 +107,93 @@ contains
     end if
   end function linear_slope
 
-  !> PRESSURE-OVERCLOSURE=EXPONENTIAL: a pressure at a clearance (soft
-  !> contact) that cfe2d's bilinear penalty cannot give. Stops, naming the
-  !> LINEAR slope that matches the law at zero clearance when c0 and p0
-  !> are on the next line.
-  subroutine exponential_error(p)
+  !> Purpose: PRESSURE-OVERCLOSURE=EXPONENTIAL, data `c0, p0`: the soft
+  !> law of the overclosure h (the negative clearance), beta = ln(100) / c0,
+  !>   p(h) = p0 exp(beta h) - (p0 / 100) max(0, -h / c0),   h >= -c0,
+  !> 0 for h < -c0: CalculiX's p0 exp(beta h) (measured with CalculiX
+  !> 2.20, docs/contact.md, "Soft contact laws"), less a ramp that takes
+  !> its 1 % of p0 at the clearance c0 (where CalculiX drops to 0) to zero:
+  !> p0 at zero clearance, 0 at the clearance c0, continuous, increasing
+  !> and convex. Kept as knots (exponential_knots); linear beyond the last.
+  !> Arguments: p the parser (on the card); it the interaction.
+  subroutine read_exponential(p, it)
     type(parser_t), intent(inout) :: p
+    type(interaction_t), intent(inout) :: it
     type(field_t), allocatable :: f(:)
     real(dp) :: c0, p0
     integer :: n
-    if (next_data(p)) then
+    call require_data(p, 'c0, p0 of the exponential pressure-overclosure law')
+    call split_fields(line_text(p), f, n)
+    if (n /= 2) call err(p, 'PRESSURE-OVERCLOSURE=EXPONENTIAL data line needs: c0, p0 (the clearance ' // &
+                         'where the pressure vanishes, the pressure at zero clearance)')
+    c0 = get_real(p, f(1), 'c0 (clearance at which the pressure vanishes)')
+    p0 = get_real(p, f(2), 'p0 (pressure at zero clearance)')
+    if (.not. (c0 > 0.0_dp .and. c0 <= huge(1.0_dp))) call err(p, 'c0 must be a positive clearance')
+    if (.not. (p0 > 0.0_dp .and. p0 <= 1.0e-3_dp * huge(1.0_dp))) call err(p, 'p0 must be a positive pressure')
+    it%behaviour = behaviour_soft
+    call exponential_knots(c0, p0, it%soft_h, it%soft_p)
+  end subroutine read_exponential
+
+  !> Purpose: knots of the exponential law (read_exponential) whose
+  !> piecewise linear interpolant is within 1.3e-5 of it (relative): in
+  !> x = beta (h + c0) steps of dx = 0.01 (an interpolant of exp errs by
+  !> at most dx^2 / 8 of the value; the ramp is linear), from x = 0 to
+  !> where p0 exp(beta h) reaches exp(23) (about where CalculiX 2.20 stops
+  !> the exponential: measured, docs/contact.md), at least to 2 c0 of
+  !> overclosure.
+  !> Arguments: c0, p0 the law; h, p the knots.
+  pure subroutine exponential_knots(c0, p0, h, p)
+    real(dp), intent(in) :: c0, p0
+    real(dp), allocatable, intent(out) :: h(:), p(:)
+    real(dp), parameter :: dx = 0.01_dp
+    real(dp) :: beta, xmax
+    integer :: n, i
+    beta = log(100.0_dp) / c0
+    xmax = max(3.0_dp * log(100.0_dp), 23.0_dp - log(p0) + log(100.0_dp))
+    xmax = min(xmax, 600.0_dp)
+    n = ceiling(xmax / dx) + 1
+    allocate(h(n), p(n))
+    do i = 1, n
+      h(i) = (i - 1) * dx / beta - c0
+      p(i) = p0 * (exp((i - 1) * dx - log(100.0_dp)) - 0.01_dp * max(0.0_dp, 1.0_dp - (i - 1) * dx / log(100.0_dp)))
+    end do
+  end subroutine exponential_knots
+
+  !> Purpose: PRESSURE-OVERCLOSURE=TABULAR, data lines `pressure,
+  !> overclosure` (a clearance as a negative overclosure): the pressure is
+  !> linear between the pairs, 0 before the first (whose pressure must be
+  !> 0), the last segment's slope beyond the last. The overclosures must
+  !> increase, and the pressures too (a monotone law: docs/contact.md).
+  !> Arguments: p the parser (on the card); it the interaction.
+  subroutine read_tabular(p, it)
+    type(parser_t), intent(inout) :: p
+    type(interaction_t), intent(inout) :: it
+    type(field_t), allocatable :: f(:)
+    real(dp), allocatable :: h(:), pr(:)
+    integer :: n, k
+    allocate(h(0), pr(0))
+    k = 0
+    do while (next_data(p))
       call split_fields(line_text(p), f, n)
-      if (n >= 2) then
-        c0 = get_real(p, f(1), 'c0')
-        p0 = get_real(p, f(2), 'p0')
-        if (c0 > 0.0_dp .and. p0 > 0.0_dp) then
-          p%i = p%i - 1
-          call err(p, 'PRESSURE-OVERCLOSURE=EXPONENTIAL (soft contact, a pressure before touching) ' // &
-              'is not implemented; LINEAR with K = p0 ln(100) / c0 = ' // rtoa(p0 * log(100.0_dp) / c0, 4) // &
-              ' has its slope at zero clearance, or use HARD')
-        end if
+      if (n /= 2) call err(p, 'PRESSURE-OVERCLOSURE=TABULAR data line needs: pressure, overclosure')
+      k = k + 1
+      pr = [pr, get_real(p, f(1), 'pressure')]
+      h = [h, get_real(p, f(2), 'overclosure')]
+      if (abs(pr(k)) > 1.0e-3_dp * huge(1.0_dp) .or. abs(h(k)) > 1.0e-3_dp * huge(1.0_dp)) &
+        call err(p, 'pressure and overclosure must be finite numbers')
+      if (k == 1 .and. pr(1) /= 0.0_dp) call err(p, 'the first pressure of a TABULAR law must be 0 ' // &
+          '(its overclosure is where contact begins; a clearance is a negative overclosure)')
+      if (k > 1) then
+        if (.not. h(k) > h(k - 1)) call err(p, 'the overclosures of a TABULAR law must increase')
+        if (.not. pr(k) > pr(k - 1)) call err(p, 'the pressures of a TABULAR law must increase with ' // &
+            'the overclosure (a monotone law)')
       end if
-      p%i = p%i - 1
-    end if
-    call err(p, 'PRESSURE-OVERCLOSURE=EXPONENTIAL (soft contact, a pressure before touching) is not ' // &
-             'implemented; use LINEAR (K, sigma_inf) or HARD')
-  end subroutine exponential_error
+    end do
+    if (k < 2) call err(p, 'PRESSURE-OVERCLOSURE=TABULAR needs at least two data lines (pressure, overclosure)')
+    it%behaviour = behaviour_soft
+    it%soft_h = h
+    it%soft_p = pr
+  end subroutine read_tabular
 
   !> Purpose: *FRICTION: `mu[, stick slope]` of the current interaction
   !> (Coulomb friction, docs/contact.md): mu the friction coefficient,

@@ -340,6 +340,14 @@ module model
     !> condensed path without friction, otherwise found by augmenting the
     !> penalty until the closed gaps vanish; false: the penalty alone.
     logical :: exact = .false.
+    !> A soft pressure-overclosure law (*SURFACE BEHAVIOR, PRESSURE-
+    !> OVERCLOSURE=EXPONENTIAL or TABULAR; docs/contact.md, "Soft contact
+    !> laws"): the pressure is piecewise linear in the overclosure h (the
+    !> negative gap) through the knots (soft_h(i), soft_p(i)), h increasing,
+    !> soft_p(1) = 0 and the pressure increasing; zero for h < soft_h(1)
+    !> (a clearance beyond -soft_h(1)), the last segment's slope beyond the
+    !> last knot. Not allocated: the penalty law (penalty, exact).
+    real(dp), allocatable :: soft_h(:), soft_p(:)
     type(src_t) :: src
     !> The *CONTACT PAIR card (file, line number, text), for messages once
     !> the deck's lines are gone (the contact search refuses a pairing
