@@ -188,6 +188,12 @@ def mask_listing(text):
     return "".join(out)
 
 
+def mask_frd(text):
+    """A .frd without the date and time of its run (its 1UDATE and 1UTIME
+    header records)."""
+    return re.sub(r"(?m)^(    1U(?:DATE|TIME)) .*$", r"\1 <masked>", text)
+
+
 def counts(text):
     """The iteration and factorisation counts a listing reports."""
     c = {k: 0 for k in COUNT_KEYS}
@@ -223,6 +229,8 @@ def run(binary, deck, outdir, timeout):
                 data = fh.read().replace(outdir.encode(), b"<OUT>")
             if f.endswith(".out"):
                 data = mask_listing(data.decode(errors="replace")).encode()
+            elif f.endswith(".frd"):
+                data = mask_frd(data.decode(errors="replace")).encode()
             files[os.path.relpath(p, outdir)] = data
     return dict(rc=rc, stdout=so.replace(outdir.encode(), b"<OUT>"), stderr=se.replace(outdir.encode(), b"<OUT>"),
                 files=files)

@@ -84,3 +84,15 @@ def test_compare_builds_masks_only_wall_times():
     # a different count is a difference; a different wall time is not
     assert compare_builds.mask_listing(listing.replace("0.013", "9.9")) == masked
     assert compare_builds.mask_listing(listing.replace("contact_iterations 7", "contact_iterations 8")) != masked
+
+
+def test_compare_builds_masks_the_frd_run_date_only():
+    """A .frd's 1UDATE and 1UTIME records (when it was run) are masked, its
+    values are not."""
+    frd = ("    1C\n    1UDATE              27.november.2026\n    1UTIME              05:22:57\n"
+           "    1UPGM               cfe2d\n -1         1 1.00000E+00 2.00000E+00\n")
+    masked = compare_builds.mask_frd(frd)
+    assert "05:22:57" not in masked and "27.november" not in masked
+    assert compare_builds.mask_frd(frd.replace("05:22:57", "06:00:01")) == masked
+    assert compare_builds.mask_frd(frd.replace("2.00000E+00", "2.00001E+00")) != masked
+    assert "    1UPGM               cfe2d\n" in masked
