@@ -9,9 +9,9 @@
 module deck_cursor
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, name_len
-  use strings, only: to_upper, parse_real, parse_int, field_t, itoa
+  use strings, only: to_upper, parse_real, parse_int, field_t, itoa, split_fields
   use deck_input, only: deck_t, keyword_t, deck_error, deck_warning, param_value, has_param, is_keyword
-  use model, only: model_t, find_name, has_instances, rigid_t, controls_t
+  use model, only: model_t, find_name, has_instances, rigid_t, controls_t, step_t
   use model_growth, only: grow
   use growable, only: grow
   implicit none
@@ -22,7 +22,7 @@ module deck_cursor
   public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
             name_param, check_name_length, get_real, get_int, param_real, param_int, &
             node_of, node_or_zero, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
-            new_surface, in_step, warn_empty_set
+            new_surface, in_step, warn_empty_set, read_time_line
   ! Abaqus/CAE decks: parts, instances and the names and numbers of their members.
   public :: part_t, is_label, node_ref, elem_ref, defined_name, new_node_id, new_elem_id, placed, &
             instance_index, set_scope
@@ -801,4 +801,44 @@ contains
     if (d >= 4 .and. d <= 6) s = '; rotations (dof 6 in the plane) exist only at the reference node of a ' // &
       '*RIGID BODY or *COUPLING defined before this line (at a ROT NODE: dof 3)'
   end function rotation_hint
+
+  !> Purpose: the data line of a procedure card (*STATIC, *HEAT TRANSFER):
+  !> initial increment, time period, minimum and maximum increment
+  !> (CalculiX's fifth field, the initial increment of CFD, is read and
+  !> has no use here), into s; without a line 1, 1 and no bounds. The
+  !> initial increment is cut to the period.
+  !> Arguments: card the card's name for the messages; s the step.
+  subroutine read_time_line(p, card, s)
+    type(parser_t), intent(inout) :: p
+    character(len=*), intent(in) :: card
+    type(step_t), intent(inout) :: s
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    real(dp) :: cfd
+    s%dt = 1.0_dp
+    s%period = 1.0_dp
+    s%dt_min = 0.0_dp
+    s%dt_max = 0.0_dp
+    if (.not. next_data(p)) return
+    call split_fields(line_text(p), f, n)
+    if (n > 5) call err(p, card // ' data line needs: initial increment, time period[, min, max]')
+    if (len(f(1)%s) > 0) s%dt = get_real(p, f(1), 'initial time increment')
+    if (n >= 2) then
+      if (len(f(2)%s) > 0) s%period = get_real(p, f(2), 'time period')
+    end if
+    if (n >= 3) then
+      if (len(f(3)%s) > 0) s%dt_min = get_real(p, f(3), 'minimum time increment')
+    end if
+    if (n >= 4) then
+      if (len(f(4)%s) > 0) s%dt_max = get_real(p, f(4), 'maximum time increment')
+    end if
+    if (n == 5) then
+      if (len(f(5)%s) > 0) cfd = get_real(p, f(5), 'initial CFD time increment')
+    end if
+    if (s%dt <= 0.0_dp .or. s%period <= 0.0_dp) call err(p, 'time increment and period must be positive')
+    if (s%dt_min < 0.0_dp .or. s%dt_max < 0.0_dp) call err(p, 'the minimum and maximum time increments ' // &
+                                                            'must not be negative')
+    if (s%dt > s%period) s%dt = s%period
+    if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the maximum')
+  end subroutine read_time_line
 end module deck_cursor

@@ -11,7 +11,7 @@ module deck_heat_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: keyword_t, param_value, has_param, is_keyword
-  use deck_cursor, only: parser_t, max_increments, line_text, err, next_data, require_data, allow_params, &
+  use deck_cursor, only: parser_t, max_increments, read_time_line, line_text, err, next_data, require_data, allow_params, &
                          get_real, get_int, is_int, is_label, node_ref, elem_ref, need_nset, need_elset, warn_empty_set
   use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, find_name, src_t
   use element_catalogue, only: catalogue
@@ -51,28 +51,8 @@ contains
         s%deltmx = get_real(p, f(1), 'DELTMX')
         if (s%deltmx <= 0.0_dp) call err(p, 'DELTMX must be positive')
       end if
-      s%dt = 1.0_dp
-      s%period = 1.0_dp
-      if (next_data(p)) then
-        call split_fields(line_text(p), f, n)
-        if (n > 5) call err(p, '*HEAT TRANSFER data line needs: initial increment, time period[, min, max]')
-        if (len(f(1)%s) > 0) s%dt = get_real(p, f(1), 'initial time increment')
-        if (n >= 2) then
-          if (len(f(2)%s) > 0) s%period = get_real(p, f(2), 'time period')
-        end if
-        if (n >= 3) then
-          if (len(f(3)%s) > 0) s%dt_min = get_real(p, f(3), 'minimum time increment')
-        end if
-        if (n >= 4) then
-          if (len(f(4)%s) > 0) s%dt_max = get_real(p, f(4), 'maximum time increment')
-        end if
-        if (s%dt <= 0.0_dp .or. s%period <= 0.0_dp) call err(p, 'time increment and period must be positive')
-        if (s%dt_min < 0.0_dp .or. s%dt_max < 0.0_dp) call err(p, 'the minimum and maximum time increments ' // &
-                                                                'must not be negative')
-        if (s%dt > s%period) s%dt = s%period
-      end if
+      call read_time_line(p, '*HEAT TRANSFER', s)
       if (s%steady) s%deltmx = 0.0_dp
-      if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the maximum')
       ! a steady state or fixed increments: the driver's linear path, whose
       ! increments are counted here (automatic ones as they are made)
       if (s%steady .or. s%deltmx <= 0.0_dp) s%direct = .true.

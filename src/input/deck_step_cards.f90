@@ -6,7 +6,7 @@ submodule (deck_parser) deck_step_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
-  use deck_cursor, only: max_increments, line_text, err, next_data, require_data, no_data, allow_params, &
+  use deck_cursor, only: max_increments, read_time_line, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, is_int, is_label, node_ref, &
                          need_nset, need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
                          note_named, rotation_hint, nset_index, elset_index, time_points_t
@@ -432,41 +432,12 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t), allocatable :: f(:)
-    integer :: n
     real(dp) :: ratio
     call allow_params(p, kw, 'DIRECT,SOLVER')
     associate(s => m%steps(p%step))
       if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
       s%direct = has_param(kw, 'DIRECT')
-      s%dt = 1.0_dp
-      s%period = 1.0_dp
-      s%dt_min = 0.0_dp
-      s%dt_max = 0.0_dp
-      if (next_data(p)) then
-        call split_fields(line_text(p), f, n)
-        if (n > 5) call err(p, '*STATIC data line needs: initial increment, time period[, min, max]')
-        if (len(f(1)%s) > 0) s%dt = get_real(p, f(1), 'initial time increment')
-        if (n >= 2) then
-          if (len(f(2)%s) > 0) s%period = get_real(p, f(2), 'time period')
-        end if
-        if (n >= 3) then
-          if (len(f(3)%s) > 0) s%dt_min = get_real(p, f(3), 'minimum time increment')
-        end if
-        if (n >= 4) then
-          if (len(f(4)%s) > 0) s%dt_max = get_real(p, f(4), 'maximum time increment')
-        end if
-        ! the fifth, CalculiX's initial increment of CFD, has no use here
-        if (n == 5) then
-          if (len(f(5)%s) > 0) ratio = get_real(p, f(5), 'initial CFD time increment')
-        end if
-        if (s%dt <= 0.0_dp .or. s%period <= 0.0_dp) call err(p, 'time increment and period must be positive')
-        if (s%dt_min < 0.0_dp .or. s%dt_max < 0.0_dp) call err(p, 'the minimum and maximum time increments ' // &
-                                                                'must not be negative')
-        if (s%dt > s%period) s%dt = s%period
-        if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the ' // &
-                                                                   'maximum')
-      end if
+      call read_time_line(p, '*STATIC', s)
       ! (automatic increments of an NLGEOM step grow from the initial
       ! one: their count is checked as they are made)
       if (s%nlgeom .and. .not. s%direct) return
