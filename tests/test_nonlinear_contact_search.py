@@ -322,3 +322,21 @@ def test_status_cycle_cut_back_at_once():
     assert "the contact status cycles" in run.stderr and "increment 4" in run.stderr, run.stderr[-500:]
     iterations = open(run.listing_path).read().count("contact iteration")
     assert iterations < 300, iterations
+    # CalculiX's status files count the attempts (results_sta): an
+    # increment's ATT in the .sta is one more than the cut-backs the listing
+    # notes since the increment before it (2 before increment 3 here), and
+    # the .cvg's attempt column rises within an increment, one per cut-back
+    want, cuts = [], 0
+    for line in open(run.listing_path).read().splitlines():
+        if "increment cut back to" in line:
+            cuts += 1
+        elif line.startswith("=== INCREMENT"):
+            want.append(cuts + 1)
+            cuts = 0
+    out = os.path.dirname(run.listing_path)
+    sta = [ln.split() for ln in open(os.path.join(out, "hertz.sta")).read().split("\n")[2:] if ln]
+    assert [int(r[2]) for r in sta] == want and max(want) == 3, (sta, want)
+    cvg = [ln.split() for ln in open(os.path.join(out, "hertz.cvg")).read().split("\n")[4:] if ln]
+    for inc, att in zip([int(r[1]) for r in sta], want):
+        seen = [int(r[2]) for r in cvg if int(r[1]) == inc]
+        assert seen == sorted(seen) and seen[0] == 1 and seen[-1] == att, (inc, seen, att)

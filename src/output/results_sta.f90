@@ -4,9 +4,12 @@
 !> closed and the residual force in per cent), with CalculiX 2.20's
 !> headers and number format, so that tools that follow a CalculiX run
 !> (FreeCAD's solver progress, users' scripts) follow cfe2d's.
-!> cfe2d's observer events carry no attempt count and no displacement
-!> correction: ATT is written 1 (the increment that converged) and the
-!> CORR. DISP column 0.
+!> The attempt of an increment (ATT) is counted here from the iteration
+!> events: an increment that is cut back or bisected is solved again from
+!> its first iteration, so an iteration number that does not grow starts
+!> the next attempt (an attempt that fails before its first iteration is
+!> not seen). The events carry no displacement correction: the CORR. DISP
+!> column is 0.
 module results_sta
   use kinds, only: dp
   use model, only: model_t
@@ -21,6 +24,7 @@ module results_sta
     integer :: sta = 0, cvg = 0
     logical :: open = .false.
     integer :: step = 0, increment = 0      ! of the iterations being reported
+    integer :: attempt = 1, last_iteration = 0   ! the increment's attempt, its last iteration
     real(dp) :: last_time = 0.0_dp          ! step time of the previous increment
   contains
     procedure :: step_started => sta_step
@@ -61,6 +65,8 @@ contains
     self%step = info%step
     self%increment = 1
     self%last_time = 0.0_dp
+    self%attempt = 1
+    self%last_iteration = 0
   end subroutine sta_step
 
   !> Purpose: a .cvg line per iteration: step, increment, attempt,
@@ -68,7 +74,9 @@ contains
   subroutine cvg_iteration(self, info)
     class(status_files_t), intent(inout) :: self
     type(iteration_info_t), intent(in) :: info
-    write(self%cvg, '(i6, i6, i5, i6, i9, 4(2x, e10.4))') self%step, self%increment, 1, info%iteration, &
+    if (info%iteration <= self%last_iteration) self%attempt = self%attempt + 1
+    self%last_iteration = info%iteration
+    write(self%cvg, '(i6, i6, i5, i6, i9, 4(2x, e10.4))') self%step, self%increment, self%attempt, info%iteration, &
       info%closed, 100.0_dp * info%residual, 0.0_dp, 0.0_dp, 0.0_dp
     flush(self%cvg)
   end subroutine cvg_iteration
@@ -81,11 +89,13 @@ contains
     real(dp) :: dt
     dt = res%time - self%last_time
     if (res%nonlinear .and. res%dt > 0.0_dp) dt = res%dt
-    write(self%sta, '(i6, i11, i6, i6, 3(2x, e12.6))') res%step, res%increment, 1, max(res%iterations, 1), &
-      res%total_time, res%time, dt
+    write(self%sta, '(i6, i11, i6, i6, 3(2x, e12.6))') res%step, res%increment, self%attempt, &
+      max(res%iterations, 1), res%total_time, res%time, dt
     flush(self%sta)
     self%last_time = res%time
     self%increment = res%increment + 1
+    self%attempt = 1
+    self%last_iteration = 0
   end subroutine sta_increment
 
   !> Purpose: close both files at the end of the run.
