@@ -22,7 +22,7 @@ module deck_cursor
   public :: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
             name_param, check_name_length, get_real, get_int, param_real, param_int, &
             node_of, node_or_zero, elem_of, is_int, nset_index, elset_index, need_nset, need_elset, &
-            new_surface, in_step, warn_empty_set, read_time_line
+            new_surface, in_step, warn_empty_set, read_time_line, target_nodes, amplitude_param
   ! Abaqus/CAE decks: parts, instances and the names and numbers of their members.
   public :: part_t, is_label, node_ref, elem_ref, defined_name, new_node_id, new_elem_id, placed, &
             instance_index, set_scope
@@ -841,4 +841,37 @@ contains
     if (s%dt > s%period) s%dt = s%period
     if (s%dt_max > 0.0_dp .and. s%dt_min > s%dt_max) call err(p, 'the minimum time increment exceeds the maximum')
   end subroutine read_time_line
+
+  !> Nodes named by the first field of a data line (*BOUNDARY, *CLOAD, a
+  !> temperature, *CFLUX, ...), and the node set they came from (0 for a single node); an empty
+  !> set is warned about on the line of `card`.
+  subroutine target_nodes(p, m, s, card, nodes, iset)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    character(len=*), intent(in) :: s, card
+    integer, allocatable, intent(out) :: nodes(:)
+    integer, intent(out) :: iset
+    type(field_t) :: f
+    iset = 0
+    if (is_label(s)) then
+      f%s = s
+      nodes = [node_ref(p, m, f, 'node')]
+    else
+      if (len(s) == 0) call err(p, 'missing node or node set')
+      iset = need_nset(p, m, s)
+      nodes = m%nsets(iset)%items
+      call warn_empty_set(p, size(nodes), 'node set', m%nsets(iset)%name, card)
+    end if
+  end subroutine target_nodes
+
+  !> The amplitude named by AMPLITUDE= (0 if none).
+  integer function amplitude_param(p, m, kw)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(keyword_t), intent(in) :: kw
+    amplitude_param = 0
+    if (.not. has_param(kw, 'AMPLITUDE')) return
+    amplitude_param = find_name(m%amplitudes(1:p%namp)%name, to_upper(param_value(kw, 'AMPLITUDE')))
+    if (amplitude_param == 0) call err(p, 'undefined amplitude ' // to_upper(param_value(kw, 'AMPLITUDE')))
+  end function amplitude_param
 end module deck_cursor

@@ -12,8 +12,9 @@ module deck_heat_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: keyword_t, param_value, has_param, is_keyword
   use deck_cursor, only: parser_t, max_increments, read_time_line, line_text, err, next_data, require_data, allow_params, &
-                         get_real, get_int, is_int, is_label, node_ref, elem_ref, need_nset, need_elset, warn_empty_set
-  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, find_name, src_t
+                         get_real, get_int, is_int, is_label, elem_ref, need_elset, warn_empty_set, &
+                         target_nodes, amplitude_param
+  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, src_t
   use element_catalogue, only: catalogue
   implicit none
   private
@@ -189,7 +190,7 @@ contains
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
       if (n < 2 .or. n > 4) call err(p, '*BOUNDARY data line needs: node or node set, 11[, 11[, temperature]]')
-      call target_nodes(p, m, f(1)%s, nodes, iset)
+      call target_nodes(p, m, f(1)%s, 'data line', nodes, iset)
       d1 = get_int(p, f(2), 'first dof')
       d2 = d1
       if (n >= 3) then
@@ -232,7 +233,7 @@ contains
     do while (next_data(p))
       call split_fields(line_text(p), f, n)
       if (n /= 3) call err(p, '*CFLUX data line needs: node or node set, 11, flux')
-      call target_nodes(p, m, f(1)%s, nodes, iset)
+      call target_nodes(p, m, f(1)%s, 'data line', nodes, iset)
       if (get_int(p, f(2), 'dof') /= dof_temperature) call err(p, '*CFLUX acts on dof 11 (the temperature)')
       v = get_real(p, f(3), 'heat flux')
       m%steps(p%step)%cfluxes = [m%steps(p%step)%cfluxes, &
@@ -337,33 +338,8 @@ contains
     else if (op == 'NEW') then
       call err(p, 'OP=NEW is only allowed inside *STEP')
     end if
-    amp = 0
-    if (has_param(kw, 'AMPLITUDE')) then
-      amp = find_name(m%amplitudes(1:p%namp)%name, to_upper(param_value(kw, 'AMPLITUDE')))
-      if (amp == 0) call err(p, 'undefined amplitude ' // to_upper(param_value(kw, 'AMPLITUDE')))
-    end if
+    amp = amplitude_param(p, m, kw)
   end function heat_options
-
-  !> The nodes a data line's first field names (a node or a node set) and
-  !> the set (0 for a node).
-  subroutine target_nodes(p, m, s, nodes, iset)
-    type(parser_t), intent(in) :: p
-    type(model_t), intent(in) :: m
-    character(len=*), intent(in) :: s
-    integer, allocatable, intent(out) :: nodes(:)
-    integer, intent(out) :: iset
-    type(field_t) :: f
-    iset = 0
-    if (is_label(s)) then
-      f%s = s
-      nodes = [node_ref(p, m, f, 'node')]
-    else
-      if (len(s) == 0) call err(p, 'missing node or node set')
-      iset = need_nset(p, m, s)
-      nodes = m%nsets(iset)%items
-      call warn_empty_set(p, size(nodes), 'node set', m%nsets(iset)%name, 'data line')
-    end if
-  end subroutine target_nodes
 
   !> The elements a data line's first field names (an element or a set).
   subroutine target_elements(p, m, s, elems)

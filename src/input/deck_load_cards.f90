@@ -5,7 +5,7 @@ submodule (deck_parser) deck_load_cards
   use strings, only: split_fields, to_upper, field_t, itoa
   use deck_input, only: param_value, has_param
   use deck_cursor, only: line_text, err, next_data, require_data, allow_params, get_real, &
-                         is_label, elem_ref, need_elset, warn_empty_set
+                         is_label, elem_ref, need_elset, warn_empty_set, amplitude_param
   use model, only: dload_t, surf_element, find_name, is_continuum, is_mass, axisymmetric_model, step_dloads, &
                    dload_p, dload_bx, dload_by, dload_grav, dload_centrif, elem_label
   use element_catalogue, only: catalogue, state_axisymmetric, is_line
@@ -127,11 +127,7 @@ contains
     if (has_param(kw, 'OP')) op = to_upper(param_value(kw, 'OP'))
     if (op /= 'MOD' .and. op /= 'NEW') call err(p, 'OP must be MOD or NEW')
     if (op == 'NEW') m%steps(p%step)%new_dloads = .true.
-    amp = 0
-    if (has_param(kw, 'AMPLITUDE')) then
-      amp = find_name(m%amplitudes(1:p%namp)%name, to_upper(param_value(kw, 'AMPLITUDE')))
-      if (amp == 0) call err(p, 'undefined amplitude ' // to_upper(param_value(kw, 'AMPLITUDE')))
-    end if
+    amp = amplitude_param(p, m, kw)
   end subroutine load_options
 
   subroutine add_dloads(m, is, new)

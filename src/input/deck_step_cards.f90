@@ -7,9 +7,9 @@ submodule (deck_parser) deck_step_cards
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: max_increments, read_time_line, line_text, err, next_data, require_data, no_data, allow_params, &
-                         name_param, check_name_length, get_real, get_int, param_int, is_int, is_label, node_ref, &
-                         need_nset, need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
-                         note_named, rotation_hint, nset_index, elset_index, time_points_t
+                         name_param, check_name_length, get_real, get_int, param_int, is_int, &
+                         need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
+                         note_named, rotation_hint, nset_index, elset_index, time_points_t, target_nodes, amplitude_param
   use model, only: amplitude_t, step_t, bc_t, cload_t, request_t, temp_t, src_t, amp_step_time, amp_total_time, &
                    find_name, node_label, controls_t, law_elastic
   use growable, only: append
@@ -71,39 +71,6 @@ contains
     m%amplitudes(p%namp)%t = t(1:np)
     m%amplitudes(p%namp)%a = a(1:np)
   end subroutine read_amplitude
-
-  !> The amplitude named by AMPLITUDE= (0 if none).
-  integer function amplitude_param(p, m, kw)
-    type(parser_t), intent(in) :: p
-    type(model_t), intent(in) :: m
-    type(keyword_t), intent(in) :: kw
-    amplitude_param = 0
-    if (.not. has_param(kw, 'AMPLITUDE')) return
-    amplitude_param = find_name(m%amplitudes(1:p%namp)%name, to_upper(param_value(kw, 'AMPLITUDE')))
-    if (amplitude_param == 0) call err(p, 'undefined amplitude ' // to_upper(param_value(kw, 'AMPLITUDE')))
-  end function amplitude_param
-
-  !> Nodes named by the first field of a *BOUNDARY, *CLOAD or temperature
-  !> line, and the node set they came from (0 for a single node); an empty
-  !> set is warned about on the line of `card`.
-  subroutine target_nodes(p, m, s, card, nodes, iset)
-    type(parser_t), intent(in) :: p
-    type(model_t), intent(in) :: m
-    character(len=*), intent(in) :: s, card
-    integer, allocatable, intent(out) :: nodes(:)
-    integer, intent(out) :: iset
-    type(field_t) :: f
-    iset = 0
-    if (is_label(s)) then
-      f%s = s
-      nodes = [node_ref(p, m, f, 'node')]
-    else
-      if (len(s) == 0) call err(p, 'missing node or node set')
-      iset = need_nset(p, m, s)
-      nodes = m%nsets(iset)%items
-      call warn_empty_set(p, size(nodes), 'node set', m%nsets(iset)%name, card)
-    end if
-  end subroutine target_nodes
 
   !> Purpose: *BOUNDARY: prescribed displacements, `node or nset, first
   !> dof[, last dof[, value]]` or a named condition (ENCASTRE, PINNED,
