@@ -379,7 +379,7 @@ contains
     type(edge_t) :: ed, ref, mt
     real(dp), allocatable :: cuts(:)
     real(dp) :: tg(3), wg(3), t, nsl(3), wmst(3), psiw(3), p(2), pref(2), mdp(2), nrm(2), tbest, da
-    integer :: f, ncut, iv, ig, best, q, r, k
+    integer :: f, ncut, iv, ig, best
     call gauss_line(3, tg, wg)
     do f = 1, size(ms%elem)
       mt = get_edge(m, x, ms%elem(f), ms%edge(f))
@@ -396,17 +396,8 @@ contains
           if (best == 0) cycle
           ed = get_edge(m, x, sl%elem(best), sl%edge(best))
           nsl = edge_weights(ed, tbest)
-          do r = 1, mt%nn
-            k = pos(mt%node(r))
-            sp%d(k) = sp%d(k) + da * psiw(r)
-            sp%nsum(:, k) = sp%nsum(:, k) + da * psiw(r) * nrm
-            do q = 1, ed%nn
-              call add_entry(sp%ns, sp%snode, sp%sval, k, ed%node(q), da * psiw(r) * nsl(q))
-            end do
-            do q = 1, mt%nn
-              call add_entry(sp%nm, sp%mnode, sp%mval, k, mt%node(q), da * psiw(r) * wmst(q))
-            end do
-          end do
+          call add_point(sp, pos, mt%node(1:mt%nn), psiw(1:mt%nn), nrm, da, ed%node(1:ed%nn), nsl(1:ed%nn), &
+                         wmst(1:mt%nn))
         end do
       end do
     end do
@@ -424,7 +415,7 @@ contains
     type(edge_t) :: ed, ref, mt
     real(dp), allocatable :: cuts(:)
     real(dp) :: tg(3), wg(3), t, nsl(3), wmst(3), p(2), pref(2), dpdt(2), mdp(2), nrm(2), tbest, da
-    integer :: f, ncut, iv, ig, best, q, r, k
+    integer :: f, ncut, iv, ig, best
     call gauss_line(3, tg, wg)
     do f = 1, size(sl%elem)
       ed = get_edge(m, x, sl%elem(f), sl%edge(f))
@@ -441,19 +432,34 @@ contains
           wmst = edge_weights(mt, tbest)
           call edge_at(mt, tbest, p, mdp)
           nrm = [mdp(2), -mdp(1)] / norm2(mdp)
-          do r = 1, 2
-            k = pos(mt%node(r))
-            sp%d(k) = sp%d(k) + da * wmst(r)
-            sp%nsum(:, k) = sp%nsum(:, k) + da * wmst(r) * nrm
-            do q = 1, 2
-              call add_entry(sp%ns, sp%snode, sp%sval, k, ed%node(q), da * wmst(r) * nsl(q))
-              call add_entry(sp%nm, sp%mnode, sp%mval, k, mt%node(q), da * wmst(r) * wmst(q))
-            end do
-          end do
+          call add_point(sp, pos, mt%node(1:2), wmst(1:2), nrm, da, ed%node(1:2), nsl(1:2), wmst(1:2))
         end do
       end do
     end do
   end subroutine integrate_on_slave_faces
+
+  !> Purpose: one integration point's share of the master-space integrals
+  !> (both integration orders): for each master node k of the face with
+  !> weight w(r) (its hat or psi function at the point), D_k, the summed
+  !> normal, and the entries of S_kj (the slave nodes' shape functions nsl)
+  !> and of M_kl (the master nodes' shape functions mw), times da.
+  subroutine add_point(sp, pos, mnodes, w, nrm, da, snodes, nsl, mw)
+    type(master_space_t), intent(inout) :: sp
+    integer, intent(in) :: pos(:), mnodes(:), snodes(:)
+    real(dp), intent(in) :: w(:), nrm(2), da, nsl(:), mw(:)
+    integer :: r, q, k
+    do r = 1, size(mnodes)
+      k = pos(mnodes(r))
+      sp%d(k) = sp%d(k) + da * w(r)
+      sp%nsum(:, k) = sp%nsum(:, k) + da * w(r) * nrm
+      do q = 1, size(snodes)
+        call add_entry(sp%ns, sp%snode, sp%sval, k, snodes(q), da * w(r) * nsl(q))
+      end do
+      do q = 1, size(mnodes)
+        call add_entry(sp%nm, sp%mnode, sp%mval, k, mnodes(q), da * w(r) * mw(q))
+      end do
+    end do
+  end subroutine add_point
 
   !> Purpose: psi_m at the slave nodes of each master node's list (sp%psi,
   !> as wide as sp%snode): the master face under each slave node, at its
