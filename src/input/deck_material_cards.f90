@@ -554,8 +554,10 @@ contains
   !> *HYPERELASTIC or *PLASTIC. E > 0, -1 < nu < 0.5, sigma0 > 0, n >= 1,
   !> alpha >= 0, E and sigma0 and E / sigma0 at most 1e100; temperature
   !> dependence (a second data line) stops there.
-  !> The steps of a model with it are nonlinear (Newton), without NLGEOM
-  !> unless the step asks for it.
+  !> The steps of a model with it are nonlinear (Newton) and, as in
+  !> CalculiX (its reader of the card turns NLGEOM on), geometrically
+  !> nonlinear from here on unless a step says NLGEOM=NO (then the
+  !> small-strain law, as Abaqus without NLGEOM).
   module subroutine read_deformation_plasticity(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -591,6 +593,7 @@ contains
         call err(p, 'E and sigma0 must not exceed 1e100, nor E / sigma0 1e100')
       mat%law = law_deformation_plasticity
     end associate
+    p%nlgeom = .true.
     if (next_data(p)) call err(p, 'temperature-dependent *DEFORMATION PLASTICITY data is not implemented')
   end subroutine read_deformation_plasticity
 
