@@ -64,7 +64,7 @@ __all__ = ["deck_element_types", "deck_keywords", "cfe2d_keywords", "run_deck", 
            "cfe2d_contact", "compare_displacements", "compare_stresses", "contact_faces", "compare_references",
            "main"]
 
-PLANE = re.compile(r"^(CPS|CPE|CAX)", re.I)
+PLANE = re.compile(r"^(CPS|CPE|CAX|DC2D|DCAX)", re.I)   # (DC2D*, DCAX*: Abaqus's heat transfer names)
 TOLERANCE = 1e-3
 
 
@@ -129,8 +129,9 @@ def cfe2d_keywords(parser=os.path.join(ROOT, "src", "input", "deck_parser.f90"))
 
 
 def stress_state(types):
-    states = sorted({{"CPS": "plane stress", "CPE": "plane strain", "CAX": "axisymmetric"}[t[:3]]
-                     for t in types if PLANE.match(t)})
+    names = {"CPS": "plane stress", "CPE": "plane strain", "CAX": "axisymmetric", "DC2": "planar heat",
+             "DCA": "axisymmetric"}
+    states = sorted({names[t[:3].upper()] for t in types if PLANE.match(t)})
     return ", ".join(states)
 
 

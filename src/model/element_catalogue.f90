@@ -137,6 +137,10 @@ contains
     case ('M3D9', 'CPS9', 'CPE9')
       s = 'the 9-node quadrilateral is not implemented; gmsh writes 8-node quadrilaterals (CPS8) with ' // &
           '-setnumber Mesh.SecondOrderIncomplete 1'
+    case ('D', 'DCOUP3D')
+      ! CalculiX's network elements: its fluid networks (*FLUID SECTION)
+      s = 'a fluid network element (CalculiX''s networks of *FLUID SECTION): fluid networks are not ' // &
+          'implemented in cfe2d (docs/heat.md)'
     case default
       s = ''
     end select
