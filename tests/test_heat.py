@@ -230,6 +230,87 @@ def test_transient_deltmx():
     assert abs(stored - 1.0 * 0.1 * 1.0) < 1e-9, stored
 
 
+def dat_temperatures(path):
+    """[(time, {node: temperature})] of the "temperatures for set" blocks of
+    a CalculiX or cfe2d .dat."""
+    import re
+    out = []
+    with open(path) as f:
+        for line in f:
+            m = re.match(r"\s*temperatures for set \S+ and time\s+(\S+)", line)
+            if m:
+                out.append((float(m.group(1)), {}))
+                continue
+            p = line.split()
+            if out and len(p) == 2 and p[0].isdigit():
+                out[-1][1][int(p[0])] = float(p[1])
+    return out
+
+
+def test_deltmx_increments_as_calculix():
+    """Automatic increments under DELTMX = 0.05 on a CPS8 strip from 0
+    (tests/calculix/heat_deltmx_*.inp, run once with CalculiX 2.20, its
+    .dat kept beside them; docs/heat.md): the left end held at 1 from t = 0
+    (a step) or heated by a flux of 1. Every increment CalculiX accepts
+    (51 and 23, with 20 and 5 cut back) is cfe2d's: the same step times
+    (to 1e-6, the printed digits) and the same temperatures at five
+    points (to 1e-6 + 1e-6 |T|; measured: every printed digit equal). It
+    takes CalculiX's cut back (0.85 DELTMX / the largest change), its
+    growth (1.5 times after two increments in a row) and its capacity
+    term, which acts on the change of the free temperatures only (with
+    the prescribed ones' change in it, a step of the held end moves its
+    neighbours by a finite amount however small the increment)."""
+    import os
+    here = os.path.dirname(os.path.abspath(__file__))
+    for name, count in (("heat_deltmx_step", 51), ("heat_deltmx_flux", 23)):
+        ref = dat_temperatures(os.path.join(here, "calculix", name + ".dat"))
+        run = run_deck(name, path=os.path.join(here, "calculix", name + ".inp")).ok()
+        got = dat_temperatures(os.path.join(os.path.dirname(run.listing_path), name + ".dat"))
+        assert len(ref) == count and len(got) == count, (name, len(ref), len(got))
+        for (t_ref, nt_ref), (t, nt) in zip(ref, got):
+            assert abs(t - t_ref) <= 1e-6 * t_ref, (name, t, t_ref)
+            assert set(nt) == set(nt_ref), (name, t)
+            worst = max(abs(nt[n] - v) - 1e-6 * abs(v) for n, v in nt_ref.items())
+            assert worst <= 1e-6, (name, t, worst)
+
+
+def test_automatic_increments():
+    """Without DIRECT the increments are automatic, as CalculiX's, with or
+    without DELTMX and in a steady step too: the first two of the initial
+    size, each next one 1.5 times the one before (two increments in a row
+    that converged at once), the last cut to the step's end, never above
+    the maximum (the data line's fourth field); with DIRECT period /
+    initial of them. Step times against that rule to 1e-8 (the listing's
+    9 digits; CalculiX's
+    .sta has the same sequences: 17, 29, 6 increments)."""
+    material = "*CONDUCTIVITY\n2.\n*DENSITY\n4.\n*SPECIFIC HEAT\n0.5\n"
+    m = Mesh("Q4", 10, 2, lambda s, t: (s / 10, 0.1 * t / 2), straight=True)   # slab_deck's mesh
+    flux = "*DFLUX\n" + "".join(f"{e}, S{f}, 1.\n" for e, f in m.faces("left"))
+
+    def rule(dt0, period, dt_max):
+        times, t, dt, k = [], 0.0, dt0, 0
+        while t < period - 1e-12:
+            step = min(dt, period - t)
+            t += step
+            times.append(t)
+            k += 1
+            if k >= 2:
+                dt = min(1.5 * dt, dt_max)
+        return times
+    cases = [("auto", "*HEAT TRANSFER\n0.001, 1.", rule(0.001, 1.0, 1.0)),
+             ("auto_max", "*HEAT TRANSFER\n0.001, 1., 1e-5, 0.05", rule(0.001, 1.0, 0.05)),
+             ("steady", "*HEAT TRANSFER, STEADY STATE\n0.1, 1.", rule(0.1, 1.0, 1.0)),
+             ("direct", "*HEAT TRANSFER, DIRECT\n0.01, 0.1", [0.01 * (k + 1) for k in range(10)])]
+    for name, step, times in cases:
+        m, deck = slab_deck("Q4", "DC2D4", 10, 1.0, 0.1, None, (50.0, 20.0), material, flux, step=step,
+                            extra="*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 0.\n")
+        run = run_deck("heat_increments_" + name, deck).ok()
+        got = [float(i.attrs["time"]) for i in run.listing.increments]
+        assert len(got) == len(times), (name, len(got), len(times))
+        assert max(abs(a - b) / b for a, b in zip(got, times)) < 1e-8, (name, got, times)
+    assert [len(c[2]) for c in cases] == [17, 29, 6, 10]
+
+
 def test_heat_errors():
     """Cards cfe2d does not have stop at their line with the reason."""
     base = slab_deck("Q4", "DC2D4", 2, 1.0, 0.2, 100.0, None, "*CONDUCTIVITY\n10.\n", "")[1]

@@ -49,6 +49,7 @@ module temperature_field
     type(linear_system_t) :: sys
     integer :: neq = 0, is = 0
     logical :: steady = .true.
+    logical :: direct = .true.                           ! the step's increments are fixed (DIRECT)
     real(dp) :: total_time = 0.0_dp, deltmx = 0.0_dp
     real(dp) :: dt = 0.0_dp, t1 = 0.0_dp                 ! the increment's length and end (step time)
     real(dp) :: factored_dt = -1.0_dp                    ! < 0: no valid factor
@@ -150,6 +151,7 @@ contains
     f%total_time = total_time
     f%steady = m%steps(is)%steady
     f%deltmx = m%steps(is)%deltmx
+    f%direct = m%steps(is)%direct
     associate(s => m%steps(is))
       if (is == 1) f%tbcs = pack(m%model_bcs, m%model_bcs%dof == dof_temperature)
       if (s%new_tbcs) f%tbcs = f%tbcs(1:0)
@@ -304,12 +306,14 @@ contains
     if (f%neq > 0) call sys_setup(f%sys, m%solver, m%ordering, f%neq, xeq, eqs)
   end subroutine number_temperatures
 
-  !> Purpose: automatic increments (the driver's nonlinear path) in a
-  !> transient step with DELTMX, and where a conductivity is a table (an
-  !> increment whose iterations do not converge is cut back).
+  !> Purpose: the driver's nonlinear path: automatic increments in a step
+  !> without DIRECT, steady or transient (CalculiX's *HEAT TRANSFER: they
+  !> grow 1.5 times after two increments in a row; DELTMX cuts them
+  !> back), and where a conductivity is a table (an increment whose
+  !> iterations do not converge is cut back; with DIRECT the run stops).
   logical function nonlinear(f)
     class(temperature_field_t), intent(in) :: f
-    nonlinear = (.not. f%steady .and. f%deltmx > 0.0_dp) .or. f%tabled
+    nonlinear = .not. f%direct .or. f%tabled
   end function nonlinear
 
   !> Purpose: the temperature field has no notes on its step.
@@ -562,12 +566,17 @@ contains
     type(model_t), intent(in) :: m
     integer, intent(in) :: k
     real(dp), intent(out) :: fe(max_nodes)
-    real(dp) :: he(max_nodes, max_nodes), fs(max_nodes)
+    real(dp) :: he(max_nodes, max_nodes), fs(max_nodes), te(max_nodes)
     integer :: i, j, e, n
     e = f%elems(k)
     n = elem_nodes(m, e)
     fe = 0.0_dp
-    if (.not. f%steady) fe(1:n) = matmul(f%ce(1:n, 1:n, k), f%saved(m%conn(1:n, e))) / f%dt
+    if (.not. f%steady) then
+      ! the capacity acts on the change of the free temperatures only (a
+      ! prescribed node's start value is its value at t1), as CalculiX
+      te(1:n) = merge(f%temp(m%conn(1:n, e)), f%saved(m%conn(1:n, e)), f%presc(m%conn(1:n, e)))
+      fe(1:n) = matmul(f%ce(1:n, 1:n, k), te(1:n)) / f%dt
+    end if
     do i = f%xflux(k), f%xflux(k + 1) - 1
       j = f%iflux(i)
       if (f%dfluxes(j)%face == heat_bf) then
@@ -609,14 +618,16 @@ contains
   end subroutine restore
 
   !> Purpose: the increment changed a temperature by more than DELTMX:
-  !> cut by 0.85 DELTMX / the largest change, kept within [0.1, 0.5]; the
-  !> conduction iterations did not converge: cut to a quarter.
+  !> cut by D_A DELTMX / the largest change (CalculiX's checkconvergence,
+  !> D_A = 0.85 of its *CONTROLS; below 0.85 since the change exceeds
+  !> DELTMX); the conduction iterations did not converge: cut to a
+  !> quarter (D_F).
   subroutine failure(f, reason, cut, changing)
     class(temperature_field_t), intent(in) :: f
     character(len=:), allocatable, intent(out) :: reason, changing
     real(dp), intent(out) :: cut
     reason = f%why
-    cut = min(0.5_dp, max(0.1_dp, 0.85_dp * f%deltmx / max(f%largest_change, tiny(1.0_dp))))
+    cut = 0.85_dp * f%deltmx / max(f%largest_change, tiny(1.0_dp))
     if (f%deltmx <= 0.0_dp .or. f%largest_change <= f%deltmx) cut = 0.25_dp
     changing = ''
   end subroutine failure

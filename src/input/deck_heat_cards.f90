@@ -29,9 +29,10 @@ contains
   !> Purpose: *HEAT TRANSFER[, STEADY STATE][, DIRECT][, DELTMX=]
   !> (SOLVER= is read and ignored, as on *STATIC): the step's procedure;
   !> data line `initial increment, period[, min, max]` (CalculiX's
-  !> defaults 1, 1). A transient step (no STEADY STATE) with
-  !> DIRECT takes fixed increments; without DIRECT, DELTMX= (the largest
-  !> temperature change of an increment) makes its increments automatic.
+  !> defaults 1, 1). With DIRECT the increments are fixed (period /
+  !> initial increment of them); without, automatic as CalculiX's, steady
+  !> or transient: growing, and in a transient step cut back where a
+  !> temperature changes by more than DELTMX= in an increment.
   subroutine read_heat_transfer(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -54,10 +55,8 @@ contains
       end if
       call read_time_line(p, '*HEAT TRANSFER', s)
       if (s%steady) s%deltmx = 0.0_dp
-      ! a steady state or fixed increments: the driver's linear path, whose
-      ! increments are counted here (automatic ones as they are made)
-      if (s%steady .or. s%deltmx <= 0.0_dp) s%direct = .true.
-      if (s%deltmx > 0.0_dp) return
+      ! fixed increments are counted here (automatic ones as they are made)
+      if (.not. s%direct) return
       ratio = s%period / s%dt
       if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // itoa(nint(min(ratio, &
           1.0e9_dp))) // ' or more increments (time period / initial increment); at most ' // &
