@@ -121,6 +121,11 @@ module model
     !> ktab(2:3, :); nk <= 1: the constant conductivity above.
     integer :: nk = 0
     real(dp) :: ktab(3, max_yield) = 0.0_dp
+    !> A *SPECIFIC HEAT of several data lines: c at temperatures
+    !> ctab(1, 1:nc) (increasing; linear between, constant beyond) in
+    !> ctab(2, :); nc <= 1: the constant specific heat above.
+    integer :: nc = 0
+    real(dp) :: ctab(2, max_yield) = 0.0_dp
   end type material_t
 
   !> *ORIENTATION: local material axes, rectangular (point a on local
@@ -312,6 +317,10 @@ module model
     type(cload_t), allocatable :: cfluxes(:)
     type(heat_load_t), allocatable :: dfluxes(:), films(:)
     logical :: new_tbcs = .false., new_cfluxes = .false., new_dfluxes = .false., new_films = .false.
+    !> *RADIATE to the environment (heat_load_t: value the emissivity,
+    !> sink the sink temperature of face `face`), OP=NEW on it.
+    type(heat_load_t), allocatable :: radiates(:)
+    logical :: new_radiates = .false.
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.
@@ -519,6 +528,11 @@ module model
     !> A step is *HEAT TRANSFER: the run's field is the temperatures
     !> (temperature_field) and the materials need no *ELASTIC.
     logical :: heat = .false.
+    !> *PHYSICAL CONSTANTS: ABSOLUTE ZERO (the temperature scale's zero,
+    !> 0 in kelvin) and STEFAN BOLTZMANN (radiation: *RADIATE); has_*:
+    !> given.
+    real(dp) :: absolute_zero = 0.0_dp, stefan_boltzmann = 0.0_dp
+    logical :: has_absolute_zero = .false., has_stefan_boltzmann = .false.
   end type model_t
 
 contains
