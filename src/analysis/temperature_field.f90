@@ -20,7 +20,8 @@ module temperature_field
   use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, is_continuum, &
                    elem_nodes, elem_thickness, node_label, elem_label
   use element_catalogue, only: catalogue, max_nodes, max_ip, shape_tri6
-  use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient, conductivity_at, temperature_at
+  use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_radiation_arrays, heat_gradient, table_at, &
+                          temperature_at
   use shape_functions, only: gauss_rule
   use linear_solver, only: linear_system_t, sys_setup, sys_zero, sys_add, sys_factor, sys_solve, factor_ok, &
                            factor_fallback
@@ -42,10 +43,11 @@ module temperature_field
     integer, allocatable :: t_amp(:)                     ! prescribed: amplitude (0: none)
     type(bc_t), allocatable :: tbcs(:)                   ! in force (the step's and the earlier ones)
     type(cload_t), allocatable :: cfluxes(:)
-    type(heat_load_t), allocatable :: dfluxes(:), films(:)
-    !> By conducting element k: its films films(ifilm(xfilm(k):xfilm(k+1)-1))
-    !> and its fluxes dfluxes(iflux(xflux(k):xflux(k+1)-1)).
-    integer, allocatable :: xfilm(:), ifilm(:), xflux(:), iflux(:)
+    type(heat_load_t), allocatable :: dfluxes(:), films(:), radiates(:)
+    !> By conducting element k: its films films(ifilm(xfilm(k):xfilm(k+1)-1)),
+    !> its fluxes dfluxes(iflux(xflux(k):xflux(k+1)-1)) and its radiation
+    !> radiates(irad(xrad(k):xrad(k+1)-1)).
+    integer, allocatable :: xfilm(:), ifilm(:), xflux(:), iflux(:), xrad(:), irad(:)
     type(linear_system_t) :: sys
     integer :: neq = 0, is = 0
     logical :: steady = .true.
@@ -55,7 +57,8 @@ module temperature_field
     real(dp) :: factored_dt = -1.0_dp                    ! < 0: no valid factor
     real(dp) :: largest_change = 0.0_dp                  ! of the last solve
     character(len=:), allocatable :: why                 ! why the last solve failed
-    logical :: tabled = .false.                          ! some conductivity is a table (iterations)
+    logical :: tabled = .false.                          ! some conductivity or specific heat is a table
+    logical :: radiating = .false.                       ! the step has *RADIATE (Newton iterations)
     integer :: factorisations = 0
     real(dp) :: t_factor = 0.0_dp, t_solve = 0.0_dp
   contains
@@ -77,11 +80,12 @@ module temperature_field
   integer, parameter :: dof_temperature = 11
   !> The amplitude of a load held from an earlier step (hold_loads).
   integer, parameter :: held = -1
-  !> Fixed-point iterations of a temperature-dependent conductivity: at
-  !> most max_picard, done when no temperature changes by more than
-  !> picard_tolerance times the largest (at least 1).
-  integer, parameter :: max_picard = 100
-  real(dp), parameter :: picard_tolerance = 1.0e-10_dp
+  !> Iterations of a nonlinear increment (a material table: fixed point;
+  !> radiation: Newton): at most max_iterations, done when no temperature
+  !> changes by more than iteration_tolerance times the largest (at
+  !> least 1).
+  integer, parameter :: max_iterations = 100
+  real(dp), parameter :: iteration_tolerance = 1.0e-10_dp
 
 contains
 
@@ -117,9 +121,11 @@ contains
     f%tabled = .false.
     do k = 1, nel
       e = f%elems(k)
-      f%tabled = f%tabled .or. m%materials(m%sections(m%elem_section(e))%material)%nk > 1
+      associate(mat => m%materials(m%sections(m%elem_section(e))%material))
+        f%tabled = f%tabled .or. mat%nk > 1 .or. mat%nc > 1
+      end associate
     end do
-    allocate(f%tbcs(0), f%cfluxes(0), f%dfluxes(0), f%films(0))
+    allocate(f%tbcs(0), f%cfluxes(0), f%dfluxes(0), f%films(0), f%radiates(0))
     timing%setup = timing%setup + (wall_time() - t0)
   end subroutine setup
 
@@ -164,10 +170,15 @@ contains
       if (allocated(s%dfluxes)) f%dfluxes = [pack(f%dfluxes, .not. replaced(f%dfluxes, s%dfluxes)), s%dfluxes]
       if (s%new_films) f%films = f%films(1:0)
       if (allocated(s%films)) f%films = [pack(f%films, .not. replaced(f%films, s%films)), s%films]
+      if (s%new_radiates) f%radiates = f%radiates(1:0)
+      if (allocated(s%radiates)) f%radiates = [pack(f%radiates, .not. replaced(f%radiates, s%radiates)), &
+                                               s%radiates]
     end associate
     call prescribe(f, m)
     call loads_by_element(f, m, f%films%elem, f%xfilm, f%ifilm)
     call loads_by_element(f, m, f%dfluxes%elem, f%xflux, f%iflux)
+    call loads_by_element(f, m, f%radiates%elem, f%xrad, f%irad)
+    f%radiating = size(f%irad) > 0
     call number_temperatures(f, m)
     f%factored_dt = -1.0_dp
     info%equations = f%neq
@@ -239,6 +250,10 @@ contains
       f%films(k)%sink = sink_at(f, m, f%films(k))
       f%films(k)%amp = 0
     end do
+    do k = 1, size(f%radiates)
+      f%radiates(k)%sink = sink_at(f, m, f%radiates(k))
+      f%radiates(k)%amp = 0
+    end do
   end subroutine hold_loads
 
   !> The loads of old that a load of new replaces (the same element and
@@ -309,11 +324,12 @@ contains
   !> Purpose: the driver's nonlinear path: automatic increments in a step
   !> without DIRECT, steady or transient (CalculiX's *HEAT TRANSFER: they
   !> grow 1.5 times after two increments in a row; DELTMX cuts them
-  !> back), and where a conductivity is a table (an increment whose
-  !> iterations do not converge is cut back; with DIRECT the run stops).
+  !> back), and where a material table or radiation makes a step
+  !> nonlinear (an increment whose iterations do not converge is cut
+  !> back; with DIRECT the run stops).
   logical function nonlinear(f)
     class(temperature_field_t), intent(in) :: f
-    nonlinear = .not. f%direct .or. f%tabled
+    nonlinear = .not. f%direct .or. f%tabled .or. f%radiating
   end function nonlinear
 
   !> Purpose: the temperature field has no notes on its step.
@@ -404,9 +420,14 @@ contains
   end function amp_at
 
   !> Purpose: the temperatures of t1: the system (C/dt + K + H) T1 =
-  !> C/dt T0 + F(t1) (steady: without C) factorised when dt or the step
-  !> changed, solved; the reaction fluxes; ok false when DELTMX is
-  !> exceeded (automatic increments) or the factorisation failed.
+  !> C/dt T0' + F(t1) (steady: without C; T0' docs/heat.md) solved for
+  !> the correction of the current temperatures, once where it is linear
+  !> (factorised again only when dt or the step changed), iterated where
+  !> a material table (fixed point: the matrices at the temperatures of
+  !> the iteration before) or radiation (Newton: its tangent in the
+  !> matrix) makes it nonlinear; the reaction fluxes; ok false when
+  !> DELTMX is exceeded (automatic increments), the iterations do not
+  !> converge or the factorisation failed.
   subroutine solve(f, m, is, inc, obs, ok, iters)
     class(temperature_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
@@ -414,44 +435,45 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: ok
     integer, intent(out) :: iters
-    real(dp), allocatable :: rhs(:), r(:), before(:)
+    real(dp), allocatable :: rhs(:), r(:)
     real(dp) :: t0, change
     integer :: a
     ok = .true.
     f%why = ''
     allocate(rhs(max(f%neq, 1)), r(m%nn))
-    ! a conductivity table: fixed-point (Picard) iterations, the
-    ! conduction of each at the temperatures of the one before
-    do iters = 1, max_picard
+    do iters = 1, max_iterations
       if (f%tabled) call refresh_conduction(f, m)
-      if (f%neq > 0 .and. (f%factored_dt < 0.0_dp .or. &
+      if (f%neq > 0 .and. (f%factored_dt < 0.0_dp .or. f%radiating .or. &
           (.not. f%steady .and. abs(f%dt - f%factored_dt) > 1.0e-12_dp * f%dt))) then
         call factor(f, m, is, inc, ok)
         if (.not. ok) return
       end if
       t0 = wall_time()
-      before = f%temp
-      call residual(f, m, .true., rhs, r)
+      call residual(f, m, rhs, r)
+      change = 0.0_dp
       if (f%neq > 0) then
         call sys_solve(f%sys, rhs(1:f%neq))
         do a = 1, m%nn
-          if (f%eqn(a) > 0) f%temp(a) = rhs(f%eqn(a))
+          if (f%eqn(a) == 0) cycle
+          f%temp(a) = f%temp(a) + rhs(f%eqn(a))
+          change = max(change, abs(rhs(f%eqn(a))))
         end do
       end if
       f%t_solve = f%t_solve + (wall_time() - t0)
-      if (.not. f%tabled) exit
-      change = maxval(abs(f%temp - before))
-      if (change <= picard_tolerance * max(1.0_dp, maxval(abs(f%temp)))) exit
+      if (.not. (f%tabled .or. f%radiating)) exit
+      if (.not. ieee_is_finite(change)) exit
+      if (change <= iteration_tolerance * max(1.0_dp, maxval(abs(f%temp)))) exit
     end do
-    if (iters > max_picard) then
-      iters = max_picard
+    ! (a linear solve that overflows is stopped by report's check_finite)
+    if (iters > max_iterations .or. ((f%tabled .or. f%radiating) .and. .not. ieee_is_finite(change))) then
+      iters = min(iters, max_iterations)
       ok = .false.
-      f%why = 'the conduction iterations (temperature-dependent conductivity) did not converge in ' // &
-              itoa(max_picard) // ' iterations'
+      f%why = 'the iterations of the temperatures (a temperature-dependent material, radiation) did not ' // &
+              'converge in ' // itoa(iters) // ' iterations'
       return
     end if
     ! the reaction fluxes: the residual at the prescribed nodes
-    call residual(f, m, .false., rhs, r)
+    call residual(f, m, rhs, r)
     f%rfl = 0.0_dp
     where (f%presc) f%rfl = -r
     f%largest_change = maxval(abs(f%temp - f%saved), mask=f%eqn > 0, dim=1)
@@ -461,31 +483,36 @@ contains
                           rtoa(f%deltmx, 4)
   end subroutine solve
 
-  !> The conduction matrices of the elements whose conductivity is a
-  !> table, at the current temperatures; the factor is made again.
+  !> The conduction and capacity matrices of the elements whose
+  !> conductivity or specific heat is a table, at the current
+  !> temperatures; the factor is made again.
   subroutine refresh_conduction(f, m)
     class(temperature_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
-    real(dp) :: ce(max_nodes, max_nodes), fb(max_nodes)
+    real(dp) :: fb(max_nodes)
     integer :: k, e, n
     do k = 1, size(f%elems)
       e = f%elems(k)
       n = elem_nodes(m, e)
       associate(mat => m%materials(m%sections(m%elem_section(e))%material))
-        if (mat%nk <= 1) cycle
+        if (mat%nk <= 1 .and. mat%nc <= 1) cycle
         call heat_volume_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), mat%conductivity, &
-                                0.0_dp, f%ke(:, :, k), ce, fb, mat%ktab(:, 1:mat%nk), f%temp(m%conn(1:n, e)))
+                                mat%density * mat%specific_heat, f%ke(:, :, k), f%ce(:, :, k), fb, &
+                                f%temp(m%conn(1:n, e)), mat%ktab(:, 1:max(mat%nk, 1)), mat%ctab(:, 1:max(mat%nc, 1)))
       end associate
     end do
     f%factored_dt = -1.0_dp
   end subroutine refresh_conduction
 
   !> The element matrix A_e = K_e + H_e (+ C_e / dt in a transient step)
-  !> of the k-th conducting element, with the films of the step on it.
-  subroutine element_matrix(f, m, k, ae)
+  !> of the k-th conducting element, with the films of the step on it;
+  !> tangent: with the tangent of its radiation at the current
+  !> temperatures too (the matrix of a Newton iteration).
+  subroutine element_matrix(f, m, k, tangent, ae)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
     integer, intent(in) :: k
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: ae(max_nodes, max_nodes)
     real(dp) :: he(max_nodes, max_nodes), fe(max_nodes)
     integer :: i, j, e, n
@@ -498,7 +525,28 @@ contains
       call heat_face_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), f%films(j)%face, he, fe)
       ae = ae + f%films(j)%value * he
     end do
+    if (.not. tangent) return
+    do i = f%xrad(k), f%xrad(k + 1) - 1
+      call radiation(f, m, k, f%irad(i), he, fe)
+      ae = ae + he
+    end do
   end subroutine element_matrix
+
+  !> The radiation of f%radiates(j) on the k-th conducting element at the
+  !> current temperatures: its tangent re and the heat fe into the
+  !> element's nodes (heat_radiation_arrays).
+  subroutine radiation(f, m, k, j, re, fe)
+    class(temperature_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: k, j
+    real(dp), intent(out) :: re(max_nodes, max_nodes), fe(max_nodes)
+    integer :: e, n
+    e = f%elems(k)
+    n = elem_nodes(m, e)
+    call heat_radiation_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), f%radiates(j)%face, &
+                               f%temp(m%conn(1:n, e)), m%absolute_zero, sink_at(f, m, f%radiates(j)), &
+                               f%radiates(j)%value * m%stefan_boltzmann, re, fe)
+  end subroutine radiation
 
   !> Assembles and factorises the system of the free temperatures.
   subroutine factor(f, m, is, inc, ok)
@@ -512,25 +560,25 @@ contains
     call sys_zero(f%sys)
     do k = 1, size(f%elems)
       n = elem_nodes(m, f%elems(k))
-      call element_matrix(f, m, k, ae)
+      call element_matrix(f, m, k, .true., ae)
       call sys_add(f%sys, k, ae(1:n, 1:n))
     end do
     call sys_factor(f%sys, status, bad)
     ok = status == factor_ok .or. status == factor_fallback
     if (.not. ok) call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // ': the heat conduction ' // &
-      'matrix is singular at equation ' // itoa(bad) // ': a region without a prescribed temperature or a film')
+      'matrix is singular at equation ' // itoa(bad) // ': a region without a prescribed temperature or a film ' // &
+      '(or radiating at absolute zero)')
     f%factored_dt = merge(0.0_dp, f%dt, f%steady)
     f%factorisations = f%factorisations + 1
     f%t_factor = f%t_factor + (wall_time() - t0)
   end subroutine factor
 
-  !> The right-hand side rhs(neq) of the free temperatures (free: the
-  !> prescribed ones moved to it, A T of the others not), or (not free)
-  !> the residual r(nn) = F - A T of every node at the current T.
-  subroutine residual(f, m, free, rhs, r)
+  !> The residual r(nn) = F - A T of every node at the current
+  !> temperatures T (F with the radiation at T), and rhs(neq) its free
+  !> rows: the right-hand side of the correction.
+  subroutine residual(f, m, rhs, r)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
-    logical, intent(in) :: free
     real(dp), intent(out) :: rhs(:), r(:)
     real(dp) :: ae(max_nodes, max_nodes), fe(max_nodes), te(max_nodes)
     integer :: k, e, n, j, a
@@ -538,20 +586,15 @@ contains
     do k = 1, size(f%elems)
       e = f%elems(k)
       n = elem_nodes(m, e)
-      call element_matrix(f, m, k, ae)
+      call element_matrix(f, m, k, .false., ae)
       call element_loads(f, m, k, fe)
       te(1:n) = f%temp(m%conn(1:n, e))
-      if (free) then
-        ! only the prescribed temperatures move to the right-hand side
-        where (f%eqn(m%conn(1:n, e)) > 0) te(1:n) = 0.0_dp
-      end if
       r(m%conn(1:n, e)) = r(m%conn(1:n, e)) + fe(1:n) - matmul(ae(1:n, 1:n), te(1:n))
     end do
     do j = 1, size(f%cfluxes)
       a = f%cfluxes(j)%node
       r(a) = r(a) + f%cfluxes(j)%value * load_factor(f, m, f%cfluxes(j)%amp, f%t1)
     end do
-    if (.not. free) return
     rhs = 0.0_dp
     do a = 1, m%nn
       if (f%eqn(a) > 0) rhs(f%eqn(a)) = r(a)
@@ -559,8 +602,8 @@ contains
   end subroutine residual
 
   !> The loads of the k-th conducting element at t1: the capacity term
-  !> C_e/dt T0_e of a transient step, its body and surface fluxes, its
-  !> films' h T_sink.
+  !> C_e/dt T0'_e of a transient step, its body and surface fluxes, its
+  !> films' h T_sink, its radiation at the current temperatures.
   subroutine element_loads(f, m, k, fe)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
@@ -591,10 +634,15 @@ contains
       call heat_face_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), f%films(j)%face, he, fs)
       fe = fe + f%films(j)%value * sink_at(f, m, f%films(j)) * fs
     end do
+    do i = f%xrad(k), f%xrad(k + 1) - 1
+      call radiation(f, m, k, f%irad(i), he, fs)
+      fe = fe + fs
+    end do
   end subroutine element_loads
 
-  !> The sink temperature of a film at t1 (its amplitude scales it; no
-  !> amplitude: the value at once, as the film coefficient).
+  !> The sink temperature of a film or radiation at t1 (its amplitude
+  !> scales it; no amplitude: the value at once, as the film
+  !> coefficient).
   real(dp) function sink_at(f, m, film) result(v)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
@@ -722,8 +770,8 @@ contains
       associate(mat => m%materials(m%sections(m%elem_section(e))%material))
         do ip = 1, nip(e)
           cond = mat%conductivity
-          if (mat%nk > 1) cond = conductivity_at(mat%ktab(:, 1:mat%nk), &
-                                                 temperature_at(m%etype(e), f%temp(m%conn(1:n, e)), xi(:, ip)))
+          if (mat%nk > 1) cond = table_at(mat%ktab(:, 1:mat%nk), &
+                                          temperature_at(m%etype(e), f%temp(m%conn(1:n, e)), xi(:, ip)))
           hfl(:, ip, e) = -cond * heat_gradient(m%etype(e), m%x(:, m%conn(1:n, e)), f%temp(m%conn(1:n, e)), &
                                                 xi(:, ip))
         end do
