@@ -7,12 +7,15 @@
 !> face with its tangent (heat_radiation_arrays). dV is the thickness times dA in the plane
 !> and 2 pi r dA in axisymmetry (the whole circumference, as the
 !> mechanical element matrices: continuum_element's volume_factor).
-!> The rules are richer than the stiffness's: 6 points (degree 4) on a
-!> triangle, 3x3 on a quadrilateral, which integrate N_i N_j r exactly on
-!> straight-sided elements; 3 points along a face.
+!> The rules (heat_points): 6 points (degree 4) on a 3-node triangle and
+!> 3x3 on a quadrilateral, which integrate N_i N_j r exactly on
+!> straight-sided elements; CalculiX's rules where its elements take
+!> fewer (the in-plane points of the 3D element it expands a 2D one to):
+!> 3 on a 6-node triangle (C3D15), 2x2 on CPS8R/CPE8R/CAX8R (C3D20R);
+!> 3 points along a face.
 module heat_element
   use kinds, only: dp
-  use element_catalogue, only: catalogue, max_nodes, max_ip, is_triangle, edge_node_count
+  use element_catalogue, only: catalogue, max_nodes, max_ip, is_triangle, edge_node_count, shape_tri6, shape_quad8
   use shape_functions, only: shape_at, line_shape, gauss_line, gauss_rule
   use continuum_element, only: volume_factor
   implicit none
@@ -48,7 +51,7 @@ contains
     ke = 0.0_dp
     ce = 0.0_dp
     fe = 0.0_dp
-    nip = merge(6, 9, is_triangle(catalogue(et)%shape))
+    nip = heat_points(et)
     call gauss_rule(catalogue(et)%shape, nip, xi, w)
     do ip = 1, nip
       call physical_gradients(et, xy, xi(:, ip), n, dx, detj)
@@ -66,6 +69,26 @@ contains
       fe(1:nen) = fe(1:nen) + dv * n(1:nen)
     end do
   end subroutine heat_volume_arrays
+
+  !> Purpose: the number of integration points of the volume integrals
+  !> of an element of type et: CalculiX's in-plane rule of the 3D element
+  !> it expands the 2D one to where that has fewer points than the exact
+  !> one (a 6-node triangle: C3D15's 3 points, degree 2, which leave r
+  !> grad N . grad N of CAX6 and the capacity inexact; an 8-node
+  !> quadrilateral with reduced integration: C3D20R's 2x2), so that
+  !> CalculiX's decks give CalculiX's temperatures (ax6ht: docs/heat.md);
+  !> otherwise 6 on a triangle and 3x3 on a quadrilateral (exact for the
+  !> capacity N_i N_j r on straight-sided elements).
+  pure integer function heat_points(et) result(nip)
+    integer, intent(in) :: et
+    if (catalogue(et)%shape == shape_tri6) then
+      nip = 3
+    else if (catalogue(et)%shape == shape_quad8 .and. catalogue(et)%nip == 4) then
+      nip = 4
+    else
+      nip = merge(6, 9, is_triangle(catalogue(et)%shape))
+    end if
+  end function heat_points
 
   !> Purpose: on face k of an element of type et: the matrix he = int
   !> N_i N_j dS (times h: the film matrix) and fe = int N_j dS (times q: a
