@@ -59,7 +59,9 @@ module temperature_field
     character(len=:), allocatable :: why                 ! why the last solve failed
     logical :: tabled = .false.                          ! some conductivity or specific heat is a table
     logical :: radiating = .false.                       ! the step has *RADIATE (Newton iterations)
-    integer :: factorisations = 0
+    integer :: factorisations = 0                        ! in the current step
+    integer :: run_factorisations = 0                    ! in the run
+    integer :: iterations = 0                            ! solves of the current step, tries included
     real(dp) :: t_factor = 0.0_dp, t_solve = 0.0_dp
   contains
     procedure :: setup
@@ -460,6 +462,7 @@ contains
         end do
       end if
       f%t_solve = f%t_solve + (wall_time() - t0)
+      f%iterations = f%iterations + 1
       if (.not. (f%tabled .or. f%radiating)) exit
       if (.not. ieee_is_finite(change)) exit
       if (change <= iteration_tolerance * max(1.0_dp, maxval(abs(f%temp)))) exit
@@ -779,22 +782,26 @@ contains
     end do
   end subroutine heat_fluxes
 
-  !> Purpose: the step's factorisations (the increments' solves are its
-  !> iterations: one each).
+  !> Purpose: the step's factorisations and iterations (the solves of its
+  !> increments and their tries: one each where the step is linear).
   subroutine end_step(f, obs, summary)
     class(temperature_field_t), intent(inout) :: f
     type(observer_ref_t), intent(in) :: obs(:)
     type(step_summary_t), intent(inout) :: summary
     summary%factorisations = summary%factorisations + f%factorisations
+    summary%newton_iterations = summary%newton_iterations + f%iterations
+    f%run_factorisations = f%run_factorisations + f%factorisations
     f%factorisations = 0
+    f%iterations = 0
   end subroutine end_step
 
-  !> Purpose: the temperature field's factorisations and solves in the
-  !> run's timing.
+  !> Purpose: the temperature field's factorisations (their count too)
+  !> and solves in the run's timing.
   subroutine finish(f, timing)
     class(temperature_field_t), intent(in) :: f
     type(run_timing_t), intent(inout) :: timing
     timing%factor = timing%factor + f%t_factor
     timing%solve = timing%solve + f%t_solve
+    timing%numeric_factorisations = timing%numeric_factorisations + f%run_factorisations
   end subroutine finish
 end module temperature_field
