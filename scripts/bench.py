@@ -435,6 +435,7 @@ def main(argv=None):
         print("\ncouplings: node-to-segment (nts) against segment-to-segment with exact enforcement (sts)")
         contact_accuracy.table(["default", "q8", "ccx"], os.path.join(WORK, "accuracy"), args.repeats, penalties=True)
     nonlinear_table(args.repeats)
+    __import__("bench_heat").table(repeats=args.repeats)   # heat: a linear transient against CalculiX (bench_heat.py)
     if not args.no_mumps and not args.no_square:
         mumps_square_table(args.repeats)
     if args.surfaces:
