@@ -18,7 +18,7 @@ summary; CalculiX: the "Factoring the system of equations" lines of its
 output), and the ratio CalculiX / cfe2d of the wall times, measured in the
 same run. Without `ccx` on PATH only cfe2d's row is printed.
 
-    python3 scripts/bench_heat.py [--n 120] [--increments 100] [--repeats 3]
+    python3 scripts/bench_heat.py [--n 100] [--increments 50] [--repeats 3]
 """
 import argparse
 import os
@@ -108,7 +108,7 @@ def best_run(cmd, cwd, repeats):
     return best[0], best[1], out
 
 
-def table(n=120, increments=100, repeats=3):
+def table(n=100, increments=50, repeats=3):
     """Runs the plate in both programs and prints the rows; returns the
     cfe2d row as a dict."""
     print("\nheat: linear transient conduction, %d x %d CPS4 plate, %d fixed increments (DIRECT)"
@@ -123,7 +123,7 @@ def table(n=120, increments=100, repeats=3):
             f.write(deck)
     wall, user, _ = best_run([CFE2D, "-q", "plate.inp"], d_cfe, repeats)
     with open(os.path.join(d_cfe, "plate.out")) as f:
-        summaries = f.read().split("--- STEP SUMMARY")[1:]
+        summaries = [t.split("\n---", 1)[0] for t in f.read().split("--- STEP SUMMARY")[1:]]
     factors = sum(int(v) for t in summaries for v in re.findall(r"^numeric_factorisations (\d+)$", t, re.M))
     incs = sum(int(v) for t in summaries for v in re.findall(r"^increments (\d+)$", t, re.M))
     nodes = (n + 1) ** 2
@@ -151,8 +151,8 @@ def table(n=120, increments=100, repeats=3):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--n", type=int, default=120, help="elements along a side")
-    ap.add_argument("--increments", type=int, default=100)
+    ap.add_argument("--n", type=int, default=100, help="elements along a side")
+    ap.add_argument("--increments", type=int, default=50)
     ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args(argv)
     table(args.n, args.increments, args.repeats)
