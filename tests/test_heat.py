@@ -461,6 +461,7 @@ def test_heat_errors():
         (base.replace("*END STEP", "*RADIATE\n1, R2, 20., 1.8\n*END STEP"), "emissivity must lie in 0..1"),
         (base.replace("*END STEP", "*RADIATE, CAVITY=A\n1, R2, 20., 0.8\n*END STEP"), "cavity radiation, an"),
         (base.replace("*END STEP", "*RADIATE\n1, R7, 20., 0.8\n*END STEP"), "is not one of R1..R4"),
+        (base.replace("*END STEP", "*VIEWFACTOR, READ\n*END STEP"), "*VIEWFACTOR is cavity radiation"),
         (base.replace("*CONDUCTIVITY\n", "*CONDUCTIVITY, TYPE=ANISO\n"), "TYPE=ANISO of *CONDUCTIVITY is not"),
         (base.replace("*CONDUCTIVITY\n10.\n", "*CONDUCTIVITY\n10.\n*SPECIFIC HEAT\n1., 200.\n2., 100.\n"),
          "*SPECIFIC HEAT table must increase"),

@@ -403,8 +403,14 @@ contains
   subroutine reject_heat_card(p, kw)
     type(parser_t), intent(inout) :: p
     type(keyword_t), intent(in) :: kw
-    call err(p, '*' // kw%name // ' is not implemented: cfe2d''s heat transfer is conduction with fluxes, ' // &
-             'films and radiation to the environment (docs/heat.md), without fluid networks or cavity radiation')
+    select case (kw%name)
+    case ('VIEWFACTOR', 'RADIATION VIEWFACTOR', 'CAVITY DEFINITION')
+      call err(p, '*' // kw%name // ' is cavity radiation, which is not implemented: cfe2d''s heat transfer ' // &
+               'radiates to the environment (*RADIATE Rk with a sink temperature; docs/heat.md)')
+    case default
+      call err(p, '*' // kw%name // ' is not implemented: cfe2d''s heat transfer is conduction with fluxes, ' // &
+               'films and radiation to the environment (docs/heat.md), without fluid networks or cavity radiation')
+    end select
   end subroutine reject_heat_card
 
   !> OP= (NEW: the card's loads of earlier steps dropped) and AMPLITUDE=
