@@ -668,7 +668,7 @@ contains
     case ('FILM');          call in_step(p, kw, .true.); call read_film(p, m, kw)
     case ('RADIATE');       call in_step(p, kw, .true.); call read_radiate(p, m, kw)
     case ('PHYSICAL CONSTANTS'); call read_physical_constants(p, m, kw)
-    case ('CAVITY DEFINITION', 'FLUID SECTION', 'RADIATION VIEWFACTOR', 'FILM PROPERTY', &
+    case ('CAVITY DEFINITION', 'FLUID SECTION', 'RADIATION VIEWFACTOR', 'VIEWFACTOR', 'FILM PROPERTY', &
           'FLUID CONSTANTS', 'GAS SPECIFIC HEAT')
       call reject_heat_card(p, kw)
     case ('DAMPING', 'FILE FORMAT')
