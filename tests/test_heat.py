@@ -284,8 +284,9 @@ def test_automatic_increments():
     that converged at once), the last cut to the step's end, never above
     the maximum (the data line's fourth field); with DIRECT period /
     initial of them. Step times against that rule to 1e-8 (the listing's
-    9 digits; CalculiX's
-    .sta has the same sequences: 17, 29, 6 increments)."""
+    9 digits; CalculiX's .sta has the same sequences: 17, 29, 6
+    increments); a step of 0.1, 1000. under INC=100 (CalculiX's axrad)
+    takes 23."""
     material = "*CONDUCTIVITY\n2.\n*DENSITY\n4.\n*SPECIFIC HEAT\n0.5\n"
     m = Mesh("Q4", 10, 2, lambda s, t: (s / 10, 0.1 * t / 2), straight=True)   # slab_deck's mesh
     flux = "*DFLUX\n" + "".join(f"{e}, S{f}, 1.\n" for e, f in m.faces("left"))
@@ -303,15 +304,17 @@ def test_automatic_increments():
     cases = [("auto", "*HEAT TRANSFER\n0.001, 1.", rule(0.001, 1.0, 1.0)),
              ("auto_max", "*HEAT TRANSFER\n0.001, 1., 1e-5, 0.05", rule(0.001, 1.0, 0.05)),
              ("steady", "*HEAT TRANSFER, STEADY STATE\n0.1, 1.", rule(0.1, 1.0, 1.0)),
-             ("direct", "*HEAT TRANSFER, DIRECT\n0.01, 0.1", [0.01 * (k + 1) for k in range(10)])]
+             ("direct", "*HEAT TRANSFER, DIRECT\n0.01, 0.1", [0.01 * (k + 1) for k in range(10)]),
+             # CalculiX's axrad step (INC=100 on its *STEP): 23 increments where fixed ones would be 10 000
+             ("axrad_step", "*HEAT TRANSFER\n0.1, 1000.", rule(0.1, 1000.0, 1000.0))]
     for name, step, times in cases:
         m, deck = slab_deck("Q4", "DC2D4", 10, 1.0, 0.1, None, (50.0, 20.0), material, flux, step=step,
                             extra="*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 0.\n")
-        run = run_deck("heat_increments_" + name, deck).ok()
+        run = run_deck("heat_increments_" + name, deck.replace("*STEP\n", "*STEP, INC=100\n")).ok()
         got = [float(i.attrs["time"]) for i in run.listing.increments]
         assert len(got) == len(times), (name, len(got), len(times))
         assert max(abs(a - b) / b for a, b in zip(got, times)) < 1e-8, (name, got, times)
-    assert [len(c[2]) for c in cases] == [17, 29, 6, 10]
+    assert [len(c[2]) for c in cases] == [17, 29, 6, 10, 23]
 
 
 def bisect(g, lo, hi):
