@@ -463,13 +463,12 @@ contains
       end if
       f%t_solve = f%t_solve + (wall_time() - t0)
       f%iterations = f%iterations + 1
+      call stop_if_not_finite(m, is, inc, f%temp)
       if (.not. (f%tabled .or. f%radiating)) exit
-      if (.not. ieee_is_finite(change)) exit
       if (change <= iteration_tolerance * max(1.0_dp, maxval(abs(f%temp)))) exit
     end do
-    ! (a linear solve that overflows is stopped by report's check_finite)
-    if (iters > max_iterations .or. ((f%tabled .or. f%radiating) .and. .not. ieee_is_finite(change))) then
-      iters = min(iters, max_iterations)
+    if (iters > max_iterations) then
+      iters = max_iterations
       ok = .false.
       f%why = 'the iterations of the temperatures (a temperature-dependent material, radiation) did not ' // &
               'converge in ' // itoa(iters) // ' iterations'
@@ -485,6 +484,21 @@ contains
     if (.not. ok) f%why = 'a temperature changed by ' // rtoa(f%largest_change, 4) // ', more than DELTMX=' // &
                           rtoa(f%deltmx, 4)
   end subroutine solve
+
+  !> Stops the run, naming the node, where a temperature of an iteration
+  !> is not a finite number (magnitudes in the deck that overflow; no
+  !> smaller increment helps), as check_finite does for the results.
+  subroutine stop_if_not_finite(m, is, inc, temp)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is, inc
+    real(dp), intent(in) :: temp(:)
+    integer :: a
+    do a = 1, size(temp)
+      if (.not. ieee_is_finite(temp(a))) call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // &
+        ': the temperature at node ' // node_label(m, a) // ' is not a finite number (the magnitudes of the ' // &
+        'deck overflow)')
+    end do
+  end subroutine stop_if_not_finite
 
   !> The conduction and capacity matrices of the elements whose
   !> conductivity or specific heat is a table, at the current
@@ -680,6 +694,9 @@ contains
     reason = f%why
     cut = 0.85_dp * f%deltmx / max(f%largest_change, tiny(1.0_dp))
     if (f%deltmx <= 0.0_dp .or. f%largest_change <= f%deltmx) cut = 0.25_dp
+    ! a cut that would not shrink the increment (a change that is not a
+    ! finite number) is D_F's quarter: every cut back makes progress
+    if (.not. (cut > 0.0_dp .and. cut <= 0.85_dp)) cut = 0.25_dp
     changing = ''
   end subroutine failure
 
