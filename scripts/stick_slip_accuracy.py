@@ -141,10 +141,13 @@ def columns(width, w, levels):
     return max(1, round(width / w / unit)) * unit
 
 
-def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=2.0 * R, contact=2.5 * A_TARGET):
+def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=2.0 * R, contact=2.5 * A_TARGET,
+               swap=False):
     """Writes the *NODE/*ELEMENT/sets of the cylinder (slave, element ids
     from 1) and the plate (from 100001) to path; returns (xy of every
-    node, the cylinder's slave nodes sorted by x, the top's node ids)."""
+    node, the cylinder's slave nodes sorted by x, the top's node ids, the
+    number of elements). swap: the plate's surface nodes instead (the
+    plate the slave)."""
     cap = 0.8 * R
     nc = columns(2 * cap, hs, levels)
     cap = 0.5 * nc * hs
@@ -183,16 +186,20 @@ def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=
     xy.update(plate.xy)
     slave = sorted({n for e, fc, s in cylinder.surface_faces if abs(s) < contact
                     for n in (cylinder.elems[e - 1][fc - 1], cylinder.elems[e - 1][fc % 4])}, key=lambda n: xy[n][0])
+    if swap:
+        slave = sorted({n for e, fc, s in plate.surface_faces if abs(s) < contact + 2 * hm
+                        for n in (plate.elems[e - 100001][fc - 1], plate.elems[e - 100001][fc % 4])},
+                       key=lambda n: xy[n][0])
     return xy, slave, top, len(cylinder.elems) + len(plate.elems)
 
 
-def write_deck(d, coupling, incs=(2, 4, 4), exact=True, extra="", **mesh):
+def write_deck(d, coupling, incs=(2, 4, 4), exact=True, extra="", swap=False, **mesh):
     """The deck in directory d (mesh.inp beside it): press P (n1
     increments, the top's x held), then Q to Q* (n2), then back to 0 (n3).
-    coupling: NODE TO SURFACE or SURFACE TO SURFACE. Returns (deck path,
-    xy, slave nodes, number of elements)."""
+    coupling: NODE TO SURFACE or SURFACE TO SURFACE; swap: the plate the
+    slave. Returns (deck path, xy, slave nodes, number of elements)."""
     os.makedirs(d, exist_ok=True)
-    xy, slave, top, nel = write_mesh(os.path.join(d, "mesh.inp"), **mesh)
+    xy, slave, top, nel = write_mesh(os.path.join(d, "mesh.inp"), swap=swap, **mesh)
     ref = top[0]
     eqs = "".join(f"2\n{n}, {k}, 1.0, {ref}, {k}, -1.0\n" for n in top[1:] for k in (1, 2))
     n1, n2, n3 = incs
@@ -207,7 +214,7 @@ Stick and slip: cylinder R = {R} on a plate, a/R = 0.05, P = {P:.6f}, Q* = mu P 
 *SOLID SECTION, ELSET=PLATE, MATERIAL=STEEL
 *SOLID SECTION, ELSET=CYLINDER, MATERIAL=STEEL
 *CONTACT PAIR, FRICTION={MU}, TYPE={coupling}{', EXACT' if exact else ''}{extra}
-CYL_ARC, PLATE_TOP
+{'PLATE_TOP, CYL_ARC' if swap else 'CYL_ARC, PLATE_TOP'}
 *EQUATION
 {eqs}*BOUNDARY
 PLATE_BOTTOM, 1, 2
@@ -356,6 +363,7 @@ def main():
     ap.add_argument("--incs", default="2,4,4")
     ap.add_argument("--plate", type=float, default=2.0 * R, help="the plate's half width and depth")
     ap.add_argument("--penalty", action="store_true", help="the penalty, not EXACT")
+    ap.add_argument("--swap", action="store_true", help="the plate the slave, the cylinder the master")
     ap.add_argument("--load", type=float, default=1.0, help="P as a multiple of a/R = 0.05's (a grows as its root)")
     ap.add_argument("--extra", default="", help="more *CONTACT PAIR parameters, e.g. ', STICK SLOPE=1e9'")
     ap.add_argument("--cfe2d", default=os.path.join(ROOT, "bin", "cfe2d"))
@@ -367,7 +375,8 @@ def main():
     P, QSTAR = P * args.load, QSTAR * args.load
     for case in args.cases.split(","):
         d = os.path.join(args.out, f"{case}_hs{args.hs:g}_hm{args.hm:g}")
-        path, xy, slave, nel = write_deck(d, CASES[case], incs=incs, exact=not args.penalty, extra=args.extra,
+        d += "_swap" if args.swap else ""
+        path, xy, slave, nel = write_deck(d, CASES[case], incs=incs, exact=not args.penalty, extra=args.extra, swap=args.swap,
                                           hs=args.hs, hm=args.hm, plate_half=args.plate)
         wall = run(path, args.cfe2d)
         f = measure(path, xy, slave, incs)
