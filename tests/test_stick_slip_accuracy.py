@@ -24,8 +24,6 @@ and slip"):
   the discretisation adds is checked here: the non-matching meshes against
   the matching one with segment-to-segment (the dual mortar) and the
   increments' share."""
-import os
-
 import numpy as np
 
 from helpers import workdir
