@@ -1,12 +1,19 @@
 !> The driver of a run: steps, increments and their bisection or
-!> cut-back, over a list of fields (analysis_field: today the
-!> displacements, displacement_field). Everything else is data handed to
+!> cut-back, over a list of fields (analysis_field: the displacements,
+!> displacement_field; the temperatures, temperature_field; or both,
+!> the temperatures first, in a coupled run). Everything else is data handed to
 !> the layers that own it: a field owns its unknowns, equations, solve,
 !> history and results; the observers that write them
 !> (analysis_events) are told what happens. Within an increment the
 !> fields are solved in the order of the list (a field may read the
 !> converged values of the ones before it: a staggered coupling), and an
-!> increment is done when every field has converged.
+!> increment is done when every field has converged. In a coupled run
+!> (model's coupled) a step takes part with the fields its procedure
+!> names (a *HEAT TRANSFER step the temperatures, a *STATIC step the
+!> displacements, a *COUPLED TEMPERATURE-DISPLACEMENT step both); the
+!> displacements take the temperatures once they are solved
+!> (hand_temperatures: a staggered coupling per increment, docs/heat.md)
+!> and report the increment's results of both.
 module analysis
   use kinds, only: dp
   use strings, only: itoa, rtoa
@@ -23,6 +30,9 @@ module analysis
   !> The state the driver carries from increment to increment.
   type :: run_state_t
     type(field_ref_t), allocatable :: fields(:)   ! solved in this order in every increment
+    !> The fields that take part in the current step (a coupled run's
+    !> heat transfer or mechanical step has one of its two).
+    logical, allocatable :: active(:)
     real(dp) :: total_time = 0.0_dp     ! at the start of the current step
     integer :: inc = 0                  ! increments done in the current step
     !> The current step has a nonlinear field: Newton with automatic
@@ -54,14 +64,22 @@ contains
     integer :: is, k
     if (present(timing)) rs%timing = timing
     if (rs%timing%started == 0.0_dp) rs%timing%started = wall_time()
-    ! the fields of the run: the temperatures in a heat transfer deck (a
-    ! coupled one, later, would have both, the temperatures first)
-    allocate(rs%fields(1))
-    if (m%heat) then
+    ! the fields of the run: the temperatures in a heat transfer deck,
+    ! both in a coupled one, the temperatures first
+    if (m%coupled) then
+      allocate(rs%fields(2))
       allocate(temperature_field_t :: rs%fields(1)%f)
+      allocate(displacement_field_t :: rs%fields(2)%f)
     else
-      allocate(displacement_field_t :: rs%fields(1)%f)
+      allocate(rs%fields(1))
+      if (m%heat) then
+        allocate(temperature_field_t :: rs%fields(1)%f)
+      else
+        allocate(displacement_field_t :: rs%fields(1)%f)
+      end if
     end if
+    allocate(rs%active(size(rs%fields)))
+    rs%active = .true.
     do k = 1, size(rs%fields)
       call rs%fields(k)%f%setup(m, rs%timing)
     end do
@@ -101,7 +119,9 @@ contains
     real(dp) :: t0, started
     started = wall_time()
     rs%nonlinear = .false.
+    if (m%coupled) rs%active = [m%steps(is)%heat, m%steps(is)%coupled .or. .not. m%steps(is)%heat]
     do k = 1, size(rs%fields)
+      if (.not. rs%active(k)) cycle
       call rs%fields(k)%f%begin_step(m, is, rs%total_time, info, rs%timing)
       rs%nonlinear = rs%nonlinear .or. rs%fields(k)%f%nonlinear()
     end do
@@ -115,7 +135,7 @@ contains
       call obs(k)%o%step_started(m, info)
     end do
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%step_notes(obs)
+      if (rs%active(k)) call rs%fields(k)%f%step_notes(obs)
     end do
     rs%timing%output = rs%timing%output + (wall_time() - t0)
     rs%inc = 0
@@ -127,7 +147,7 @@ contains
       end do
     end if
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%end_step(obs, summary)
+      if (rs%active(k)) call rs%fields(k)%f%end_step(obs, summary)
     end do
     summary%step = is
     summary%increments = rs%inc
@@ -157,11 +177,13 @@ contains
     integer, intent(out) :: iters
     integer :: k
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%begin_increment(m, t0, t1, search_due, rs%timing)
+      if (rs%active(k)) call rs%fields(k)%f%begin_increment(m, t0, t1, search_due, rs%timing)
     end do
     ok = .true.
     iters = 0
     do k = 1, size(rs%fields)
+      if (.not. rs%active(k)) cycle
+      if (m%coupled .and. k == 2) call hand_temperatures(rs)
       call rs%fields(k)%f%solve(m, is, rs%inc + 1, obs, ok, iters)
       if (.not. ok) then
         rs%failed = k
@@ -181,13 +203,36 @@ contains
     real(dp), intent(in) :: t, dt
     integer :: k
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%commit()
+      if (rs%active(k)) call rs%fields(k)%f%commit()
     end do
     rs%inc = rs%inc + 1
     do k = 1, size(rs%fields)
+      if (.not. rs%active(k)) cycle
+      ! (a coupled run's displacements report the temperatures with theirs)
+      if (m%coupled .and. k == 1 .and. rs%active(2)) cycle
       call rs%fields(k)%f%report(m, is, rs%inc, t, rs%total_time + t, iters, dt, obs, rs%timing)
     end do
   end subroutine increment_done
+
+  !> Purpose: a coupled run (fields temperatures, displacements): the
+  !> temperatures of the increment's start and end, as the temperature
+  !> field has them once solved (in a mechanical step, where it takes no
+  !> part, those it last had), and its reaction fluxes, to the
+  !> displacement field, whose thermal strain they make.
+  subroutine hand_temperatures(rs)
+    type(run_state_t), intent(inout) :: rs
+    select type (tf => rs%fields(1)%f)
+    type is (temperature_field_t)
+      select type (df => rs%fields(2)%f)
+      type is (displacement_field_t)
+        if (rs%active(1)) then
+          call df%take_temperatures(tf%saved, tf%temp, tf%rfl)
+        else
+          call df%take_temperatures(tf%temp, tf%temp, 0.0_dp * tf%rfl)
+        end if
+      end select
+    end select
+  end subroutine hand_temperatures
 
   !> Purpose: the increment failed: every field back to the state it
   !> started from; reason, cut and changing those of the field that
@@ -199,7 +244,7 @@ contains
     real(dp), intent(out) :: cut
     integer :: k
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%restore(m)
+      if (rs%active(k)) call rs%fields(k)%f%restore(m)
     end do
     call rs%fields(rs%failed)%f%failure(reason, cut, changing)
   end subroutine restore_fields

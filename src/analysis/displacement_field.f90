@@ -9,7 +9,7 @@ module displacement_field
   use kinds, only: dp
   use model
   use contact, only: contact_set_t, cfe_t, contact_search, contact_research, contact_commit
-  use assembly, only: body_t, element_counts_t, body_setup, commit_history
+  use assembly, only: body_t, element_counts_t, body_setup, commit_history, thermal_forces
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
   use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
@@ -50,6 +50,13 @@ module displacement_field
     type(cfe_t), allocatable :: saved(:)
     type(contact_set_t) :: saved_cs
     real(dp), allocatable :: u_saved(:, :)
+    !> A run of both fields (model's coupled): the temperatures of the
+    !> increment's start and end (nn), handed over by the driver once the
+    !> temperature field has solved the increment (take_temperatures),
+    !> whose thermal strain loads the bodies in place of *TEMPERATURE's,
+    !> and the reaction fluxes reported with the displacements.
+    logical :: coupled = .false.
+    real(dp), allocatable :: temp0(:), temp1(:), rfl(:)
   contains
     procedure :: setup
     procedure :: begin_step => begin_mechanical_step
@@ -63,6 +70,7 @@ module displacement_field
     procedure :: report
     procedure :: end_step
     procedure :: finish
+    procedure :: take_temperatures
   end type displacement_field_t
 
 contains
@@ -188,7 +196,10 @@ contains
 
   !> Purpose: the equilibrium of the increment (solve_increment): in a
   !> nonlinear step linearised about the saved converged state, under
-  !> NLGEOM with contact searching the contact in every iteration.
+  !> NLGEOM with contact searching the contact in every iteration. In a
+  !> run of both fields the thermal strain of the temperature field's
+  !> temperatures joins the loads (coupled_loads; f%fext keeps the
+  !> load state's, which the next step's begin_step takes apart).
   subroutine solve(f, m, is, inc, obs, ok, iters)
     class(displacement_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
@@ -196,16 +207,49 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: ok
     integer, intent(out) :: iters
+    real(dp), allocatable :: fext(:, :)
+    fext = f%fext
+    if (f%coupled) call coupled_loads(f, m, fext)
     if (f%research_each) then
-      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters, &
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, fext, f%u, f%rf, obs, ok, iters, &
                            f%u_saved, f%ls%presc, f%mpc)
     else if (f%step_nonlinear) then
-      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters, &
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, fext, f%u, f%rf, obs, ok, iters, &
                            f%u_saved)
     else
-      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters)
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, fext, f%u, f%rf, obs, ok, iters)
     end if
   end subroutine solve
+
+  !> Purpose: the temperature field's temperatures of the increment, from
+  !> the driver in a run of both fields: temp0 at its start, temp1 at its
+  !> end (nn each), rfl the reaction fluxes at temp1 (for the report).
+  subroutine take_temperatures(f, temp0, temp1, rfl)
+    class(displacement_field_t), intent(inout) :: f
+    real(dp), intent(in) :: temp0(:), temp1(:), rfl(:)
+    f%coupled = .true.
+    f%temp0 = temp0
+    f%temp1 = temp1
+    f%rfl = rfl
+  end subroutine take_temperatures
+
+  !> Purpose: the thermal strain of the temperature field's temperatures
+  !> as the load state makes *TEMPERATURE's (load_state's values_at and
+  !> the field's begin_increment): the change from the initial
+  !> temperatures at the increment's end, its nodal loads added to
+  !> fext(2, nn) (none under NLGEOM or with a plastic material, whose
+  !> element routines take the strain into their internal force from the
+  !> body's dtemp, and dtemp0 the change at the increment's start).
+  subroutine coupled_loads(f, m, fext)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    real(dp), intent(inout) :: fext(:, :)
+    if (.not. any(m%materials%alpha /= 0.0_dp)) return
+    call thermal_forces(m, f%temp1 - f%ls%temp_init, fext, f%ls%nlgeom)
+    if (.not. f%step_nonlinear) return
+    f%body%dtemp = f%temp1 - f%ls%temp_init
+    f%body%dtemp0 = f%temp0 - f%ls%temp_init
+  end subroutine coupled_loads
 
   !> Purpose: a converged increment's history becomes the state the next
   !> increment starts from: the one place where state that depends on
@@ -280,7 +324,14 @@ contains
     real(dp) :: t0, t1
     real(dp), allocatable :: dtemp(:)
     t0 = wall_time()
-    if (f%ls%thermal) then
+    if (f%coupled) then
+      dtemp = f%temp1 - f%ls%temp_init
+      call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &
+                                     f%eq%counts, dtemp, f%body, dt)
+      res%heat = .true.
+      res%nt = f%temp1
+      res%rfl = f%rfl
+    else if (f%ls%thermal) then
       allocate(dtemp(m%nn))
       call temperature_change_at(m, f%ls, t, dtemp)
       call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &
@@ -307,7 +358,7 @@ contains
     if (f%step_nonlinear .and. f%eq%searches > 0) call tell_note(obs, 'contact searched again in ' // &
       itoa(f%eq%searches) // ' Newton iterations; equations renumbered ' // itoa(f%eq%renumberings) // &
       ' times for changed couplings')
-    summary%factorisations = f%eq%factorisations
+    summary%factorisations = summary%factorisations + f%eq%factorisations
     summary%condensed_factorisations = f%eq%condensed_factorisations
     summary%iterations = f%eq%iterations
     summary%block_pivots = f%eq%search%block_pivots
@@ -323,14 +374,15 @@ contains
     class(displacement_field_t), intent(in) :: f
     type(run_timing_t), intent(inout) :: timing
     associate(t => timing, e => f%eq%timing)
-      t%assembly = e%assembly
+      ! (added: a coupled run's temperature field has put its own in)
+      t%assembly = t%assembly + e%assembly
       t%analyse = t%analyse + e%analyse
-      t%factor = e%factor
-      t%condensed = e%condensed
-      t%solve = e%solve
-      t%recovery = e%recovery
-      t%numeric_factorisations = e%numeric_factorisations
-      t%condensed_factorisations = e%condensed_factorisations
+      t%factor = t%factor + e%factor
+      t%condensed = t%condensed + e%condensed
+      t%solve = t%solve + e%solve
+      t%recovery = t%recovery + e%recovery
+      t%numeric_factorisations = t%numeric_factorisations + e%numeric_factorisations
+      t%condensed_factorisations = t%condensed_factorisations + e%condensed_factorisations
     end associate
   end subroutine finish
 end module displacement_field

@@ -304,6 +304,10 @@ module model
     !> largest temperature change of an automatic increment (DELTMX).
     logical :: heat = .false., steady = .false.
     real(dp) :: deltmx = 0.0_dp
+    !> *COUPLED TEMPERATURE-DISPLACEMENT: a step of both fields (heat
+    !> is then true too), the temperatures solved first in each increment
+    !> and their thermal strain loading the displacements (docs/heat.md).
+    logical :: coupled = .false.
     !> Prescribed temperatures (*BOUNDARY on dof 11; bc_t%dof 11),
     !> concentrated fluxes (*CFLUX; cload_t%dof 11), *DFLUX and *FILM;
     !> new_*: OP=NEW (the lists of earlier steps dropped); otherwise a
@@ -519,6 +523,11 @@ module model
     !> A step is *HEAT TRANSFER: the run's field is the temperatures
     !> (temperature_field) and the materials need no *ELASTIC.
     logical :: heat = .false.
+    !> The run has both fields, the temperatures before the displacements:
+    !> a *COUPLED TEMPERATURE-DISPLACEMENT step, or heat transfer and
+    !> mechanical steps in one deck (heat is then false: the materials
+    !> need *ELASTIC).
+    logical :: coupled = .false.
   end type model_t
 
 contains

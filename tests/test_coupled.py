@@ -1,0 +1,173 @@
+"""Coupled temperature-displacement analysis (*COUPLED TEMPERATURE-
+DISPLACEMENT; the driver's fields [temperatures, displacements], solved in
+that order in each increment; docs/heat.md) against closed-form answers:
+
+- free thermal expansion of a plate whose temperature the heat transfer
+  of the same step computes (two faces held at T1, the rest insulated:
+  T = T1 everywhere, exactly for every element): the strain alpha dT in
+  plane stress and (1 + nu) alpha dT in plane strain at every integration
+  point, to round-off (tolerance 1e-9 relative), on the coupled element
+  names CPS4T, CPE4T, CPS8T, CPS3T, CPE8RT, CPS4RT, steady and transient;
+- a ring heated onto a shaft and cooled: the ring's stress-free shape is
+  the hot one (its initial temperature T0 + 100 K, its bore touching the
+  shaft), the coupled step holds its outside at T0 and the shaft's bore
+  at T0, so that each body conducts to a uniform T0 and the ring shrinks
+  onto the shaft: the contact pressure and stresses against two Lame
+  cylinders in plane strain (tests/test_shrink_fit.py's closed form,
+  tolerance 1 %, as the mechanical fit there); the same fit as a *HEAT
+  TRANSFER step followed by a *STATIC step (the mechanical step takes the
+  temperatures the heat step left);
+- mechanical results are unchanged where the temperatures are the same:
+  the coupled fit equals the mechanical fit of *TEMPERATURE to 1e-9.
+"""
+import math
+
+import numpy as np
+
+from helpers import run_deck
+from quadmesh import Mesh
+from test_shrink_fit import shrink_deck, compare, fit_closed_form, T0
+
+ALPHA, E, NU = 1.2e-5, 210000.0, 0.3
+
+
+def plate_deck(shape, et, step, t1=120.0, t0=20.0, extra_material=""):
+    """A 2 x 1 plate of 2 x 2 elements, held at node (0, 0) and on y = 0
+    in y, its left and right sides at t1 by *BOUNDARY on dof 11, starting
+    from t0 everywhere."""
+    m = Mesh(shape, 2, 2, lambda s, t: (s, 0.5 * t), straight=True)
+    left = ", ".join(map(str, m.side("left")))
+    right = ", ".join(map(str, m.side("right")))
+    bottom = ", ".join(map(str, m.side("bottom")))
+    origin = m.side("left")[0]
+    return m, f"""*HEADING
+free thermal expansion, {et}
+*NODE, NSET=NALL
+{m.node_lines()}{m.element_card(et, 'PLATE')}*NSET, NSET=LEFT
+{left}
+*NSET, NSET=RIGHT
+{right}
+*NSET, NSET=BOTTOM
+{bottom}
+*MATERIAL, NAME=STEEL
+*ELASTIC
+{E}, {NU}
+*EXPANSION
+{ALPHA}
+*CONDUCTIVITY
+50.
+{extra_material}*SOLID SECTION, ELSET=PLATE, MATERIAL=STEEL
+1.
+*INITIAL CONDITIONS, TYPE=TEMPERATURE
+NALL, {t0}
+*STEP
+{step}
+*BOUNDARY
+{origin}, 1, 1
+BOTTOM, 2, 2
+*BOUNDARY
+LEFT, 11, 11, {t1}
+RIGHT, 11, 11, {t1}
+*NODE PRINT, NSET=NALL
+U, NT
+*EL PRINT
+E, S
+*END STEP
+"""
+
+
+def test_free_expansion():
+    """Every integration point's strain is the free thermal strain and its
+    stress zero; every node's temperature T1 and displacement the strain
+    times its coordinate."""
+    dt = 100.0
+    cases = [("Q4", "CPS4T", "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE", 1.0),
+             ("Q4", "CPE4T", "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE", 1.0 + NU),
+             ("Q8", "CPS8T", "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE\n0.25, 1.", 1.0),
+             ("T3", "CPS3T", "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE", 1.0),
+             ("Q8", "CPE8RT", "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE", 1.0 + NU),
+             ("Q4", "CPS4RT", "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE", 1.0),
+             # transient: the sides jump to T1 at once; the interior reaches it
+             # only after a while, so the strain is checked at the end of a
+             # long step (10 increments of 1e4 s; diffusion time L^2 rho c / k ~ 1e4 s)
+             ("Q4", "CPS4T", "*COUPLED TEMPERATURE-DISPLACEMENT\n1e5, 1e6", 1.0)]
+    for shape, et, step, factor in cases:
+        extra = "*DENSITY\n7.8e-9\n*SPECIFIC HEAT\n4.6e8\n" if "STEADY" not in step else ""
+        m, text = plate_deck(shape, et, step, extra_material=extra)
+        run = run_deck("coupled_free_" + et.lower(), text).ok()
+        inc = run.listing.increments[-1]
+        eps = factor * ALPHA * dt
+        nt = inc.block("NODE NT")
+        assert np.max(np.abs(np.array(nt["NT11"]) - 120.0)) < 1e-9 * 120.0, (et, nt["NT11"])
+        e = inc.block("ELEMENT E")
+        for comp in ("E11", "E22"):
+            assert np.max(np.abs(np.array(e[comp]) - eps)) < 1e-9 * eps, (et, comp, e[comp])
+        assert np.max(np.abs(e["E12"])) < 1e-9 * eps, (et, e["E12"])
+        s = inc.block("ELEMENT S")
+        for comp in ("S11", "S22", "S12"):
+            assert np.max(np.abs(s[comp])) < 1e-9 * E * ALPHA * dt, (et, comp, s[comp])
+        u = inc.block("NODE U")
+        for k, n in enumerate(u["node"]):
+            x, y = m.nodes[int(n)]
+            assert abs(u["U1"][k] - eps * x) < 1e-9 * eps and abs(u["U2"][k] - eps * y) < 1e-9 * eps, \
+                (et, n, u["U1"][k], u["U2"][k])
+
+
+def coupled_fit(text, ring, heat_then_static=False):
+    """shrink_deck's mechanical fit (nothing heated) turned into the
+    coupled one: coupled elements, conductivities, the ring's initial
+    temperature T0 + 100, and a coupled step (or a heat transfer step and
+    a static step) holding the ring's outside and the shaft's bore at T0."""
+    text = text.replace("TYPE=CAX8,", "TYPE=CAX8T,")
+    text = text.replace("*NODE PRINT, NSET=BORE\nU, S\n", "*NODE PRINT, NSET=BORE\nU, S, NT\n")
+    text = text.replace("*EXPANSION\n", "*CONDUCTIVITY\n50.\n*EXPANSION\n")
+    outside = "".join(", ".join(map(str, ring.side("right")[i:i + 10])) + "\n"
+                      for i in range(0, len(ring.side("right")), 10))
+    text = text.replace(f"*INITIAL CONDITIONS, TYPE=TEMPERATURE\nALLN, {T0}\n",
+                        f"*NSET, NSET=OUTSIDE\n{outside}*INITIAL CONDITIONS, TYPE=TEMPERATURE\nALLN, {T0}\n"
+                        f"RINGN, {T0 + 100.0}\n")
+    held = f"*BOUNDARY\nOUTSIDE, 11, 11, {T0}\nBORE, 11, 11, {T0}\n"
+    head, step = text.split("*STEP\n*STATIC\n*TEMPERATURE\n", 1)
+    assert step.startswith("*NODE PRINT"), step[:40]
+    if heat_then_static:
+        return head + f"*STEP\n*HEAT TRANSFER, STEADY STATE\n{held}*END STEP\n*STEP\n*STATIC\n" + step
+    return head + f"*STEP\n*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE\n{held}" + step
+
+
+def test_ring_heated_onto_shaft():
+    """The ring cooled by 100 K onto the shaft (CAX8T, 6 + 8 elements through
+    the walls): the contact pressure at every slave point and master node,
+    the total force, the hoop and axial stresses and u_r at the bore within
+    1 % of the closed form (fit_closed_form(0, -100)), as the mechanical
+    fit of test_shrink_fit; the temperatures T0 everywhere (1e-9); the
+    same with a *HEAT TRANSFER step and then a *STATIC step."""
+    text, shaft, ring = shrink_deck("Q8", "AX", 0.0, 0.0)
+    for name, two_steps in (("coupled_ring_fit", False), ("coupled_ring_fit_heat_static", True)):
+        run = run_deck(name, coupled_fit(text, ring, two_steps)).ok()
+        nt = np.array(run.listing.increments[-1].block("NODE NT", set="BORE")["NT11"])
+        assert np.max(np.abs(nt - T0)) < 1e-9 * T0, nt
+        compare(run, "AX", shaft, ring, 0.0, -100.0, {"default": 1e-2}, name)
+    assert fit_closed_form(0.0, -100.0)["p"] > 0.0
+    assert math.isfinite(fit_closed_form(0.0, -100.0)["p"])
+
+
+def test_coupled_equals_mechanical_fit():
+    """Where the temperatures are the same, the coupled step's mechanical
+    results are those of *TEMPERATURE: the ring cooled by 100 K in a
+    *STATIC step (test_shrink_fit's deck) and the coupled fit above give
+    the same nodal stresses and displacements at the bore and the seat
+    (to 1e-9 of the block's largest component) and the same total contact
+    force (1e-9)."""
+    text, shaft, ring = shrink_deck("Q8", "AX", 0.0, 0.0)
+    coupled = run_deck("coupled_ring_fit_same", coupled_fit(text, ring)).ok().listing.increments[-1]
+    static = run_deck("coupled_ring_fit_static", shrink_deck("Q8", "AX", 0.0, -100.0)[0]).ok().listing.increments[-1]
+    for name, nset, comps in (("NODE U", "BORE", ("U1", "U2")), ("NODE S", "BORE", ("S11", "S22", "S33", "S12")),
+                              ("NODE U", "SEAT", ("U1", "U2")), ("NODE S", "SEAT", ("S11", "S22", "S33", "S12"))):
+        a, b = coupled.block(name, set=nset), static.block(name, set=nset)
+        scale = max(np.max(np.abs(b[c])) for c in comps)
+        for c in comps:
+            x, y = np.array(a[c]), np.array(b[c])
+            assert np.max(np.abs(x - y)) <= 1e-9 * scale, (name, nset, c, np.max(np.abs(x - y)), scale)
+    fa = coupled.block("CONTACT SUMMARY")["total_force"][0]
+    fb = static.block("CONTACT SUMMARY")["total_force"][0]
+    assert abs(fa - fb) <= 1e-9 * abs(fb), (fa, fb)
