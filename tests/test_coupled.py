@@ -31,10 +31,10 @@ from test_shrink_fit import shrink_deck, compare, fit_closed_form, T0
 ALPHA, E, NU = 1.2e-5, 210000.0, 0.3
 
 
-def plate_deck(shape, et, step, t1=120.0, t0=20.0, extra_material=""):
+def plate_deck(shape, et, step, t1=120.0, t0=20.0, extra_material="", t_right=None):
     """A 2 x 1 plate of 2 x 2 elements, held at node (0, 0) and on y = 0
-    in y, its left and right sides at t1 by *BOUNDARY on dof 11, starting
-    from t0 everywhere."""
+    in y, its left and right sides at t1 (the right at t_right if given)
+    by *BOUNDARY on dof 11, starting from t0 everywhere."""
     m = Mesh(shape, 2, 2, lambda s, t: (s, 0.5 * t), straight=True)
     left = ", ".join(map(str, m.side("left")))
     right = ", ".join(map(str, m.side("right")))
@@ -67,11 +67,11 @@ NALL, {t0}
 BOTTOM, 2, 2
 *BOUNDARY
 LEFT, 11, 11, {t1}
-RIGHT, 11, 11, {t1}
+RIGHT, 11, 11, {t1 if t_right is None else t_right}
 *NODE PRINT, NSET=NALL
 U, NT
 *EL PRINT
-E, S
+E, S, HFL
 *END STEP
 """
 
@@ -171,3 +171,35 @@ def test_coupled_equals_mechanical_fit():
     fa = coupled.block("CONTACT SUMMARY")["total_force"][0]
     fb = static.block("CONTACT SUMMARY")["total_force"][0]
     assert abs(fa - fb) <= 1e-9 * abs(fb), (fa, fb)
+
+
+def test_linear_temperature_no_stress():
+    """The left side at 120, the right at 20 (x = 0 .. 2, k = 50): the
+    conduction gives T linear in x, whose thermal strain alpha (T - T0) is
+    compatible, so the free plate has no stress; the displacement is then
+    quadratic (u_x = alpha (int T dx - T' y^2 / 2)), which the 8-node
+    elements hold exactly: at every integration point of CPS8T the
+    stresses within 1e-9 of E alpha dT, at every node T exact and u_y =
+    alpha (T(x) - T0) y (1e-9 of alpha dT), and the
+    heat flux HFL1 = -k dT/dx = 2500, HFL2 = 0 (1e-9)."""
+    k, t_left, t_right, t0 = 50.0, 120.0, 20.0, 20.0
+    m, text = plate_deck("Q8", "CPS8T", "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE", t1=t_left, t0=t0,
+                         t_right=t_right)
+    inc = run_deck("coupled_linear_t", text).ok().listing.increments[-1]
+    s = inc.block("ELEMENT S")
+    scale = E * ALPHA * (t_left - t0)
+    for comp in ("S11", "S22", "S12"):
+        assert np.max(np.abs(s[comp])) < 1e-9 * scale, (comp, np.max(np.abs(s[comp])))
+    q = inc.block("ELEMENT HFL")
+    flux = -k * (t_right - t_left) / 2.0
+    assert len(q["HFL1"]) == 4 * 9, len(q["HFL1"])
+    assert np.max(np.abs(np.array(q["HFL1"]) - flux)) < 1e-9 * flux, q["HFL1"]
+    assert np.max(np.abs(q["HFL2"])) < 1e-9 * flux, q["HFL2"]
+    u, nt = inc.block("NODE U"), inc.block("NODE NT")
+    temp = dict(zip((int(n) for n in nt["node"]), nt["NT11"]))
+    for kk, n in enumerate(u["node"]):
+        x, y = m.nodes[int(n)]
+        t_exact = t_left + (t_right - t_left) * x / 2.0
+        assert abs(temp[int(n)] - t_exact) < 1e-9 * t_left, (n, temp[int(n)], t_exact)
+        # u_y = alpha (T(x) - T0) y, the plate held on y = 0
+        assert abs(u["U2"][kk] - ALPHA * (t_exact - t0) * y) < 1e-9 * ALPHA * (t_left - t0), (n, u["U2"][kk])

@@ -21,6 +21,9 @@ module displacement_field
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use analysis_field, only: field_t
+  use element_catalogue, only: catalogue, max_nodes, max_ip
+  use shape_functions, only: gauss_rule
+  use heat_element, only: heat_gradient, conductivity_at, temperature_at
   use linear_solver, only: linear_system_t
   use strings, only: itoa
   use messages, only: fatal
@@ -331,6 +334,7 @@ contains
       res%heat = .true.
       res%nt = f%temp1
       res%rfl = f%rfl
+      call coupled_heat_flux(f, m, any(m%steps(is)%requests%hfl), res%nip, res%hfl_ip)
     else if (f%ls%thermal) then
       allocate(dtemp(m%nn))
       call temperature_change_at(m, f%ls, t, dtemp)
@@ -347,6 +351,39 @@ contains
     timing%results = timing%results + (t1 - t0)
     timing%output = timing%output + (wall_time() - t1)
   end subroutine report
+
+  !> Purpose: a coupled increment's heat flux -k grad T (HFL) at the
+  !> integration points of the stress results (nip(e) of each element:
+  !> those the listing and the .dat print HFL at), from the temperature
+  !> field's temperatures, when some output asks for it (wanted); the
+  !> conductivity of a table at each point's temperature, as the
+  !> temperature field's own (docs/heat.md).
+  subroutine coupled_heat_flux(f, m, wanted, nip, hfl)
+    class(displacement_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    logical, intent(in) :: wanted
+    integer, intent(in) :: nip(:)
+    real(dp), allocatable, intent(out) :: hfl(:, :, :)
+    real(dp) :: xi(2, max_ip), w(max_ip), cond(2), te(max_nodes)
+    integer :: e, n, ip
+    allocate(hfl(2, max_ip, merge(m%ne, 0, wanted)))
+    if (.not. wanted) return
+    hfl = 0.0_dp
+    do e = 1, m%ne
+      if (nip(e) == 0 .or. .not. is_continuum(m, e) .or. m%elem_section(e) == 0) cycle
+      n = elem_nodes(m, e)
+      te(1:n) = f%temp1(m%conn(1:n, e))
+      call gauss_rule(catalogue(m%etype(e))%shape, nip(e), xi, w)
+      associate(mat => m%materials(m%sections(m%elem_section(e))%material))
+        do ip = 1, nip(e)
+          cond = mat%conductivity
+          if (mat%nk > 1) cond = conductivity_at(mat%ktab(:, 1:mat%nk), temperature_at(m%etype(e), te(1:n), &
+                                                                                        xi(:, ip)))
+          hfl(:, ip, e) = -cond * heat_gradient(m%etype(e), m%x(:, m%conn(1:n, e)), te(1:n), xi(:, ip))
+        end do
+      end associate
+    end do
+  end subroutine coupled_heat_flux
 
   !> Purpose: the step's counts of factorisations, iterations, pivots and
   !> element calls; under NLGEOM with contact a note of the searches and
