@@ -203,3 +203,99 @@ def test_linear_temperature_no_stress():
         assert abs(temp[int(n)] - t_exact) < 1e-9 * t_left, (n, temp[int(n)], t_exact)
         # u_y = alpha (T(x) - T0) y, the plate held on y = 0
         assert abs(u["U2"][kk] - ALPHA * (t_exact - t0) * y) < 1e-9 * ALPHA * (t_left - t0), (n, u["U2"][kk])
+
+
+def ids_lines(ns):
+    return "".join(", ".join(map(str, ns[i:i + 10])) + "\n" for i in range(0, len(ns), 10))
+
+
+def blocks_deck(coupling, conductance, p0=10.0, k1=50.0, k2=50.0, alpha=0.0, top_held=False, nx=2, ny=2,
+                shape="Q4", et="CPE4T", t_bottom=100.0, t_top=0.0):
+    """Two blocks of 1 x 1 (plane strain, unit thickness), A on 0 < y < 1 and
+    B on 1 < y < 2, B's bottom the slave on A's top; A's bottom held at
+    t_bottom and B's top at t_top (dof 11); both sides held in x (a 1D
+    state), A's bottom in y, B's top pressed by p0 (or held in y:
+    top_held); conductance the *GAP CONDUCTANCE data lines."""
+    a = Mesh(shape, nx, ny, lambda s, t: (s / nx, t / ny), straight=True)
+    b = Mesh(shape, nx, ny, lambda s, t: (s / nx, 1.0 + t / ny), straight=True, first_node=1001, first_elem=1001)
+    sides = sorted(a.side("left") + a.side("right") + b.side("left") + b.side("right"))
+    top_faces = "".join(f"{e}, P{k}, {p0}\n" for e, k in b.faces("top"))
+    load = f"*BOUNDARY\nTOP, 2, 2\n" if top_held else f"*DLOAD\n{top_faces}"
+    return f"""*HEADING
+two blocks through a gap conductance
+*NODE, NSET=NALL
+{a.node_lines()}{b.node_lines()}{a.element_card(et, 'A')}{b.element_card(et, 'B')}*NSET, NSET=BOTTOM
+{ids_lines(a.side('bottom'))}*NSET, NSET=TOP
+{ids_lines(b.side('top'))}*NSET, NSET=SIDES
+{ids_lines(sides)}*NSET, NSET=ATOP
+{ids_lines(a.side('top'))}*NSET, NSET=BBOTTOM
+{ids_lines(b.side('bottom'))}{a.surface_card('ASURF', 'top')}{b.surface_card('BSURF', 'bottom')}*MATERIAL, NAME=M1
+*ELASTIC
+210000., 0.3
+*EXPANSION
+{alpha}
+*CONDUCTIVITY
+{k1}
+*MATERIAL, NAME=M2
+*ELASTIC
+210000., 0.3
+*EXPANSION
+{alpha}
+*CONDUCTIVITY
+{k2}
+*SOLID SECTION, ELSET=A, MATERIAL=M1
+1.
+*SOLID SECTION, ELSET=B, MATERIAL=M2
+1.
+*SURFACE INTERACTION, NAME=GAP
+*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD
+*GAP CONDUCTANCE{', PRESSURE' if conductance.count(chr(10)) > 1 else ''}
+{conductance}*CONTACT PAIR, INTERACTION=GAP, TYPE={coupling}
+BSURF, ASURF
+*BOUNDARY
+SIDES, 1, 1
+BOTTOM, 2, 2
+*STEP
+*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE
+*BOUNDARY
+BOTTOM, 11, 11, {t_bottom}
+TOP, 11, 11, {t_top}
+{load}*NODE PRINT, NSET=ATOP
+NT
+*NODE PRINT, NSET=BBOTTOM
+NT
+*NODE PRINT, NSET=BOTTOM
+RFL
+*NODE PRINT, NSET=TOP
+RFL
+*EL PRINT
+HFL
+*END STEP
+"""
+
+
+def test_gap_conductance_blocks():
+    """The blocks pressed by p0 = 10 through a conductance h: the heat flows
+    through them as through three resistances in series, q = (T_bottom -
+    T_top) / (L/k + 1/h + L/k); the temperature jump across the contact is
+    q/h, each block's temperature linear (exact for the elements: 1e-9 of
+    100), the heat flux -k dT/dy = q at every integration point of both
+    blocks and the reaction fluxes q and -q over the held faces (flux
+    continuous; 1e-9). h = 25 constant, and h from a pressure table (10 at
+    p = 0, 40 at p = 20: 25 at p0), both couplings."""
+    k, h, tb, tt = 50.0, 25.0, 100.0, 0.0
+    q = (tb - tt) / (1.0 / k + 1.0 / h + 1.0 / k)
+    for coupling in ("SURFACE TO SURFACE", "NODE TO SURFACE"):
+        for name, table in (("const", "25.\n"), ("table", "10., 0.\n40., 20.\n")):
+            run = run_deck(f"coupled_gap_{name}_{coupling[:4].lower()}", blocks_deck(coupling, table)).ok()
+            inc = run.listing.increments[-1]
+            ta = np.array(inc.block("NODE NT", set="ATOP")["NT11"])
+            tb_ = np.array(inc.block("NODE NT", set="BBOTTOM")["NT11"])
+            assert np.max(np.abs(ta - (tb - q / k))) < 1e-9 * tb, (coupling, name, ta, tb - q / k)
+            assert np.max(np.abs(tb_ - (tt + q / k))) < 1e-9 * tb, (coupling, name, tb_, tt + q / k)
+            assert abs(np.mean(ta) - np.mean(tb_) - q / h) < 1e-9 * tb
+            hfl = np.array(inc.block("ELEMENT HFL")["HFL2"])
+            assert np.max(np.abs(hfl - q)) < 1e-9 * q, (coupling, name, hfl)
+            rb = sum(inc.block("NODE RFL", set="BOTTOM")["RFL11"])
+            rt = sum(inc.block("NODE RFL", set="TOP")["RFL11"])
+            assert abs(rb - q) < 1e-9 * q and abs(rt + q) < 1e-9 * q, (coupling, name, rb, rt, q)

@@ -23,6 +23,7 @@ module analysis
   use temperature_field, only: temperature_field_t
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use messages, only: fatal
+  use contact_heat, only: contact_heat_t, contact_heat_build, has_contact_heat
   implicit none
   private
   public :: run_analysis
@@ -39,7 +40,11 @@ module analysis
     !> increments (advance_automatic).
     logical :: nonlinear = .false.
     integer :: cutbacks = 0             ! increments cut back in the current step
-    integer :: failed = 0               ! the field whose solve failed last (solve_fields)
+    integer :: failed = 0               ! the field whose solve failed last (solve_fields; 0: the passes)
+    !> Heat through the contact (a coupled run): the fields' solves are
+    !> repeated in each increment until the temperatures settle (passes).
+    logical :: contact_heat = .false.
+    integer :: passes = 0
     type(run_timing_t) :: timing        ! where the run's time went
   end type run_state_t
 
@@ -48,6 +53,12 @@ module analysis
     real(dp) :: t0 = 0.0_dp, t1 = 0.0_dp
     integer :: level = 0
   end type interval_t
+
+  !> Passes of a coupled increment with heat through the contact: at most
+  !> max_passes, done when no temperature changes by more than
+  !> coupling_tolerance of the largest (at least 1) between two.
+  integer, parameter :: max_passes = 50
+  real(dp), parameter :: coupling_tolerance = 1.0e-9_dp
 
 contains
 
@@ -80,6 +91,7 @@ contains
     end if
     allocate(rs%active(size(rs%fields)))
     rs%active = .true.
+    rs%contact_heat = m%coupled .and. has_contact_heat(m)
     do k = 1, size(rs%fields)
       call rs%fields(k)%f%setup(m, rs%timing)
     end do
@@ -163,7 +175,12 @@ contains
 
   !> Purpose: one attempt at the increment from step time t0 to t1: every
   !> field begins it and is solved in turn; ok when all converged, iters
-  !> the iterations of the last field solved.
+  !> the iterations of the last field solved. With heat through the
+  !> contact (a coupled run) the solves are repeated, each temperature
+  !> solve with the contact's heat couplings of the last displacement
+  !> solve (hand_contact_heat), until no temperature changes by more than
+  !> coupling_tolerance of the largest (at least 1) from one pass to the
+  !> next, at most max_passes times (docs/heat.md).
   !> Arguments: search_due, a contact search on the current configuration
   !> is due (begin_increment).
   subroutine solve_fields(m, is, rs, obs, t0, t1, search_due, ok, iters)
@@ -175,22 +192,65 @@ contains
     logical, intent(in) :: search_due
     logical, intent(out) :: ok
     integer, intent(out) :: iters
-    integer :: k
+    integer :: k, pass
+    real(dp), allocatable :: before(:)
     do k = 1, size(rs%fields)
       if (rs%active(k)) call rs%fields(k)%f%begin_increment(m, t0, t1, search_due, rs%timing)
     end do
     ok = .true.
     iters = 0
-    do k = 1, size(rs%fields)
-      if (.not. rs%active(k)) cycle
-      if (m%coupled .and. k == 2) call hand_temperatures(rs)
-      call rs%fields(k)%f%solve(m, is, rs%inc + 1, obs, ok, iters)
-      if (.not. ok) then
-        rs%failed = k
-        return
-      end if
+    rs%passes = 0
+    do pass = 1, max_passes
+      rs%passes = pass
+      if (rs%contact_heat .and. rs%active(1)) before = hand_contact_heat(m, rs, t1 - t0)
+      do k = 1, size(rs%fields)
+        if (.not. rs%active(k)) cycle
+        if (m%coupled .and. k == 2) call hand_temperatures(rs)
+        call rs%fields(k)%f%solve(m, is, rs%inc + 1, obs, ok, iters)
+        if (.not. ok) then
+          rs%failed = k
+          return
+        end if
+      end do
+      if (.not. (rs%contact_heat .and. all(rs%active))) return
+      if (pass > 1 .and. temperatures_settled(rs, before)) return
     end do
+    ok = .false.
+    rs%failed = 0
   end subroutine solve_fields
+
+  !> Purpose: a coupled run with heat through the contact: the contact's
+  !> heat couplings of the displacement field's contact set as it was
+  !> last evaluated (contact_heat_build; dt the increment's length) to the
+  !> temperature field; the temperatures before its solve returned.
+  function hand_contact_heat(m, rs, dt) result(temp)
+    type(model_t), intent(in) :: m
+    type(run_state_t), intent(inout) :: rs
+    real(dp), intent(in) :: dt
+    real(dp), allocatable :: temp(:)
+    type(contact_heat_t) :: ch
+    select type (tf => rs%fields(1)%f)
+    type is (temperature_field_t)
+      select type (df => rs%fields(2)%f)
+      type is (displacement_field_t)
+        call contact_heat_build(m, df%cs, dt, ch)
+        call tf%take_contact_heat(m, ch)
+        temp = tf%temp
+      end select
+    end select
+  end function hand_contact_heat
+
+  !> Purpose: has no temperature changed by more than coupling_tolerance
+  !> of the largest (at least 1) since before (the last pass's)?
+  logical function temperatures_settled(rs, before) result(settled)
+    type(run_state_t), intent(in) :: rs
+    real(dp), intent(in) :: before(:)
+    settled = .true.
+    select type (tf => rs%fields(1)%f)
+    type is (temperature_field_t)
+      settled = maxval(abs(tf%temp - before)) <= coupling_tolerance * max(1.0_dp, maxval(abs(tf%temp)))
+    end select
+  end function temperatures_settled
 
   !> Purpose: the increment converged: every field commits its history,
   !> and its results at step time t (increment length dt) go to the
@@ -246,6 +306,13 @@ contains
     do k = 1, size(rs%fields)
       if (rs%active(k)) call rs%fields(k)%f%restore(m)
     end do
+    if (rs%failed == 0) then
+      reason = 'the temperatures and the contact (heat through it) did not settle in ' // itoa(max_passes) // &
+               ' passes of the two fields'
+      cut = 0.25_dp
+      changing = ''
+      return
+    end if
     call rs%fields(rs%failed)%f%failure(reason, cut, changing)
   end subroutine restore_fields
 

@@ -354,7 +354,8 @@ contains
 
   !> Purpose: a coupled increment's heat flux -k grad T (HFL) at the
   !> integration points of the stress results (nip(e) of each element:
-  !> those the listing and the .dat print HFL at), from the temperature
+  !> those the listing and the .dat print HFL at; set to the element's
+  !> rule where no stresses were computed), from the temperature
   !> field's temperatures, when some output asks for it (wanted); the
   !> conductivity of a table at each point's temperature, as the
   !> temperature field's own (docs/heat.md).
@@ -362,7 +363,7 @@ contains
     class(displacement_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
     logical, intent(in) :: wanted
-    integer, intent(in) :: nip(:)
+    integer, intent(inout) :: nip(:)
     real(dp), allocatable, intent(out) :: hfl(:, :, :)
     real(dp) :: xi(2, max_ip), w(max_ip), cond(2), te(max_nodes)
     integer :: e, n, ip
@@ -370,7 +371,9 @@ contains
     if (.not. wanted) return
     hfl = 0.0_dp
     do e = 1, m%ne
-      if (nip(e) == 0 .or. .not. is_continuum(m, e) .or. m%elem_section(e) == 0) cycle
+      if (.not. is_continuum(m, e) .or. m%elem_section(e) == 0) cycle
+      ! (no stresses asked for: the element's rule)
+      if (nip(e) == 0) nip(e) = catalogue(m%etype(e))%nip
       n = elem_nodes(m, e)
       te(1:n) = f%temp1(m%conn(1:n, e))
       call gauss_rule(catalogue(m%etype(e))%shape, nip(e), xi, w)
