@@ -281,7 +281,8 @@ def test_gap_conductance_blocks():
     q/h, each block's temperature linear (exact for the elements: 1e-9 of
     100), the heat flux -k dT/dy = q at every integration point of both
     blocks and the reaction fluxes q and -q over the held faces (flux
-    continuous; 1e-9). h = 25 constant, and h from a pressure table (10 at
+    continuous; 1e-9), the contact table's heat flux -q at every slave
+    point (from the slave, the colder side; 1e-7, its printed digits). h = 25 constant, and h from a pressure table (10 at
     p = 0, 40 at p = 20: 25 at p0), both couplings."""
     k, h, tb, tt = 50.0, 25.0, 100.0, 0.0
     q = (tb - tt) / (1.0 / k + 1.0 / h + 1.0 / k)
@@ -299,6 +300,9 @@ def test_gap_conductance_blocks():
             rb = sum(inc.block("NODE RFL", set="BOTTOM")["RFL11"])
             rt = sum(inc.block("NODE RFL", set="TOP")["RFL11"])
             assert abs(rb - q) < 1e-9 * q and abs(rt + q) < 1e-9 * q, (coupling, name, rb, rt, q)
+            # the contact table's heat flux (slave to master: B is the colder side)
+            flux = [float(r["heat_flux"]) for r in contact_rows(run) if r["side"] == "slave"]
+            assert flux and max(abs(x + q) for x in flux) < 1e-7 * q, (coupling, name, flux)
 
 
 def sliding_deck(coupling, generation, mu=0.3, p0=10.0, slide=0.1):
@@ -358,3 +362,57 @@ def contact_rows(run):
         rows = list(csv.DictReader(f))
     last = max((int(r["step"]), int(r["increment"])) for r in rows)
     return [r for r in rows if (int(r["step"]), int(r["increment"])) == last]
+
+
+def two_way_pressure(k1, k2, h_of_p, e=210000.0, nu=0.3, alpha=1.2e-5, tb=100.0):
+    """The blocks held at both ends (A's bottom, B's top) and on their
+    sides (eps_xx = eps_zz = 0): heated from 0 with the bottom at tb and
+    the top at 0, each expands by alpha (1 + nu)/(1 - nu) times its
+    temperature's integral, which the uniform stress sigma_yy = -p takes
+    back: p = E alpha I / (2 (1 - 2 nu)) over the stack of 2 x L = 2,
+    I = tb + q/2 (1/k2 - 1/k1) the integral of T over y (T linear in each
+    block), q = tb / (1/k1 + 1/h(p) + 1/k2) the heat through it. The root
+    of this p(h(p)) by bisection."""
+    def residual(p):
+        q = tb / (1.0 / k1 + 1.0 / h_of_p(p) + 1.0 / k2)
+        i = tb + 0.5 * q * (1.0 / k2 - 1.0 / k1)
+        return e * alpha * i / (2.0 * (1.0 - 2.0 * nu)) - p, q
+    lo, hi = 0.0, 1e4
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if residual(mid)[0] > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    p = 0.5 * (lo + hi)
+    return p, residual(p)[1]
+
+
+def test_conductance_through_pressure_converges():
+    """Two-way coupling: the blocks (CPE8T, k 50 below, 10 above) held at
+    both ends, heated through the contact, expand against each other, so
+    the contact pressure comes from the temperatures and the conductance
+    h(p) = 10 + 0.18 p (a *GAP CONDUCTANCE table, 10 at 0, 100 at 500)
+    from the pressure: the passes of the two fields converge (at most 10,
+    the listing's note) to the root of the closed form (two_way_pressure):
+    the total contact force (the pressure on the unit face) within 1e-7,
+    the heat through the stack (the bottom's reaction flux) within 1e-7,
+    both couplings; a constant h = 10 gives another pressure (more than
+    1 % lower), so the table is what the answer follows."""
+    table = "10., 0.\n100., 500.\n"
+    p_ref, q_ref = two_way_pressure(50.0, 10.0, lambda p: 10.0 + 0.18 * min(max(p, 0.0), 500.0))
+    p_const, _ = two_way_pressure(50.0, 10.0, lambda p: 10.0)
+    assert (p_ref - p_const) / p_ref > 0.01, (p_ref, p_const)
+    for coupling in ("SURFACE TO SURFACE", "NODE TO SURFACE"):
+        text = blocks_deck(coupling, table, k1=50.0, k2=10.0, alpha=1.2e-5, top_held=True, shape="Q8",
+                           et="CPE8T", nx=1, ny=2)
+        run = run_deck(f"coupled_two_way_{coupling[:4].lower()}", text).ok()
+        with open(run.listing_path) as f:
+            notes = [line for line in f if "temperatures and contact settled in" in line]
+        passes = [int(n.split("settled in ")[1].split()[0]) for n in notes]
+        assert passes and max(passes) <= 10 and min(passes) >= 2, passes
+        inc = run.listing.increments[-1]
+        force = inc.block("CONTACT SUMMARY")["total_force"][0]
+        rb = sum(inc.block("NODE RFL", set="BOTTOM")["RFL11"])
+        assert abs(force - p_ref) < 1e-7 * p_ref, (coupling, force, p_ref)
+        assert abs(rb - q_ref) < 1e-7 * q_ref, (coupling, rb, q_ref)

@@ -213,7 +213,10 @@ contains
         end if
       end do
       if (.not. (rs%contact_heat .and. all(rs%active))) return
-      if (pass > 1 .and. temperatures_settled(rs, before)) return
+      if (pass > 1 .and. temperatures_settled(rs, before)) then
+        call tell_note(obs, 'temperatures and contact settled in ' // itoa(pass) // ' passes of the two fields')
+        return
+      end if
     end do
     ok = .false.
     rs%failed = 0

@@ -24,6 +24,7 @@ module displacement_field
   use element_catalogue, only: catalogue, max_nodes, max_ip
   use shape_functions, only: gauss_rule
   use heat_element, only: heat_gradient, conductivity_at, temperature_at
+  use contact_heat, only: contact_heat_t, contact_heat_build, contact_heat_flux, has_contact_heat
   use linear_solver, only: linear_system_t
   use strings, only: itoa
   use messages, only: fatal
@@ -335,6 +336,7 @@ contains
       res%nt = f%temp1
       res%rfl = f%rfl
       call coupled_heat_flux(f, m, any(m%steps(is)%requests%hfl), res%nip, res%hfl_ip)
+      if (has_contact_heat(m)) call contact_heat_rows(f, m, dt, res)
     else if (f%ls%thermal) then
       allocate(dtemp(m%nn))
       call temperature_change_at(m, f%ls, t, dtemp)
@@ -387,6 +389,35 @@ contains
       end associate
     end do
   end subroutine coupled_heat_flux
+
+  !> Purpose: the heat flux across the contact (contact_heat_flux: per
+  !> unit area, slave to master, at the increment's temperatures) in each
+  !> slave row of the contact results (the contact table's last column).
+  !> A pair whose rows are the multiplier field's at the slave nodes (the
+  !> multiplier on the master mesh) has one CFE per master node, not per
+  !> row: its rows show 0 (docs/heat.md).
+  subroutine contact_heat_rows(f, m, dt, res)
+    class(displacement_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: dt
+    type(increment_results_t), intent(inout) :: res
+    type(contact_heat_t) :: ch
+    real(dp), allocatable :: q(:)
+    integer, allocatable :: sel(:)
+    integer :: k, j
+    call contact_heat_build(m, f%cs, dt, ch)
+    q = contact_heat_flux(ch, f%temp1, f%cs%n)
+    do k = 1, size(res%contact%pairs)
+      associate(r => res%contact%pairs(k))
+        allocate(r%slave_heat_flux(size(r%slave_node)))
+        r%slave_heat_flux = 0.0_dp
+        sel = pack([(j, j = 1, f%cs%n)], f%cs%c(1:f%cs%n)%pair == r%pair)
+        if (size(sel) /= size(r%slave_node)) cycle
+        if (any(f%cs%c(sel)%ns == 0)) cycle
+        r%slave_heat_flux = q(sel)
+      end associate
+    end do
+  end subroutine contact_heat_rows
 
   !> Purpose: the step's counts of factorisations, iterations, pivots and
   !> element calls; under NLGEOM with contact a note of the searches and

@@ -217,7 +217,9 @@ contains
   end subroutine read_gap_heat_generation
 
   !> Purpose: once the deck is read: each pair read with INTERACTION=
-  !> takes its interaction's gap heat entry (contact_pair_t's gap_heat).
+  !> takes its interaction's gap heat entry (contact_pair_t's gap_heat);
+  !> in a deck of heat transfer steps alone that is an error (a deck of
+  !> mechanical steps alone passes it over: it has no temperatures).
   !> Arguments: p the parser (its pairs' interaction names), m the model.
   subroutine gap_heat_pairs(p, m)
     type(parser_t), intent(inout) :: p
@@ -226,7 +228,13 @@ contains
     if (.not. allocated(m%gap_heats)) return
     do j = 1, p%npair_inter
       do k = 1, size(m%gap_heats)
-        if (m%gap_heats(k)%name == p%pair_inter(j)%name) m%pairs(p%pair_inter(j)%pair)%gap_heat = k
+        if (m%gap_heats(k)%name /= p%pair_inter(j)%name) cycle
+        m%pairs(p%pair_inter(j)%pair)%gap_heat = k
+        ! a deck of heat transfer steps alone has no contact pressures
+        p%i = p%pair_inter(j)%line
+        if (m%heat) call err(p, 'heat through the contact (*GAP CONDUCTANCE, *GAP HEAT GENERATION) needs ' // &
+            'the contact''s pressures: a *COUPLED TEMPERATURE-DISPLACEMENT step, or a *STATIC step before the ' // &
+            'heat transfer')
       end do
     end do
   end subroutine gap_heat_pairs
