@@ -272,7 +272,9 @@ contains
     do k = 1, size(rs%fields)
       if (.not. rs%active(k)) cycle
       ! (a coupled run's displacements report the temperatures with theirs)
-      if (m%coupled .and. k == 1 .and. rs%active(2)) cycle
+      if (m%coupled .and. k == 1) then
+        if (rs%active(2)) cycle
+      end if
       call rs%fields(k)%f%report(m, is, rs%inc, t, rs%total_time + t, iters, dt, obs, rs%timing)
     end do
   end subroutine increment_done
