@@ -12,7 +12,8 @@
 !> symmetric matrix h A w w^T in the temperature equations; frictional
 !> heat, eta times the frictional power (mu p A v, v the slip rate), goes
 !> in by the fraction f to the slave nodes and 1 - f to the master nodes,
-!> each side's share spread in proportion to its weights. The couplings
+!> each side's share spread in proportion to its weights (normalised by
+!> the side's sum, as the CFE spreads its force). The couplings
 !> of a pair take part whatever their status, so that the matrix keeps its
 !> structure while statuses change. Everything here is of the last
 !> evaluation of the contact set (contact_forces): its pressures and the
@@ -32,10 +33,10 @@ module contact_heat
   !> cfe(k) joining nodes node(xnode(k):xnode(k+1)-1) with the jump
   !> weights w(...); ha(k) its conductance times area (its area in
   !> area(k)); qs(k), qm(k) the frictional heat per unit time into its
-  !> slave and master side.
+  !> slave and master side; its first nslave(k) nodes are the slave side's.
   type :: contact_heat_t
     integer :: n = 0
-    integer, allocatable :: cfe(:), xnode(:), node(:)
+    integer, allocatable :: cfe(:), xnode(:), node(:), nslave(:)
     real(dp), allocatable :: w(:), ha(:), qs(:), qm(:), area(:)
   end type contact_heat_t
 
@@ -64,7 +65,7 @@ contains
       if (m%pairs(cs%c(j)%pair)%gap_heat > 0) ch%n = ch%n + 1
     end do
     allocate(ch%cfe(ch%n), ch%xnode(ch%n + 1), ch%ha(ch%n), ch%qs(ch%n), ch%qm(ch%n), ch%area(ch%n), &
-             ch%node(0), ch%w(0))
+             ch%nslave(ch%n), ch%node(0), ch%w(0))
     ch%cfe = pack([(j, j = 1, cs%n)], [(m%pairs(cs%c(j)%pair)%gap_heat > 0, j = 1, cs%n)])
     ch%xnode(1) = 1
     do k = 1, ch%n
@@ -76,6 +77,10 @@ contains
         ch%w = [ch%w, w(1:nen)]
         call point_heat(m, c, dt, ch%ha(k), ch%qs(k), ch%qm(k))
         ch%area(k) = c%area
+        ! the slave side: its nodes, or with the multiplier on the master
+        ! mesh the slave nodes listed first among the master side's
+        ch%nslave(k) = c%ns
+        if (c%ns == 0) ch%nslave(k) = c%nsl
       end associate
     end do
   end subroutine contact_heat_build
@@ -176,33 +181,36 @@ contains
   !> Purpose: r = r + the couplings' heat into each node at temperatures
   !> temp(nn): the frictional heat, less ha w [[T]]; with only(nn) given
   !> the temperatures of the nodes it marks only (the prescribed ones,
-  !> for the right-hand side of the free temperatures).
+  !> for the right-hand side of the free temperatures). Each side's
+  !> frictional heat goes to its nodes in proportion to their weights (as
+  !> the CFE's force does; a mortar weight may be negative), normalised
+  !> by the side's sum.
   pure subroutine contact_heat_residual(ch, temp, r, only)
     type(contact_heat_t), intent(in) :: ch
     real(dp), intent(in) :: temp(:)
     real(dp), intent(inout) :: r(:)
     logical, intent(in), optional :: only(:)
-    integer :: k, i, a
-    real(dp) :: jump, pos, neg
+    integer :: k, i, a, i0, is
+    real(dp) :: jump, ws, wm
     do k = 1, ch%n
+      i0 = ch%xnode(k)
+      is = i0 + ch%nslave(k) - 1           ! the slave side: i0 .. is
       jump = 0.0_dp
-      pos = 0.0_dp
-      neg = 0.0_dp
-      do i = ch%xnode(k), ch%xnode(k + 1) - 1
+      do i = i0, ch%xnode(k + 1) - 1
         a = ch%node(i)
         if (present(only)) then
           if (only(a)) jump = jump + ch%w(i) * temp(a)
         else
           jump = jump + ch%w(i) * temp(a)
         end if
-        pos = pos + max(ch%w(i), 0.0_dp)
-        neg = neg + max(-ch%w(i), 0.0_dp)
       end do
-      do i = ch%xnode(k), ch%xnode(k + 1) - 1
+      ws = sum(ch%w(i0:is))
+      wm = -sum(ch%w(is + 1:ch%xnode(k + 1) - 1))
+      do i = i0, ch%xnode(k + 1) - 1
         a = ch%node(i)
         r(a) = r(a) - ch%ha(k) * ch%w(i) * jump
-        if (ch%w(i) > 0.0_dp .and. pos > 0.0_dp) r(a) = r(a) + ch%qs(k) * ch%w(i) / pos
-        if (ch%w(i) < 0.0_dp .and. neg > 0.0_dp) r(a) = r(a) - ch%qm(k) * ch%w(i) / neg
+        if (i <= is .and. ws /= 0.0_dp) r(a) = r(a) + ch%qs(k) * ch%w(i) / ws
+        if (i > is .and. wm /= 0.0_dp) r(a) = r(a) - ch%qm(k) * ch%w(i) / wm
       end do
     end do
   end subroutine contact_heat_residual
