@@ -423,3 +423,32 @@ def test_conductance_through_pressure_converges():
         rb = sum(inc.block("NODE RFL", set="BOTTOM")["RFL11"])
         assert abs(force - p_ref) < 1e-7 * p_ref, (coupling, force, p_ref)
         assert abs(rb - q_ref) < 1e-7 * q_ref, (coupling, rb, q_ref)
+
+
+def test_result_files_carry_both_fields():
+    """A coupled increment's one report holds both fields: *NODE FILE U, NT
+    writes the displacements and the temperatures into the gmsh file
+    (views Displacement and NT), the .frd (DISP and NDTEMP blocks, the temperature
+    120 at every node) and the VTU file (arrays U and NT); the .dat has the
+    temperatures (*NODE PRINT NT)."""
+    import os
+    m, text = plate_deck("Q4", "CPS4T", "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE")
+    text = text.replace("*END STEP", "*NODE FILE\nU, NT\n*END STEP")
+    run = run_deck("coupled_files", text, args=("--vtu",)).ok()
+    d = os.path.dirname(run.listing_path)
+    with open(os.path.join(d, "coupled_files.msh"), "rb") as f:
+        msh = f.read()
+    assert b'$NodeData\n1\n"NT"\n' in msh and b'$NodeData\n1\n"Displacement"\n' in msh
+    with open(os.path.join(d, "coupled_files.frd")) as f:
+        frd = f.read().splitlines()
+    start = [i for i, ln in enumerate(frd) if ln.startswith(" -4  NDTEMP")]
+    assert len(start) == 1 and any(ln.startswith(" -4  DISP") for ln in frd)
+    rows = [ln for ln in frd[start[0]:] if ln.startswith(" -1")]
+    rows = rows[:len(m.nodes)]
+    assert len(rows) == len(m.nodes) and all(abs(float(r[13:25]) - 120.0) < 1e-9 for r in rows), rows
+    with open(os.path.join(d, "coupled_files_0001.vtu"), "rb") as f:
+        vtu = f.read()
+    assert b'Name="NT"' in vtu and b'Name="U"' in vtu
+    with open(os.path.join(d, "coupled_files.dat")) as f:
+        dat = f.read()
+    assert "temperatures for set NALL" in dat
