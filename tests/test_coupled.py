@@ -452,3 +452,36 @@ def test_result_files_carry_both_fields():
     with open(os.path.join(d, "coupled_files.dat")) as f:
         dat = f.read()
     assert "temperatures for set NALL" in dat
+
+
+def test_coupled_errors():
+    """Bad coupled decks stop at their line with the reason (file:line:
+    error, exit 1, no traceback)."""
+    base = blocks_deck("SURFACE TO SURFACE", "25.\n")
+    heat_only = base.replace("*COUPLED TEMPERATURE-DISPLACEMENT", "*HEAT TRANSFER").replace(
+        "*DLOAD\n", "*DFLUX\n").replace(", P3, 10.0", ", S3, 10.0")
+    cases = [
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE, USER\n"), "USER (a user routine gapcon)"),
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE\n25., 0., 20.\n30., 10., 100.\n"),
+         "temperature-dependent *GAP CONDUCTANCE"),
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE, PRESSURE\n25., 10.\n30., 5.\n"),
+         "must increase"),
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE\n-1.\n"), "must not be negative"),
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP HEAT GENERATION\n1.5, 0.5\n"), "must lie in 0 .. 1"),
+        (base.replace("*SURFACE INTERACTION, NAME=GAP\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n"
+                      "*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE\n25.\n*SURFACE INTERACTION, NAME=GAP\n"),
+         "outside a *SURFACE INTERACTION block"),
+        (base.replace("*CONDUCTIVITY\n50.0\n", "", 1), "has no *CONDUCTIVITY"),
+        (base.replace("*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE", "*COUPLED TEMPERATURE-DISPLACEMENT"),
+         "needs *DENSITY and *SPECIFIC HEAT"),
+        (base.replace("*NODE PRINT, NSET=ATOP", "*TEMPERATURE\nTOP, 50.\n*NODE PRINT, NSET=ATOP"),
+         "*TEMPERATURE in a deck with a *COUPLED"),
+        (base.replace("*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE",
+                      "*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE, DELTMX=0."), "DELTMX must be positive"),
+        (heat_only, "needs the contact's pressures"),
+    ]
+    for i, (deck, msg) in enumerate(cases):
+        run = run_deck("coupled_error_%d" % i, deck)
+        assert run.rc == 1, (msg, run.rc, run.stderr)
+        assert ": error: " in run.stderr and msg in run.stderr, (msg, run.stderr)
+        assert "Traceback" not in run.stderr and "Fortran runtime" not in run.stderr
