@@ -65,16 +65,21 @@ contains
       if (m%pairs(cs%c(j)%pair)%gap_heat > 0) ch%n = ch%n + 1
     end do
     allocate(ch%cfe(ch%n), ch%xnode(ch%n + 1), ch%ha(ch%n), ch%qs(ch%n), ch%qm(ch%n), ch%area(ch%n), &
-             ch%nslave(ch%n), ch%node(0), ch%w(0))
+             ch%nslave(ch%n))
     ch%cfe = pack([(j, j = 1, cs%n)], [(m%pairs(cs%c(j)%pair)%gap_heat > 0, j = 1, cs%n)])
+    ! the node lists' lengths first, then the lists
     ch%xnode(1) = 1
+    do k = 1, ch%n
+      call cfe_nodes(m, cs%c(ch%cfe(k)), nodes, nen)
+      ch%xnode(k + 1) = ch%xnode(k) + nen
+    end do
+    allocate(ch%node(ch%xnode(ch%n + 1) - 1), ch%w(ch%xnode(ch%n + 1) - 1))
     do k = 1, ch%n
       associate(c => cs%c(ch%cfe(k)))
         call jump_weights(m, c, nodes, w, nen)
         pos = ch%xnode(k)
-        ch%xnode(k + 1) = pos + nen
-        ch%node = [ch%node, nodes(1:nen)]
-        ch%w = [ch%w, w(1:nen)]
+        ch%node(pos:pos + nen - 1) = nodes(1:nen)
+        ch%w(pos:pos + nen - 1) = w(1:nen)
         call point_heat(m, c, dt, ch%ha(k), ch%qs(k), ch%qm(k))
         ch%area(k) = c%area
         ! the slave side: its nodes, or with the multiplier on the master
