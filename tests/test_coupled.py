@@ -282,13 +282,16 @@ def test_gap_conductance_blocks():
     100), the heat flux -k dT/dy = q at every integration point of both
     blocks and the reaction fluxes q and -q over the held faces (flux
     continuous; 1e-9), the contact table's heat flux -q at every slave
-    point (from the slave, the colder side; 1e-7, its printed digits). h = 25 constant, and h from a pressure table (10 at
-    p = 0, 40 at p = 20: 25 at p0), both couplings."""
+    point (from the slave, the colder side; 1e-7, its printed digits).
+    Node-to-segment, segment-to-segment, and a two-pass (SYMMETRIC) pair,
+    each of whose passes carries half (-q/2 in its rows). h = 25 constant, and h from a pressure table (10 at
+    p = 0, 40 at p = 20: 25 at p0)."""
     k, h, tb, tt = 50.0, 25.0, 100.0, 0.0
     q = (tb - tt) / (1.0 / k + 1.0 / h + 1.0 / k)
-    for coupling in ("SURFACE TO SURFACE", "NODE TO SURFACE"):
+    for coupling in ("SURFACE TO SURFACE", "NODE TO SURFACE", "NODE TO SURFACE, SYMMETRIC"):
         for name, table in (("const", "25.\n"), ("table", "10., 0.\n40., 20.\n")):
-            run = run_deck(f"coupled_gap_{name}_{coupling[:4].lower()}", blocks_deck(coupling, table)).ok()
+            tag = coupling[:4].lower() + ("_sym" if "SYMMETRIC" in coupling else "")
+            run = run_deck(f"coupled_gap_{name}_{tag}", blocks_deck(coupling, table)).ok()
             inc = run.listing.increments[-1]
             ta = np.array(inc.block("NODE NT", set="ATOP")["NT11"])
             tb_ = np.array(inc.block("NODE NT", set="BBOTTOM")["NT11"])
@@ -301,8 +304,10 @@ def test_gap_conductance_blocks():
             rt = sum(inc.block("NODE RFL", set="TOP")["RFL11"])
             assert abs(rb - q) < 1e-9 * q and abs(rt + q) < 1e-9 * q, (coupling, name, rb, rt, q)
             # the contact table's heat flux (slave to master: B is the colder side)
+            # (a two-pass pair: each pass carries half)
+            share = 0.5 if "SYMMETRIC" in coupling else 1.0
             flux = [float(r["heat_flux"]) for r in contact_rows(run) if r["side"] == "slave"]
-            assert flux and max(abs(x + q) for x in flux) < 1e-7 * q, (coupling, name, flux)
+            assert flux and max(abs(x + share * q) for x in flux) < 1e-7 * q, (coupling, name, flux)
 
 
 def sliding_deck(coupling, generation, mu=0.3, p0=10.0, slide=0.1):
@@ -337,12 +342,15 @@ def test_frictional_heating():
     cases = [(c, n, g, False) for c in ("SURFACE TO SURFACE", "NODE TO SURFACE")
              for n, g in (("slip", f"{eta}, {frac}\n"), ("velocity", f"{eta}, {frac}, 200.\n"))]
     cases += [(c, "slip", f"{eta}, {frac}\n", True) for c in ("SURFACE TO SURFACE", "NODE TO SURFACE")]
+    # a two-pass pair: each pass half, f still the deck's slave's share
+    cases += [("NODE TO SURFACE, SYMMETRIC", n, g, False) for n, g in (("slip", f"{eta}, {frac}\n"),
+                                                                     ("velocity", f"{eta}, {frac}, 200.\n"))]
     for coupling, name, gen, nlgeom in cases:
         text = sliding_deck(coupling, gen, mu=mu, p0=p0)
         if nlgeom:
             text = text.replace("*STEP\n", "*STEP, NLGEOM\n")
-        run = run_deck(f"coupled_friction_heat_{name}_{coupling[:4].lower()}{'_nlgeom' if nlgeom else ''}",
-                       text).ok()
+        tag = coupling[:4].lower() + ("_nlgeom" if nlgeom else "") + ("_sym" if "SYMMETRIC" in coupling else "")
+        run = run_deck(f"coupled_friction_heat_{name}_{tag}", text).ok()
         inc = run.listing.increments[-1]
         rb = sum(inc.block("NODE RFL", set="BOTTOM")["RFL11"])
         rt = sum(inc.block("NODE RFL", set="TOP")["RFL11"])

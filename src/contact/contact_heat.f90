@@ -118,32 +118,40 @@ contains
   !> gap heat entry: a closed point at pressure p = -force / area conducts
   !> h(p) A; sliding, it makes eta mu p A v of heat (v the given velocity
   !> or the slip since its anchor over dt), the fraction f to the slave.
-  !> A pass of a two-pass pair takes half of each.
+  !> A pass of a two-pass pair takes half of each, at the interface's
+  !> pressure (twice the pass's own); f is the deck's slave surface's
+  !> share in both passes.
   subroutine point_heat(m, c, dt, ha, qs, qm)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
     real(dp), intent(in) :: dt
     real(dp), intent(out) :: ha, qs, qm
-    real(dp) :: p, power, share
+    real(dp) :: p, power, share, f
     ha = 0.0_dp
     qs = 0.0_dp
     qm = 0.0_dp
     if (.not. c%closed .or. c%area <= 0.0_dp) return
     share = merge(0.5_dp, 1.0_dp, m%pairs(c%pair)%twin /= 0)
     associate(g => m%gap_heats(m%pairs(c%pair)%gap_heat))
-      p = max(0.0_dp, -c%force / c%area)
+      ! (a pass of a two-pass pair carries half of the interface's pressure)
+      p = max(0.0_dp, -c%force / c%area) / share
       if (allocated(g%gc_h)) ha = share * conductance_at(g, p) * c%area
       if (.not. g%generation .or. c%mu <= 0.0_dp) return
       power = 0.0_dp
       if (g%velocity > 0.0_dp) then
-        power = c%mu * p * c%area * g%velocity
+        power = share * c%mu * p * c%area * g%velocity
       else if (c%sliding .and. c%k_tan > 0.0_dp .and. dt > 0.0_dp) then
         ! the slip of this increment so far: where the anchor would go
-        ! (contact_commit's return mapping) less where it is
+        ! (contact_commit's return mapping) less where it is; the pass's
+        ! own shear force (its share already)
         power = abs(c%tforce) * abs(c%slide - c%tforce / c%k_tan - c%anchor) / dt
       end if
-      qs = share * g%eta * g%f * power
-      qm = share * g%eta * (1.0_dp - g%f) * power
+      ! (the second pass of a two-pass pair has the deck's slave as its
+      ! master: the deck's slave still takes f)
+      f = g%f
+      if (m%pairs(c%pair)%twin /= 0 .and. m%pairs(c%pair)%twin < c%pair) f = 1.0_dp - g%f
+      qs = g%eta * f * power
+      qm = g%eta * (1.0_dp - f) * power
     end associate
   end subroutine point_heat
 
