@@ -47,6 +47,11 @@ module contact_results
     ! slave node (field_rows; the row's force is then the node's
     ! consistent force, which sums to the total)
     real(dp), allocatable :: slave_pressure(:), slave_traction(:)
+    ! heat through the contact (a coupled run with *GAP CONDUCTANCE):
+    ! the heat flux per unit area from the slave side to the master at
+    ! each row's point (allocated only then; filled by the displacement
+    ! field's report, contact_heat)
+    real(dp), allocatable :: slave_heat_flux(:)
     ! master rows
     integer, allocatable :: master_node(:)
     real(dp), allocatable :: master_force(:), master_area(:)

@@ -23,6 +23,8 @@
 !>   deck_model_checks    checks that need the whole deck
 !>   deck_heat_cards      (a module) *HEAT TRANSFER, *CONDUCTIVITY, *SPECIFIC HEAT,
 !>                        *BOUNDARY on dof 11, *CFLUX, *DFLUX, *FILM; check_heat_model
+!>   deck_coupled_cards   (a module) *COUPLED TEMPERATURE-DISPLACEMENT; a deck run
+!>                        with both fields settled and checked
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
   use messages, only: fatal
@@ -33,6 +35,8 @@ module deck_parser
   use element_catalogue, only: max_nodes
   use deck_heat_cards, only: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, &
                              read_cflux, read_dflux, read_film, reject_heat_card, is_heat_boundary, check_heat_model
+  use deck_coupled_cards, only: read_coupled_step, settle_coupled_model, check_coupled_model, &
+                                read_gap_conductance, read_gap_heat_generation, gap_heat_pairs
   implicit none
   private
   public :: read_model
@@ -382,11 +386,14 @@ contains
     end if
     call lenient_warnings(p)
     call trim_model(p, m)
+    call settle_coupled_model(m)
     call finish_kinematic_cards(p, m)
     call cut_pretension_sections(p, m)
     call check_model(p, m)
     call check_orientations(p, m)
     call check_heat_model(p, m)
+    call check_coupled_model(p, m)
+    call gap_heat_pairs(p, m)
   end subroutine read_model
 
   !> Purpose: CalculiX reads a deck in passes, its nodes first, then its
@@ -440,7 +447,8 @@ contains
   subroutine card_in_place(p, name)
     type(parser_t), intent(inout) :: p
     character(len=*), intent(in) :: name
-    if (name /= 'SURFACE BEHAVIOR' .and. name /= 'FRICTION') p%interaction = 0
+    if (name /= 'SURFACE BEHAVIOR' .and. name /= 'FRICTION' .and. name /= 'GAP CONDUCTANCE' .and. &
+        name /= 'GAP HEAT GENERATION') p%interaction = 0
     if (p%coupling_line > 0 .and. name /= 'KINEMATIC' .and. name /= 'DISTRIBUTING') then
       p%i = p%coupling_line
       call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
@@ -660,6 +668,9 @@ contains
     case ('CONTROLS');      call read_controls(p, m, kw)
     case ('SECTION CONTROLS', 'HOURGLASS STIFFNESS'); call in_step(p, kw, .false.); call read_hourglass_card(p, kw)
     case ('HEAT TRANSFER'); call in_step(p, kw, .true.); call read_heat_transfer(p, m, kw)
+    case ('COUPLED TEMPERATURE-DISPLACEMENT'); call in_step(p, kw, .true.); call read_coupled_step(p, m, kw)
+    case ('GAP CONDUCTANCE'); call in_step(p, kw, .false.); call read_gap_conductance(p, m, kw)
+    case ('GAP HEAT GENERATION'); call in_step(p, kw, .false.); call read_gap_heat_generation(p, m, kw)
     case ('CONDUCTIVITY');  call in_step(p, kw, .false.); call read_conductivity(p, m, kw)
     case ('SPECIFIC HEAT'); call in_step(p, kw, .false.); call read_specific_heat(p, m, kw)
     case ('CFLUX');         call in_step(p, kw, .true.); call read_cflux(p, m, kw)

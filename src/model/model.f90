@@ -24,7 +24,7 @@ module model
             nonlinear_material
   public :: orientation_t, orient_rectangular, orient_cylindrical, elastic_iso, elastic_ortho, elastic_aniso
   public :: kept_nodes
-  public :: heat_load_t, heat_bf
+  public :: heat_load_t, heat_bf, gap_heat_t
 
   integer, parameter :: surf_element = 1, surf_node = 2
   !> contact_pair_t%coupling
@@ -304,6 +304,10 @@ module model
     !> largest temperature change of an automatic increment (DELTMX).
     logical :: heat = .false., steady = .false.
     real(dp) :: deltmx = 0.0_dp
+    !> *COUPLED TEMPERATURE-DISPLACEMENT: a step of both fields (heat
+    !> is then true too), the temperatures solved first in each increment
+    !> and their thermal strain loading the displacements (docs/heat.md).
+    logical :: coupled = .false.
     !> Prescribed temperatures (*BOUNDARY on dof 11; bc_t%dof 11),
     !> concentrated fluxes (*CFLUX; cload_t%dof 11), *DFLUX and *FILM;
     !> new_*: OP=NEW (the lists of earlier steps dropped); otherwise a
@@ -354,7 +358,28 @@ module model
     !> there); card_line 0 where the pair was not read from a deck.
     character(len=:), allocatable :: card_file, card_text
     integer :: card_line = 0
+    !> Heat through the contact (coupled and heat transfer runs): the
+    !> pair's *GAP CONDUCTANCE and *GAP HEAT GENERATION, m%gap_heats(gap_heat)
+    !> (0: none); halved (conductance) for each pass of a two-pass pair.
+    integer :: gap_heat = 0
   end type contact_pair_t
+
+  !> *GAP CONDUCTANCE and *GAP HEAT GENERATION of a *SURFACE INTERACTION
+  !> (docs/heat.md, "Heat through the contact"): the conductance per unit
+  !> area h(p) of a closed contact point, linear in the contact pressure
+  !> between the table's points (pressure gc_p(i), conductance gc_h(i),
+  !> pressures increasing) and constant beyond (one point: constant); an
+  !> open point conducts nothing. Frictional heat: the fraction eta of the
+  !> frictional power mu p |slip rate| (per unit area) is heat, the
+  !> fraction f of it goes to the slave surface and 1 - f to the master;
+  !> velocity > 0 is CalculiX's given slip rate (2D and axisymmetric models
+  !> whose sliding is out of the plane), else the rate of the slip.
+  type :: gap_heat_t
+    character(len=name_len) :: name = ''
+    real(dp), allocatable :: gc_p(:), gc_h(:)
+    logical :: generation = .false.
+    real(dp) :: eta = 1.0_dp, f = 0.5_dp, velocity = 0.0_dp
+  end type gap_heat_t
 
   !> *EQUATION: sum_k coef(k) * u(dof(k)) of node(k) = 0, one linear
   !> multi-point constraint, imposed by eliminating its first term's dof
@@ -519,6 +544,14 @@ module model
     !> A step is *HEAT TRANSFER: the run's field is the temperatures
     !> (temperature_field) and the materials need no *ELASTIC.
     logical :: heat = .false.
+    !> The run has both fields, the temperatures before the displacements:
+    !> a *COUPLED TEMPERATURE-DISPLACEMENT step, or heat transfer and
+    !> mechanical steps in one deck (heat is then false: the materials
+    !> need *ELASTIC).
+    logical :: coupled = .false.
+    !> *GAP CONDUCTANCE / *GAP HEAT GENERATION by surface interaction
+    !> (contact_pair_t's gap_heat).
+    type(gap_heat_t), allocatable :: gap_heats(:)
   end type model_t
 
 contains

@@ -16,6 +16,7 @@ module listing
                              run_timing_t
   use increment_results, only: increment_results_t
   use contact_results, only: pair_results_t, model_has_friction, slave_state
+  use contact_heat, only: has_contact_heat
   use output_schedule, only: schedule_t
   implicit none
   private
@@ -108,11 +109,14 @@ contains
     integer :: nsolid, u, e
     if (lst%has_csv) then
       if (model_has_friction(m)) then
-        write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure,' // &
-                              'shear_force,shear,slip,slip_increment'
+        write(lst%csv, '(a)', advance='no') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure,' // &
+                                            'shear_force,shear,slip,slip_increment'
       else
-        write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure'
+        write(lst%csv, '(a)', advance='no') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure'
       end if
+      ! heat through the contact: the heat flux per point, the last column
+      if (m%coupled .and. has_contact_heat(m)) write(lst%csv, '(a)', advance='no') ',heat_flux'
+      write(lst%csv, '(a)') ''
       flush(lst%csv)
     end if
     u = lst%unit
@@ -687,13 +691,16 @@ contains
       call end_row(un, m, r%slave_node(j))
       if (.not. self%has_csv) cycle
       if (res%contact%frictional) then
-        write(self%csv, csv_slave_fric) res%step, res%increment, res%total_time, r%pair, nid, r%slave_x(:, j), &
-          r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j), r%slave_shear(j), &
+        write(self%csv, csv_slave_fric, advance='no') res%step, res%increment, res%total_time, r%pair, nid, &
+          r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j), r%slave_shear(j), &
           r%slave_traction(j), r%slave_slip(j), r%slave_slip_inc(j)
       else
-        write(self%csv, csv_slave) res%step, res%increment, res%total_time, r%pair, nid, &
+        write(self%csv, csv_slave, advance='no') res%step, res%increment, res%total_time, r%pair, nid, &
           r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j)
       end if
+      ! heat through the contact: the point's heat flux, slave to master
+      if (allocated(r%slave_heat_flux)) write(self%csv, '(",",es16.8e3)', advance='no') r%slave_heat_flux(j)
+      write(self%csv, '(a)') ''
     end do
   end subroutine write_slave_rows
 
@@ -737,12 +744,15 @@ contains
       call end_row(un, m, nd)
       if (.not. self%has_csv) cycle
       if (res%contact%frictional) then
-        write(self%csv, csv_master_fric) res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
-          r%master_force(j), p, r%master_shear(j), tau
+        write(self%csv, csv_master_fric, advance='no') res%step, res%increment, res%total_time, r%pair, &
+          m%node_id(nd), xs, r%master_force(j), p, r%master_shear(j), tau
       else
-        write(self%csv, csv_master) res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
-          r%master_force(j), p
+        write(self%csv, csv_master, advance='no') res%step, res%increment, res%total_time, r%pair, m%node_id(nd), &
+          xs, r%master_force(j), p
       end if
+      ! (heat through the contact: its flux is the slave points')
+      if (allocated(r%slave_heat_flux)) write(self%csv, '(a)', advance='no') ',0'
+      write(self%csv, '(a)') ''
     end do
   end subroutine write_master_rows
 
