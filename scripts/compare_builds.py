@@ -26,12 +26,15 @@ With --rtol R (a change that may move results within a convergence
 tolerance, e.g. the Newton iteration's tangent): files that are not
 byte-identical are compared as numbers. The iteration logs are left out
 (.cvg and .sta files, the listing's "contact iteration" lines, its
-iteration and factorisation counts and `iterations=` of the increment
-headers); the rest must have the same lines and words, and each number
-a within R of b relative to the largest magnitude of its column (the
-same word position in lines with the same number of words) in the
-reference file: |a - b| <= R max|column|. The largest such difference
-is printed per deck.
+iteration and factorisation counts, `iterations=` of the increment
+headers, the solver block's factor and contact-solve lines and the exact
+contact's notes), and so are the VTU files (binary: their numbers are the
+listing's and the CSV's); the rest must have the same lines and words,
+and each number a within R of b relative to the largest magnitude of its
+column (the same word position in lines with the same number of words)
+in the reference file, or 1e-10 of the file's largest where the column is
+round-off: |a - b| <= R max(max|column|, 1e-10 max|file|). The largest
+such difference is printed per deck.
 """
 import argparse
 import concurrent.futures
@@ -223,8 +226,9 @@ def counts(text):
 
 
 NUMBER = re.compile(r"^[-+]?(?:\d+\.?\d*|\.\d+)(?:[Ee][-+]?\d+)?$")
-LOG_LINE = re.compile(r"^(contact iteration |(?:" + "|".join(COUNT_KEYS) + r"|element_calls_\w+|iterations|"
-                      r"increment_iterations|direct_multiplier_solves) )")
+LOG_LINE = re.compile(r"^(contact iteration |exact contact: |(?:" + "|".join(COUNT_KEYS) + r"|element_calls_\w+|"
+                      r"iterations|increment_iterations|direct_multiplier_solves|factor|contact_solve|"
+                      r"contact_equations) )")
 
 
 def words(text):
@@ -251,6 +255,9 @@ def numeric_difference(a, b):
             if NUMBER.match(w):
                 key = (len(wa), i)
                 scale[key] = max(scale.get(key, 0.0), abs(float(w)))
+    # a column of round-off (gaps of closed contact: 1e-17) is judged
+    # against 1e-10 of the file's largest magnitude
+    floor = 1e-10 * max(scale.values(), default=0.0)
     worst = 0.0
     for wa, wb in zip(la, lb):
         if len(wa) != len(wb):
@@ -260,7 +267,7 @@ def numeric_difference(a, b):
                 continue
             if not (NUMBER.match(x) and NUMBER.match(y)):
                 return None
-            ref = scale[(len(wa), i)]
+            ref = max(scale[(len(wa), i)], floor)
             d = abs(float(x) - float(y))
             worst = max(worst, d / ref if ref > 0.0 else float("inf"))
     return worst
@@ -307,7 +314,7 @@ def compare(args, i, deck):
             continue
         if args.rtol is None:
             diffs.append(f)
-        elif not f.endswith((".cvg", ".sta")):
+        elif not f.endswith((".cvg", ".sta", ".vtu")):
             d = numeric_difference(a["files"][f].decode(errors="replace"), b["files"][f].decode(errors="replace"))
             if d is None or d > args.rtol:
                 diffs.append(f + (": lines or words differ" if d is None else f": {d:.2e}"))
