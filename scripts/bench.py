@@ -435,6 +435,7 @@ def main(argv=None):
         print("\ncouplings: node-to-segment (nts) against segment-to-segment with exact enforcement (sts)")
         contact_accuracy.table(["default", "q8", "ccx"], os.path.join(WORK, "accuracy"), args.repeats, penalties=True)
     nonlinear_table(args.repeats)
+    __import__("bench_calculix").table(["nlgeom_hertz", "cattaneo_mindlin", "oring"], args.repeats)
     if not args.no_mumps and not args.no_square:
         mumps_square_table(args.repeats)
     if args.surfaces:
