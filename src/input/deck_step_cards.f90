@@ -402,7 +402,7 @@ contains
     real(dp) :: ratio
     call allow_params(p, kw, 'DIRECT,SOLVER')
     associate(s => m%steps(p%step))
-      if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
+      if (s%period > 0.0_dp .or. s%frequency) call err(p, 'second procedure in one step')
       s%direct = has_param(kw, 'DIRECT')
       call read_time_line(p, '*STATIC', s)
       ! (automatic increments of an NLGEOM step grow from the initial
@@ -415,6 +415,46 @@ contains
           ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
     end associate
   end subroutine read_static
+
+  !> Purpose: *FREQUENCY (CalculiX's card): `number of eigenvalues[,
+  !> lower, upper]`, the bounds in cycles/time (empty: not given; lower
+  !> is also the shift, CalculiX's (2 pi lower)^2). STORAGE= and SOLVER=
+  !> are kept to be reported (cfe2d's eigensolver is its own choice,
+  !> docs/keywords.md); GLOBAL= and CYCMPC= (cyclic symmetry) are read
+  !> and ignored. A frequency step has no time: its period is zero.
+  module subroutine read_frequency(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    call allow_params(p, kw, 'STORAGE,SOLVER,GLOBAL,CYCMPC,MATRIXSTORAGE')
+    associate(s => m%steps(p%step))
+      if (s%period >= 0.0_dp .or. s%frequency) call err(p, 'second procedure in one step')
+      s%frequency = .true.
+      s%period = 0.0_dp
+      s%dt = 1.0_dp
+      s%freq_storage = to_upper(param_value(kw, 'STORAGE'))
+      s%freq_solver = to_upper(param_value(kw, 'SOLVER'))
+      if (s%freq_storage /= '' .and. s%freq_storage /= 'YES' .and. s%freq_storage /= 'NO') &
+        call err(p, 'STORAGE must be YES or NO')
+      call require_data(p, 'number of eigenvalues[, lower, upper frequency]')
+      call split_fields(line_text(p), f, n)
+      if (n > 3) call err(p, '*FREQUENCY data line needs: number of eigenvalues[, lower, upper frequency]')
+      s%nev = get_int(p, f(1), 'number of eigenvalues')
+      if (s%nev < 1) call err(p, 'the number of eigenvalues must be at least 1')
+      if (n >= 2) then
+        if (len(f(2)%s) > 0) s%freq_lower = get_real(p, f(2), 'lower frequency')
+        if (len(f(2)%s) > 0 .and. s%freq_lower < 0.0_dp) call err(p, 'the lower frequency must not be negative')
+      end if
+      if (n >= 3) then
+        if (len(f(3)%s) > 0) s%freq_upper = get_real(p, f(3), 'upper frequency')
+        if (len(f(3)%s) > 0 .and. s%freq_upper <= max(s%freq_lower, 0.0_dp)) &
+          call err(p, 'the upper frequency must be positive and above the lower one')
+      end if
+      if (next_data(p)) call err(p, '*FREQUENCY takes one data line')
+    end associate
+  end subroutine read_frequency
 
   !> Purpose: *CONTROLS: the Newton iteration's constants of nonlinear
   !> steps (CalculiX's, model's controls_t), from this step on until
