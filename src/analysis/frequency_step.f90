@@ -167,10 +167,11 @@ contains
   end subroutine gather_groups
 
   !> Purpose: body element e's nodes and its (symmetrised) tangent ke and
-  !> mass me: the tangent at the field's converged u (the history before
-  !> the last commit, as the Newton iteration's last tangent) in a
-  !> nonlinear state, the linear stiffness otherwise; none for a point
-  !> mass, no mass without a *DENSITY.
+  !> mass me: in a model with a nonlinear step the tangent at the field's
+  !> converged u (the history before the last commit, as the Newton
+  !> iteration's last tangent; NLGEOM as the step before had it), the
+  !> linear stiffness otherwise; none for a point mass, no mass without
+  !> a *DENSITY.
   subroutine element_pair(m, f, e, nodes, nen, ke, me)
     type(model_t), intent(in) :: m
     type(displacement_field_t), intent(in) :: f
@@ -201,7 +202,9 @@ contains
       end if
     end associate
     if (carries_stiffness(m, e)) then
-      if (f%body%nonlinear .and. allocated(f%body%hist_old)) then
+      ! a model with a nonlinear step keeps a history: the tangent at u with
+      ! it, under NLGEOM if the step before had it (stress stiffening)
+      if (allocated(f%body%hist_old)) then
         call body_input(m, e, f%u, ein, nodes, f%body%dtemp, nlgeom=f%body%nlgeom, hist=f%body%hist_old(:, :, e))
       else
         call body_input(m, e, f%u, ein, nodes)
