@@ -195,6 +195,11 @@ def test_pretensioned_strip_follows_the_tension():
             assert abs(err) < 5e-4, (stretch, n, r["eigenvalue"], exact)
         first.append(rows[0]["eigenvalue"])
     assert first[0] < first[1] < first[2], first
+    # CalculiX's idiom for prestressed modes, *STEP, PERTURBATION: the same
+    deck = strip(3.0).replace("*STEP\n*FREQUENCY", "*STEP, PERTURBATION\n*FREQUENCY")
+    assert "PERTURBATION" in deck
+    same, _ = eigen_rows(run_deck("freq_strip_perturbation", deck).ok())
+    assert [r["eigenvalue"] for r in same] == [r["eigenvalue"] for r in rows]
 
 
 def blocks(joint, gap=0.0, pressure=10.0, penalty=None, preload=True):

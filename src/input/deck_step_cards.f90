@@ -5,7 +5,7 @@
 submodule (deck_parser) deck_step_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
-  use deck_input, only: param_value, has_param, deck_warning
+  use deck_input, only: param_value, has_param, deck_warning, is_keyword
   use deck_cursor, only: max_increments, read_time_line, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, is_int, &
                          need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
@@ -373,18 +373,41 @@ contains
   !> state the steps before it leave. As the first step (CalculiX then
   !> perturbs the unloaded, undeformed model) it is a linear step: read as
   !> one, NLGEOM off for it (CalculiX's answer, measured). After other
-  !> steps cfe2d has no base state to perturb about: an error.
+  !> steps only a *FREQUENCY step has that base state (a frequency step
+  !> always takes the tangent of the state before it, CalculiX's prestressed
+  !> modes); a static one is an error.
   subroutine perturbation_step(p, kw)
     type(parser_t), intent(inout) :: p
     type(keyword_t), intent(in) :: kw
-    if (p%nsteps > 0) call err(p, 'PERTURBATION after another step (a linear perturbation about the state ' // &
-      'it leaves) is not implemented; as the first step it is a linear step')
+    if (p%nsteps > 0) then
+      if (frequency_follows(p)) return
+      call err(p, 'PERTURBATION after another step (a linear perturbation about the state ' // &
+        'it leaves) is implemented for *FREQUENCY only; as the first step it is a linear step')
+    end if
     if (has_param(kw, 'NLGEOM')) then
       if (to_upper(param_value(kw, 'NLGEOM')) /= 'NO') call err(p, 'PERTURBATION and NLGEOM exclude each ' // &
                                                                    'other (a perturbation step is linear)')
     end if
     p%nlgeom = .false.
   end subroutine perturbation_step
+
+  !> Is the procedure of the step opened at line p%i a *FREQUENCY (the
+  !> first keyword line up to *END STEP that names one)?
+  logical function frequency_follows(p)
+    type(parser_t), intent(in) :: p
+    character(len=:), allocatable :: t
+    integer :: k
+    frequency_follows = .false.
+    do k = p%i + 1, p%deck%n
+      if (.not. is_keyword(p%deck%lines(k)%text)) cycle
+      t = to_upper(adjustl(p%deck%lines(k)%text))
+      if (index(t, '*END STEP') == 1 .or. index(t, '*ENDSTEP') == 1 .or. index(t, '*STATIC') == 1) return
+      if (index(t, '*FREQUENCY') == 1) then
+        frequency_follows = .true.
+        return
+      end if
+    end do
+  end function frequency_follows
 
   !> Purpose: *STATIC: `initial increment, time period[, min, max]`
   !> (default 1, 1). A linear step runs period / increment equal
