@@ -20,6 +20,7 @@ module frequency_step
   use kinds, only: dp
   use strings, only: itoa, rtoa
   use messages, only: fatal
+  use growable, only: append, grow
   use model
   use element_catalogue, only: catalogue
   use element_interface, only: elem_in_t, elem_out_t, cfe_in_t, cfe_out_t, max_en, act_tangent
@@ -69,7 +70,9 @@ contains
   !> field f (the driver's first field); obs are told the step, one
   !> increment per mode and the step's summary.
   !> Arguments: total_time the total time at the step's start; timing
-  !> gets the step's assembly, factorisation and results times.
+  !> gets the step's results and output times (the assembly and the
+  !> eigensolver, factorisation included, go to the field's timing, which
+  !> its finish reports as assembly and factor).
   subroutine run_frequency_step(m, is, f, obs, total_time, timing)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
@@ -84,7 +87,8 @@ contains
     type(modes_t) :: modes
     type(step_info_t) :: info
     type(step_summary_t) :: summary
-    real(dp) :: started, t0
+    real(dp) :: started, t0, total(3)
+    real(dp), allocatable :: tab(:, :)
     integer :: k
     started = wall_time()
     select type (f)
@@ -95,7 +99,7 @@ contains
       t0 = wall_time()
       call number_dofs(m, f%cs, ls%presc, m%solver, m%ordering, dm, sys, constraints=f%mpc)
       call gather_groups(m, f, dm, gr)
-      timing%assembly = timing%assembly + (wall_time() - t0)
+      f%eq%timing%assembly = f%eq%timing%assembly + (wall_time() - t0)
       info%step = is
       info%equations = dm%neq
       info%prescribed = count(ls%presc)
@@ -106,9 +110,9 @@ contains
       end do
       t0 = wall_time()
       call solve_modes(m, is, gr, dm%neq, sys, modes)
-      timing%factor = timing%factor + (wall_time() - t0)
-      call tell_note(obs, eigenvalue_table(m, is, gr, dm, modes))
-      call report_modes(m, is, f, ls, dm, modes, total_time, obs, timing, summary)
+      f%eq%timing%factor = f%eq%timing%factor + (wall_time() - t0)
+      call tell_note(obs, eigenvalue_table(m, is, gr, dm, modes, tab, total))
+      call report_modes(m, is, f, ls, dm, modes, tab, total, total_time, obs, timing, summary)
     class default
       call fatal('*FREQUENCY: the step needs the displacement field (not a heat transfer deck)')
     end select
@@ -128,12 +132,15 @@ contains
     type(displacement_field_t), intent(in) :: f
     type(dofmap_t), intent(in) :: dm
     type(groups_t), intent(out) :: gr
-    integer :: g, ng, nen, i, nd
+    integer :: g, ng, nen, i, nd, neqs, nk, nm
     integer, allocatable :: nodes(:), geq(:)
     real(dp), allocatable :: ke(:, :), me(:, :), t(:, :)
     real(dp) :: total_mass
     ng = m%ne + f%cs%n
-    allocate(gr%xeq(ng + 1), gr%kptr(ng + 1), gr%eqs(0), gr%kv(0), gr%mv(0))
+    allocate(gr%xeq(ng + 1), gr%kptr(ng + 1))
+    neqs = 0
+    nk = 0
+    nm = 0
     gr%xeq(1) = 1
     gr%kptr(1) = 1
     total_mass = 0.0_dp
@@ -155,13 +162,19 @@ contains
         end do
       end if
       nd = size(geq)
-      gr%eqs = [gr%eqs, geq]
-      gr%kv = [gr%kv, reshape(ke, [nd * nd])]
-      gr%mv = [gr%mv, reshape(me, [nd * nd])]
+      call append(gr%eqs, neqs, geq)
+      call append(gr%kv, nk, reshape(ke, [nd * nd]))
+      call append(gr%mv, nm, reshape(me, [nd * nd]))
       gr%xeq(g + 1) = gr%xeq(g) + nd
       gr%kptr(g + 1) = gr%kptr(g) + int(nd, 8)**2
       deallocate(geq)
     end do
+    call grow(gr%eqs, 1)
+    call grow(gr%kv, 1)
+    call grow(gr%mv, 1)
+    gr%eqs = gr%eqs(1:neqs)
+    gr%kv = gr%kv(1:nk)
+    gr%mv = gr%mv(1:nm)
     if (.not. total_mass > 0.0_dp) call fatal('*FREQUENCY: the model has no mass (a *DENSITY in the ' // &
       'materials of its elements, or point masses: *MASS on MASS elements)')
   end subroutine gather_groups
@@ -386,12 +399,17 @@ contains
   !> factors phi^T M r and effective modal masses (phi^T M r)^2 for the
   !> rigid motions r of the free dofs: x, y and the rotation about z
   !> through the origin, r = (-y, x); their totals r^T M r last.
-  function eigenvalue_table(m, is, gr, dm, modes) result(text)
+  !> Arguments: tab(6, modes%n) returns the eigenvalue, omega, frequency
+  !> and participation factors of each mode, total the total effective
+  !> masses (the .dat's tables, increment_results_t's modes).
+  function eigenvalue_table(m, is, gr, dm, modes, tab, total) result(text)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
     type(groups_t), intent(in) :: gr
     type(dofmap_t), intent(in) :: dm
     type(modes_t), intent(in) :: modes
+    real(dp), allocatable, intent(out) :: tab(:, :)
+    real(dp), intent(out) :: total(3)
     character(len=:), allocatable :: text
     real(dp), allocatable :: r(:, :), mr(:, :)
     real(dp) :: gam(3)
@@ -399,20 +417,25 @@ contains
     character(len=*), parameter :: nl = new_line('a')
     call rigid_motions(m, dm, r)
     call mass_times(gr, r, mr)
+    allocate(tab(6, modes%n))
+    do j = 1, 3
+      total(j) = dot_product(r(:, j), mr(:, j))
+    end do
     text = '--- EIGENVALUES step=' // itoa(is) // nl // 'mode eigenvalue omega frequency ' // &
            'participation_x participation_y participation_rz mass_x mass_y mass_rz'
     do k = 1, modes%n
       do j = 1, 3
         gam(j) = dot_product(modes%vec(:, k), mr(:, j))
       end do
+      tab(:, k) = [modes%lam(k), sqrt(max(modes%lam(k), 0.0_dp)), frequency_of(modes%lam(k)), gam]
       text = text // nl // itoa(k) // ' ' // rtoa(modes%lam(k), 9) // ' ' // &
              rtoa(sqrt(max(modes%lam(k), 0.0_dp)), 9) // ' ' // rtoa(frequency_of(modes%lam(k)), 9) // ' ' // &
              rtoa(gam(1), 9) // ' ' // rtoa(gam(2), 9) // ' ' // rtoa(gam(3), 9) // ' ' // &
              rtoa(gam(1)**2, 9) // ' ' // rtoa(gam(2)**2, 9) // ' ' // rtoa(gam(3)**2, 9)
     end do
     text = text // nl // '--- TOTAL EFFECTIVE MASS step=' // itoa(is) // nl // 'mass_x mass_y mass_rz' // nl // &
-           rtoa(dot_product(r(:, 1), mr(:, 1)), 9) // ' ' // rtoa(dot_product(r(:, 2), mr(:, 2)), 9) // ' ' // &
-           rtoa(dot_product(r(:, 3), mr(:, 3)), 9) // nl // '--- EIGENSOLVER step=' // itoa(is) // nl // &
+           rtoa(total(1), 9) // ' ' // rtoa(total(2), 9) // ' ' // rtoa(total(3), 9) // nl // &
+           '--- EIGENSOLVER step=' // itoa(is) // nl // &
            'item value' // nl // 'method ' // modes%method
     if (len_trim(m%steps(is)%freq_solver) > 0) text = text // nl // 'deck_solver ' // &
       trim(m%steps(is)%freq_solver) // ' (read; cfe2d''s eigensolver is the method above)'
@@ -465,15 +488,16 @@ contains
   !> Purpose: each mode as an increment of the step to the observers: u
   !> the mode of unit generalised mass (the dependent dofs from the
   !> independent ones), no reactions, its step time the frequency in
-  !> cycles/time; the summary's counts.
-  subroutine report_modes(m, is, f, ls, dm, modes, total_time, obs, timing, summary)
+  !> cycles/time; the first carries the step's table tab(6, modes) and
+  !> total effective masses (CalculiX's .dat); the summary's counts.
+  subroutine report_modes(m, is, f, ls, dm, modes, tab, total, total_time, obs, timing, summary)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
     type(displacement_field_t), intent(in) :: f
     type(load_state_t), intent(in) :: ls
     type(dofmap_t), intent(in) :: dm
     type(modes_t), intent(in) :: modes
-    real(dp), intent(in) :: total_time
+    real(dp), intent(in) :: tab(:, :), total(3), total_time
     type(observer_ref_t), intent(in) :: obs(:)
     type(run_timing_t), intent(inout) :: timing
     type(step_summary_t), intent(inout) :: summary
@@ -495,6 +519,10 @@ contains
       call expand_dependent(dm, u)
       call compute_increment_results(m, is, k, frequency_of(modes%lam(k)), total_time, 0, u, rf, f%cs, &
                                      ls%set_ids, res, counts)
+      if (k == 1) then
+        res%modes = tab
+        res%modal_total = total
+      end if
       t1 = wall_time()
       do j = 1, size(obs)
         call obs(j)%o%increment_done(m, res)
