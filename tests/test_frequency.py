@@ -37,7 +37,13 @@ stiffening under NLGEOM, closed contact as it stands, open contact free).
    to its 7 printed digits; the eigenvalues to 1 % (CalculiX expands
    CPS8 to 3D C3D20R bricks, another element: measured 0.78 %, 0.76 %,
    0.001 %, 0.74 %); cfe2d's .dat has CalculiX's layout line for line.
-7. The card: its errors name their line.
+7. An axisymmetric CAX8 ring (radius R = 100, 1 x 1 section, nu = 0):
+   the breathing mode lambda = E / (rho R^2) of a thin ring (the mass
+   2 pi r dA: 1e-4, the section's size (w / R)^2), and with point masses
+   m at the five mid-height nodes (each the whole ring's mass there, as
+   CalculiX counts axisymmetric masses): lambda = (2 pi E A / R) /
+   (2 pi R rho A + 5 m), the same bound.
+8. The card: its errors name their line.
 """
 import math
 import os
@@ -293,6 +299,38 @@ def test_cantilever_against_calculix():
         else:
             assert a == b, (a, b)
     assert dat[-2].split()[0:2] == lines[-2].split()[0:2] and dat[-2].split()[5] == lines[-2].split()[5], dat[-2]
+
+
+def ring(masses=None, R=100.0):
+    """A CAX8 ring section [R - 1/2, R + 1/2] x [0, 1] (2 x 2), held
+    axially at one corner; masses: point masses at the mid-height nodes."""
+    m = Mesh("Q8", 2, 2, lambda s, t: (R - 0.5 + s / 2, t / 2))
+    out = ["*NODE, NSET=ALLN"] + [f"{k}, {x!r}, {y!r}" for k, (x, y) in m.nodes.items()]
+    out.append("*ELEMENT, TYPE=CAX8, ELSET=RING")
+    out += [f"{i + 1}, " + ", ".join(map(str, e)) for i, e in enumerate(m.elements)]
+    mid = [n for n, (x, y) in m.nodes.items() if abs(y - 0.5) < 1e-12]
+    cards = []
+    if masses:
+        out += ["*ELEMENT, TYPE=MASS, ELSET=PM"] + [f"{1000 + i}, {n}" for i, n in enumerate(mid)]
+        cards = ["*MASS, ELSET=PM", f"{masses}"]
+    out += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{E}, 0.", "*DENSITY", f"{RHO}",
+            "*SOLID SECTION, ELSET=RING, MATERIAL=STEEL"] + cards
+    out += ["*BOUNDARY", f"{m.side('bottom')[0]}, 2", "*STEP", "*FREQUENCY", "2", "*END STEP"]
+    return "\n".join(out) + "\n", len(mid)
+
+
+def test_axisymmetric_ring_breathing():
+    R, A = 100.0, 1.0
+    deck, _ = ring()
+    lam = eigen_rows(run_deck("freq_ring", deck).ok())[0][1]["eigenvalue"]
+    print(f"ring: breathing lambda / (E / rho R^2) - 1 = {lam / (E / (RHO * R * R)) - 1:+.2e}")
+    assert abs(lam / (E / (RHO * R * R)) - 1) < 1e-4, lam
+    deck, n = ring(masses=1e-6)
+    assert n == 5
+    lam = eigen_rows(run_deck("freq_ring_masses", deck).ok())[0][1]["eigenvalue"]
+    exact = (2 * math.pi * E * A / R) / (2 * math.pi * R * RHO * A + n * 1e-6)
+    print(f"ring with masses: breathing lambda / closed form - 1 = {lam / exact - 1:+.2e}")
+    assert abs(lam / exact - 1) < 1e-4, (lam, exact)
 
 
 def test_frequency_card_errors():
