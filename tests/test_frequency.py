@@ -353,6 +353,11 @@ def test_frequency_card_errors():
     line = [i for i, t in enumerate(good.replace("*FREQUENCY\n2", "*FREQUENCY\n0").splitlines(), 1) if t == "0"][0]
     run = run_deck("freq_bad", good.replace("*FREQUENCY\n2", "*FREQUENCY\n0"))
     assert f":{line}: error" in run.stderr, run.stderr
+    # no mass: named at the *FREQUENCY line
+    bad = good.replace("*DENSITY\n7.85e-09\n", "")
+    line = bad.splitlines().index("*FREQUENCY") + 1
+    run = run_deck("freq_bad", bad)
+    assert f"freq_bad.inp:{line}: error: *FREQUENCY: the model has no mass" in run.stderr, run.stderr
 
 
 def test_debug_build_prints_the_same_dat():

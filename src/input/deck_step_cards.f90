@@ -451,6 +451,7 @@ contains
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     integer :: n
+    logical :: massive
     call allow_params(p, kw, 'STORAGE,SOLVER,GLOBAL,CYCMPC,MATRIXSTORAGE')
     associate(s => m%steps(p%step))
       if (s%period >= 0.0_dp .or. s%frequency) call err(p, 'second procedure in one step')
@@ -476,6 +477,16 @@ contains
           call err(p, 'the upper frequency must be positive and above the lower one')
       end if
       if (next_data(p)) call err(p, '*FREQUENCY takes one data line')
+      ! (materials are read ahead, sections precede the steps); named at
+      ! the keyword line, the one before its data line
+      massive = .false.
+      if (allocated(m%materials) .and. p%nmat > 0) massive = any(m%materials(1:p%nmat)%has_density)
+      if (allocated(m%sections) .and. p%nsec > 0) massive = massive .or. any(m%sections(1:p%nsec)%point_mass)
+      if (.not. massive) then
+        p%i = p%i - 1
+        call err(p, '*FREQUENCY: the model has no mass (a *DENSITY in the materials of its elements, or ' // &
+                 'point masses: *MASS on MASS elements)')
+      end if
     end associate
   end subroutine read_frequency
 
