@@ -375,3 +375,15 @@ def test_debug_build_prints_the_same_dat():
         a = open(os.path.join(os.path.dirname(run.listing_path), base)).read()
         b = open(os.path.join(out, base)).read()
         assert a == b and "E I G E N V A L U E" in a, name
+
+
+def test_print_card_without_quantities_prints_nothing():
+    """CalculiX's spring4 ends its *FREQUENCY step with a *NODE PRINT
+    without a data line, which CalculiX reads as nothing to print: a
+    warning at the card, the run goes on, no NODE U block."""
+    deck = chain(3, 1000.0, 2.0).replace("*NODE FILE\nU\n", "*NODE PRINT, NSET=ALLN\n")
+    run = run_deck("freq_empty_print", deck).ok()
+    line = deck.splitlines().index("*NODE PRINT, NSET=ALLN") + 1
+    assert f"freq_empty_print.inp:{line}: warning: *NODE PRINT has no output quantities" in run.stderr, run.stderr
+    assert not any(inc.has("NODE U", set="ALLN") for inc in run.listing.increments)
+    assert len(eigen_rows(run)[0]) == 3

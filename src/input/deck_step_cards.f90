@@ -391,6 +391,14 @@ contains
     p%nlgeom = .false.
   end subroutine perturbation_step
 
+  !> Is the line after p%i a data line (not a keyword line, not the end)?
+  logical function data_follows(p)
+    type(parser_t), intent(in) :: p
+    data_follows = .false.
+    if (p%i + 1 > p%deck%n) return
+    data_follows = .not. is_keyword(p%deck%lines(p%i + 1)%text)
+  end function data_follows
+
   !> Is the procedure of the step opened at line p%i a *FREQUENCY (the
   !> first keyword line up to *END STEP that names one)?
   logical function frequency_follows(p)
@@ -659,6 +667,14 @@ contains
     end if
     call ignored_params(p, kw, r)
     keep = request_set(p, m, kw, r)
+    if (.not. r%to_file .and. .not. data_follows(p)) then
+      ! a print card without quantities: CalculiX prints nothing for it
+      ! (its test deck spring4), its FREQUENCY= still counts
+      call deck_warning(p%deck, p%i, '*' // kw%name // ' has no output quantities (no data line): it prints ' // &
+                        'nothing, as in CalculiX')
+      call output_schedule(p, m, kw, card, every)
+      return
+    end if
     call request_quantities(p, kw, r)
     call output_schedule(p, m, kw, card, every)
     if (.not. keep .or. every == 0) return
