@@ -43,7 +43,11 @@ stiffening under NLGEOM, closed contact as it stands, open contact free).
    m at the five mid-height nodes (each the whole ring's mass there, as
    CalculiX counts axisymmetric masses): lambda = (2 pi E A / R) /
    (2 pi R rho A + 5 m), the same bound.
-8. The card: its errors name their line.
+8. The card: its errors name their line. The frequency range: the nev
+   lowest modes at or above the lower frequency (the shift (2 pi
+   lower)^2 inside the spectrum: LAPACK and ARPACK) and up to the upper
+   one; the chain's exact values and the L / H = 100 cantilever's modes 2
+   to 4 of a run without bounds (1e-6: the model's conditioning).
 9. The debug build (make debug) on the chain and CalculiX's cantilever:
    the same .dat byte for byte (round-off below 1e-12 of a mode's largest
    component and participation below 1e-10 of its total are printed as
@@ -387,3 +391,25 @@ def test_print_card_without_quantities_prints_nothing():
     assert f"freq_empty_print.inp:{line}: warning: *NODE PRINT has no output quantities" in run.stderr, run.stderr
     assert not any(inc.has("NODE U", set="ALLN") for inc in run.listing.increments)
     assert len(eigen_rows(run)[0]) == 3
+
+
+def test_frequency_range():
+    n, k, mass = 5, 1000.0, 2.0
+    exact = [4 * k / mass * math.sin((2 * j - 1) * math.pi / (2 * (2 * n + 1))) ** 2 for j in range(1, n + 1)]
+    f = [math.sqrt(x) / (2 * math.pi) for x in exact]
+    base = chain(n, k, mass)
+    for line, want in ((f"2, {0.5 * (f[1] + f[2])}", exact[2:4]), (f"5, , {0.5 * (f[1] + f[2])}", exact[:2]),
+                       (f"2, {0.5 * (f[0] + f[1])}, {0.5 * (f[1] + f[2])}", exact[1:2]),
+                       (f"3, {f[4] * 1.1}", [])):
+        rows, _ = eigen_rows(run_deck("freq_range", base.replace("*FREQUENCY\n5", "*FREQUENCY\n" + line)).ok())
+        got = [r["eigenvalue"] for r in rows]
+        assert len(got) == len(want) and all(abs(a / b - 1) < 1e-8 for a, b in zip(got, want)), (line, got, want)
+    # the sparse path with the shift inside the spectrum (CHOLMOD's factor of
+    # an indefinite K - sigma M falls back to UMFPACK)
+    free = [r["eigenvalue"] for r in eigen_rows(run_deck("freq_range_all", beam(100, 4, L=100.0, nev=4)).ok())[0]]
+    f1 = math.sqrt(free[0]) / (2 * math.pi)
+    rows, method = eigen_rows(run_deck("freq_range_arpack", beam(100, 4, L=100.0, nev=3).replace(
+        "*FREQUENCY\n3", f"*FREQUENCY\n3, {2 * f1}")).ok())
+    assert "ARPACK" in method, method
+    got = [r["eigenvalue"] for r in rows]
+    assert len(got) == 3 and all(abs(a / b - 1) < 1e-6 for a, b in zip(got, free[1:])), (got, free)
