@@ -22,8 +22,7 @@ module frequency_step
   use strings, only: itoa, rtoa
   use messages, only: fatal
   use growable, only: append, grow
-  use model
-  use element_catalogue, only: catalogue
+  use model, only: model_t, step_t, carries_stiffness, is_mass, is_truss, elem_nodes, elem_thickness
   use element_interface, only: elem_in_t, elem_out_t, cfe_in_t, cfe_out_t, max_en, act_tangent
   use element_library, only: element_routine
   use element_mass, only: mass_matrix
