@@ -138,7 +138,7 @@ def test_spring_mass_chain_exact():
     every eigenvalue exact, participation x sums to the total mass, and
     one .frd result block per mode."""
     n, k, mass = 5, 1000.0, 2.0
-    run = run_deck("freq_chain", chain(n, k, mass)).ok()
+    run = run_deck("freq_chain", chain(n, k, mass), args=("--vtu",)).ok()
     rows, method = eigen_rows(run)
     assert "LAPACK" in method, method
     assert len(rows) == n
@@ -151,6 +151,12 @@ def test_spring_mass_chain_exact():
     assert abs(total_mass(run)["mass_x"] - n * mass) < 1e-8 * n * mass
     frd = open(os.path.join(os.path.dirname(run.listing_path), "freq_chain.frd")).read()
     assert len(re.findall(r"^ -4  DISP", frd, re.M)) == n
+    # each mode's value in the .frd and its time in the .pvd: its frequency
+    values = [float(v) for v in re.findall(r"^  100CL\s+\d+\s+(\S+)", frd, re.M)]
+    pvd = open(os.path.join(os.path.dirname(run.listing_path), "freq_chain.pvd")).read()
+    times = [float(v) for v in re.findall(r'timestep="([^"]+)"', pvd)]
+    for j, r in enumerate(rows):
+        assert abs(values[j] / r["frequency"] - 1) < 1e-5 and abs(times[j] / r["frequency"] - 1) < 1e-8
 
 
 def test_cantilever_converges_to_euler_bernoulli():

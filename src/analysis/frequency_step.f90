@@ -111,7 +111,7 @@ contains
       call solve_modes(m, is, gr, dm%neq, sys, modes)
       f%eq%timing%factor = f%eq%timing%factor + (wall_time() - t0)
       call tell_note(obs, eigenvalue_table(m, is, gr, dm, modes, tab, total))
-      call report_modes(m, is, f, ls, dm, modes, tab, total, total_time, obs, timing, summary)
+      call report_modes(m, is, f, ls, dm, modes, tab, total, obs, timing, summary)
     class default
       call fatal('*FREQUENCY: the step needs the displacement field (not a heat transfer deck)')
     end select
@@ -502,24 +502,24 @@ contains
 
   !> Purpose: each mode as an increment of the step to the observers: u
   !> the mode of unit generalised mass (the dependent dofs from the
-  !> independent ones), no reactions, its step time the frequency in
-  !> cycles/time; the first carries the step's table tab(6, modes) and
+  !> independent ones), no reactions, its step time and total time the
+  !> frequency in cycles/time (CalculiX's .frd value of a mode); the first carries the step's table tab(6, modes) and
   !> total effective masses (CalculiX's .dat); the summary's counts.
-  subroutine report_modes(m, is, f, ls, dm, modes, tab, total, total_time, obs, timing, summary)
+  subroutine report_modes(m, is, f, ls, dm, modes, tab, total, obs, timing, summary)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
     type(displacement_field_t), intent(in) :: f
     type(load_state_t), intent(in) :: ls
     type(dofmap_t), intent(in) :: dm
     type(modes_t), intent(in) :: modes
-    real(dp), intent(in) :: tab(:, :), total(3), total_time
+    real(dp), intent(in) :: tab(:, :), total(3)
     type(observer_ref_t), intent(in) :: obs(:)
     type(run_timing_t), intent(inout) :: timing
     type(step_summary_t), intent(inout) :: summary
     type(increment_results_t) :: res
     type(element_counts_t) :: counts
     real(dp), allocatable :: u(:, :), rf(:, :)
-    real(dp) :: t0, t1
+    real(dp) :: t0, t1, freq
     integer :: k, a, d, j
     allocate(u(2, m%nn), rf(2, m%nn))
     rf = 0.0_dp
@@ -535,8 +535,10 @@ contains
       ! different in every build) are 0
       where (abs(u) <= 1.0e-12_dp * maxval(abs(u))) u = 0.0_dp
       call expand_dependent(dm, u)
-      call compute_increment_results(m, is, k, frequency_of(modes%lam(k)), total_time, 0, u, rf, f%cs, &
-                                     ls%set_ids, res, counts)
+      ! step time and total time the frequency: the value CalculiX's .frd
+      ! gives a mode (and the .pvd's time of its file)
+      freq = frequency_of(modes%lam(k))
+      call compute_increment_results(m, is, k, freq, freq, 0, u, rf, f%cs, ls%set_ids, res, counts)
       if (k == 1) then
         res%modes = tab
         res%modal_total = total
