@@ -21,6 +21,7 @@ module analysis
   use analysis_field, only: field_ref_t
   use displacement_field, only: displacement_field_t
   use temperature_field, only: temperature_field_t
+  use frequency_step, only: run_frequency_step
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use messages, only: fatal
   use contact_heat, only: contact_heat_t, contact_heat_build, has_contact_heat
@@ -129,6 +130,11 @@ contains
     type(step_summary_t) :: summary
     integer :: i, ninc, k
     real(dp) :: t0, started
+    ! a *FREQUENCY step: the modes about the state the steps before leave
+    if (m%steps(is)%frequency) then
+      call run_frequency_step(m, is, rs%fields(1)%f, obs, rs%total_time, rs%timing)
+      return
+    end if
     started = wall_time()
     rs%nonlinear = .false.
     if (m%coupled) rs%active = [m%steps(is)%heat, m%steps(is)%coupled .or. .not. m%steps(is)%heat]

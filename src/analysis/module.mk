@@ -1,8 +1,8 @@
 # Layer: analysis. Modules and the objects of the modules each one uses.
 MODULES += analysis analysis_events analysis_field assembly body_elements condensed_contact condensed_equilibrium \
-           contact_repairing displacement_field dof_numbering equilibrium equilibrium_common equilibrium_loop \
+           contact_repairing displacement_field dof_numbering frequency_step equilibrium equilibrium_common equilibrium_loop \
            increment_results iteration_state load_state newton_control temperature_field
-$(OBJDIR)/analysis.o: $(OBJDIR)/temperature_field.o $(OBJDIR)/analysis_events.o $(OBJDIR)/analysis_field.o $(OBJDIR)/contact_heat.o $(OBJDIR)/displacement_field.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
+$(OBJDIR)/analysis.o: $(OBJDIR)/frequency_step.o $(OBJDIR)/temperature_field.o $(OBJDIR)/analysis_events.o $(OBJDIR)/analysis_field.o $(OBJDIR)/contact_heat.o $(OBJDIR)/displacement_field.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/analysis_events.o: $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
 $(OBJDIR)/analysis_field.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
 $(OBJDIR)/assembly.o: $(OBJDIR)/body_elements.o $(OBJDIR)/cfe_element.o $(OBJDIR)/contact.o $(OBJDIR)/continuum_element.o $(OBJDIR)/distributed_loads.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/element_interface.o $(OBJDIR)/element_library.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/shape_functions.o $(OBJDIR)/strings.o
@@ -20,3 +20,4 @@ $(OBJDIR)/iteration_state.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/assembly.o $(
 $(OBJDIR)/load_state.o: $(OBJDIR)/assembly.o $(OBJDIR)/distributed_loads.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/newton_control.o: $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/temperature_field.o: $(OBJDIR)/analysis_events.o $(OBJDIR)/analysis_field.o $(OBJDIR)/contact_heat.o $(OBJDIR)/element_catalogue.o $(OBJDIR)/heat_element.o $(OBJDIR)/shape_functions.o $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
+$(OBJDIR)/frequency_step.o: $(OBJDIR)/growable.o $(OBJDIR)/analysis_events.o $(OBJDIR)/analysis_field.o $(OBJDIR)/assembly.o $(OBJDIR)/body_elements.o $(OBJDIR)/cfe_element.o $(OBJDIR)/contact.o $(OBJDIR)/displacement_field.o $(OBJDIR)/dof_numbering.o $(OBJDIR)/eigen_solver.o $(OBJDIR)/element_interface.o $(OBJDIR)/element_library.o $(OBJDIR)/element_mass.o $(OBJDIR)/increment_results.o $(OBJDIR)/kinds.o $(OBJDIR)/linear_solver.o $(OBJDIR)/load_state.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/sparse_matrix.o $(OBJDIR)/strings.o

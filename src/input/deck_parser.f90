@@ -173,6 +173,11 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_static
+    module subroutine read_frequency(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_frequency
     module subroutine read_request(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -626,6 +631,7 @@ contains
     case ('DENSITY');       call in_step(p, kw, .false.); call read_density(p, m, kw)
     case ('STEP');          call read_step(p, m, kw)
     case ('STATIC');        call in_step(p, kw, .true.); call read_static(p, m, kw)
+    case ('FREQUENCY');     call in_step(p, kw, .true.); call read_frequency(p, m, kw)
     case ('END STEP');      call in_step(p, kw, .true.); call read_end_step(p, m, kw)
     case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'CONTACT PRINT', 'CONTACT FILE')
       call in_step(p, kw, .true.)

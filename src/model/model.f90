@@ -316,6 +316,15 @@ module model
     type(cload_t), allocatable :: cfluxes(:)
     type(heat_load_t), allocatable :: dfluxes(:), films(:)
     logical :: new_tbcs = .false., new_cfluxes = .false., new_dfluxes = .false., new_films = .false.
+    !> *FREQUENCY (docs/keywords.md): the natural frequencies of the
+    !> tangent at the state the steps before leave; nev eigenvalues
+    !> nearest the shift (2 pi freq_lower)^2, those outside [freq_lower,
+    !> freq_upper] (cycles/time; < 0: not given) dropped; STORAGE= and
+    !> SOLVER= as written (read and reported).
+    logical :: frequency = .false.
+    integer :: nev = 10
+    real(dp) :: freq_lower = -1.0_dp, freq_upper = -1.0_dp
+    character(len=16) :: freq_storage = '', freq_solver = ''
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.
