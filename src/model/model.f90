@@ -337,6 +337,14 @@ module model
     !> SYMMETRIC: the pair made for the second pass (master and slave
     !> swapped) and the other way round; 0 for a single pass.
     integer :: twin = 0
+    !> Archard wear (*WEAR in its *SURFACE INTERACTION; docs/contact.md,
+    !> "Wear"): wear (any wear), the coefficients of the slave and the
+    !> master surface (worn depth per unit pressure and unit slip) and the
+    !> cycle-jump factor (each computed increment's wear counts wear_jump
+    !> times).
+    logical :: wear = .false.
+    real(dp) :: wear_k(2) = 0.0_dp
+    real(dp) :: wear_jump = 1.0_dp
     !> The coupling: node-to-segment (the paper's CFE at each slave node,
     !> or Gauss points of 3-node slave faces) or segment-to-segment (a
     !> dual mortar CFE per slave node, the gap integrated over the slave
