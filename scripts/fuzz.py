@@ -228,7 +228,8 @@ def test_seeds(log):
     makers = [("tests/bad_decks_good", _good_deck), ("tests/contact_push", _contact_push),
               ("tests/contact_force", _contact_force), ("tests/contact_unsettled", _contact_unsettled),
               ("tests/features_include", _features), ("tests/patch_tri", _patch_tri),
-              ("tests/contact_friction", _contact_friction), ("tests/calculix_friction", _calculix_friction)] \
+              ("tests/contact_friction", _contact_friction), ("tests/calculix_friction", _calculix_friction),
+              ("tests/wear_punch", _wear_punch)] \
         + CARD_MAKERS + MORTAR_MAKERS
     for name, make in makers:
         try:
@@ -248,6 +249,15 @@ def _good_deck():
 def _contact_push():
     import test_contact as tc
     return "push.inp", {"push.inp": tc.blocks_deck([tc.push_step(3 * tc.G0, 2)])}
+
+
+def _wear_punch():
+    """test_wear's punch with Archard wear (*WEAR, a PERIODIC amplitude),
+    held at its top only (partial slip), two cycles of 8 increments."""
+    import test_wear as tw
+    deck = tw.punch_deck(rigid=False, nx_base=14, base_span=(-2.0, 12.0), cycles=2, inc=0.125)
+    assert "*WEAR" in deck
+    return "wear.inp", {"wear.inp": deck}
 
 
 def _contact_friction():

@@ -17,7 +17,7 @@ module temperature_field
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use strings, only: itoa, rtoa
-  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, is_continuum, &
+  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, amplitude_at, is_continuum, &
                    elem_nodes, elem_thickness, node_label, elem_label
   use element_catalogue, only: catalogue, max_nodes, max_ip, shape_tri6
   use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient, conductivity_at, temperature_at
@@ -384,30 +384,17 @@ contains
     end if
   end function load_factor
 
-  !> Amplitude ia at step time t (TIME=TOTAL TIME: at the total time),
-  !> linear between its points and constant beyond them.
+  !> Amplitude ia at step time t (TIME=TOTAL TIME: at the total time):
+  !> the model's amplitude_at (tabular or periodic).
   real(dp) function amp_at(f, m, ia, t) result(v)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
     integer, intent(in) :: ia
     real(dp), intent(in) :: t
     real(dp) :: tt
-    integer :: k, n
     tt = t
     if (m%amplitudes(ia)%time == amp_total_time) tt = f%total_time + t
-    associate(at => m%amplitudes(ia)%t, av => m%amplitudes(ia)%a)
-      n = size(at)
-      if (tt <= at(1)) then
-        v = av(1)
-      else if (tt >= at(n)) then
-        v = av(n)
-      else
-        do k = 2, n
-          if (tt <= at(k)) exit
-        end do
-        v = av(k - 1) + (av(k) - av(k - 1)) * (tt - at(k - 1)) / (at(k) - at(k - 1))
-      end if
-    end associate
+    v = amplitude_at(m%amplitudes(ia), tt)
   end function amp_at
 
   !> Purpose: the temperatures of t1: the system (C/dt + K + H) T1 =

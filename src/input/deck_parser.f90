@@ -220,6 +220,10 @@ module deck_parser
       type(parser_t), intent(inout) :: p
       type(keyword_t), intent(in) :: kw
     end subroutine read_friction
+    module subroutine read_wear(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_wear
     module subroutine read_nodal_thickness(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -453,7 +457,7 @@ contains
     type(parser_t), intent(inout) :: p
     character(len=*), intent(in) :: name
     if (name /= 'SURFACE BEHAVIOR' .and. name /= 'FRICTION' .and. name /= 'GAP CONDUCTANCE' .and. &
-        name /= 'GAP HEAT GENERATION') p%interaction = 0
+        name /= 'GAP HEAT GENERATION' .and. name /= 'WEAR') p%interaction = 0
     if (p%coupling_line > 0 .and. name /= 'KINEMATIC' .and. name /= 'DISTRIBUTING') then
       p%i = p%coupling_line
       call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
@@ -656,6 +660,7 @@ contains
     case ('SURFACE INTERACTION'); call in_step(p, kw, .false.); call read_surface_interaction(p, kw)
     case ('SURFACE BEHAVIOR'); call in_step(p, kw, .false.); call read_surface_behavior(p, kw)
     case ('FRICTION');      call in_step(p, kw, .false.); call read_friction(p, kw)
+    case ('WEAR');          call in_step(p, kw, .false.); call read_wear(p, kw)
     case ('NODAL THICKNESS'); call in_step(p, kw, .false.); call read_nodal_thickness(p, m, kw)
     case ('EQUATION');      call in_step(p, kw, .false.); call read_equation(p, m, kw)
     case ('PRE-TENSION SECTION'); call in_step(p, kw, .false.); call read_pretension_section(p, m, kw)

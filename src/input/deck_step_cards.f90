@@ -24,21 +24,23 @@ submodule (deck_parser) deck_step_cards
 contains
 
   !> Purpose: *AMPLITUDE, NAME=: a tabular amplitude, `t1, a1, t2, a2, ...`
-  !> over any number of data lines, times strictly increasing.
+  !> over any number of data lines, times strictly increasing; or
+  !> DEFINITION=PERIODIC, Abaqus' Fourier series (read_periodic).
   module subroutine read_amplitude(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     real(dp), allocatable :: t(:), a(:)
-    character(len=:), allocatable :: name, tm
+    character(len=:), allocatable :: name, tm, def
     integer :: n, k, np, na
     call allow_params(p, kw, 'NAME,TIME,DEFINITION,VALUE')
     name = name_param(p, kw, 'NAME')
     if (find_name(m%amplitudes(1:p%namp)%name, name) > 0) call err(p, 'duplicate amplitude ' // name)
-    if (has_param(kw, 'DEFINITION')) then
-      if (to_upper(param_value(kw, 'DEFINITION')) /= 'TABULAR') call err(p, 'only DEFINITION=TABULAR is implemented')
-    end if
+    def = 'TABULAR'
+    if (has_param(kw, 'DEFINITION')) def = to_upper(param_value(kw, 'DEFINITION'))
+    if (def /= 'TABULAR' .and. def /= 'PERIODIC') &
+      call err(p, 'only DEFINITION=TABULAR and PERIODIC are implemented')
     if (has_param(kw, 'VALUE')) then
       if (to_upper(param_value(kw, 'VALUE')) /= 'ABSOLUTE') call err(p, 'only VALUE=ABSOLUTE is implemented')
     end if
@@ -52,6 +54,10 @@ contains
       else if (tm /= 'STEP TIME') then
         call err(p, 'TIME must be STEP TIME or TOTAL TIME')
       end if
+    end if
+    if (def == 'PERIODIC') then
+      call read_periodic(p, m%amplitudes(p%namp))
+      return
     end if
     allocate(t(0), a(0))
     np = 0
@@ -71,6 +77,42 @@ contains
     m%amplitudes(p%namp)%t = t(1:np)
     m%amplitudes(p%namp)%a = a(1:np)
   end subroutine read_amplitude
+
+  !> Purpose: the data of *AMPLITUDE, DEFINITION=PERIODIC as Abaqus writes
+  !> them: `N, omega, t0, A0` (terms, circular frequency, starting time,
+  !> constant), then `A1, B1, A2, B2, ...` (N pairs over any number of
+  !> lines); the amplitude is model's amplitude_at.
+  !> Arguments: p the parser (on the card); a the amplitude, completed.
+  subroutine read_periodic(p, a)
+    type(parser_t), intent(inout) :: p
+    type(amplitude_t), intent(inout) :: a
+    type(field_t), allocatable :: f(:)
+    real(dp), allocatable :: c(:)
+    integer :: n, k, nt, nc
+    call require_data(p, 'N, omega, t0, A0 of a periodic amplitude')
+    call split_fields(line_text(p), f, n)
+    if (n /= 4) call err(p, '*AMPLITUDE, DEFINITION=PERIODIC first data line needs: N (terms), ' // &
+                         'omega (circular frequency), t0 (starting time), A0 (constant)')
+    nt = get_int(p, f(1), 'number of terms N')
+    if (nt < 1 .or. nt > 10000) call err(p, 'the number of terms N must be between 1 and 10000')
+    a%periodic = .true.
+    a%omega = get_real(p, f(2), 'circular frequency omega')
+    if (.not. a%omega > 0.0_dp) call err(p, 'the circular frequency omega must be positive')
+    a%t0 = get_real(p, f(3), 'starting time t0')
+    a%a0 = get_real(p, f(4), 'constant A0')
+    allocate(c(0))
+    nc = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      do k = 1, n
+        call append(c, nc, get_real(p, f(k), 'Fourier coefficient'))
+      end do
+    end do
+    if (nc /= 2 * nt) call err(p, 'a periodic amplitude of ' // itoa(nt) // ' terms needs ' // itoa(2 * nt) // &
+                               ' coefficients A1, B1, A2, B2, ... after its first data line; found ' // itoa(nc))
+    a%ca = c(1:nc:2)
+    a%cb = c(2:nc:2)
+  end subroutine read_periodic
 
   !> Purpose: *BOUNDARY: prescribed displacements, `node or nset, first
   !> dof[, last dof[, value]]` or a named condition (ENCASTRE, PINNED,

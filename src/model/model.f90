@@ -18,7 +18,7 @@ module model
             is_continuum, carries_stiffness, is_truss, is_spring, is_mass, is_drawn, axisymmetric_model, &
             elem_nodes, elem_thickness, &
             surf_element, surf_node, coupling_nts, coupling_mortar, &
-            amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
+            amp_step_time, amp_total_time, amplitude_at, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
             law_elastic, law_neo_hooke, law_mooney_rivlin, law_deformation_plasticity, max_yield, controls_t, &
             nonlinear_material
@@ -209,10 +209,17 @@ module model
     real(dp) :: point(2) = 0.0_dp
   end type dload_t
 
+  !> *AMPLITUDE: tabular (points t, a: linear between them, constant
+  !> beyond), or DEFINITION=PERIODIC (Abaqus' Fourier series, periodic =
+  !> .true.): a0 + sum_n (ca(n) cos(n omega (t - t0)) + cb(n) sin(n omega
+  !> (t - t0))) from t0 on, a0 before (amplitude_at).
   type :: amplitude_t
     character(len=name_len) :: name = ''
     integer :: time = amp_step_time
     real(dp), allocatable :: t(:), a(:)
+    logical :: periodic = .false.
+    real(dp) :: omega = 0.0_dp, t0 = 0.0_dp, a0 = 0.0_dp
+    real(dp), allocatable :: ca(:), cb(:)
   end type amplitude_t
 
   !> *NODE PRINT / *EL PRINT / *NODE FILE / *EL FILE: a set (0 = all) and
@@ -343,6 +350,14 @@ module model
     !> SYMMETRIC: the pair made for the second pass (master and slave
     !> swapped) and the other way round; 0 for a single pass.
     integer :: twin = 0
+    !> Archard wear (*WEAR in its *SURFACE INTERACTION; docs/contact.md,
+    !> "Wear"): wear (any wear), the coefficients of the slave and the
+    !> master surface (worn depth per unit pressure and unit slip) and the
+    !> cycle-jump factor (each computed increment's wear counts wear_jump
+    !> times).
+    logical :: wear = .false.
+    real(dp) :: wear_k(2) = 0.0_dp
+    real(dp) :: wear_jump = 1.0_dp
     !> The coupling: node-to-segment (the paper's CFE at each slave node,
     !> or Gauss points of 3-node slave faces) or segment-to-segment (a
     !> dual mortar CFE per slave node, the gap integrated over the slave
@@ -809,6 +824,38 @@ contains
       end associate
     end do
   end function elem_label
+
+  !> Purpose: the value of amplitude a at time tt (the step time, or the
+  !> total time for TIME=TOTAL TIME: the caller's choice). Tabular: linear
+  !> between its points, constant beyond its ends. PERIODIC (Abaqus'
+  !> definition): a0 before t0, from t0 on the Fourier series
+  !>   a0 + sum_{n=1}^N [ca(n) cos(n omega (tt - t0)) + cb(n) sin(n omega (tt - t0))].
+  pure real(dp) function amplitude_at(a, tt) result(v)
+    type(amplitude_t), intent(in) :: a
+    real(dp), intent(in) :: tt
+    integer :: k, n
+    real(dp) :: phase
+    if (a%periodic) then
+      v = a%a0
+      if (tt < a%t0) return
+      phase = a%omega * (tt - a%t0)
+      do k = 1, size(a%ca)
+        v = v + a%ca(k) * cos(k * phase) + a%cb(k) * sin(k * phase)
+      end do
+      return
+    end if
+    n = size(a%t)
+    if (tt <= a%t(1)) then
+      v = a%a(1)
+    else if (tt >= a%t(n)) then
+      v = a%a(n)
+    else
+      do k = 2, n
+        if (tt <= a%t(k)) exit
+      end do
+      v = a%a(k - 1) + (a%a(k) - a%a(k - 1)) * (tt - a%t(k - 1)) / (a%t(k) - a%t(k - 1))
+    end if
+  end function amplitude_at
 
   !> Index of a name in a list of names (case already folded), 0 if absent.
   pure integer function find_name(names, name)
