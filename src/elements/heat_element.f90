@@ -20,7 +20,8 @@ module heat_element
   use continuum_element, only: volume_factor
   implicit none
   private
-  public :: heat_volume_arrays, heat_face_arrays, heat_radiation_arrays, heat_gradient, table_at, temperature_at
+  public :: heat_volume_arrays, heat_face_arrays, heat_radiation_arrays, heat_gradient, table_at, conductivity_at, &
+            temperature_at
 
 contains
 
@@ -204,6 +205,14 @@ contains
       v = tab(2:, j - 1) + s * (tab(2:, j) - tab(2:, j - 1))
     end if
   end function table_at
+
+  !> Purpose: the conductivities (k11, k22) of a *CONDUCTIVITY table
+  !> ktab(3, nk) at temperature t (table_at).
+  pure function conductivity_at(ktab, t) result(k)
+    real(dp), intent(in) :: ktab(:, :), t
+    real(dp) :: k(2)
+    k = table_at(ktab, t)
+  end function conductivity_at
 
   !> Purpose: the temperature at natural point xi of an element of type
   !> et with nodal temperatures temp.
