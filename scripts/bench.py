@@ -439,6 +439,7 @@ def main(argv=None):
         contact_accuracy.table(["default", "q8", "ccx"], os.path.join(WORK, "accuracy"), args.repeats, penalties=True)
     nonlinear_table(args.repeats)
     __import__("bench_calculix").table(["nlgeom_hertz", "cattaneo_mindlin", "oring"], args.repeats)
+    __import__("bench_heat").table(repeats=args.repeats)   # heat: a linear transient against CalculiX (bench_heat.py)
     if not args.no_mumps and not args.no_square:
         mumps_square_table(args.repeats)
     __import__("bench_frequency").table(args.repeats)

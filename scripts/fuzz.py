@@ -554,8 +554,21 @@ MORTAR_MAKERS = [("tests/mortar_exact", _mortar_exact), ("tests/mortar_quadratic
                  ("tests/nl_contact_slide", _nl_contact_slide)]
 
 
+def folder_seeds(log):
+    """Seed decks kept as files: each folder of tests/fuzz/seeds/ with a
+    case.txt (main=, expect=), laid out as a saved deck folder."""
+    base = os.path.join(ROOT, "tests", "fuzz", "seeds")
+    seeds = []
+    for name in sorted(os.listdir(base)) if os.path.isdir(base) else []:
+        if os.path.exists(os.path.join(base, name, "case.txt")):
+            deck, meta = load_case(os.path.join(base, name))
+            deck.name, deck.expect = "seeds/" + name, meta.get("expect", "ok-run")
+            seeds.append(deck)
+    return seeds
+
+
 def load_seeds(tmp, log):
-    return example_seeds() + hertz_seeds(tmp, log) + test_seeds(log)
+    return example_seeds() + hertz_seeds(tmp, log) + test_seeds(log) + folder_seeds(log)
 
 
 # ------------------------------------------------------------------------------- mutations

@@ -20,7 +20,8 @@ module temperature_field
   use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, amplitude_at, is_continuum, &
                    elem_nodes, elem_thickness, node_label, elem_label
   use element_catalogue, only: catalogue, max_nodes, max_ip, shape_tri6
-  use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient, conductivity_at, temperature_at
+  use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_radiation_arrays, heat_gradient, table_at, &
+                          temperature_at
   use shape_functions, only: gauss_rule
   use linear_solver, only: linear_system_t, sys_setup, sys_zero, sys_add, sys_factor, sys_solve, factor_ok, &
                            factor_fallback
@@ -43,20 +44,25 @@ module temperature_field
     integer, allocatable :: t_amp(:)                     ! prescribed: amplitude (0: none)
     type(bc_t), allocatable :: tbcs(:)                   ! in force (the step's and the earlier ones)
     type(cload_t), allocatable :: cfluxes(:)
-    type(heat_load_t), allocatable :: dfluxes(:), films(:)
-    !> By conducting element k: its films films(ifilm(xfilm(k):xfilm(k+1)-1))
-    !> and its fluxes dfluxes(iflux(xflux(k):xflux(k+1)-1)).
-    integer, allocatable :: xfilm(:), ifilm(:), xflux(:), iflux(:)
+    type(heat_load_t), allocatable :: dfluxes(:), films(:), radiates(:)
+    !> By conducting element k: its films films(ifilm(xfilm(k):xfilm(k+1)-1)),
+    !> its fluxes dfluxes(iflux(xflux(k):xflux(k+1)-1)) and its radiation
+    !> radiates(irad(xrad(k):xrad(k+1)-1)).
+    integer, allocatable :: xfilm(:), ifilm(:), xflux(:), iflux(:), xrad(:), irad(:)
     type(linear_system_t) :: sys
     integer :: neq = 0, is = 0
     logical :: steady = .true.
+    logical :: automatic = .false.                       ! the step's increments are automatic
     real(dp) :: total_time = 0.0_dp, deltmx = 0.0_dp
     real(dp) :: dt = 0.0_dp, t1 = 0.0_dp                 ! the increment's length and end (step time)
     real(dp) :: factored_dt = -1.0_dp                    ! < 0: no valid factor
     real(dp) :: largest_change = 0.0_dp                  ! of the last solve
     character(len=:), allocatable :: why                 ! why the last solve failed
-    logical :: tabled = .false.                          ! some conductivity is a table (iterations)
-    integer :: factorisations = 0
+    logical :: tabled = .false.                          ! some conductivity or specific heat is a table
+    logical :: radiating = .false.                       ! the step has *RADIATE (Newton iterations)
+    integer :: factorisations = 0                        ! in the current step
+    integer :: run_factorisations = 0                    ! in the run
+    integer :: iterations = 0                            ! solves of the current step, tries included
     real(dp) :: t_factor = 0.0_dp, t_solve = 0.0_dp
     !> Heat through the contact (contact_heat; a coupled run's driver
     !> hands it over, take_contact_heat): couplings numbered after the
@@ -82,11 +88,12 @@ module temperature_field
   integer, parameter :: dof_temperature = 11
   !> The amplitude of a load held from an earlier step (hold_loads).
   integer, parameter :: held = -1
-  !> Fixed-point iterations of a temperature-dependent conductivity: at
-  !> most max_picard, done when no temperature changes by more than
-  !> picard_tolerance times the largest (at least 1).
-  integer, parameter :: max_picard = 100
-  real(dp), parameter :: picard_tolerance = 1.0e-10_dp
+  !> Iterations of a nonlinear increment (a material table: fixed point;
+  !> radiation: Newton): at most max_iterations, done when no temperature
+  !> changes by more than iteration_tolerance times the largest (at
+  !> least 1).
+  integer, parameter :: max_iterations = 100
+  real(dp), parameter :: iteration_tolerance = 1.0e-10_dp
 
 contains
 
@@ -122,9 +129,11 @@ contains
     f%tabled = .false.
     do k = 1, nel
       e = f%elems(k)
-      f%tabled = f%tabled .or. m%materials(m%sections(m%elem_section(e))%material)%nk > 1
+      associate(mat => m%materials(m%sections(m%elem_section(e))%material))
+        f%tabled = f%tabled .or. mat%nk > 1 .or. mat%nc > 1
+      end associate
     end do
-    allocate(f%tbcs(0), f%cfluxes(0), f%dfluxes(0), f%films(0))
+    allocate(f%tbcs(0), f%cfluxes(0), f%dfluxes(0), f%films(0), f%radiates(0))
     timing%setup = timing%setup + (wall_time() - t0)
   end subroutine setup
 
@@ -156,6 +165,11 @@ contains
     f%total_time = total_time
     f%steady = m%steps(is)%steady
     f%deltmx = m%steps(is)%deltmx
+    ! CalculiX's *HEAT TRANSFER without DIRECT; a coupled step's only
+    ! with DELTMX (deck_coupled_cards: the displacements' rules otherwise)
+    associate(s => m%steps(is))
+      f%automatic = .not. s%direct .and. (.not. s%coupled .or. (.not. s%steady .and. s%deltmx > 0.0_dp))
+    end associate
     associate(s => m%steps(is))
       if (is == 1) f%tbcs = pack(m%model_bcs, m%model_bcs%dof == dof_temperature)
       if (s%new_tbcs) f%tbcs = f%tbcs(1:0)
@@ -168,10 +182,15 @@ contains
       if (allocated(s%dfluxes)) f%dfluxes = [pack(f%dfluxes, .not. replaced(f%dfluxes, s%dfluxes)), s%dfluxes]
       if (s%new_films) f%films = f%films(1:0)
       if (allocated(s%films)) f%films = [pack(f%films, .not. replaced(f%films, s%films)), s%films]
+      if (s%new_radiates) f%radiates = f%radiates(1:0)
+      if (allocated(s%radiates)) f%radiates = [pack(f%radiates, .not. replaced(f%radiates, s%radiates)), &
+                                               s%radiates]
     end associate
     call prescribe(f, m)
     call loads_by_element(f, m, f%films%elem, f%xfilm, f%ifilm)
     call loads_by_element(f, m, f%dfluxes%elem, f%xflux, f%iflux)
+    call loads_by_element(f, m, f%radiates%elem, f%xrad, f%irad)
+    f%radiating = size(f%irad) > 0
     call number_temperatures(f, m)
     f%factored_dt = -1.0_dp
     info%equations = f%neq
@@ -242,6 +261,10 @@ contains
     do k = 1, size(f%films)
       f%films(k)%sink = sink_at(f, m, f%films(k))
       f%films(k)%amp = 0
+    end do
+    do k = 1, size(f%radiates)
+      f%radiates(k)%sink = sink_at(f, m, f%radiates(k))
+      f%radiates(k)%amp = 0
     end do
   end subroutine hold_loads
 
@@ -315,12 +338,15 @@ contains
     if (f%neq > 0) call sys_setup(f%sys, m%solver, m%ordering, f%neq, xeq, eqs)
   end subroutine number_temperatures
 
-  !> Purpose: automatic increments (the driver's nonlinear path) in a
-  !> transient step with DELTMX, and where a conductivity is a table (an
-  !> increment whose iterations do not converge is cut back).
+  !> Purpose: the driver's nonlinear path: automatic increments in a step
+  !> without DIRECT, steady or transient (CalculiX's *HEAT TRANSFER: they
+  !> grow 1.5 times after two increments in a row; DELTMX cuts them
+  !> back), and where a material table or radiation makes a step
+  !> nonlinear (an increment whose iterations do not converge is cut
+  !> back; with DIRECT the run stops).
   logical function nonlinear(f)
     class(temperature_field_t), intent(in) :: f
-    nonlinear = (.not. f%steady .and. f%deltmx > 0.0_dp) .or. f%tabled
+    nonlinear = f%automatic .or. f%tabled .or. f%radiating
   end function nonlinear
 
   !> Purpose: the temperature field has no notes on its step.
@@ -398,9 +424,14 @@ contains
   end function amp_at
 
   !> Purpose: the temperatures of t1: the system (C/dt + K + H) T1 =
-  !> C/dt T0 + F(t1) (steady: without C) factorised when dt or the step
-  !> changed, solved; the reaction fluxes; ok false when DELTMX is
-  !> exceeded (automatic increments) or the factorisation failed.
+  !> C/dt T0' + F(t1) (steady: without C; T0' docs/heat.md) solved for
+  !> the correction of the current temperatures, once where it is linear
+  !> (factorised again only when dt or the step changed), iterated where
+  !> a material table (fixed point: the matrices at the temperatures of
+  !> the iteration before) or radiation (Newton: its tangent in the
+  !> matrix) makes it nonlinear; the reaction fluxes; ok false when
+  !> DELTMX is exceeded (automatic increments), the iterations do not
+  !> converge or the factorisation failed.
   subroutine solve(f, m, is, inc, obs, ok, iters)
     class(temperature_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
@@ -408,44 +439,45 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: ok
     integer, intent(out) :: iters
-    real(dp), allocatable :: rhs(:), r(:), before(:)
+    real(dp), allocatable :: rhs(:), r(:)
     real(dp) :: t0, change
     integer :: a
     ok = .true.
     f%why = ''
     allocate(rhs(max(f%neq, 1)), r(m%nn))
-    ! a conductivity table: fixed-point (Picard) iterations, the
-    ! conduction of each at the temperatures of the one before
-    do iters = 1, max_picard
+    do iters = 1, max_iterations
       if (f%tabled) call refresh_conduction(f, m)
-      if (f%neq > 0 .and. (f%factored_dt < 0.0_dp .or. &
+      if (f%neq > 0 .and. (f%factored_dt < 0.0_dp .or. f%radiating .or. &
           (.not. f%steady .and. abs(f%dt - f%factored_dt) > 1.0e-12_dp * f%dt))) then
         call factor(f, m, is, inc, ok)
         if (.not. ok) return
       end if
       t0 = wall_time()
-      before = f%temp
-      call residual(f, m, .true., rhs, r)
+      call residual(f, m, rhs, r)
+      change = 0.0_dp
       if (f%neq > 0) then
         call sys_solve(f%sys, rhs(1:f%neq))
         do a = 1, m%nn
-          if (f%eqn(a) > 0) f%temp(a) = rhs(f%eqn(a))
+          if (f%eqn(a) == 0) cycle
+          f%temp(a) = f%temp(a) + rhs(f%eqn(a))
+          change = max(change, abs(rhs(f%eqn(a))))
         end do
       end if
       f%t_solve = f%t_solve + (wall_time() - t0)
-      if (.not. f%tabled) exit
-      change = maxval(abs(f%temp - before))
-      if (change <= picard_tolerance * max(1.0_dp, maxval(abs(f%temp)))) exit
+      f%iterations = f%iterations + 1
+      call stop_if_not_finite(m, is, inc, f%temp)
+      if (.not. (f%tabled .or. f%radiating)) exit
+      if (change <= iteration_tolerance * max(1.0_dp, maxval(abs(f%temp)))) exit
     end do
-    if (iters > max_picard) then
-      iters = max_picard
+    if (iters > max_iterations) then
+      iters = max_iterations
       ok = .false.
-      f%why = 'the conduction iterations (temperature-dependent conductivity) did not converge in ' // &
-              itoa(max_picard) // ' iterations'
+      f%why = 'the iterations of the temperatures (a temperature-dependent material, radiation) did not ' // &
+              'converge in ' // itoa(iters) // ' iterations'
       return
     end if
     ! the reaction fluxes: the residual at the prescribed nodes
-    call residual(f, m, .false., rhs, r)
+    call residual(f, m, rhs, r)
     f%rfl = 0.0_dp
     where (f%presc) f%rfl = -r
     f%largest_change = maxval(abs(f%temp - f%saved), mask=f%eqn > 0, dim=1)
@@ -455,31 +487,51 @@ contains
                           rtoa(f%deltmx, 4)
   end subroutine solve
 
-  !> The conduction matrices of the elements whose conductivity is a
-  !> table, at the current temperatures; the factor is made again.
+  !> Stops the run, naming the node, where a temperature of an iteration
+  !> is not a finite number (magnitudes in the deck that overflow; no
+  !> smaller increment helps), as check_finite does for the results.
+  subroutine stop_if_not_finite(m, is, inc, temp)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is, inc
+    real(dp), intent(in) :: temp(:)
+    integer :: a
+    do a = 1, size(temp)
+      if (.not. ieee_is_finite(temp(a))) call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // &
+        ': the temperature at node ' // node_label(m, a) // ' is not a finite number (the magnitudes of the ' // &
+        'deck overflow)')
+    end do
+  end subroutine stop_if_not_finite
+
+  !> The conduction and capacity matrices of the elements whose
+  !> conductivity or specific heat is a table, at the current
+  !> temperatures; the factor is made again.
   subroutine refresh_conduction(f, m)
     class(temperature_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
-    real(dp) :: ce(max_nodes, max_nodes), fb(max_nodes)
+    real(dp) :: fb(max_nodes)
     integer :: k, e, n
     do k = 1, size(f%elems)
       e = f%elems(k)
       n = elem_nodes(m, e)
       associate(mat => m%materials(m%sections(m%elem_section(e))%material))
-        if (mat%nk <= 1) cycle
+        if (mat%nk <= 1 .and. mat%nc <= 1) cycle
         call heat_volume_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), mat%conductivity, &
-                                0.0_dp, f%ke(:, :, k), ce, fb, mat%ktab(:, 1:mat%nk), f%temp(m%conn(1:n, e)))
+                                mat%density * mat%specific_heat, f%ke(:, :, k), f%ce(:, :, k), fb, &
+                                f%temp(m%conn(1:n, e)), mat%ktab(:, 1:max(mat%nk, 1)), mat%ctab(:, 1:max(mat%nc, 1)))
       end associate
     end do
     f%factored_dt = -1.0_dp
   end subroutine refresh_conduction
 
   !> The element matrix A_e = K_e + H_e (+ C_e / dt in a transient step)
-  !> of the k-th conducting element, with the films of the step on it.
-  subroutine element_matrix(f, m, k, ae)
+  !> of the k-th conducting element, with the films of the step on it;
+  !> tangent: with the tangent of its radiation at the current
+  !> temperatures too (the matrix of a Newton iteration).
+  subroutine element_matrix(f, m, k, tangent, ae)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
     integer, intent(in) :: k
+    logical, intent(in) :: tangent
     real(dp), intent(out) :: ae(max_nodes, max_nodes)
     real(dp) :: he(max_nodes, max_nodes), fe(max_nodes)
     integer :: i, j, e, n
@@ -492,7 +544,28 @@ contains
       call heat_face_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), f%films(j)%face, he, fe)
       ae = ae + f%films(j)%value * he
     end do
+    if (.not. tangent) return
+    do i = f%xrad(k), f%xrad(k + 1) - 1
+      call radiation(f, m, k, f%irad(i), he, fe)
+      ae = ae + he
+    end do
   end subroutine element_matrix
+
+  !> The radiation of f%radiates(j) on the k-th conducting element at the
+  !> current temperatures: its tangent re and the heat fe into the
+  !> element's nodes (heat_radiation_arrays).
+  subroutine radiation(f, m, k, j, re, fe)
+    class(temperature_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: k, j
+    real(dp), intent(out) :: re(max_nodes, max_nodes), fe(max_nodes)
+    integer :: e, n
+    e = f%elems(k)
+    n = elem_nodes(m, e)
+    call heat_radiation_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), f%radiates(j)%face, &
+                               f%temp(m%conn(1:n, e)), m%absolute_zero, sink_at(f, m, f%radiates(j)), &
+                               f%radiates(j)%value * m%stefan_boltzmann, re, fe)
+  end subroutine radiation
 
   !> Assembles and factorises the system of the free temperatures.
   subroutine factor(f, m, is, inc, ok)
@@ -507,7 +580,7 @@ contains
     call sys_zero(f%sys)
     do k = 1, size(f%elems)
       n = elem_nodes(m, f%elems(k))
-      call element_matrix(f, m, k, ae)
+      call element_matrix(f, m, k, .true., ae)
       call sys_add(f%sys, k, ae(1:n, 1:n))
     end do
     do k = 1, f%ch%n
@@ -517,19 +590,19 @@ contains
     call sys_factor(f%sys, status, bad)
     ok = status == factor_ok .or. status == factor_fallback
     if (.not. ok) call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // ': the heat conduction ' // &
-      'matrix is singular at equation ' // itoa(bad) // ': a region without a prescribed temperature or a film')
+      'matrix is singular at equation ' // itoa(bad) // ': a region without a prescribed temperature or a film ' // &
+      '(or radiating at absolute zero)')
     f%factored_dt = merge(0.0_dp, f%dt, f%steady)
     f%factorisations = f%factorisations + 1
     f%t_factor = f%t_factor + (wall_time() - t0)
   end subroutine factor
 
-  !> The right-hand side rhs(neq) of the free temperatures (free: the
-  !> prescribed ones moved to it, A T of the others not), or (not free)
-  !> the residual r(nn) = F - A T of every node at the current T.
-  subroutine residual(f, m, free, rhs, r)
+  !> The residual r(nn) = F - A T of every node at the current
+  !> temperatures T (F with the radiation at T), and rhs(neq) its free
+  !> rows: the right-hand side of the correction.
+  subroutine residual(f, m, rhs, r)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
-    logical, intent(in) :: free
     real(dp), intent(out) :: rhs(:), r(:)
     real(dp) :: ae(max_nodes, max_nodes), fe(max_nodes), te(max_nodes)
     integer :: k, e, n, j, a
@@ -537,25 +610,16 @@ contains
     do k = 1, size(f%elems)
       e = f%elems(k)
       n = elem_nodes(m, e)
-      call element_matrix(f, m, k, ae)
+      call element_matrix(f, m, k, .false., ae)
       call element_loads(f, m, k, fe)
       te(1:n) = f%temp(m%conn(1:n, e))
-      if (free) then
-        ! only the prescribed temperatures move to the right-hand side
-        where (f%eqn(m%conn(1:n, e)) > 0) te(1:n) = 0.0_dp
-      end if
       r(m%conn(1:n, e)) = r(m%conn(1:n, e)) + fe(1:n) - matmul(ae(1:n, 1:n), te(1:n))
     end do
     do j = 1, size(f%cfluxes)
       a = f%cfluxes(j)%node
       r(a) = r(a) + f%cfluxes(j)%value * load_factor(f, m, f%cfluxes(j)%amp, f%t1)
     end do
-    if (free) then
-      call contact_heat_residual(f%ch, f%temp, r, f%eqn == 0)
-    else
-      call contact_heat_residual(f%ch, f%temp, r)
-    end if
-    if (.not. free) return
+    call contact_heat_residual(f%ch, f%temp, r)
     rhs = 0.0_dp
     do a = 1, m%nn
       if (f%eqn(a) > 0) rhs(f%eqn(a)) = r(a)
@@ -563,19 +627,24 @@ contains
   end subroutine residual
 
   !> The loads of the k-th conducting element at t1: the capacity term
-  !> C_e/dt T0_e of a transient step, its body and surface fluxes, its
-  !> films' h T_sink.
+  !> C_e/dt T0'_e of a transient step, its body and surface fluxes, its
+  !> films' h T_sink, its radiation at the current temperatures.
   subroutine element_loads(f, m, k, fe)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
     integer, intent(in) :: k
     real(dp), intent(out) :: fe(max_nodes)
-    real(dp) :: he(max_nodes, max_nodes), fs(max_nodes)
+    real(dp) :: he(max_nodes, max_nodes), fs(max_nodes), te(max_nodes)
     integer :: i, j, e, n
     e = f%elems(k)
     n = elem_nodes(m, e)
     fe = 0.0_dp
-    if (.not. f%steady) fe(1:n) = matmul(f%ce(1:n, 1:n, k), f%saved(m%conn(1:n, e))) / f%dt
+    if (.not. f%steady) then
+      ! the capacity acts on the change of the free temperatures only (a
+      ! prescribed node's start value is its value at t1), as CalculiX
+      te(1:n) = merge(f%temp(m%conn(1:n, e)), f%saved(m%conn(1:n, e)), f%presc(m%conn(1:n, e)))
+      fe(1:n) = matmul(f%ce(1:n, 1:n, k), te(1:n)) / f%dt
+    end if
     do i = f%xflux(k), f%xflux(k + 1) - 1
       j = f%iflux(i)
       if (f%dfluxes(j)%face == heat_bf) then
@@ -590,10 +659,15 @@ contains
       call heat_face_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), f%films(j)%face, he, fs)
       fe = fe + f%films(j)%value * sink_at(f, m, f%films(j)) * fs
     end do
+    do i = f%xrad(k), f%xrad(k + 1) - 1
+      call radiation(f, m, k, f%irad(i), he, fs)
+      fe = fe + fs
+    end do
   end subroutine element_loads
 
-  !> The sink temperature of a film at t1 (its amplitude scales it; no
-  !> amplitude: the value at once, as the film coefficient).
+  !> The sink temperature of a film or radiation at t1 (its amplitude
+  !> scales it; no amplitude: the value at once, as the film
+  !> coefficient).
   real(dp) function sink_at(f, m, film) result(v)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
@@ -617,15 +691,20 @@ contains
   end subroutine restore
 
   !> Purpose: the increment changed a temperature by more than DELTMX:
-  !> cut by 0.85 DELTMX / the largest change, kept within [0.1, 0.5]; the
-  !> conduction iterations did not converge: cut to a quarter.
+  !> cut by D_A DELTMX / the largest change (CalculiX's checkconvergence,
+  !> D_A = 0.85 of its *CONTROLS; below 0.85 since the change exceeds
+  !> DELTMX); the conduction iterations did not converge: cut to a
+  !> quarter (D_F).
   subroutine failure(f, reason, cut, changing)
     class(temperature_field_t), intent(in) :: f
     character(len=:), allocatable, intent(out) :: reason, changing
     real(dp), intent(out) :: cut
     reason = f%why
-    cut = min(0.5_dp, max(0.1_dp, 0.85_dp * f%deltmx / max(f%largest_change, tiny(1.0_dp))))
+    cut = 0.85_dp * f%deltmx / max(f%largest_change, tiny(1.0_dp))
     if (f%deltmx <= 0.0_dp .or. f%largest_change <= f%deltmx) cut = 0.25_dp
+    ! a cut that would not shrink the increment (a change that is not a
+    ! finite number) is D_F's quarter: every cut back makes progress
+    if (.not. (cut > 0.0_dp .and. cut <= 0.85_dp)) cut = 0.25_dp
     changing = ''
   end subroutine failure
 
@@ -719,8 +798,8 @@ contains
       associate(mat => m%materials(m%sections(m%elem_section(e))%material))
         do ip = 1, nip(e)
           cond = mat%conductivity
-          if (mat%nk > 1) cond = conductivity_at(mat%ktab(:, 1:mat%nk), &
-                                                 temperature_at(m%etype(e), f%temp(m%conn(1:n, e)), xi(:, ip)))
+          if (mat%nk > 1) cond = table_at(mat%ktab(:, 1:mat%nk), &
+                                          temperature_at(m%etype(e), f%temp(m%conn(1:n, e)), xi(:, ip)))
           hfl(:, ip, e) = -cond * heat_gradient(m%etype(e), m%x(:, m%conn(1:n, e)), f%temp(m%conn(1:n, e)), &
                                                 xi(:, ip))
         end do
@@ -728,14 +807,17 @@ contains
     end do
   end subroutine heat_fluxes
 
-  !> Purpose: the step's factorisations (the increments' solves are its
-  !> iterations: one each).
+  !> Purpose: the step's factorisations and iterations (the solves of its
+  !> increments and their tries: one each where the step is linear).
   subroutine end_step(f, obs, summary)
     class(temperature_field_t), intent(inout) :: f
     type(observer_ref_t), intent(in) :: obs(:)
     type(step_summary_t), intent(inout) :: summary
     summary%factorisations = summary%factorisations + f%factorisations
+    summary%newton_iterations = summary%newton_iterations + f%iterations
+    f%run_factorisations = f%run_factorisations + f%factorisations
     f%factorisations = 0
+    f%iterations = 0
   end subroutine end_step
 
   !> Purpose: the heat couplings of the contact (contact_heat) for the
@@ -753,12 +835,13 @@ contains
     f%factored_dt = -1.0_dp
   end subroutine take_contact_heat
 
-  !> Purpose: the temperature field's factorisations and solves in the
-  !> run's timing.
+  !> Purpose: the temperature field's factorisations (their count too)
+  !> and solves in the run's timing.
   subroutine finish(f, timing)
     class(temperature_field_t), intent(in) :: f
     type(run_timing_t), intent(inout) :: timing
     timing%factor = timing%factor + f%t_factor
     timing%solve = timing%solve + f%t_solve
+    timing%numeric_factorisations = timing%numeric_factorisations + f%run_factorisations
   end subroutine finish
 end module temperature_field

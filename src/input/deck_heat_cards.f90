@@ -1,17 +1,19 @@
 !> The cards of heat transfer (docs/heat.md): *HEAT TRANSFER (the
 !> procedure of a step of the temperature field), *CONDUCTIVITY and
-!> *SPECIFIC HEAT (constant), *BOUNDARY on dof 11 (prescribed
+!> *SPECIFIC HEAT (constants or tables), *BOUNDARY on dof 11 (prescribed
 !> temperatures), *CFLUX, *DFLUX (faces S1..S4 and the body BF), *FILM
-!> (faces F1..F4: film coefficient and sink temperature); the cards of
-!> heat transfer cfe2d does not have (*RADIATE, cavity radiation, fluid
-!> networks) stop with their reason. check_heat_model checks, once the
-!> deck is read, that the steps of the deck are all of heat transfer
-!> when one is (the coupled analysis is issue 30's item 2).
+!> (faces F1..F4: film coefficient and sink temperature), *RADIATE
+!> (faces R1..R4: radiation to the environment) with *PHYSICAL
+!> CONSTANTS; the cards of heat transfer cfe2d does not have (cavity
+!> radiation, fluid networks) stop with their reason. check_heat_model
+!> checks, once the deck is read, that the steps of the deck are all of
+!> heat transfer when one is (the coupled analysis is issue 30's item 2).
 module deck_heat_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa
-  use deck_input, only: keyword_t, param_value, has_param, is_keyword
-  use deck_cursor, only: parser_t, max_increments, read_time_line, line_text, err, next_data, require_data, allow_params, &
+  use deck_input, only: keyword_t, param_value, has_param, is_keyword, parse_keyword, deck_warning
+  use deck_cursor, only: parser_t, max_increments, read_time_line, line_text, err, next_data, require_data, no_data, &
+                         allow_params, &
                          get_real, get_int, is_int, is_label, elem_ref, need_elset, warn_empty_set, &
                          target_nodes, amplitude_param
   use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, src_t
@@ -19,7 +21,8 @@ module deck_heat_cards
   implicit none
   private
   public :: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, read_cflux, &
-            read_dflux, read_film, reject_heat_card, is_heat_boundary, check_heat_model
+            read_dflux, read_film, read_radiate, read_physical_constants, reject_heat_card, is_heat_boundary, &
+            check_heat_model
 
   !> CalculiX's dof of the temperature.
   integer, parameter :: dof_temperature = 11
@@ -29,9 +32,10 @@ contains
   !> Purpose: *HEAT TRANSFER[, STEADY STATE][, DIRECT][, DELTMX=]
   !> (SOLVER= is read and ignored, as on *STATIC): the step's procedure;
   !> data line `initial increment, period[, min, max]` (CalculiX's
-  !> defaults 1, 1). A transient step (no STEADY STATE) with
-  !> DIRECT takes fixed increments; without DIRECT, DELTMX= (the largest
-  !> temperature change of an increment) makes its increments automatic.
+  !> defaults 1, 1). With DIRECT the increments are fixed (period /
+  !> initial increment of them); without, automatic as CalculiX's, steady
+  !> or transient: growing, and in a transient step cut back where a
+  !> temperature changes by more than DELTMX= in an increment.
   subroutine read_heat_transfer(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -54,10 +58,8 @@ contains
       end if
       call read_time_line(p, '*HEAT TRANSFER', s)
       if (s%steady) s%deltmx = 0.0_dp
-      ! a steady state or fixed increments: the driver's linear path, whose
-      ! increments are counted here (automatic ones as they are made)
-      if (s%steady .or. s%deltmx <= 0.0_dp) s%direct = .true.
-      if (s%deltmx > 0.0_dp) return
+      ! fixed increments are counted here (automatic ones as they are made)
+      if (.not. s%direct) return
       ratio = s%period / s%dt
       if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // itoa(nint(min(ratio, &
           1.0e9_dp))) // ' or more increments (time period / initial increment); at most ' // &
@@ -119,31 +121,44 @@ contains
     end associate
   end subroutine read_conductivity
 
-  !> Purpose: *SPECIFIC HEAT: `c[, temperature]`, one data line.
+  !> Purpose: *SPECIFIC HEAT: `c[, temperature]`; several data lines,
+  !> temperatures increasing: a table, linear between its points and
+  !> constant beyond (the capacity then depends on the temperature:
+  !> temperature_field iterates).
   subroutine read_specific_heat(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    call allow_params(p, kw, '')
-    if (p%material == 0) call err(p, '*SPECIFIC HEAT outside a *MATERIAL')
-    m%materials(p%material)%specific_heat = constant_value(p, 'SPECIFIC HEAT', 'specific heat')
-    m%materials(p%material)%has_specific_heat = .true.
-  end subroutine read_specific_heat
-
-  !> The one positive constant of a material card's data line; a second
-  !> data line (a temperature table) stops at its line.
-  real(dp) function constant_value(p, card, what) result(v)
-    type(parser_t), intent(inout) :: p
-    character(len=*), intent(in) :: card, what
     type(field_t), allocatable :: f(:)
     integer :: n
-    call require_data(p, what)
-    call split_fields(line_text(p), f, n)
-    if (n > 2) call err(p, '*' // card // ' data line needs: ' // what // '[, temperature]')
-    v = get_real(p, f(1), what)
-    if (v <= 0.0_dp) call err(p, 'the ' // what // ' must be positive')
-    if (next_data(p)) call err(p, 'temperature-dependent *' // card // ' data is not implemented')
-  end function constant_value
+    real(dp) :: c, t
+    call allow_params(p, kw, '')
+    if (p%material == 0) call err(p, '*SPECIFIC HEAT outside a *MATERIAL')
+    call require_data(p, 'specific heat')
+    associate(mat => m%materials(p%material))
+      mat%nc = 0
+      do
+        call split_fields(line_text(p), f, n)
+        if (n > 2) call err(p, '*SPECIFIC HEAT data line needs: specific heat[, temperature]')
+        c = get_real(p, f(1), 'specific heat')
+        if (c <= 0.0_dp) call err(p, 'the specific heat must be positive')
+        t = 0.0_dp
+        if (n == 2) then
+          if (len(f(2)%s) > 0) t = get_real(p, f(2), 'temperature')
+        end if
+        if (mat%nc > 0) then
+          if (t <= mat%ctab(1, mat%nc)) call err(p, 'the temperatures of a *SPECIFIC HEAT table must increase')
+        end if
+        if (mat%nc == size(mat%ctab, 2)) call err(p, 'a *SPECIFIC HEAT table of more than ' // &
+                                                 itoa(size(mat%ctab, 2)) // ' lines')
+        mat%nc = mat%nc + 1
+        mat%ctab(:, mat%nc) = [t, c]
+        if (.not. next_data(p)) exit
+      end do
+      mat%specific_heat = mat%ctab(2, 1)
+      mat%has_specific_heat = .true.
+    end associate
+  end subroutine read_specific_heat
 
   !> Purpose: whether the *BOUNDARY card at line p%i prescribes dof 11 (a
   !> temperature) on its first data line: then read_heat_boundary reads it.
@@ -300,18 +315,101 @@ contains
     end do
   end subroutine read_film
 
+  !> Purpose: *RADIATE: radiation to the environment, `element or elset,
+  !> Rk, sink temperature, emissivity` (the flux eps sigma ((T_sink -
+  !> T_0)^4 - (T - T_0)^4) into face k, sigma and T_0 of *PHYSICAL
+  !> CONSTANTS); AMPLITUDE= scales the sink temperature. Cavity radiation
+  !> (RkCR) and user radiation (RkNU) stop at their line.
+  subroutine read_radiate(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer, allocatable :: elems(:)
+    integer :: n, k, amp, face
+    character(len=:), allocatable :: label
+    real(dp) :: sink, emissivity
+    if (has_param(kw, 'CAVITY') .or. has_param(kw, 'ENVNODE') .or. has_param(kw, 'RADIATION AMPLITUDE')) &
+      call err(p, 'cavity radiation, an environment node and RADIATION AMPLITUDE= of *RADIATE are not ' // &
+               'implemented: cfe2d radiates to a sink temperature (docs/heat.md)')
+    call allow_params(p, kw, 'OP,AMPLITUDE')
+    amp = heat_options(p, m, kw, 'RADIATE')
+    if (.not. allocated(m%steps(p%step)%radiates)) allocate(m%steps(p%step)%radiates(0))
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      if (n /= 4) call err(p, '*RADIATE data line needs: element or element set, R1..R4, sink temperature, ' // &
+                          'emissivity')
+      call target_elements(p, m, f(1)%s, elems)
+      label = to_upper(f(2)%s)
+      if (len(label) > 2) then
+        if (label(3:) == 'CR') call err(p, 'cavity radiation (' // label // ') is not implemented: cfe2d ' // &
+          'radiates to the environment (R1..R4 with a sink temperature; docs/heat.md)')
+        if (label(3:) == 'NU') call err(p, 'a user radiation subroutine (' // label // ') is not implemented')
+      end if
+      face = face_number(p, m, elems, label, 'R')
+      sink = get_real(p, f(3), 'sink temperature')
+      emissivity = get_real(p, f(4), 'emissivity')
+      if (emissivity < 0.0_dp .or. emissivity > 1.0_dp) call err(p, 'the emissivity must lie in 0..1')
+      m%steps(p%step)%radiates = [m%steps(p%step)%radiates, &
+        [(heat_load_t(elem=elems(k), face=face, amp=amp, value=emissivity, sink=sink), k = 1, size(elems))]]
+    end do
+  end subroutine read_radiate
+
+  !> Purpose: *PHYSICAL CONSTANTS, ABSOLUTE ZERO=, STEFAN BOLTZMANN= (the
+  !> constants of *RADIATE; NEWTON GRAVITY= is read and not used). In a
+  !> deck without *HEAT TRANSFER the card is not used and warns so.
+  subroutine read_physical_constants(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(keyword_t) :: other
+    type(field_t), allocatable :: f(:)
+    integer :: i, n
+    logical :: heat
+    heat = .false.
+    do i = 1, p%deck%n
+      if (.not. is_keyword(p%deck%lines(i)%text)) cycle
+      call parse_keyword(p%deck%lines(i)%text, other)
+      heat = heat .or. other%name == 'HEAT TRANSFER' .or. other%name == 'HEATTRANSFER'
+    end do
+    if (.not. heat) then
+      call deck_warning(p%deck, p%i, '*' // kw%name // ' is not implemented in cfe2d and is ignored')
+      do while (next_data(p))
+      end do
+      return
+    end if
+    ! CalculiX drops the blanks of a keyword line: both spellings
+    call allow_params(p, kw, 'ABSOLUTE ZERO,ABSOLUTEZERO,STEFAN BOLTZMANN,STEFANBOLTZMANN,NEWTON GRAVITY,' // &
+                      'NEWTONGRAVITY')
+    do i = 1, kw%np
+      if (.not. allocated(kw%pvalue(i)%s)) cycle
+      call split_fields(kw%pvalue(i)%s, f, n)
+      if (n < 1) cycle
+      select case (kw%pname(i)%s)
+      case ('ABSOLUTE ZERO', 'ABSOLUTEZERO')
+        m%absolute_zero = get_real(p, f(1), 'ABSOLUTE ZERO')
+        m%has_absolute_zero = .true.
+      case ('STEFAN BOLTZMANN', 'STEFANBOLTZMANN')
+        m%stefan_boltzmann = get_real(p, f(1), 'STEFAN BOLTZMANN')
+        if (m%stefan_boltzmann <= 0.0_dp) call err(p, 'STEFAN BOLTZMANN must be positive')
+        m%has_stefan_boltzmann = .true.
+      end select
+    end do
+    call no_data(p, kw)
+  end subroutine read_physical_constants
+
   !> Purpose: the cards of heat transfer cfe2d does not have: stop with
   !> the reason at the card's line.
   subroutine reject_heat_card(p, kw)
     type(parser_t), intent(inout) :: p
     type(keyword_t), intent(in) :: kw
     select case (kw%name)
-    case ('RADIATE')
-      call err(p, '*RADIATE is not implemented: cfe2d''s heat transfer has conduction, *DFLUX, *CFLUX and ' // &
-               '*FILM (docs/heat.md); radiation to the environment and cavity radiation are not')
+    case ('VIEWFACTOR', 'RADIATION VIEWFACTOR', 'CAVITY DEFINITION')
+      call err(p, '*' // kw%name // ' is cavity radiation, which is not implemented: cfe2d''s heat transfer ' // &
+               'radiates to the environment (*RADIATE Rk with a sink temperature; docs/heat.md)')
     case default
-      call err(p, '*' // kw%name // ' is not implemented: cfe2d''s heat transfer is conduction with fluxes ' // &
-               'and films (docs/heat.md), without fluid networks or cavity radiation')
+      call err(p, '*' // kw%name // ' is not implemented: cfe2d''s heat transfer is conduction with fluxes, ' // &
+               'films and radiation to the environment (docs/heat.md), without fluid networks or cavity radiation')
     end select
   end subroutine reject_heat_card
 
@@ -334,6 +432,7 @@ contains
       case ('CFLUX'); m%steps(p%step)%new_cfluxes = m%steps(p%step)%new_cfluxes .or. op == 'NEW'
       case ('DFLUX'); m%steps(p%step)%new_dfluxes = m%steps(p%step)%new_dfluxes .or. op == 'NEW'
       case ('FILM'); m%steps(p%step)%new_films = m%steps(p%step)%new_films .or. op == 'NEW'
+      case ('RADIATE'); m%steps(p%step)%new_radiates = m%steps(p%step)%new_radiates .or. op == 'NEW'
       end select
     else if (op == 'NEW') then
       call err(p, 'OP=NEW is only allowed inside *STEP')
@@ -390,6 +489,15 @@ contains
     type(model_t), intent(in) :: m
     integer :: s, e
     logical :: transient
+    if (m%heat) then
+      do s = 1, size(m%steps)
+        if (.not. allocated(m%steps(s)%radiates)) cycle
+        if (size(m%steps(s)%radiates) == 0 .or. (m%has_absolute_zero .and. m%has_stefan_boltzmann)) cycle
+        p%i = m%steps(s)%src%line
+        call err(p, '*RADIATE in this step needs *PHYSICAL CONSTANTS with ABSOLUTE ZERO= and STEFAN BOLTZMANN= ' // &
+                 '(model data)')
+      end do
+    end if
     if (.not. m%heat) then
       do e = 1, m%ne
         if (catalogue(m%etype(e))%name(1:2) /= 'DC') cycle

@@ -34,7 +34,8 @@ module deck_parser
   use model, only: model_t
   use element_catalogue, only: max_nodes
   use deck_heat_cards, only: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, &
-                             read_cflux, read_dflux, read_film, reject_heat_card, is_heat_boundary, check_heat_model
+                             read_cflux, read_dflux, read_film, reject_heat_card, is_heat_boundary, check_heat_model, &
+                             read_radiate, read_physical_constants
   use deck_coupled_cards, only: read_coupled_step, settle_coupled_model, check_coupled_model, &
                                 read_gap_conductance, read_gap_heat_generation, gap_heat_pairs
   implicit none
@@ -687,10 +688,12 @@ contains
     case ('CFLUX');         call in_step(p, kw, .true.); call read_cflux(p, m, kw)
     case ('DFLUX');         call in_step(p, kw, .true.); call read_dflux(p, m, kw)
     case ('FILM');          call in_step(p, kw, .true.); call read_film(p, m, kw)
-    case ('RADIATE', 'CAVITY DEFINITION', 'FLUID SECTION', 'RADIATION VIEWFACTOR', 'FILM PROPERTY', &
+    case ('RADIATE');       call in_step(p, kw, .true.); call read_radiate(p, m, kw)
+    case ('PHYSICAL CONSTANTS'); call read_physical_constants(p, m, kw)
+    case ('CAVITY DEFINITION', 'FLUID SECTION', 'RADIATION VIEWFACTOR', 'VIEWFACTOR', 'FILM PROPERTY', &
           'FLUID CONSTANTS', 'GAS SPECIFIC HEAT')
       call reject_heat_card(p, kw)
-    case ('DAMPING', 'PHYSICAL CONSTANTS', 'FILE FORMAT')
+    case ('DAMPING', 'FILE FORMAT')
       call skip_card(p, kw)
     case ('OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT OUTPUT', &
           'ENERGY PRINT', 'ENERGY FILE', 'SECTION PRINT', 'PREPRINT', &

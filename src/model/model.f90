@@ -121,6 +121,11 @@ module model
     !> ktab(2:3, :); nk <= 1: the constant conductivity above.
     integer :: nk = 0
     real(dp) :: ktab(3, max_yield) = 0.0_dp
+    !> A *SPECIFIC HEAT of several data lines: c at temperatures
+    !> ctab(1, 1:nc) (increasing; linear between, constant beyond) in
+    !> ctab(2, :); nc <= 1: the constant specific heat above.
+    integer :: nc = 0
+    real(dp) :: ctab(2, max_yield) = 0.0_dp
   end type material_t
 
   !> *ORIENTATION: local material axes, rectangular (point a on local
@@ -323,6 +328,10 @@ module model
     type(cload_t), allocatable :: cfluxes(:)
     type(heat_load_t), allocatable :: dfluxes(:), films(:)
     logical :: new_tbcs = .false., new_cfluxes = .false., new_dfluxes = .false., new_films = .false.
+    !> *RADIATE to the environment (heat_load_t: value the emissivity,
+    !> sink the sink temperature of face `face`), OP=NEW on it.
+    type(heat_load_t), allocatable :: radiates(:)
+    logical :: new_radiates = .false.
     !> *FREQUENCY (docs/keywords.md): the natural frequencies of the
     !> tangent at the state the steps before leave; nev eigenvalues
     !> nearest the shift (2 pi freq_lower)^2, those outside [freq_lower,
@@ -568,6 +577,11 @@ module model
     !> A step is *HEAT TRANSFER: the run's field is the temperatures
     !> (temperature_field) and the materials need no *ELASTIC.
     logical :: heat = .false.
+    !> *PHYSICAL CONSTANTS: ABSOLUTE ZERO (the temperature scale's zero,
+    !> 0 in kelvin) and STEFAN BOLTZMANN (radiation: *RADIATE); has_*:
+    !> given.
+    real(dp) :: absolute_zero = 0.0_dp, stefan_boltzmann = 0.0_dp
+    logical :: has_absolute_zero = .false., has_stefan_boltzmann = .false.
     !> The run has both fields, the temperatures before the displacements:
     !> a *COUPLED TEMPERATURE-DISPLACEMENT step, or heat transfer and
     !> mechanical steps in one deck (heat is then false: the materials
