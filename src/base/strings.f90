@@ -303,7 +303,7 @@ contains
     real(dp), intent(in) :: x
     character(len=12) :: s
     real(dp) :: a
-    integer :: e
+    integer :: e, r, k
     integer(8) :: mant
     a = abs(x)
     if (a < 1.0e-99_dp) then
@@ -327,21 +327,23 @@ contains
       write(s, '(es12.5e2)') x
       return
     end if
-    s = merge('-', ' ', x < 0.0_dp) // digits(int(mant / 100000_8), 1) // '.' // &
-        digits(int(mod(mant, 100000_8)), 5) // 'E' // merge('-', '+', e < 0) // digits(abs(e), 2)
-  end function e12_5
-
-  !> The n digits of 0 <= i < 10**n, with leading zeros.
-  pure function digits(i, n) result(s)
-    integer, intent(in) :: i, n
-    character(len=n) :: s
-    integer :: k, r
-    r = i
-    do k = n, 1, -1
+    ! the characters set one by one: a concatenation of merge and digit
+    ! strings made temporaries that cost more than the arithmetic
+    s(1:1) = ' '
+    if (x < 0.0_dp) s(1:1) = '-'
+    r = int(mant)
+    do k = 8, 4, -1
       s(k:k) = achar(iachar('0') + mod(r, 10))
       r = r / 10
     end do
-  end function digits
+    s(2:2) = achar(iachar('0') + r)
+    s(3:3) = '.'
+    s(9:9) = 'E'
+    s(10:10) = '+'
+    if (e < 0) s(10:10) = '-'
+    s(11:11) = achar(iachar('0') + abs(e) / 10)
+    s(12:12) = achar(iachar('0') + mod(abs(e), 10))
+  end function e12_5
 
   !> An integer right-aligned in a field of width w, as Fortran's Iw
   !> (asterisks where it does not fit).
