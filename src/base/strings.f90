@@ -7,6 +7,15 @@ module strings
   private
   public :: to_upper, split_fields, parse_real, parse_int, field_t, itoa, rtoa, ftoa, e12_5, int_field
 
+  !> 10**k for |k| <= 22: exact from 1 to 1e22, correctly rounded below 1
+  !> (pow10, e12_5's scaling).
+  real(dp), parameter :: powers_of_ten(-22:22) = [1.0e-22_dp, 1.0e-21_dp, 1.0e-20_dp, 1.0e-19_dp, 1.0e-18_dp, &
+    1.0e-17_dp, 1.0e-16_dp, 1.0e-15_dp, 1.0e-14_dp, 1.0e-13_dp, 1.0e-12_dp, 1.0e-11_dp, 1.0e-10_dp, 1.0e-9_dp, &
+    1.0e-8_dp, 1.0e-7_dp, 1.0e-6_dp, 1.0e-5_dp, 1.0e-4_dp, 1.0e-3_dp, 1.0e-2_dp, 1.0e-1_dp, 1.0_dp, 1.0e1_dp, &
+    1.0e2_dp, 1.0e3_dp, 1.0e4_dp, 1.0e5_dp, 1.0e6_dp, 1.0e7_dp, 1.0e8_dp, 1.0e9_dp, 1.0e10_dp, 1.0e11_dp, &
+    1.0e12_dp, 1.0e13_dp, 1.0e14_dp, 1.0e15_dp, 1.0e16_dp, 1.0e17_dp, 1.0e18_dp, 1.0e19_dp, 1.0e20_dp, &
+    1.0e21_dp, 1.0e22_dp]
+
   interface
     !> The C library's strtod (C99 7.20.1.3): the double a decimal
     !> literal names, correctly rounded; *endptr past its last character.
@@ -314,14 +323,14 @@ contains
       write(s, '(es12.5e2)') x
       return
     end if
-    e = floor(log10(a))
-    mant = nint(a * 10.0_dp**(5 - e), 8)
+    e = decade(a)
+    mant = nint(a * pow10(5 - e), 8)
     if (mant >= 1000000_8) then
       e = e + 1
-      mant = nint(a * 10.0_dp**(5 - e), 8)
+      mant = nint(a * pow10(5 - e), 8)
     else if (mant < 100000_8) then
       e = e - 1
-      mant = nint(a * 10.0_dp**(5 - e), 8)
+      mant = nint(a * pow10(5 - e), 8)
     end if
     if (mant >= 1000000_8 .or. mant < 100000_8 .or. abs(e) > 99) then
       write(s, '(es12.5e2)') x
@@ -344,6 +353,37 @@ contains
     s(11:11) = achar(iachar('0') + abs(e) / 10)
     s(12:12) = achar(iachar('0') + mod(abs(e), 10))
   end function e12_5
+
+  !> Purpose: 10**k as the library's real**integer gives it: from the
+  !> table for |k| <= 22, where every power is exact (or, negative, the
+  !> correctly rounded quotient 1 / 10**|k| that the library computes);
+  !> computed beyond.
+  !> Arguments: k the exponent.
+  pure real(dp) function pow10(k)
+    integer, intent(in) :: k
+    if (abs(k) <= 22) then
+      pow10 = powers_of_ten(k)
+    else
+      pow10 = 10.0_dp**k
+    end if
+  end function pow10
+
+  !> Purpose: floor(log10(a)) of 0 < a < 1e99, or one of its neighbours
+  !> next to a power of ten (where e12_5's carry makes them give the same
+  !> digits): from a's binary exponent and one comparison with the table
+  !> between 1e-15 and 1e15, the logarithm elsewhere.
+  !> Arguments: a the magnitude.
+  pure integer function decade(a)
+    real(dp), intent(in) :: a
+    ! log10(2) rounded down: (exponent - 1) log10(2) <= log10(a)
+    real(dp), parameter :: log10_2 = 0.30102999566398114_dp
+    if (a >= 1.0e-15_dp .and. a < 1.0e15_dp) then
+      decade = floor((exponent(a) - 1) * log10_2)
+      if (a >= powers_of_ten(decade + 1)) decade = decade + 1
+    else
+      decade = floor(log10(a))
+    end if
+  end function decade
 
   !> An integer right-aligned in a field of width w, as Fortran's Iw
   !> (asterisks where it does not fit).
