@@ -19,13 +19,19 @@ def stress_calls(listing):
 
 def test_output_cost_stresses_at_written_increments_only():
     """Four increments (0.25 each): FREQUENCY=2 writes increments 2 and 4,
-    FREQUENCY=3 writes 3 and 4 (the step's end), FREQUENCY=1 all four;
+    FREQUENCY=3 writes 3 and 4 (the step's end), FREQUENCY=1 all four,
+    TIME POINTS 0.25 and 0.6 increments 1, 3 and 4;
     the stresses are evaluated exactly there (8 elements each time), and
     the .frd's stresses at those increments are SIG t (uniform tension,
     to 1e-6)."""
-    for freq, written in ((2, [2, 4]), (3, [3, 4]), (1, [1, 2, 3, 4])):
-        name = f"cost_freq{freq}"
-        run = run_deck(name, plate("CPS4", f"*NODE FILE, FREQUENCY={freq}\nU\n*EL FILE\nS\n")).ok()
+    cases = [(f"FREQUENCY={f}", "", w) for f, w in ((2, [2, 4]), (3, [3, 4]), (1, [1, 2, 3, 4]))]
+    # a point on increment 1's end (written there, not again at 2), one
+    # inside increment 3, the step's end
+    cases.append(("TIME POINTS=TP", "*TIME POINTS, NAME=TP\n0.25, 0.6\n", [1, 3, 4]))
+    for k, (param, points, written) in enumerate(cases):
+        name = f"cost_schedule{k}"
+        run = run_deck(name, plate("CPS4", f"*NODE FILE, {param}\nU\n*EL FILE\nS\n") + points).ok()
+        freq = param
         assert stress_calls(run.listing_path) == NE * len(written), (freq, stress_calls(run.listing_path))
         frd = os.path.join(os.path.dirname(run.listing_path), name + ".frd")
         sets = read_frd(frd)[2]

@@ -158,10 +158,10 @@ contains
 
   !> Purpose: is the output of the increment that ended at step time t
   !> (total time total_time, length dt) of step is written? output_due's
-  !> rule with the previous increment's end at t - dt; a time point up to
-  !> twice the rule's tolerance before it counts too, so that the round-off
-  !> of t - dt never leaves out stresses a writer prints (an increment
-  !> computed needlessly costs only time).
+  !> rule with the previous increment's end at t - dt, moved back by 1e-12
+  !> of the period (a thousandth of the rule's tolerance), so that the
+  !> round-off of t - dt never leaves out stresses a writer prints, while
+  !> a point on the previous increment's end still belongs to that one.
   logical function written_here(m, is, inc, t, total_time, dt)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc
@@ -169,7 +169,7 @@ contains
     real(dp) :: tc
     tc = t
     if (m%steps(is)%out_total_time) tc = total_time
-    written_here = output_due(m, is, inc, t, tc, tc - dt - 2.0e-9_dp * m%steps(is)%period)
+    written_here = output_due(m, is, inc, t, tc, tc - dt - 1.0e-12_dp * m%steps(is)%period)
   end function written_here
 
   !> Purpose: CalculiX's rule for the increments whose print and file
