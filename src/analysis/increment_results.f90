@@ -162,6 +162,8 @@ contains
   !> of the period (a thousandth of the rule's tolerance), so that the
   !> round-off of t - dt never leaves out stresses a writer prints, while
   !> a point on the previous increment's end still belongs to that one.
+  !> Arguments: m the model; is, inc the step and increment; t, total_time
+  !> its end in step and total time; dt its length.
   logical function written_here(m, is, inc, t, total_time, dt)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc

@@ -180,6 +180,7 @@ contains
     plain_literal = .true.
   end function plain_literal
 
+  !> Purpose: is c one of 0-9? Arguments: c the character.
   pure logical function is_digit(c)
     character(len=1), intent(in) :: c
     is_digit = c >= '0' .and. c <= '9'
