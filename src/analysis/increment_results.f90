@@ -7,14 +7,14 @@ module increment_results
   use kinds, only: dp
   use strings, only: itoa
   use messages, only: fatal
-  use element_catalogue, only: max_ip
+  use element_catalogue, only: max_ip, catalogue
   use model
   use contact, only: contact_set_t
   use contact_results, only: contact_results_t, compute_contact_results
   use assembly, only: stress_recovery, element_counts_t, body_t
   implicit none
   private
-  public :: increment_results_t, compute_increment_results
+  public :: increment_results_t, compute_increment_results, output_due
 
   type :: increment_results_t
     integer :: step = 0, increment = 0, iterations = 0
@@ -75,7 +75,7 @@ contains
     real(dp), intent(in), optional :: dtemp(:)
     type(body_t), intent(in), optional :: body
     real(dp), intent(in), optional :: dt
-    integer :: s, q, e, a
+    integer :: s, q, a
     res%step = is
     if (present(body)) res%nonlinear = body%nonlinear
     if (present(dt)) res%dt = dt
@@ -102,27 +102,23 @@ contains
         res%set_sums(:, s) = res%set_sums(:, s) + res%rf(:, m%nsets(set_ids(s))%items(q))
       end do
     end do
+    ! Stresses and strains only where a request asks for them and the
+    ! increment's output is written (FREQUENCY=, TIME POINTS=: every
+    ! writer that prints them follows output_due); the increments between
+    ! carry empty stress arrays.
     res%has_stresses = any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e) .or. &
                        any(m%steps(is)%requests%peeq)
-    res%has_peeq = any(m%steps(is)%requests%peeq)
+    if (present(dt)) res%has_stresses = res%has_stresses .and. written_here(m, is, inc, t, total_time, dt)
+    res%has_peeq = res%has_stresses .and. any(m%steps(is)%requests%peeq)
     if (res%has_stresses) then
-      allocate(res%nip(m%ne), res%sig_ip(4, max_ip, m%ne), res%eps_ip(3, max_ip, m%ne), res%sig_node(4, m%nn), &
-               res%sig_elem(4, m%ne), res%peeq_ip(max_ip, merge(m%ne, 0, res%has_peeq .or. res%nonlinear)))
-      res%peeq_ip = 0.0_dp
-      if (res%nonlinear) then
-        call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp, body, res%peeq_ip)
-      else
-        call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp)
+      call recover_stresses(m, u, res, counts, dtemp, body)
+      ! the strains only where a card asks for E (every writer reads them
+      ! only then): 3/7 of the integration-point arrays freed before the
+      ! writers run
+      if (.not. any(m%steps(is)%requests%e)) then
+        deallocate(res%eps_ip)
+        allocate(res%eps_ip(3, size(res%sig_ip, 2), 0))
       end if
-      do e = 1, m%ne
-        res%sig_elem(:, e) = 0.0_dp
-        if (res%nip(e) > 0) res%sig_elem(:, e) = sum(res%sig_ip(:, 1:res%nip(e), e), dim=2) / res%nip(e)
-      end do
-      allocate(res%peeq_elem(merge(m%ne, 0, res%has_peeq)))
-      do e = 1, size(res%peeq_elem)
-        res%peeq_elem(e) = 0.0_dp
-        if (res%nip(e) > 0) res%peeq_elem(e) = sum(res%peeq_ip(1:res%nip(e), e)) / res%nip(e)
-      end do
     else
       ! nothing asks for stresses: no arrays of the model's size to fill
       ! (on a million elements they would be half a gigabyte of zeros)
@@ -134,6 +130,89 @@ contains
     res%nclosed = count(cs%c(1:cs%n)%closed)
     call check_finite(m, res)
   end subroutine compute_increment_results
+
+  !> Purpose: the stresses (and strains, PEEQ) of the increment at the
+  !> integration points, the nodes and as element averages.
+  !> Arguments: m, u the model and displacements; res the results
+  !> (has_stresses, has_peeq, nonlinear set; the arrays filled); counts
+  !> the element call counts; dtemp, body as for compute_increment_results.
+  !> The integration-point arrays hold as many points as the model's
+  !> elements have (4 for a mesh of CPS4: 4/9 of max_ip's arrays).
+  subroutine recover_stresses(m, u, res, counts, dtemp, body)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: u(:, :)
+    type(increment_results_t), intent(inout) :: res
+    type(element_counts_t), intent(inout) :: counts
+    real(dp), intent(in), optional :: dtemp(:)
+    type(body_t), intent(in), optional :: body
+    integer :: e, nipm
+    nipm = 1
+    do e = 1, m%ne
+      nipm = max(nipm, catalogue(m%etype(e))%nip)
+    end do
+    allocate(res%nip(m%ne), res%sig_ip(4, nipm, m%ne), res%eps_ip(3, nipm, m%ne), res%sig_node(4, m%nn), &
+             res%sig_elem(4, m%ne), res%peeq_ip(max_ip, merge(m%ne, 0, res%has_peeq .or. res%nonlinear)))
+    res%peeq_ip = 0.0_dp
+    if (res%nonlinear) then
+      call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp, body, res%peeq_ip)
+    else
+      call stress_recovery(m, u, res%nip, res%sig_ip, res%eps_ip, res%sig_node, counts, dtemp)
+    end if
+    do e = 1, m%ne
+      res%sig_elem(:, e) = 0.0_dp
+      if (res%nip(e) > 0) res%sig_elem(:, e) = sum(res%sig_ip(:, 1:res%nip(e), e), dim=2) / res%nip(e)
+    end do
+    allocate(res%peeq_elem(merge(m%ne, 0, res%has_peeq)))
+    do e = 1, size(res%peeq_elem)
+      res%peeq_elem(e) = 0.0_dp
+      if (res%nip(e) > 0) res%peeq_elem(e) = sum(res%peeq_ip(1:res%nip(e), e)) / res%nip(e)
+    end do
+  end subroutine recover_stresses
+
+  !> Purpose: is the output of the increment that ended at step time t
+  !> (total time total_time, length dt) of step is written? output_due's
+  !> rule with the previous increment's end at t - dt, moved back by 1e-12
+  !> of the period (a thousandth of the rule's tolerance), so that the
+  !> round-off of t - dt never leaves out stresses a writer prints, while
+  !> a point on the previous increment's end still belongs to that one.
+  !> Arguments: m the model; is, inc the step and increment; t, total_time
+  !> its end in step and total time; dt its length.
+  logical function written_here(m, is, inc, t, total_time, dt)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is, inc
+    real(dp), intent(in) :: t, total_time, dt
+    real(dp) :: tc
+    tc = t
+    if (m%steps(is)%out_total_time) tc = total_time
+    written_here = output_due(m, is, inc, t, tc, tc - dt - 1.0e-12_dp * m%steps(is)%period)
+  end function written_here
+
+  !> Purpose: CalculiX's rule for the increments whose print and file
+  !> output is written: always the last of a step (CalculiX writes the end
+  !> of every step); otherwise every out_every-th increment (FREQUENCY=),
+  !> or, with TIME POINTS=, an increment whose interval (last, tc] holds
+  !> one (relative tolerance 1e-9 of the period, so that a point on an
+  !> increment end is written there and not again at the next). Every
+  !> writer's schedule (output_schedule) and the stresses computed here
+  !> follow it.
+  !> Arguments: m the model; is the step; inc the increment; t its end in
+  !> step time; tc its end in the time the step's points are given in
+  !> (step or total time); last the previous increment's end in that time.
+  pure logical function output_due(m, is, inc, t, tc, last)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is, inc
+    real(dp), intent(in) :: t, tc, last
+    real(dp) :: tol
+    associate(s => m%steps(is))
+      tol = 1.0e-9_dp * s%period
+      output_due = t >= s%period - tol
+      if (allocated(s%out_times)) then
+        output_due = output_due .or. any(s%out_times > last + tol .and. s%out_times <= tc + tol)
+      else
+        output_due = output_due .or. mod(inc, max(s%out_every, 1)) == 0
+      end if
+    end associate
+  end function output_due
 
   !> Purpose: stops the run, naming the increment, the quantity and where,
   !> if any result is not a finite number: nothing that is not a number is
@@ -152,8 +231,10 @@ contains
       if (.not. all(ieee_is_finite(res%sig_node(:, a)))) call stop_at('nodal stress', 'node', node_label(m, a))
     end do
     do e = 1, size(res%sig_ip, 3)
-      if (.not. all(ieee_is_finite(res%sig_ip(:, :, e))) .or. .not. all(ieee_is_finite(res%eps_ip(:, :, e)))) &
-        call stop_at('stress or strain', 'element', elem_label(m, e))
+      if (.not. all(ieee_is_finite(res%sig_ip(:, :, e)))) call stop_at('stress or strain', 'element', elem_label(m, e))
+    end do
+    do e = 1, size(res%eps_ip, 3)
+      if (.not. all(ieee_is_finite(res%eps_ip(:, :, e)))) call stop_at('stress or strain', 'element', elem_label(m, e))
     end do
     do k = 1, size(res%contact%pairs)
       associate(p => res%contact%pairs(k))

@@ -94,7 +94,7 @@ contains
     integer, intent(in) :: depth
     type(include_chain_t), intent(inout) :: chain
     character(len=max_line + 1) :: buf
-    integer :: u, ios, lineno, ifile
+    integer :: u, ios, lineno, ifile, nc
     type(keyword_t) :: kw
     character(len=:), allocatable :: inc
 
@@ -103,25 +103,27 @@ contains
     call add_file(deck, path, ifile)
     lineno = 0
     do
-      read(u, '(a)', advance='no', iostat=ios) buf
+      read(u, '(a)', advance='no', iostat=ios, size=nc) buf
       if (ios == iostat_end) exit
       lineno = lineno + 1
       ! ios == 0: the buffer (one character more than allowed) filled up
       ! before the end of the line.
       if (ios == 0) call fatal_at(path, lineno, '', 'line longer than ' // itoa(max_line) // ' characters')
       if (ios /= iostat_eor) call fatal_at(path, lineno, '', 'cannot read this line (not a text file?)')
-      call clean(buf)
-      if (len_trim(buf) == 0) cycle
-      if (is_comment(buf)) cycle
-      if (is_keyword(buf)) then
-        call parse_keyword(buf, kw)
+      ! only the nc characters read are looked at (the rest of the buffer
+      ! is blank): a million-line mesh is not scanned 4 kB per line
+      call clean(buf(1:nc))
+      if (len_trim(buf(1:nc)) == 0) cycle
+      if (is_comment(buf(1:nc))) cycle
+      if (is_keyword(buf(1:nc))) then
+        call parse_keyword(buf(1:nc), kw)
         if (kw%name == 'INCLUDE') then
-          inc = include_path(path, lineno, buf, kw, depth, chain)
+          inc = include_path(path, lineno, buf(1:nc), kw, depth, chain)
           call read_file(inc, deck, depth + 1, chain)
           cycle
         end if
       end if
-      call add_line(deck, buf, ifile, lineno)
+      call add_line(deck, buf(1:nc), ifile, lineno)
     end do
     close(u)
   end subroutine read_file

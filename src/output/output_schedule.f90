@@ -7,7 +7,7 @@
 module output_schedule
   use kinds, only: dp
   use model, only: model_t
-  use increment_results, only: increment_results_t
+  use increment_results, only: increment_results_t, output_due
   implicit none
   private
   public :: schedule_t
@@ -21,12 +21,10 @@ module output_schedule
 
 contains
 
-  !> Purpose: is this increment's requested output to be written? Always
-  !> at the last increment of a step (CalculiX writes the end of every
-  !> step); otherwise every out_every-th increment, or, with time points,
-  !> at an increment whose interval (previous end, this end] holds one
-  !> (relative tolerance 1e-9 of the period, so that a point on an
-  !> increment end is written there and not again at the next).
+  !> Purpose: is this increment's requested output to be written?
+  !> increment_results' output_due (CalculiX's FREQUENCY= and TIME
+  !> POINTS=; the stresses are computed by the same rule), with the
+  !> previous increment this writer saw as the interval's start.
   !> Arguments:
   !>   self  the writer's schedule (remembers the last increment seen)
   !>   m     the model (the step's out_every, out_times, period)
@@ -35,9 +33,8 @@ contains
     class(schedule_t), intent(inout) :: self
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
-    real(dp) :: t, tol
+    real(dp) :: t
     associate(s => m%steps(res%step))
-      tol = 1.0e-9_dp * s%period
       t = res%time
       if (s%out_total_time) t = res%total_time
       if (self%step /= res%step) then
@@ -45,12 +42,7 @@ contains
         self%step = res%step
         self%last = t - res%time
       end if
-      due = res%time >= s%period - tol
-      if (allocated(s%out_times)) then
-        due = due .or. any(s%out_times > self%last + tol .and. s%out_times <= t + tol)
-      else
-        due = due .or. mod(res%increment, max(s%out_every, 1)) == 0
-      end if
+      due = output_due(m, res%step, res%increment, res%time, t, self%last)
       self%last = t
     end associate
   end function due
