@@ -26,7 +26,7 @@ module edge_tree
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_length
   implicit none
   private
-  public :: edge_tree_t, surface_tree, nearest_edge, edge_tol, tree_candidates
+  public :: edge_tree_t, surface_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates
 
   !> A projection this far outside [0, 1] along an edge still counts: it
   !> catches slave nodes exactly above a master vertex.
@@ -43,6 +43,9 @@ module edge_tree
     integer, allocatable :: left(:)        ! its first child (the second is left + 1), 0 at a leaf
     integer, allocatable :: perm(:)        ! edge indices, grouped by node
     real(dp) :: step = 0.0_dp              ! mean box size: the first radius and its growth
+    !> every coordinate finite: else the searches look at every edge (a
+    !> projection onto an edge with a NaN is judged there as before)
+    logical :: finite = .true.
   end type edge_tree_t
 
 contains
@@ -81,6 +84,7 @@ contains
     ! rounding of the projection: far below any edge of a sound mesh
     tree%ebox(1:2, :) = tree%ebox(1:2, :) - 1.0e-10_dp * scale
     tree%ebox(3:4, :) = tree%ebox(3:4, :) + 1.0e-10_dp * scale
+    tree%finite = all(abs(tree%ebox) <= huge(1.0_dp))
     call build_tree(tree)
   end subroutine surface_tree
 
@@ -166,6 +170,7 @@ contains
     end do
   end subroutine sift
 
+  !> Purpose: exchanges entries i and j of key and idx.
   pure subroutine swap(key, idx, i, j)
     real(dp), intent(inout) :: key(:)
     integer, intent(inout) :: idx(:)
@@ -180,7 +185,8 @@ contains
     idx(j) = ti
   end subroutine swap
 
-  !> Distance from point p to the box b (xmin, ymin, xmax, ymax); 0 inside.
+  !> Purpose: distance from point p to the box b (xmin, ymin, xmax, ymax);
+  !> 0 inside.
   pure real(dp) function box_distance(b, p)
     real(dp), intent(in) :: b(4), p(2)
     real(dp) :: dx, dy
@@ -227,6 +233,63 @@ contains
     end do
     call sort_ints(cand(1:ncand))
   end subroutine tree_candidates
+
+  !> Purpose: the edges whose box meets the strip of the points y with
+  !> lo <= (y - o) . u <= hi and |(y - o) . v| <= dv (u, v unit vectors;
+  !> dv = huge: no limit), in ascending order of their index. The corners
+  !> of master edges that project onto a straight slave face (face_cuts)
+  !> lie in such a strip.
+  !> Arguments: cand(1:ncand) returns them (grown as needed).
+  subroutine slab_candidates(tree, o, u, lo, hi, v, dv, cand, ncand)
+    type(edge_tree_t), intent(in) :: tree
+    real(dp), intent(in) :: o(2), u(2), lo, hi, v(2), dv
+    integer, allocatable, intent(inout) :: cand(:)
+    integer, intent(out) :: ncand
+    integer :: stack(128), ns, k, i, j
+    integer, allocatable :: longer(:)
+    if (.not. allocated(cand)) allocate(cand(32))
+    ncand = 0
+    if (tree%n == 0) return
+    ns = 1
+    stack(1) = 1
+    do while (ns > 0)
+      k = stack(ns)
+      ns = ns - 1
+      if (.not. box_meets(tree%box(:, k), o, u, lo, hi, v, dv)) cycle
+      if (tree%left(k) > 0) then
+        stack(ns + 1:ns + 2) = [tree%left(k), tree%left(k) + 1]
+        ns = ns + 2
+        cycle
+      end if
+      do i = tree%first(k), tree%last(k)
+        j = tree%perm(i)
+        if (.not. box_meets(tree%ebox(:, j), o, u, lo, hi, v, dv)) cycle
+        if (ncand == size(cand)) then
+          allocate(longer(2 * ncand))
+          longer(1:ncand) = cand(1:ncand)
+          call move_alloc(longer, cand)
+        end if
+        ncand = ncand + 1
+        cand(ncand) = j
+      end do
+    end do
+    call sort_ints(cand(1:ncand))
+  end subroutine slab_candidates
+
+  !> Purpose: does box b meet both strips of slab_candidates? (Each tested on its
+  !> own: a box that meets both but not their crossing is kept, which
+  !> only costs a projection.)
+  pure logical function box_meets(b, o, u, lo, hi, v, dv)
+    real(dp), intent(in) :: b(4), o(2), u(2), lo, hi, v(2), dv
+    real(dp) :: c(2), hw(2), su, ru, sv, rv
+    c = 0.5_dp * (b(1:2) + b(3:4)) - o
+    hw = 0.5_dp * (b(3:4) - b(1:2))
+    su = dot_product(c, u)
+    ru = hw(1) * abs(u(1)) + hw(2) * abs(u(2))
+    sv = dot_product(c, v)
+    rv = hw(1) * abs(v(1)) + hw(2) * abs(v(2))
+    box_meets = su + ru >= lo .and. su - ru <= hi .and. abs(sv) - rv <= dv
+  end function box_meets
 
   !> Purpose: ascending sort of a few integers (insertion; the candidate
   !> lists are short), longer lists by the heap sort.
@@ -275,7 +338,7 @@ contains
     dbest = huge(1.0_dp)
     rall = -1.0_dp
     if (present(tree)) then
-      if (tree%n == size(ms%elem) .and. tree%n > 0) rall = reach_all(tree, xs)
+      if (tree%n == size(ms%elem) .and. tree%n > 0 .and. tree%finite) rall = reach_all(tree, xs)
     end if
     if (.not. (rall >= 0.0_dp .and. rall <= huge(1.0_dp))) then
       ! no tree, or a point or box that is not finite: every edge
@@ -303,8 +366,8 @@ contains
     end do
   end subroutine nearest_edge
 
-  !> The farthest distance from p to a point of the tree's root box: a
-  !> radius that takes in every edge.
+  !> Purpose: the farthest distance from p to a point of the tree's root
+  !> box: a radius that takes in every edge.
   pure real(dp) function reach_all(tree, p)
     type(edge_tree_t), intent(in) :: tree
     real(dp), intent(in) :: p(2)
