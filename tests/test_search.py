@@ -7,7 +7,10 @@ long, a polyline whose edges are all given twice) and random points (on and
 near the edges, on their vertices, far away), and asks nearest_edge for
 each point with and without the tree, also with a search distance and with
 an element and a node skipped: the edge and the position along it must be
-the same bit for bit (the first of equally near edges wins in both). It
+the same bit for bit (the first of equally near edges wins in both).
+The segment-to-segment coupling's face_cuts (where the corners of the
+master edges project onto a straight slave face) on random faces, with and
+without a search distance and with the tree: the same cuts bit for bit. It
 also checks that near a flat surface of 20 000 edges the tree offers at
 most 8 edges within one edge length of a point.
 
@@ -35,5 +38,5 @@ def test_tree_search_same_edges_as_search_over_all():
     failed = [ln for ln in lines if ln.startswith("FAIL ")]
     assert not failed, "\n".join(failed)
     # every case ran (a crash part-way would leave some out)
-    assert len(lines) == 5, f"expected 5 results, got {len(lines)}:\n{run.stdout}\n{run.stderr}"
+    assert len(lines) == 9, f"expected 9 results, got {len(lines)}:\n{run.stdout}\n{run.stderr}"
     assert run.returncode == 0, run.stderr

@@ -14,6 +14,8 @@ program test_search
   use model, only: model_t, surface_t
   use element_catalogue, only: find_element_type, max_nodes
   use edge_tree, only: edge_tree_t, surface_tree, nearest_edge, tree_candidates
+  use contact_geometry, only: edge_t, get_edge
+  use contact_mortar, only: face_cuts
   implicit none
   real(dp), parameter :: pi = 3.14159265358979323846_dp
   call random_seed(put=seed_of(12345))
@@ -132,7 +134,54 @@ contains
     ! the comparison means something only if most points found an edge
     write(msg, '(i0,a,i0,a)') nfound, ' of ', 3 * size(pts, 2), ' searches found an edge'
     call report(name, nfound > size(pts, 2), trim(msg))
+    call compare_cuts(name // ': face cuts', m, ms, tree, pts)
   end subroutine compare
+
+  !> Purpose: face_cuts with and without the tree on straight slave faces
+  !> between consecutive points of pts (and on the master's own edges,
+  !> whose nodes are skipped), with and without a search distance: the
+  !> same cuts, bit for bit.
+  subroutine compare_cuts(name, m, ms, tree, pts)
+    character(len=*), intent(in) :: name
+    type(model_t), intent(in) :: m
+    type(surface_t), intent(in) :: ms
+    type(edge_tree_t), intent(in) :: tree
+    real(dp), intent(in) :: pts(:, :)
+    type(edge_t) :: ed
+    real(dp), allocatable :: c1(:), c2(:)
+    real(dp) :: dmax
+    integer :: i, n1, n2, pass, inner
+    character(len=200) :: msg
+    inner = 0
+    do i = 1, size(pts, 2) - 1
+      if (mod(i, 3) == 0) then
+        ed = get_edge(m, m%x, ms%elem(1 + mod(i, size(ms%elem))), ms%edge(1 + mod(i, size(ms%elem))))
+      else
+        ed = edge_t(nn=2, node=[-1, -2, 0])
+        ed%x(:, 1) = pts(:, i)
+        ed%x(:, 2) = pts(:, i) + (pts(:, i + 1) - pts(:, i)) * (0.05_dp + rnd())
+      end if
+      do pass = 1, 2
+        dmax = huge(1.0_dp)
+        if (pass == 2) dmax = 0.1_dp * rnd()
+        call face_cuts(m, m%x, ed, ms, dmax, c1, n1)
+        call face_cuts(m, m%x, ed, ms, dmax, c2, n2, tree)
+        if (n1 /= n2) then
+          write(msg, '(a,i0,a,i0,a,i0)') 'face ', i, ': all edges give ', n1, ' cuts, the tree ', n2
+          call report(name, .false., trim(msg))
+          return
+        end if
+        if (any(.not. (c1(1:n1) == c2(1:n2)))) then
+          write(msg, '(a,i0,a)') 'face ', i, ': the cuts differ'
+          call report(name, .false., trim(msg))
+          return
+        end if
+        inner = inner + n1 - 2
+      end do
+    end do
+    write(msg, '(i0,a)') inner, ' cuts inside the faces'
+    call report(name, inner > size(pts, 2), trim(msg))
+  end subroutine compare_cuts
 
   !> Purpose: random points about the edges (on them, on their vertices,
   !> near them on either side, and some far away) inside box lo..hi.
