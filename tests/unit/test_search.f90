@@ -38,6 +38,7 @@ contains
     s = [(k + 37 * i, i = 1, n)]
   end function seed_of
 
+  !> Purpose: a uniform random number in [0, 1).
   real(dp) function rnd()
     call random_number(rnd)
   end function rnd
@@ -287,13 +288,15 @@ contains
   !> dozen edges per point (the search over all looks at 20 000).
   subroutine few_candidates()
     integer, parameter :: ne = 20000
-    real(dp) :: a(2, ne), b(2, ne), mid(2, ne), p(2)
+    real(dp), allocatable :: a(:, :), b(:, :), mid(:, :)
+    real(dp) :: p(2)
     type(model_t) :: m
     type(surface_t) :: ms
     type(edge_tree_t) :: tree
     integer, allocatable :: cand(:)
     integer :: i, ncand, most
     character(len=80) :: msg
+    allocate(a(2, ne), b(2, ne), mid(2, ne))
     do i = 1, ne
       a(:, i) = [real(ne - i + 1, dp), 0.0_dp]
       b(:, i) = [real(ne - i, dp), 0.0_dp]
