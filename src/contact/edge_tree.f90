@@ -26,7 +26,7 @@ module edge_tree
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_length
   implicit none
   private
-  public :: edge_tree_t, surface_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates
+  public :: edge_tree_t, surface_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates
 
   !> A projection this far outside [0, 1] along an edge still counts: it
   !> catches slave nodes exactly above a master vertex.
@@ -87,6 +87,20 @@ contains
     tree%finite = all(abs(tree%ebox) <= huge(1.0_dp))
     call build_tree(tree)
   end subroutine surface_tree
+
+  !> Purpose: a tree over boxes given by the caller (ebox(1:2, j) the lower
+  !> and ebox(3:4, j) the upper corner of item j), for tree_candidates:
+  !> the items whose box holds a point are those within radius 0.
+  !> Arguments: tree returns it; finite says whether every box was finite
+  !> (a caller then searches all items otherwise).
+  subroutine boxes_tree(ebox, tree)
+    real(dp), intent(in) :: ebox(:, :)
+    type(edge_tree_t), intent(out) :: tree
+    tree%n = size(ebox, 2)
+    tree%ebox = ebox
+    tree%finite = all(abs(ebox) <= huge(1.0_dp))
+    call build_tree(tree)
+  end subroutine boxes_tree
 
   !> Purpose: the tree's nodes from the edge boxes tree%ebox: each node's
   !> edges split at the median of their centres along the longer side of

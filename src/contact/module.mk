@@ -7,6 +7,6 @@ $(OBJDIR)/contact_master_multipliers.o: $(OBJDIR)/contact_geometry.o $(OBJDIR)/c
                                         $(OBJDIR)/model.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/contact_geometry.o: $(OBJDIR)/element_catalogue.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o $(OBJDIR)/shape_functions.o
 $(OBJDIR)/contact_results.o: $(OBJDIR)/contact.o $(OBJDIR)/contact_geometry.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
-$(OBJDIR)/tie_constraints.o: $(OBJDIR)/contact_geometry.o $(OBJDIR)/contact_mortar.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
+$(OBJDIR)/tie_constraints.o: $(OBJDIR)/contact_geometry.o $(OBJDIR)/contact_mortar.o $(OBJDIR)/edge_tree.o $(OBJDIR)/kinds.o $(OBJDIR)/messages.o $(OBJDIR)/model.o $(OBJDIR)/strings.o
 $(OBJDIR)/contact_status.o: $(OBJDIR)/contact.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
 $(OBJDIR)/edge_tree.o: $(OBJDIR)/contact_geometry.o $(OBJDIR)/kinds.o $(OBJDIR)/model.o
