@@ -9,7 +9,7 @@ OPTFLAGS ?= -O2 -march=x86-64 -mtune=generic
 DBGFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -fcheck=all,no-array-temps \
             -g -fbacktrace -O0
 FFLAGS   ?= $(OPTFLAGS)
-LIBS     ?= -lcholmod -lumfpack -lamd -lcolamd -lsuitesparseconfig -lmetis -llapack -lopenblas
+LIBS     ?= -lcholmod -lumfpack -lamd -lcolamd -lsuitesparseconfig -lmetis -larpack -llapack -lopenblas
 PYTHON   ?= python3
 
 # MUMPS over MPI (Debian: libmumps-dev with Open MPI), the solver of

@@ -35,7 +35,10 @@
    (scripts/contact_decks.py: two long strips, a rough surface on a flat;
    two steps of 4 increments) on the condensed and the full path, with
    CHOLMOD and with MUMPS over 2 ranks, and which path AUTO takes.
-7. With --solvers: the solvers on a structured plane-stress square (Q4) at
+7. *FREQUENCY (scripts/bench_frequency.py): the 10 lowest modes of a
+   CPS8 plate of about 1e5 dofs, and CalculiX on the same deck in the
+   same run when ccx is on PATH.
+8. With --solvers: the solvers on a structured plane-stress square (Q4) at
    about 1e4, 1e5 and 1e6 dofs (tests/bench/bench.f90, one process per
    case): dofs, stored nonzeros, factor size, wall times of structure,
    assembly, ordering+symbolic analysis, numeric factorisation and solve,
@@ -438,8 +441,10 @@ def main(argv=None):
         print("\ncouplings: node-to-segment (nts) against segment-to-segment with exact enforcement (sts)")
         contact_accuracy.table(["default", "q8", "ccx"], os.path.join(WORK, "accuracy"), args.repeats, penalties=True)
     nonlinear_table(args.repeats)
+    __import__("bench_calculix").table(["nlgeom_hertz", "cattaneo_mindlin", "oring"], args.repeats)
     if not args.no_mumps and not args.no_square:
         mumps_square_table(args.repeats)
+    __import__("bench_frequency").table(args.repeats)
     if args.surfaces:
         surface_table([int(v) for v in args.surfaces.split(",")], 1, args.condensed_max)
     failed = solver_table(args.exe, args.sizes.split(",")) if args.solvers else False

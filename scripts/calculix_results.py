@@ -74,6 +74,13 @@ def read_dat_displacements(path):
             for t, rows in _dat_blocks(path, "displacements (vx,vy,vz)").items()}
 
 
+def read_dat_temperatures(path):
+    """{time: {node: T}} of the 'temperatures' blocks of a .dat file
+    (*NODE PRINT NT; a node printed twice: the last)."""
+    return {t: {int(r[0]): r[1] for r in rows if len(r) == 2}
+            for t, rows in _dat_blocks(path, "temperatures for set").items()}
+
+
 def read_dat_stresses(path):
     """{time: {element: {point: (sxx, syy, szz, sxy, sxz, syz)}}} of the
     'stresses' blocks of a .dat file (*EL PRINT S: one line per element

@@ -39,6 +39,7 @@ per-face means are only comparable, not the same quantity.
           [--out results/calculix] [--markdown docs/calculix-suite.md]
 """
 import argparse
+import math
 import os
 import re
 import subprocess
@@ -52,7 +53,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 
 from calculix_results import (expanded_displacements, frd_by_time, map_expanded_nodes,  # noqa: E402
-                              read_dat_contact_stresses, read_dat_displacements, read_dat_stresses,
+                              read_dat_contact_stresses, read_dat_displacements, read_dat_stresses, read_dat_temperatures,
                               read_deck_mesh, read_frd_displacements, read_frd_mesh, stress_layers,
                               deck_face_polyline, nearest_face)
 from cfe2d_listing import read_listing  # noqa: E402
@@ -63,7 +64,7 @@ __all__ = ["deck_element_types", "deck_keywords", "cfe2d_keywords", "run_deck", 
            "cfe2d_contact", "compare_displacements", "compare_stresses", "contact_faces", "compare_references",
            "main"]
 
-PLANE = re.compile(r"^(CPS|CPE|CAX)", re.I)
+PLANE = re.compile(r"^(CPS|CPE|CAX|DC2D|DCAX)", re.I)   # (DC2D*, DCAX*: Abaqus's heat transfer names)
 TOLERANCE = 1e-3
 
 
@@ -128,8 +129,9 @@ def cfe2d_keywords(parser=os.path.join(ROOT, "src", "input", "deck_parser.f90"))
 
 
 def stress_state(types):
-    states = sorted({{"CPS": "plane stress", "CPE": "plane strain", "CAX": "axisymmetric"}[t[:3]]
-                     for t in types if PLANE.match(t)})
+    names = {"CPS": "plane stress", "CPE": "plane strain", "CAX": "axisymmetric", "DC2": "planar heat",
+             "DCA": "axisymmetric"}
+    states = sorted({names[t[:3].upper()] for t in types if PLANE.match(t)})
     return ", ".join(states)
 
 
@@ -176,6 +178,42 @@ def cfe2d_displacements(listing_path):
             for n, v in zip(ids, vals):
                 block[int(n)] = (float(v[0]), float(v[1]))
     return out, nodes
+
+
+def cfe2d_temperatures(listing_path):
+    """cfe2d's temperatures {time: {node: T}} from the listing's NODE NT
+    blocks (*NODE PRINT NT)."""
+    out = {}
+    for inc in read_listing(listing_path).increments:
+        for b in inc.blocks:
+            if b.name == "NODE NT":
+                vals = out.setdefault(inc.time, {})
+                for node, t in zip(b["node"], b["NT11"]):
+                    vals[int(node)] = t
+    return out
+
+
+def compare_temperatures(ours, ref):
+    """Largest |T_cfe2d - T_ref| over the nodes and times both hold, over
+    the range of T_ref there (its largest magnitude where it is uniform:
+    temperatures carry an offset, so the range is the scale), and the
+    number of values compared; (None, 0) when they share none."""
+    worst, lo, hi, count = 0.0, math.inf, -math.inf, 0
+    for time, values in ours.items():
+        t = min(ref, key=lambda r: abs(r - time), default=None)
+        if t is None or not _same_time(t, time):
+            continue
+        for node, v in values.items():
+            r = ref[t].get(node)
+            if r is None:
+                continue
+            worst = max(worst, abs(v - r))
+            lo, hi = min(lo, r), max(hi, r)
+            count += 1
+    if count == 0:
+        return None, 0
+    scale = hi - lo if hi > lo else max(abs(lo), abs(hi))
+    return (worst / scale if scale > 0 else worst), count
 
 
 def _same_time(a, b):
@@ -340,6 +378,11 @@ def compare_dat(listing, path, state, deck):
     rel, count = compare_displacements(ours, disp)
     if rel is not None:
         parts.append("displacements: " + judge(state, rel, count))
+    rel, count = compare_temperatures(cfe2d_temperatures(listing), read_dat_temperatures(path))
+    if rel is not None:
+        # (a plane-stress layer conducts as the plane: judged in every state)
+        text = judge(JUDGED[0], rel, count, "temperature range")
+        parts.append("temperatures: " + text)
     text = stresses_text(cfe2d_stresses(listing), read_dat_stresses(path), state)
     if text:
         parts.append(text)

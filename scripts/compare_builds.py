@@ -21,6 +21,20 @@ section's seconds), the contact CSV, the gmsh and VTU files. The iteration
 and factorisation counts (the listing's step summaries and increment
 headers) are compared on their own too and summed in the last line.
 Exit status 1 if any deck differs.
+
+With --rtol R (a change that may move results within a convergence
+tolerance, e.g. the Newton iteration's tangent): files that are not
+byte-identical are compared as numbers. The iteration logs are left out
+(.cvg and .sta files, the listing's "contact iteration" lines, its
+iteration and factorisation counts, `iterations=` of the increment
+headers, the solver block's factor and contact-solve lines and the exact
+contact's notes), and so are the VTU files (binary: their numbers are the
+listing's and the CSV's); the rest must have the same lines and words,
+and each number a within R of b relative to the largest magnitude of its
+column (the same word position in lines with the same number of words)
+in the reference file, or 1e-10 of the file's largest where the column is
+round-off: |a - b| <= R max(max|column|, 1e-10 max|file|). The largest
+such difference is printed per deck.
 """
 import argparse
 import concurrent.futures
@@ -211,6 +225,54 @@ def counts(text):
     return c
 
 
+NUMBER = re.compile(r"^[-+]?(?:\d+\.?\d*|\.\d+)(?:[Ee][-+]?\d+)?$")
+LOG_LINE = re.compile(r"^(contact iteration |exact contact: |(?:" + "|".join(COUNT_KEYS) + r"|element_calls_\w+|"
+                      r"iterations|increment_iterations|direct_multiplier_solves|factor|contact_solve|"
+                      r"contact_equations) )")
+
+
+def words(text):
+    """The lines of a result file as lists of words, iteration logs left out."""
+    out = []
+    for line in text.splitlines():
+        if LOG_LINE.match(line) or "direct multiplier solves" in line or " Newton iterations" in line:
+            continue
+        line = re.sub(r" iterations=\d+", " iterations=<masked>", line)
+        out.append(re.split(r"[\s,;]+", line.strip()))
+    return out
+
+
+def numeric_difference(a, b):
+    """The largest difference of the numbers of two result files relative
+    to their column's largest magnitude (words()), or None where lines or
+    other words differ."""
+    la, lb = words(a), words(b)
+    if len(la) != len(lb):
+        return None
+    scale = {}
+    for wa in la:
+        for i, w in enumerate(wa):
+            if NUMBER.match(w):
+                key = (len(wa), i)
+                scale[key] = max(scale.get(key, 0.0), abs(float(w)))
+    # a column of round-off (gaps of closed contact: 1e-17) is judged
+    # against 1e-10 of the file's largest magnitude
+    floor = 1e-10 * max(scale.values(), default=0.0)
+    worst = 0.0
+    for wa, wb in zip(la, lb):
+        if len(wa) != len(wb):
+            return None
+        for i, (x, y) in enumerate(zip(wa, wb)):
+            if x == y:
+                continue
+            if not (NUMBER.match(x) and NUMBER.match(y)):
+                return None
+            ref = max(scale[(len(wa), i)], floor)
+            d = abs(float(x) - float(y))
+            worst = max(worst, d / ref if ref > 0.0 else float("inf"))
+    return worst
+
+
 def run(binary, deck, outdir, timeout):
     if os.path.isdir(outdir):
         shutil.rmtree(outdir)
@@ -246,20 +308,31 @@ def compare(args, i, deck):
             diffs.append(key)
     if sorted(a["files"]) != sorted(b["files"]):
         diffs.append("file set: " + " ".join(sorted(set(a["files"]) ^ set(b["files"]))))
+    worst = 0.0
     for f in sorted(set(a["files"]) & set(b["files"])):
-        if a["files"][f] != b["files"][f]:
+        if a["files"][f] == b["files"][f]:
+            continue
+        if args.rtol is None:
             diffs.append(f)
+        elif not f.endswith((".cvg", ".sta", ".vtu")):
+            d = numeric_difference(a["files"][f].decode(errors="replace"), b["files"][f].decode(errors="replace"))
+            if d is None or d > args.rtol:
+                diffs.append(f + (": lines or words differ" if d is None else f": {d:.2e}"))
+            else:
+                worst = max(worst, d)
+    if worst > 0.0:
+        print(f"within {args.rtol:g}: {deck} ({tag}): largest relative difference {worst:.2e}", flush=True)
     ca, cb = {}, {}
     for f, data in a["files"].items():
         if f.endswith(".out"):
             ca = counts(data.decode(errors="replace"))
             cb = counts(b["files"].get(f, b"").decode(errors="replace"))
-            if ca != cb:
+            if ca != cb and args.rtol is None:
                 diffs.append(f"counts {ca} != {cb}")
     if not args.keep and not diffs:
         shutil.rmtree(os.path.join(args.work, "ref", tag), ignore_errors=True)
         shutil.rmtree(os.path.join(args.work, "new", tag), ignore_errors=True)
-    return deck, tag, diffs, ca, len(a["files"])
+    return deck, tag, diffs, cb if args.rtol is not None else ca, len(a["files"])
 
 
 def main():
@@ -274,6 +347,8 @@ def main():
     ap.add_argument("-j", "--jobs", type=int, default=1)
     ap.add_argument("--timeout", type=float, default=300.0)
     ap.add_argument("--keep", action="store_true", help="keep the outputs of decks that agree")
+    ap.add_argument("--rtol", type=float, help="numbers within this of their column's largest magnitude agree; "
+                    "iteration logs and counts are not compared (the counts summed are the new binary's)")
     args = ap.parse_args()
     args.ref, args.new = os.path.abspath(args.ref), os.path.abspath(args.new)
     decks = gather(args)

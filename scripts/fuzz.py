@@ -228,7 +228,8 @@ def test_seeds(log):
     makers = [("tests/bad_decks_good", _good_deck), ("tests/contact_push", _contact_push),
               ("tests/contact_force", _contact_force), ("tests/contact_unsettled", _contact_unsettled),
               ("tests/features_include", _features), ("tests/patch_tri", _patch_tri),
-              ("tests/contact_friction", _contact_friction), ("tests/calculix_friction", _calculix_friction)] \
+              ("tests/contact_friction", _contact_friction), ("tests/calculix_friction", _calculix_friction),
+              ("tests/wear_punch", _wear_punch)] \
         + CARD_MAKERS + MORTAR_MAKERS
     for name, make in makers:
         try:
@@ -248,6 +249,15 @@ def _good_deck():
 def _contact_push():
     import test_contact as tc
     return "push.inp", {"push.inp": tc.blocks_deck([tc.push_step(3 * tc.G0, 2)])}
+
+
+def _wear_punch():
+    """test_wear's punch with Archard wear (*WEAR, a PERIODIC amplitude),
+    held at its top only (partial slip), two cycles of 8 increments."""
+    import test_wear as tw
+    deck = tw.punch_deck(rigid=False, nx_base=14, base_span=(-2.0, 12.0), cycles=2, inc=0.125)
+    assert "*WEAR" in deck
+    return "wear.inp", {"wear.inp": deck}
 
 
 def _contact_friction():
@@ -369,6 +379,19 @@ def _mass_ring():
     return "mass_ring.inp", {"mass_ring.inp": tm.ring(f"*DLOAD\nMA, CENTRIF, {tm.W2}, 0., 0., 0., 0., 1., 0.\n")}
 
 
+def _frequency_blocks():
+    """*FREQUENCY after a preloading step: test_frequency's blocks pressed
+    together (a linear penalty), then their modes."""
+    import test_frequency as tf
+    return "freq_blocks.inp", {"freq_blocks.inp": tf.blocks("contact", penalty=1e6)}
+
+
+def _frequency_chain():
+    """*FREQUENCY on trusses and point masses (test_frequency's chain)."""
+    import test_frequency as tf
+    return "freq_chain.inp", {"freq_chain.inp": tf.chain(5, 1000.0, 2.0)}
+
+
 def _nodal_thickness():
     import test_nodal_thickness as tn
     from decks import grid, quad_lines
@@ -462,6 +485,7 @@ CARD_MAKERS = [("tests/equation_tied", _equation_tied), ("tests/equation_chain",
                ("tests/truss_v", _truss_v), ("tests/truss_block", _truss_block),
                ("tests/springs_grounded", _springs_grounded), ("tests/springs_axial", _springs_axial),
                ("tests/mass_bar", _mass_bar), ("tests/mass_ring", _mass_ring),
+               ("tests/frequency_blocks", _frequency_blocks), ("tests/frequency_chain", _frequency_chain),
                ("tests/nodal_thickness", _nodal_thickness), ("tests/nodal_thickness_taper", _nodal_thickness_taper)] \
     + NONLINEAR_MAKERS
 
@@ -1371,8 +1395,11 @@ def _binary_msh_problem(path):
 
 def _short_step(text):
     """'a step stopped before the end of its time period' if the last increment
-    of a step is not at the step's time_period."""
+    of a step is not at the step's time_period (a *FREQUENCY step, which
+    has an EIGENVALUES block, has no time: its increments are its modes)."""
     periods = dict(re.findall(rb"^--- STEP step=(\d+).*?^time_period\s+(\S+)", text, re.M | re.S))
+    for step in re.findall(rb"^--- EIGENVALUES step=(\d+)", text, re.M):
+        periods.pop(step, None)
     last = {}
     for step, t in re.findall(rb"^=== INCREMENT step=(\d+) increment=\d+ time=(\S+)", text, re.M):
         last[step] = t

@@ -7,7 +7,7 @@
 set -euo pipefail
 
 PYTHON=${PYTHON:-python3}
-apt_pkgs=(gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev gmsh libmumps-dev openmpi-bin libopenmpi-dev)
+apt_pkgs=(gfortran liblapack-dev libopenblas-dev libarpack2-dev libsuitesparse-dev libmetis-dev gmsh libmumps-dev openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${apt_pkgs[@]}"; do
   if dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -560,3 +560,64 @@ def test_contact_pressures_per_face():
             assert "difference 45 % to 49 % of CalculiX's mean (largest at element 2 face S1: cfe2d 10.2, " \
                    "CalculiX 20)" in text, text
             assert "carry 0.500 of the pair's total force" in text and "scaled by 1/0.500, " + same in text, text
+
+
+HEAT_DECK = """*HEADING
+a slab 0 <= x <= 2 held at 100 on x = 0 and 20 on x = 2: T linear in x
+*NODE, NSET=NALL
+1, 0., 0.
+2, 1., 0.
+3, 2., 0.
+4, 0., 1.
+5, 1., 1.
+6, 2., 1.
+*ELEMENT, TYPE=DC2D4, ELSET=EALL
+1, 1, 2, 5, 4
+2, 2, 3, 6, 5
+*MATERIAL, NAME=M
+*CONDUCTIVITY
+50.
+*SOLID SECTION, ELSET=EALL, MATERIAL=M
+1.
+*STEP
+*HEAT TRANSFER, STEADY STATE
+*BOUNDARY
+1, 11, 11, 100.
+4, 11, 11, 100.
+3, 11, 11, 20.
+6, 11, 11, 20.
+*NODE PRINT, NSET=NALL
+NT
+*END STEP
+"""
+
+
+def heat_dat_ref(offset=0.0):
+    """CalculiX's temperature block of the slab: T = 100 - 40 x (+ offset)."""
+    xs = {1: 0, 2: 1, 3: 2, 4: 0, 5: 1, 6: 2}
+    lines = ["", "                        S T E P       1", "", "",
+             " temperatures for set NALL and time  0.1000000E+01", ""]
+    for n, x in xs.items():
+        lines.append(f"{n:10d} {100.0 - 40.0 * x + offset:13.6E}")
+    return "\n".join(lines) + "\n"
+
+
+def test_suite_compares_temperatures_and_names_fluid_networks():
+    """Temperatures (*NODE PRINT NT) against the .dat.ref's, over the
+    reference's range (80 here): the exact one agrees, one 0.8 off at a
+    node (1 % of the range) differs; a fluid network element (CalculiX's
+    type D) is rejected at its *ELEMENT line naming the networks."""
+    d = workdir("suite_heat")
+    write(d, "slab.inp", HEAT_DECK)
+    write(d, "slab.dat.ref", heat_dat_ref())
+    write(d, "slabwrong.inp", HEAT_DECK)
+    write(d, "slabwrong.dat.ref", heat_dat_ref().replace(f"{60.0:13.6E}", f"{60.8:13.6E}"))
+    write(d, "network.inp", HEAT_DECK.replace("*ELEMENT, TYPE=DC2D4, ELSET=EALL",
+                                              "*ELEMENT, TYPE=D, ELSET=EW\n7, 1, 2, 3\n*ELEMENT, TYPE=DC2D4, ELSET=EALL"))
+    rows = suite_rows(d)
+    assert rows["slab"]["status"] == "ran" and "temperatures: largest difference" in rows["slab"]["detail"]
+    assert "(agrees)" in rows["slab"]["detail"], rows["slab"]
+    assert "1.00e-02 of the largest temperature range over 6" in rows["slabwrong"]["detail"], rows["slabwrong"]
+    assert "(DIFFERS)" in rows["slabwrong"]["detail"], rows["slabwrong"]
+    assert rows["network"]["status"] == "rejected" and "network.inp:" in rows["network"]["detail"]
+    assert "fluid network" in rows["network"]["detail"], rows["network"]

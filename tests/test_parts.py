@@ -560,3 +560,35 @@ def test_cae_interaction_thickness_line():
     assert "*Surface Interaction, name=IntProp-1\n1.,\n" in deck
     bad = deck.replace("*Surface Interaction, name=IntProp-1\n1.,\n", "*Surface Interaction, name=IntProp-1\n2.5,\n")
     stops_at("cae_thickness_2_5", bad, "2.5,", "differs from the section thickness")
+
+
+def test_orientation_inside_a_part_turns_with_each_instance():
+    """An *ORIENTATION inside the part (material axes at 20 degrees in the
+    part's coordinates) of an orthotropic plate (E1 = 10 E2): each
+    instance has its own (PLATE-1.OR, PLATE-2.OR: no duplicate) and
+    Plate-2's turns with it, so with its loads turned it moves as Plate-1
+    turned, label by label, to 1e-9 (as the isotropic plates above). Had
+    the axes stayed fixed, the copies would differ: the same deck with
+    Plate-2's orientation given outside the part (not turned) moves
+    Plate-2 differently, by more than 1 % of the largest displacement."""
+    ortho = """*Material, name=Steel
+*Elastic, type=ENGINEERING CONSTANTS
+200000., 20000., 20000., 0.3, 0.3, 0.3, 15000., 15000.,
+15000.
+"""
+    axes = "*Orientation, name=Or\n0.9396926207859084, 0.3420201433256687, 0., " \
+           "-0.3420201433256687, 0.9396926207859084, 0.\n"
+    part = PLATE_PART.replace("*Solid Section, elset=All, material=Steel",
+                              axes + "*Solid Section, elset=All, material=Steel, orientation=Or")
+    deck = two_plates("*Instance, name=Plate-2, part=Plate\n" + PLATE2_PLACEMENT + "*End Instance\n")
+    deck = deck.replace(PLATE_PART, part).replace(MATERIAL, ortho)
+    assert deck.count("orientation=Or") == 1 and "ENGINEERING" in deck
+    run = run_deck("parts_orientation", deck).ok()
+    u = turned_copies_agree(run)
+    # the model-level orientation of the same name is not turned with Plate-2
+    fixed = deck.replace(axes, "").replace("*Assembly", axes + "*Assembly")
+    inc = run_deck("parts_orientation_fixed", fixed).ok().listing.increments[-1]
+    v = {r[-1]: (r[1], r[2]) for r in inc.block("NODE U").rows}
+    scale = max(math.hypot(*w) for w in u.values())
+    assert max(math.dist(u[f"PLATE-1.{n}"], v[f"PLATE-1.{n}"]) for n in range(1, 13)) < 1e-12 * scale
+    assert max(math.dist(u[f"PLATE-2.{n}"], v[f"PLATE-2.{n}"]) for n in range(1, 13)) > 1e-2 * scale

@@ -1,12 +1,19 @@
 !> The driver of a run: steps, increments and their bisection or
-!> cut-back, over a list of fields (analysis_field: today the
-!> displacements, displacement_field). Everything else is data handed to
+!> cut-back, over a list of fields (analysis_field: the displacements,
+!> displacement_field; the temperatures, temperature_field; or both,
+!> the temperatures first, in a coupled run). Everything else is data handed to
 !> the layers that own it: a field owns its unknowns, equations, solve,
 !> history and results; the observers that write them
 !> (analysis_events) are told what happens. Within an increment the
 !> fields are solved in the order of the list (a field may read the
 !> converged values of the ones before it: a staggered coupling), and an
-!> increment is done when every field has converged.
+!> increment is done when every field has converged. In a coupled run
+!> (model's coupled) a step takes part with the fields its procedure
+!> names (a *HEAT TRANSFER step the temperatures, a *STATIC step the
+!> displacements, a *COUPLED TEMPERATURE-DISPLACEMENT step both); the
+!> displacements take the temperatures once they are solved
+!> (hand_temperatures: a staggered coupling per increment, docs/heat.md)
+!> and report the increment's results of both.
 module analysis
   use kinds, only: dp
   use strings, only: itoa, rtoa
@@ -14,8 +21,10 @@ module analysis
   use analysis_field, only: field_ref_t
   use displacement_field, only: displacement_field_t
   use temperature_field, only: temperature_field_t
+  use frequency_step, only: run_frequency_step
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use messages, only: fatal
+  use contact_heat, only: contact_heat_t, contact_heat_build, has_contact_heat
   implicit none
   private
   public :: run_analysis
@@ -23,13 +32,20 @@ module analysis
   !> The state the driver carries from increment to increment.
   type :: run_state_t
     type(field_ref_t), allocatable :: fields(:)   ! solved in this order in every increment
+    !> The fields that take part in the current step (a coupled run's
+    !> heat transfer or mechanical step has one of its two).
+    logical, allocatable :: active(:)
     real(dp) :: total_time = 0.0_dp     ! at the start of the current step
     integer :: inc = 0                  ! increments done in the current step
     !> The current step has a nonlinear field: Newton with automatic
     !> increments (advance_automatic).
     logical :: nonlinear = .false.
     integer :: cutbacks = 0             ! increments cut back in the current step
-    integer :: failed = 0               ! the field whose solve failed last (solve_fields)
+    integer :: failed = 0               ! the field whose solve failed last (solve_fields; 0: the passes)
+    !> Heat through the contact (a coupled run): the fields' solves are
+    !> repeated in each increment until the temperatures settle (passes).
+    logical :: contact_heat = .false.
+    integer :: passes = 0
     type(run_timing_t) :: timing        ! where the run's time went
   end type run_state_t
 
@@ -38,6 +54,12 @@ module analysis
     real(dp) :: t0 = 0.0_dp, t1 = 0.0_dp
     integer :: level = 0
   end type interval_t
+
+  !> Passes of a coupled increment with heat through the contact: at most
+  !> max_passes, done when no temperature changes by more than
+  !> coupling_tolerance of the largest (at least 1) between two.
+  integer, parameter :: max_passes = 50
+  real(dp), parameter :: coupling_tolerance = 1.0e-9_dp
 
 contains
 
@@ -54,14 +76,23 @@ contains
     integer :: is, k
     if (present(timing)) rs%timing = timing
     if (rs%timing%started == 0.0_dp) rs%timing%started = wall_time()
-    ! the fields of the run: the temperatures in a heat transfer deck (a
-    ! coupled one, later, would have both, the temperatures first)
-    allocate(rs%fields(1))
-    if (m%heat) then
+    ! the fields of the run: the temperatures in a heat transfer deck,
+    ! both in a coupled one, the temperatures first
+    if (m%coupled) then
+      allocate(rs%fields(2))
       allocate(temperature_field_t :: rs%fields(1)%f)
+      allocate(displacement_field_t :: rs%fields(2)%f)
     else
-      allocate(displacement_field_t :: rs%fields(1)%f)
+      allocate(rs%fields(1))
+      if (m%heat) then
+        allocate(temperature_field_t :: rs%fields(1)%f)
+      else
+        allocate(displacement_field_t :: rs%fields(1)%f)
+      end if
     end if
+    allocate(rs%active(size(rs%fields)))
+    rs%active = .true.
+    rs%contact_heat = m%coupled .and. has_contact_heat(m)
     do k = 1, size(rs%fields)
       call rs%fields(k)%f%setup(m, rs%timing)
     end do
@@ -99,9 +130,16 @@ contains
     type(step_summary_t) :: summary
     integer :: i, ninc, k
     real(dp) :: t0, started
+    ! a *FREQUENCY step: the modes about the state the steps before leave
+    if (m%steps(is)%frequency) then
+      call run_frequency_step(m, is, rs%fields(1)%f, obs, rs%total_time, rs%timing)
+      return
+    end if
     started = wall_time()
     rs%nonlinear = .false.
+    if (m%coupled) rs%active = [m%steps(is)%heat, m%steps(is)%coupled .or. .not. m%steps(is)%heat]
     do k = 1, size(rs%fields)
+      if (.not. rs%active(k)) cycle
       call rs%fields(k)%f%begin_step(m, is, rs%total_time, info, rs%timing)
       rs%nonlinear = rs%nonlinear .or. rs%fields(k)%f%nonlinear()
     end do
@@ -115,7 +153,7 @@ contains
       call obs(k)%o%step_started(m, info)
     end do
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%step_notes(obs)
+      if (rs%active(k)) call rs%fields(k)%f%step_notes(obs)
     end do
     rs%timing%output = rs%timing%output + (wall_time() - t0)
     rs%inc = 0
@@ -127,7 +165,7 @@ contains
       end do
     end if
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%end_step(obs, summary)
+      if (rs%active(k)) call rs%fields(k)%f%end_step(obs, summary)
     end do
     summary%step = is
     summary%increments = rs%inc
@@ -143,7 +181,12 @@ contains
 
   !> Purpose: one attempt at the increment from step time t0 to t1: every
   !> field begins it and is solved in turn; ok when all converged, iters
-  !> the iterations of the last field solved.
+  !> the iterations of the last field solved. With heat through the
+  !> contact (a coupled run) the solves are repeated, each temperature
+  !> solve with the contact's heat couplings of the last displacement
+  !> solve (hand_contact_heat), until no temperature changes by more than
+  !> coupling_tolerance of the largest (at least 1) from one pass to the
+  !> next, at most max_passes times (docs/heat.md).
   !> Arguments: search_due, a contact search on the current configuration
   !> is due (begin_increment).
   subroutine solve_fields(m, is, rs, obs, t0, t1, search_due, ok, iters)
@@ -155,20 +198,68 @@ contains
     logical, intent(in) :: search_due
     logical, intent(out) :: ok
     integer, intent(out) :: iters
-    integer :: k
+    integer :: k, pass
+    real(dp), allocatable :: before(:)
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%begin_increment(m, t0, t1, search_due, rs%timing)
+      if (rs%active(k)) call rs%fields(k)%f%begin_increment(m, t0, t1, search_due, rs%timing)
     end do
     ok = .true.
     iters = 0
-    do k = 1, size(rs%fields)
-      call rs%fields(k)%f%solve(m, is, rs%inc + 1, obs, ok, iters)
-      if (.not. ok) then
-        rs%failed = k
+    rs%passes = 0
+    do pass = 1, max_passes
+      rs%passes = pass
+      if (rs%contact_heat .and. rs%active(1)) before = hand_contact_heat(m, rs, t1 - t0)
+      do k = 1, size(rs%fields)
+        if (.not. rs%active(k)) cycle
+        if (m%coupled .and. k == 2) call hand_temperatures(rs)
+        call rs%fields(k)%f%solve(m, is, rs%inc + 1, obs, ok, iters)
+        if (.not. ok) then
+          rs%failed = k
+          return
+        end if
+      end do
+      if (.not. (rs%contact_heat .and. all(rs%active))) return
+      if (pass > 1 .and. temperatures_settled(rs, before)) then
+        call tell_note(obs, 'temperatures and contact settled in ' // itoa(pass) // ' passes of the two fields')
         return
       end if
     end do
+    ok = .false.
+    rs%failed = 0
   end subroutine solve_fields
+
+  !> Purpose: a coupled run with heat through the contact: the contact's
+  !> heat couplings of the displacement field's contact set as it was
+  !> last evaluated (contact_heat_build; dt the increment's length) to the
+  !> temperature field; the temperatures before its solve returned.
+  function hand_contact_heat(m, rs, dt) result(temp)
+    type(model_t), intent(in) :: m
+    type(run_state_t), intent(inout) :: rs
+    real(dp), intent(in) :: dt
+    real(dp), allocatable :: temp(:)
+    type(contact_heat_t) :: ch
+    select type (tf => rs%fields(1)%f)
+    type is (temperature_field_t)
+      select type (df => rs%fields(2)%f)
+      type is (displacement_field_t)
+        call contact_heat_build(m, df%cs, dt, ch)
+        call tf%take_contact_heat(m, ch)
+        temp = tf%temp
+      end select
+    end select
+  end function hand_contact_heat
+
+  !> Purpose: has no temperature changed by more than coupling_tolerance
+  !> of the largest (at least 1) since before (the last pass's)?
+  logical function temperatures_settled(rs, before) result(settled)
+    type(run_state_t), intent(in) :: rs
+    real(dp), intent(in) :: before(:)
+    settled = .true.
+    select type (tf => rs%fields(1)%f)
+    type is (temperature_field_t)
+      settled = maxval(abs(tf%temp - before)) <= coupling_tolerance * max(1.0_dp, maxval(abs(tf%temp)))
+    end select
+  end function temperatures_settled
 
   !> Purpose: the increment converged: every field commits its history,
   !> and its results at step time t (increment length dt) go to the
@@ -181,13 +272,38 @@ contains
     real(dp), intent(in) :: t, dt
     integer :: k
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%commit()
+      if (rs%active(k)) call rs%fields(k)%f%commit()
     end do
     rs%inc = rs%inc + 1
     do k = 1, size(rs%fields)
+      if (.not. rs%active(k)) cycle
+      ! (a coupled run's displacements report the temperatures with theirs)
+      if (m%coupled .and. k == 1) then
+        if (rs%active(2)) cycle
+      end if
       call rs%fields(k)%f%report(m, is, rs%inc, t, rs%total_time + t, iters, dt, obs, rs%timing)
     end do
   end subroutine increment_done
+
+  !> Purpose: a coupled run (fields temperatures, displacements): the
+  !> temperatures of the increment's start and end, as the temperature
+  !> field has them once solved (in a mechanical step, where it takes no
+  !> part, those it last had), and its reaction fluxes, to the
+  !> displacement field, whose thermal strain they make.
+  subroutine hand_temperatures(rs)
+    type(run_state_t), intent(inout) :: rs
+    select type (tf => rs%fields(1)%f)
+    type is (temperature_field_t)
+      select type (df => rs%fields(2)%f)
+      type is (displacement_field_t)
+        if (rs%active(1)) then
+          call df%take_temperatures(tf%saved, tf%temp, tf%rfl)
+        else
+          call df%take_temperatures(tf%temp, tf%temp, 0.0_dp * tf%rfl)
+        end if
+      end select
+    end select
+  end subroutine hand_temperatures
 
   !> Purpose: the increment failed: every field back to the state it
   !> started from; reason, cut and changing those of the field that
@@ -199,8 +315,15 @@ contains
     real(dp), intent(out) :: cut
     integer :: k
     do k = 1, size(rs%fields)
-      call rs%fields(k)%f%restore(m)
+      if (rs%active(k)) call rs%fields(k)%f%restore(m)
     end do
+    if (rs%failed == 0) then
+      reason = 'the temperatures and the contact (heat through it) did not settle in ' // itoa(max_passes) // &
+               ' passes of the two fields'
+      cut = 0.25_dp
+      changing = ''
+      return
+    end if
     call rs%fields(rs%failed)%f%failure(reason, cut, changing)
   end subroutine restore_fields
 

@@ -21,7 +21,7 @@
 module condensed_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
-  use model, only: model_t, carries_stiffness, elem_nodes
+  use model, only: model_t, carries_stiffness, elem_nodes, nonlinear_material, step_dloads, dload_p
   use solver_codes, only: solver_cholmod, solver_umfpack, solver_mumps, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set
   use element_interface, only: cfe_in_t, cfe_out_t, max_en, act_tangent
@@ -35,7 +35,7 @@ module condensed_contact
   use dense_lu, only: lu_factor, lu_solve
   implicit none
   private
-  public :: condensed_t, number_equations, condensed_factor_k0, condensed_status, condensed_begin, &
+  public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
             condensed_energy, direct_multipliers, condensed_multipliers
 
@@ -48,6 +48,11 @@ module condensed_contact
   !> surfaces of 250 to 2000 points over 2 ranks (docs/benchmark.md),
   !> condensed faster up to a share 0.72 (500 points), full from 0.85.
   real(dp), parameter :: auto_flop_share = 0.5_dp, auto_flop_share_mumps = 0.8_dp
+  !> A nonlinear step takes the condensed solve (AUTO) only where a sparse
+  !> factorisation of its tangent costs at least this many operations: on
+  !> a small model the full solve's factor per Newton iteration is cheap
+  !> and its iterates (a status pivot per Newton iteration) are kept.
+  real(dp), parameter :: auto_min_flops_nonlinear = 1.0e8_dp
   integer, parameter :: auto_max_m = 6000
 
   type :: condensed_t
@@ -97,11 +102,16 @@ contains
   !> Arguments: mpc the linear constraints (their dependent dofs
   !> eliminated); t_analyse returns the wall time of the symbolic analysis
   !> done here to decide (0 when none was needed); nonlinear, if true,
-  !> asks for the full solve with UMFPACK (a nonlinear step: the bodies'
-  !> stiffness changes with u, so there is no factor of them to condense
-  !> with, and their tangent may be unsymmetric, F-bar and follower
-  !> pressures, or indefinite).
-  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse, nonlinear)
+  !> says the step is nonlinear: where the bodies' tangent is symmetric
+  !> (symmetric_tangent) the solve is chosen as for a linear step where the
+  !> sparse factorisation costs auto_min_flops_nonlinear or more (Newton's
+  !> tangent is then factored once per Newton iteration and the contact
+  !> status searched on it by the condensed system); otherwise the full
+  !> solve with UMFPACK (the tangent may be unsymmetric, F-bar and
+  !> follower pressures, or indefinite). keep, if true (a renumbering
+  !> inside an increment), keeps the solve cd had: the iteration's path
+  !> stays (condensed: where any contact equation is left).
+  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse, nonlinear, keep)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
@@ -110,24 +120,28 @@ contains
     type(linear_system_t), intent(inout) :: sys
     type(condensed_t), intent(inout) :: cd
     real(dp), intent(out) :: t_analyse
-    logical, intent(in), optional :: nonlinear
+    logical, intent(in), optional :: nonlinear, keep
     logical, allocatable :: mask(:, :)
     integer :: mc, solver
     real(dp) :: flops
     integer(kind=8) :: c0, c1, rate
-    logical :: want_full, nl
+    logical :: want_full, nl, stay, was_active
     t_analyse = 0.0_dp
+    stay = .false.
+    if (present(keep)) stay = keep
+    was_active = cd%active
     cd%active = .false.
     cd%m = 0
     nl = .false.
     if (present(nonlinear)) nl = nonlinear
-    want_full = m%contact_solve == contact_solve_full .or. nl
+    want_full = m%contact_solve == contact_solve_full .or. (nl .and. .not. symmetric_tangent(m))
+    if (stay) want_full = .not. was_active
     if (.not. want_full .and. (m%solver == solver_cholmod .or. m%solver == solver_mumps) .and. cs%n > 0) then
       call contact_dof_mask(m, cs, prescribed, mpc, mask)
       mc = count(mask)
       if (mc > 0) then
         call number_dofs(m, cs, prescribed, m%solver, m%ordering, dm, sys, mask, mpc)
-        cd%active = m%contact_solve == contact_solve_condensed
+        cd%active = m%contact_solve == contact_solve_condensed .or. stay
         if (.not. cd%active .and. mc <= auto_max_m) then
           call system_clock(c0, rate)
           flops = sys_factor_flops(sys)
@@ -135,6 +149,7 @@ contains
           t_analyse = real(c1 - c0, dp) / real(rate, dp)
           cd%active = real(mc, dp)**3 / 3.0_dp <= &
                       merge(auto_flop_share_mumps, auto_flop_share, m%solver == solver_mumps) * flops
+          if (nl) cd%active = cd%active .and. flops >= auto_min_flops_nonlinear
         end if
         if (cd%active) then
           cd%n = dm%neq
@@ -151,6 +166,27 @@ contains
     if ((frictional_set(cs) .or. nl) .and. solver /= solver_mumps) solver = solver_umfpack
     call number_dofs(m, cs, prescribed, solver, m%ordering, dm, sys, constraints=mpc)
   end subroutine number_equations
+
+  !> Purpose: is the bodies' Newton tangent of model m symmetric, so that
+  !> CHOLMOD can factor it for the condensed solve? Where the only
+  !> nonlinearity is the geometry (NLGEOM with *ELASTIC: St Venant-Kirchhoff,
+  !> whose A = dP/dF is symmetric; the plain element, no F-bar), no
+  !> pressure follows the faces (its load stiffness is unsymmetric) and no
+  !> rigid body or kinematic coupling turns (its followers are moved by the
+  !> iteration after each update, which the condensed solve does not
+  !> see). Hyperelastic laws and plasticity take the full solve (F-bar;
+  !> plasticity's tangent at large strain).
+  logical function symmetric_tangent(m)
+    type(model_t), intent(in) :: m
+    integer :: k
+    symmetric_tangent = .not. nonlinear_material(m)
+    if (allocated(m%equations)) symmetric_tangent = symmetric_tangent .and. .not. any(m%equations%rigid_ref > 0)
+    if (.not. allocated(m%steps)) return
+    do k = 1, size(m%steps)
+      if (step_dloads(m%steps(k)) == 0) cycle
+      symmetric_tangent = symmetric_tangent .and. .not. any(m%steps(k)%dloads%label == dload_p)
+    end do
+  end function symmetric_tangent
 
   !> The contact equations: free dofs on the diagonal of some CFE's closed
   !> tangent (those its B_e^T n reaches; where the normal has no x
@@ -208,8 +244,11 @@ contains
   !> the contact equations and the CFEs' dofs to trailing positions.
   !> Arguments: status, bad as sys_factor (factor_singular: the bodies are
   !> singular even with the contact equations held, which no contact
-  !> status can mend); counts counts the CFE routine calls.
-  subroutine condensed_factor_k0(cd, m, cs, body, dm, sys, counts, status, bad)
+  !> status can mend); counts counts the CFE routine calls. A nonlinear
+  !> body (Newton's condensed path) gives u, the displacements its tangent
+  !> is taken at (converged as assemble_stiffness's), and kbody returns
+  !> the largest element entry, t_assembly the wall time of the assembly.
+  subroutine condensed_factor_k0(cd, m, cs, body, dm, sys, counts, status, bad, u, converged, kbody, t_assembly)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
@@ -218,19 +257,28 @@ contains
     type(linear_system_t), intent(inout) :: sys
     type(element_counts_t), intent(inout) :: counts
     integer, intent(out) :: status, bad
+    real(dp), intent(in), optional :: u(:, :)
+    logical, intent(in), optional :: converged
+    real(dp), intent(out), optional :: kbody, t_assembly
     type(contact_set_t) :: open_set
     integer, allocatable :: tperm(:)
     real(dp) :: kmax
     integer :: p, mc
+    integer(kind=8) :: c0, c1, rate
     mc = sys_nlast(sys)
     cd%n = dm%neq
     cd%m = mc
     if (.not. allocated(cd%u0)) allocate(cd%u0(2, m%nn))
     cd%u0 = 0.0_dp
+    if (present(u)) cd%u0 = u
     open_set = cs
     open_set%c(1:cs%n)%closed = .false.
     open_set%stabilised = .false.
-    call assemble_stiffness(m, open_set, body, cd%u0, sys, kmax, counts, dm)
+    call system_clock(c0, rate)
+    call assemble_stiffness(m, open_set, body, cd%u0, sys, kmax, counts, dm, converged)
+    call system_clock(c1)
+    if (present(t_assembly)) t_assembly = real(c1 - c0, dp) / real(rate, dp)
+    if (present(kbody)) kbody = kmax
     if (allocated(cd%l22)) deallocate(cd%l22, cd%s0_diag, cd%s, cd%diag22, cd%kdiag, cd%q0, cd%x2, cd%eq_at)
     allocate(cd%l22(mc, mc), cd%s0_diag(mc), cd%s(mc, mc), cd%diag22(mc), cd%kdiag(mc), cd%q0(mc), cd%x2(mc), &
              cd%eq_at(mc), tperm(mc))

@@ -10,11 +10,18 @@
 !> out-of-balance is above the tolerance).
 !> Work per status iteration is O(m + CFEs): nothing here touches all the
 !> nodes between the increment's start and the recovery.
+!> In a nonlinear step whose tangent is symmetric (condensed_contact's
+!> symmetric_tangent) the Newton path (newton_condensed_path_t) does the
+!> same on Newton's linearised problem: the tangent at the Newton iterate
+!> factored once, the contact status searched on it by the condensed
+!> system until it settles (inner iterations, no element routine called),
+!> then the whole correction recovered, the contact searched again under
+!> NLGEOM, and the true out-of-balance judged by Newton's tests.
 module condensed_equilibrium
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use contact, only: contact_forces
-  use assembly, only: body_forces, free_residual
+  use assembly, only: body_forces, free_residual, nonlinear_body_forces, body_predictor_forces
   use dof_numbering, only: expand_dependent, reduce_dependent
   use linear_solver, only: sys_analyse, factor_singular
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
@@ -22,11 +29,13 @@ module condensed_equilibrium
                                condensed_energy, direct_multipliers, condensed_multipliers
   use equilibrium_common, only: relative_residual, check_finite, describe, singular, stabilise_open, &
                                 set_aside_or_stop, factor_fits, factor_made
-  use iteration_state, only: iteration_t, linear_path_t
+  use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
   use analysis_events, only: tell_note, wall_time
+  use newton_control, only: newton_give_up, not_finite, not_condensable
+  use contact_repairing, only: search_in_iteration, coupling_length
   implicit none
   private
-  public :: condensed_path_t
+  public :: condensed_path_t, newton_condensed_path_t
 
   !> The condensed path's state in an increment. Exact enforcement solves
   !> the multipliers directly per status (no augmentation: augmented
@@ -46,6 +55,25 @@ module condensed_equilibrium
     procedure :: restart => condensed_restart
     procedure :: converged => condensed_converged
   end type condensed_path_t
+
+  !> The condensed path of a Newton increment: the bodies' tangent at the
+  !> linearisation point ubase (with the open CFEs) condensed as K0 is for
+  !> a linear step; fbase the bodies' forces there (linearised about the
+  !> converged state in a first iteration with a predictor); rebase: a
+  !> tangent is due at ubase (at_converged: ubase's tangent is that of the
+  !> converged state, assemble_stiffness's converged, taken at tangent_at).
+  type, extends(condensed_path_t) :: newton_condensed_path_t
+    real(dp), allocatable :: ubase(:, :), fbase(:, :), tangent_at(:, :)
+    logical :: rebase = .true., at_converged = .false.
+    real(dp) :: kbody = 0.0_dp          ! the tangent's largest element entry
+  contains
+    procedure :: begin => newton_begin_increment
+    procedure :: factor => newton_factor
+    procedure :: solve => newton_solve
+    procedure :: residual => newton_residual
+    procedure :: restart => newton_restart
+    procedure :: converged => newton_converged_increment
+  end type newton_condensed_path_t
 
 contains
 
@@ -72,7 +100,7 @@ contains
     st%usable = .true.
     st%restabilised = .false.
     if (path%whole) return
-    call condensed_factor_if_needed(st)
+    call condensed_factor_if_needed(st, st%body%kmax)
   end subroutine condensed_factor
 
   !> Purpose: the status solved on the contact equations (with its
@@ -269,15 +297,25 @@ contains
   !> current contact status (factor_fits); stabilises open contact as the
   !> full path does when it is singular with open CFEs; st%usable false
   !> where it is singular after a pivot of the search with the
-  !> stabilisation used (as the full path's factor_if_needed).
-  subroutine condensed_factor_if_needed(st)
+  !> stabilisation used, or (Newton) singular otherwise: the increment is
+  !> given up (as the full path's factor_if_needed).
+  subroutine condensed_factor_if_needed(st, kbody)
     type(iteration_t), intent(inout) :: st
+    real(dp), intent(in) :: kbody          ! the bodies' largest element entry
     integer :: status, bad
     st%usable = .true.
     if (factor_fits(st%eq, st%cs)) return
-    call dense_status(st, status, bad)
+    call dense_status(st, kbody, status, bad)
     if (status == factor_singular) then
-      if (stabilise_open(st%eq, st%cs, st%obs)) call dense_status(st, status, bad)
+      if (stabilise_open(st%eq, st%cs, st%obs)) call dense_status(st, kbody, status, bad)
+    end if
+    if (status == factor_singular .and. st%body%nonlinear .and. .not. st%eq%search%pivoted) then
+      ! Newton's tangent singular: the increment is cut back (as the full path)
+      st%usable = .false.
+      st%eq%factor_valid = .false.
+      st%eq%bad = bad
+      st%eq%newton%singular = .true.
+      return
     end if
     if (status == factor_singular) then
       call set_aside_or_stop(st%eq, st%m, st%cs, st%dm, bad, st%usable)
@@ -288,11 +326,208 @@ contains
   end subroutine condensed_factor_if_needed
 
   !> One dense factorisation of the condensed matrix (counted).
-  subroutine dense_status(st, status, bad)
+  subroutine dense_status(st, kbody, status, bad)
     type(iteration_t), intent(inout) :: st
+    real(dp), intent(in) :: kbody
     integer, intent(out) :: status, bad
-    call condensed_status(st%eq%cd, st%m, st%cs, st%dm, st%body%kmax, st%eq%counts, status, bad)
+    call condensed_status(st%eq%cd, st%m, st%cs, st%dm, kbody, st%eq%counts, status, bad)
     st%eq%condensed_factorisations = st%eq%condensed_factorisations + 1
     st%eq%timing%condensed_factorisations = st%eq%timing%condensed_factorisations + 1
   end subroutine dense_status
+
+  ! ---- The Newton path ----
+
+  !> Purpose: the start of a Newton increment: the linearisation point is
+  !> u, its bodies' forces those at u (or, with a predictor, linearised
+  !> about the converged u_from, whose tangent the first one is, as on the
+  !> full path); the tangent is made by the first factor.
+  subroutine newton_begin_increment(path, st)
+    class(newton_condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    path%newton_refactors = .false.
+    path%searches_itself = st%research
+    path%augmented = .not. direct_multipliers(st%cs)
+    path%nsolves = 0
+    path%whole = .false.
+    path%ubase = st%u
+    allocate(path%fbase(2, st%m%nn))
+    if (st%predict) then
+      call body_predictor_forces(st%m, st%body, st%u_from, st%u - st%u_from, path%fbase, st%eq%counts)
+      path%tangent_at = st%u_from
+      path%at_converged = .true.
+    else
+      call nonlinear_body_forces(st%m, st%body, st%u, path%fbase, st%eq%counts)
+      path%tangent_at = st%u
+      path%at_converged = associated(st%u_from)
+    end if
+    path%rebase = .true.
+  end subroutine newton_begin_increment
+
+  !> Purpose: a new Newton iteration once the last correction is whole
+  !> (the linearisation point moves to u, the tangent there), or after the
+  !> equations were numbered again (the same point): the tangent factored
+  !> and condensed (newton_tangent); then the condensed matrix of the
+  !> status, unless the one in hand is for it.
+  subroutine newton_factor(path, st)
+    class(newton_condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    st%usable = .true.
+    st%restabilised = .false.
+    if (path%whole) then
+      path%ubase = st%u
+      path%fbase = st%eq%fbody
+      path%tangent_at = st%u
+      path%at_converged = .false.
+      path%rebase = .true.
+    end if
+    if (.not. st%eq%k0_valid) path%rebase = .true.
+    if (.not. st%eq%cd%active) then
+      ! renumbered for couplings without a contact equation
+      call newton_give_up(st%eq%newton, not_condensable)
+      st%verdict = give_up_verdict
+      return
+    end if
+    if (path%rebase) then
+      call newton_tangent(path, st)
+      if (.not. st%usable) return
+    end if
+    call condensed_factor_if_needed(st, path%kbody)
+  end subroutine newton_factor
+
+  !> The tangent at path%tangent_at with every CFE open, factored with the
+  !> contact equations last and condensed (condensed_factor_k0, counted
+  !> and timed), the right-hand side of the linearisation point condensed
+  !> (condensed_begin); u back at that point. A singular tangent gives the
+  !> increment up (st%usable false, eq%newton%singular: the loop's
+  !> newton_after_factor).
+  subroutine newton_tangent(path, st)
+    class(newton_condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    integer :: status, bad
+    real(dp) :: t0, ta
+    associate(eq => st%eq)
+      t0 = wall_time()
+      call sys_analyse(st%sys)
+      eq%timing%analyse = eq%timing%analyse + (wall_time() - t0)
+      t0 = wall_time()
+      call condensed_factor_k0(eq%cd, st%m, st%cs, st%body, st%dm, st%sys, eq%counts, status, bad, &
+                               u=path%tangent_at, converged=path%at_converged, kbody=path%kbody, t_assembly=ta)
+      eq%timing%assembly = eq%timing%assembly + ta
+      eq%timing%factor = eq%timing%factor + (wall_time() - t0 - ta)
+      eq%factorisations = eq%factorisations + 1
+      eq%timing%numeric_factorisations = eq%timing%numeric_factorisations + 1
+      eq%factor_valid = .false.
+      if (status /= 0) then
+        eq%k0_valid = .false.
+        eq%bad = bad
+        eq%newton%singular = .true.
+        st%usable = .false.
+        return
+      end if
+      eq%k0_valid = .true.
+      call describe(eq, st%is, st%cs, st%sys, st%obs)
+      if (allocated(path%fold)) deallocate(path%fold)
+      allocate(path%fold(eq%cd%m))
+      st%u = path%ubase
+      call condensed_begin(eq%cd, st%m, st%dm, st%sys, st%fext, st%u, path%fbase)
+      path%rebase = .false.
+      path%whole = .false.
+    end associate
+  end subroutine newton_tangent
+
+  !> Purpose: the status of the linearised problem solved on the contact
+  !> equations (with its multipliers where they are solved directly); the
+  !> other equations stay at the linearisation point until it settles.
+  !> A correction that is not finite is left in u (the loop gives up).
+  subroutine newton_solve(path, st)
+    class(newton_condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    integer :: nactive
+    logical :: finite, solved
+    st%c_max = 0.0_dp
+    st%nsearched = 0
+    st%searched = .false.
+    call condensed_solve(st%eq%cd, st%m, st%cs, st%dm, st%u, finite, st%eq%counts%coupling)
+    if (.not. finite .or. path%augmented) return
+    call condensed_multipliers(st%eq%cd, st%m, st%cs, st%dm, st%u, nactive, solved)
+    if (nactive > 0) path%nsolves = path%nsolves + 1
+    if (.not. solved) path%augmented = .true.
+  end subroutine newton_solve
+
+  !> Purpose: after the status switch: a status changed, the inner search
+  !> goes on from the linearisation point (the change of the CFE forces
+  !> its out-of-balance; st%inner: no Newton iteration); none did, the
+  !> correction is recovered whole and its true out-of-balance made
+  !> (newton_settled).
+  subroutine newton_residual(path, st)
+    class(newton_condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    st%inner = st%nchanged > 0
+    if (st%inner) then
+      st%eq%residual = change_residual(st, path%fold)
+    else
+      call newton_settled(path, st)
+    end if
+  end subroutine newton_residual
+
+  !> The settled status's correction recovered on every equation; c_max
+  !> its largest entry; under NLGEOM the contact searched again on the
+  !> new configuration (a search that changes statuses or couplings counts
+  !> as a change: not converged; a renumbering makes the next factor
+  !> start again); the bodies' forces at u (kept: the next linearisation
+  !> point's), reactions and out-of-balance as on the full path.
+  subroutine newton_settled(path, st)
+    class(newton_condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    real(dp) :: t0
+    t0 = wall_time()
+    associate(eq => st%eq, m => st%m, dm => st%dm, u => st%u, rf => st%rf)
+      call condensed_recover(eq%cd, dm, st%sys, u)
+      path%whole = .true.
+      if (.not. all(ieee_is_finite(u))) then
+        call newton_give_up(eq%newton, not_finite)
+        st%verdict = give_up_verdict
+        return
+      end if
+      st%c_max = maxval(abs(u - path%ubase), mask=dm%eq > 0)
+      st%c_max = max(st%c_max, 0.0_dp)
+      if (st%research .and. st%c_max < coupling_length(st%cs)) then
+        call search_in_iteration(eq, m, st%cs, u, st%presc, st%mpc, dm, st%sys, st%nsearched)
+        st%searched = .true.
+        st%nchanged = st%nchanged + st%nsearched
+      end if
+      if (.not. allocated(eq%fbody)) allocate(eq%fbody(2, m%nn))
+      call nonlinear_body_forces(m, st%body, u, eq%fbody, eq%counts)
+      rf = eq%fbody
+      call contact_forces(m, st%cs, u, rf, eq%counts%coupling)
+      rf = rf - st%fext
+      call reduce_dependent(dm, rf)
+      eq%residual = relative_residual(dm, st%cs, st%fext, u, rf, eq%kmax, eq%force_history, st%scale)
+      eq%timing%recovery = eq%timing%recovery + (wall_time() - t0)
+    end associate
+  end subroutine newton_settled
+
+  !> Purpose: a new status search (augmented multipliers, the nominal open
+  !> penalty) from the linearisation point; once the correction is whole,
+  !> from the point it reached (the next factor moves there).
+  subroutine newton_restart(path, st)
+    class(newton_condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    if (.not. path%whole) st%u = path%ubase
+  end subroutine newton_restart
+
+  !> Purpose: the increment converged: the direct solves said; a later
+  !> linear step starts its condensed solve afresh (the bodies' forces
+  !> kept here are not its stored stiffness times u).
+  subroutine newton_converged_increment(path, st)
+    class(newton_condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    character(len=12) :: buf
+    if (path%nsolves > 0) then
+      write(buf, '(i0)') path%nsolves
+      call tell_note(st%obs, 'exact contact: ' // trim(buf) // ' direct multiplier solves in the increment')
+    end if
+    if (allocated(st%eq%u_last)) deallocate(st%eq%u_last)
+    if (allocated(st%eq%fbody_last)) deallocate(st%eq%fbody_last)
+  end subroutine newton_converged_increment
 end module condensed_equilibrium

@@ -73,7 +73,8 @@ contains
   end subroutine note_numbering
 
   !> Purpose: the equations numbered again for the couplings of cs
-  !> (number_equations of a nonlinear step: the full solve) and the
+  !> (number_equations of a nonlinear step, keeping the solve the
+  !> increment's iteration has: full or condensed) and the
   !> iteration's arrays sized for them; the analysis time is timed.
   subroutine renumber_couplings(eq, m, cs, presc, mpc, dm, sys)
     type(equilibrium_t), intent(inout) :: eq
@@ -84,7 +85,7 @@ contains
     type(dofmap_t), intent(inout) :: dm
     type(linear_system_t), intent(inout) :: sys
     real(dp) :: ta
-    call number_equations(m, cs, presc, mpc, dm, sys, eq%cd, ta, .true.)
+    call number_equations(m, cs, presc, mpc, dm, sys, eq%cd, ta, .true., keep=.true.)
     eq%timing%analyse = eq%timing%analyse + ta
     call begin_equilibrium(eq, dm%neq, cs%n, .false.)
     call note_numbering(eq, m, cs)

@@ -9,7 +9,7 @@ module displacement_field
   use kinds, only: dp
   use model
   use contact, only: contact_set_t, cfe_t, contact_search, contact_research, contact_commit
-  use assembly, only: body_t, element_counts_t, body_setup, commit_history
+  use assembly, only: body_t, element_counts_t, body_setup, commit_history, thermal_forces
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
   use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
@@ -21,6 +21,10 @@ module displacement_field
   use increment_results, only: increment_results_t, compute_increment_results
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use analysis_field, only: field_t
+  use element_catalogue, only: catalogue, max_nodes, max_ip
+  use shape_functions, only: gauss_rule
+  use heat_element, only: heat_gradient, conductivity_at, temperature_at
+  use contact_heat, only: contact_heat_t, contact_heat_build, contact_heat_flux, has_contact_heat
   use linear_solver, only: linear_system_t
   use strings, only: itoa
   use messages, only: fatal
@@ -50,6 +54,13 @@ module displacement_field
     type(cfe_t), allocatable :: saved(:)
     type(contact_set_t) :: saved_cs
     real(dp), allocatable :: u_saved(:, :)
+    !> A run of both fields (model's coupled): the temperatures of the
+    !> increment's start and end (nn), handed over by the driver once the
+    !> temperature field has solved the increment (take_temperatures),
+    !> whose thermal strain loads the bodies in place of *TEMPERATURE's,
+    !> and the reaction fluxes reported with the displacements.
+    logical :: coupled = .false.
+    real(dp), allocatable :: temp0(:), temp1(:), rfl(:)
   contains
     procedure :: setup
     procedure :: begin_step => begin_mechanical_step
@@ -63,6 +74,7 @@ module displacement_field
     procedure :: report
     procedure :: end_step
     procedure :: finish
+    procedure :: take_temperatures
   end type displacement_field_t
 
 contains
@@ -188,7 +200,10 @@ contains
 
   !> Purpose: the equilibrium of the increment (solve_increment): in a
   !> nonlinear step linearised about the saved converged state, under
-  !> NLGEOM with contact searching the contact in every iteration.
+  !> NLGEOM with contact searching the contact in every iteration. In a
+  !> run of both fields the thermal strain of the temperature field's
+  !> temperatures joins the loads (coupled_loads; f%fext keeps the
+  !> load state's, which the next step's begin_step takes apart).
   subroutine solve(f, m, is, inc, obs, ok, iters)
     class(displacement_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
@@ -196,16 +211,49 @@ contains
     type(observer_ref_t), intent(in) :: obs(:)
     logical, intent(out) :: ok
     integer, intent(out) :: iters
+    real(dp), allocatable :: fext(:, :)
+    fext = f%fext
+    if (f%coupled) call coupled_loads(f, m, fext)
     if (f%research_each) then
-      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters, &
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, fext, f%u, f%rf, obs, ok, iters, &
                            f%u_saved, f%ls%presc, f%mpc)
     else if (f%step_nonlinear) then
-      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters, &
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, fext, f%u, f%rf, obs, ok, iters, &
                            f%u_saved)
     else
-      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, f%fext, f%u, f%rf, obs, ok, iters)
+      call solve_increment(f%eq, m, is, inc, f%body, f%cs, f%dm, f%sys, fext, f%u, f%rf, obs, ok, iters)
     end if
   end subroutine solve
+
+  !> Purpose: the temperature field's temperatures of the increment, from
+  !> the driver in a run of both fields: temp0 at its start, temp1 at its
+  !> end (nn each), rfl the reaction fluxes at temp1 (for the report).
+  subroutine take_temperatures(f, temp0, temp1, rfl)
+    class(displacement_field_t), intent(inout) :: f
+    real(dp), intent(in) :: temp0(:), temp1(:), rfl(:)
+    f%coupled = .true.
+    f%temp0 = temp0
+    f%temp1 = temp1
+    f%rfl = rfl
+  end subroutine take_temperatures
+
+  !> Purpose: the thermal strain of the temperature field's temperatures
+  !> as the load state makes *TEMPERATURE's (load_state's values_at and
+  !> the field's begin_increment): the change from the initial
+  !> temperatures at the increment's end, its nodal loads added to
+  !> fext(2, nn) (none under NLGEOM or with a plastic material, whose
+  !> element routines take the strain into their internal force from the
+  !> body's dtemp, and dtemp0 the change at the increment's start).
+  subroutine coupled_loads(f, m, fext)
+    class(displacement_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    real(dp), intent(inout) :: fext(:, :)
+    if (.not. any(m%materials%alpha /= 0.0_dp)) return
+    call thermal_forces(m, f%temp1 - f%ls%temp_init, fext, f%ls%nlgeom)
+    if (.not. f%step_nonlinear) return
+    f%body%dtemp = f%temp1 - f%ls%temp_init
+    f%body%dtemp0 = f%temp0 - f%ls%temp_init
+  end subroutine coupled_loads
 
   !> Purpose: a converged increment's history becomes the state the next
   !> increment starts from: the one place where state that depends on
@@ -280,7 +328,16 @@ contains
     real(dp) :: t0, t1
     real(dp), allocatable :: dtemp(:)
     t0 = wall_time()
-    if (f%ls%thermal) then
+    if (f%coupled) then
+      dtemp = f%temp1 - f%ls%temp_init
+      call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &
+                                     f%eq%counts, dtemp, f%body, dt)
+      res%heat = .true.
+      res%nt = f%temp1
+      res%rfl = f%rfl
+      call coupled_heat_flux(f, m, any(m%steps(is)%requests%hfl), res%nip, res%hfl_ip)
+      if (has_contact_heat(m)) call contact_heat_rows(f, m, dt, res)
+    else if (f%ls%thermal) then
       allocate(dtemp(m%nn))
       call temperature_change_at(m, f%ls, t, dtemp)
       call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &
@@ -297,6 +354,71 @@ contains
     timing%output = timing%output + (wall_time() - t1)
   end subroutine report
 
+  !> Purpose: a coupled increment's heat flux -k grad T (HFL) at the
+  !> integration points of the stress results (nip(e) of each element:
+  !> those the listing and the .dat print HFL at; set to the element's
+  !> rule where no stresses were computed), from the temperature
+  !> field's temperatures, when some output asks for it (wanted); the
+  !> conductivity of a table at each point's temperature, as the
+  !> temperature field's own (docs/heat.md).
+  subroutine coupled_heat_flux(f, m, wanted, nip, hfl)
+    class(displacement_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    logical, intent(in) :: wanted
+    integer, intent(inout) :: nip(:)
+    real(dp), allocatable, intent(out) :: hfl(:, :, :)
+    real(dp) :: xi(2, max_ip), w(max_ip), cond(2), te(max_nodes)
+    integer :: e, n, ip
+    allocate(hfl(2, max_ip, merge(m%ne, 0, wanted)))
+    if (.not. wanted) return
+    hfl = 0.0_dp
+    do e = 1, m%ne
+      if (.not. is_continuum(m, e) .or. m%elem_section(e) == 0) cycle
+      ! (no stresses asked for: the element's rule)
+      if (nip(e) == 0) nip(e) = catalogue(m%etype(e))%nip
+      n = elem_nodes(m, e)
+      te(1:n) = f%temp1(m%conn(1:n, e))
+      call gauss_rule(catalogue(m%etype(e))%shape, nip(e), xi, w)
+      associate(mat => m%materials(m%sections(m%elem_section(e))%material))
+        do ip = 1, nip(e)
+          cond = mat%conductivity
+          if (mat%nk > 1) cond = conductivity_at(mat%ktab(:, 1:mat%nk), temperature_at(m%etype(e), te(1:n), &
+                                                                                        xi(:, ip)))
+          hfl(:, ip, e) = -cond * heat_gradient(m%etype(e), m%x(:, m%conn(1:n, e)), te(1:n), xi(:, ip))
+        end do
+      end associate
+    end do
+  end subroutine coupled_heat_flux
+
+  !> Purpose: the heat flux across the contact (contact_heat_flux: per
+  !> unit area, slave to master, at the increment's temperatures) in each
+  !> slave row of the contact results (the contact table's last column).
+  !> A pair whose rows are the multiplier field's at the slave nodes (the
+  !> multiplier on the master mesh) has one CFE per master node, not per
+  !> row: its rows show 0 (docs/heat.md).
+  subroutine contact_heat_rows(f, m, dt, res)
+    class(displacement_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: dt
+    type(increment_results_t), intent(inout) :: res
+    type(contact_heat_t) :: ch
+    real(dp), allocatable :: q(:)
+    integer, allocatable :: sel(:)
+    integer :: k, j
+    call contact_heat_build(m, f%cs, dt, ch)
+    q = contact_heat_flux(ch, f%temp1, f%cs%n)
+    do k = 1, size(res%contact%pairs)
+      associate(r => res%contact%pairs(k))
+        allocate(r%slave_heat_flux(size(r%slave_node)))
+        r%slave_heat_flux = 0.0_dp
+        sel = pack([(j, j = 1, f%cs%n)], f%cs%c(1:f%cs%n)%pair == r%pair)
+        if (size(sel) /= size(r%slave_node)) cycle
+        if (any(f%cs%c(sel)%ns == 0)) cycle
+        r%slave_heat_flux = q(sel)
+      end associate
+    end do
+  end subroutine contact_heat_rows
+
   !> Purpose: the step's counts of factorisations, iterations, pivots and
   !> element calls; under NLGEOM with contact a note of the searches and
   !> renumberings of the Newton iterations.
@@ -307,7 +429,7 @@ contains
     if (f%step_nonlinear .and. f%eq%searches > 0) call tell_note(obs, 'contact searched again in ' // &
       itoa(f%eq%searches) // ' Newton iterations; equations renumbered ' // itoa(f%eq%renumberings) // &
       ' times for changed couplings')
-    summary%factorisations = f%eq%factorisations
+    summary%factorisations = summary%factorisations + f%eq%factorisations
     summary%condensed_factorisations = f%eq%condensed_factorisations
     summary%iterations = f%eq%iterations
     summary%block_pivots = f%eq%search%block_pivots
@@ -323,14 +445,15 @@ contains
     class(displacement_field_t), intent(in) :: f
     type(run_timing_t), intent(inout) :: timing
     associate(t => timing, e => f%eq%timing)
-      t%assembly = e%assembly
+      ! (added: a coupled run's temperature field has put its own in)
+      t%assembly = t%assembly + e%assembly
       t%analyse = t%analyse + e%analyse
-      t%factor = e%factor
-      t%condensed = e%condensed
-      t%solve = e%solve
-      t%recovery = e%recovery
-      t%numeric_factorisations = e%numeric_factorisations
-      t%condensed_factorisations = e%condensed_factorisations
+      t%factor = t%factor + e%factor
+      t%condensed = t%condensed + e%condensed
+      t%solve = t%solve + e%solve
+      t%recovery = t%recovery + e%recovery
+      t%numeric_factorisations = t%numeric_factorisations + e%numeric_factorisations
+      t%condensed_factorisations = t%condensed_factorisations + e%condensed_factorisations
     end associate
   end subroutine finish
 end module displacement_field

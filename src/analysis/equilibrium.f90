@@ -8,7 +8,8 @@
 !> assembled and factored for every status (kept while the status is the
 !> one it was made for), and in a nonlinear step Newton's tangent at u in
 !> every iteration. Where the equations were numbered for the condensed
-!> contact solve the path is condensed_equilibrium's.
+!> contact solve the path is condensed_equilibrium's (its Newton path in
+!> a nonlinear step).
 module equilibrium
   use kinds, only: dp
   use model, only: model_t
@@ -21,7 +22,7 @@ module equilibrium
                                 describe, stabilise_open, set_aside_or_stop, factor_fits, factor_made
   use iteration_state, only: iteration_t, linear_path_t
   use equilibrium_loop, only: iterate
-  use condensed_equilibrium, only: condensed_path_t
+  use condensed_equilibrium, only: condensed_path_t, newton_condensed_path_t
   use contact_repairing, only: renumber_couplings, note_numbering, numbering_fits
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
   use messages, only: warn
@@ -78,17 +79,22 @@ contains
     type(iteration_t) :: st
     type(full_path_t) :: full
     type(condensed_path_t) :: condensed
+    type(newton_condensed_path_t) :: newton_condensed
     real(dp) :: t0, parts
     t0 = wall_time()
     parts = timed_parts(eq%timing)
     st = iteration_t(eq=eq, m=m, is=is, inc=inc, body=body, cs=cs, dm=dm, sys=sys, fext=fext, u=u, rf=rf, obs=obs)
+    if (present(u_from)) st%u_from => u_from
+    if (present(presc)) st%presc => presc
+    if (present(mpc)) st%mpc => mpc
     if (eq%cd%active) then
-      call iterate(condensed, st, ok, iters)
+      if (body%nonlinear) then
+        call iterate(newton_condensed, st, ok, iters)
+      else
+        call iterate(condensed, st, ok, iters)
+      end if
       eq%timing%condensed = eq%timing%condensed + (wall_time() - t0) - (timed_parts(eq%timing) - parts)
     else
-      if (present(u_from)) st%u_from => u_from
-      if (present(presc)) st%presc => presc
-      if (present(mpc)) st%mpc => mpc
       call iterate(full, st, ok, iters)
       eq%timing%solve = eq%timing%solve + (wall_time() - t0) - (timed_parts(eq%timing) - parts)
     end if

@@ -57,7 +57,7 @@ contains
       if (st%verdict == give_up) exit
       call solve_and_update(path, st)
       if (st%verdict == give_up) exit
-      call search_again(st)
+      if (.not. path%searches_itself) call search_again(st)
       call turn_rigid_bodies(st)
       call pivot_statuses(path, st)
       call residual_and_convergence(path, st)
@@ -73,7 +73,9 @@ contains
         exit
       end if
     end do
-    iters = st%it
+    ! the increment control counts Newton iterations (each with its pivot
+    ! on the full path), not the inner status pivots of the condensed one
+    iters = st%it - st%ninner
     if (.not. ok) call give_up_unsettled(st)
   end subroutine iterate
 
@@ -107,7 +109,7 @@ contains
   subroutine tangent_and_factor(path, st)
     class(linear_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
-    if (st%body%nonlinear) call newton_before_factor(st)
+    if (st%body%nonlinear) call newton_before_factor(path, st)
     if (st%verdict == give_up) return
     call path%factor(st)
     if (st%body%nonlinear) call newton_after_factor(st)
@@ -249,14 +251,16 @@ contains
   end subroutine newton_start
 
   !> Before the factorisation: an element that could not be evaluated
-  !> gives the increment up; the tangent is that at the current u.
-  subroutine newton_before_factor(st)
+  !> gives the increment up; the tangent is that at the current u (the
+  !> condensed Newton path says itself when it makes a new one).
+  subroutine newton_before_factor(path, st)
+    class(linear_path_t), intent(in) :: path
     type(iteration_t), intent(inout) :: st
     if (st%body%bad_elem > 0) then
       call give_up_increment(st, bad_element, elem_label(st%m, st%body%bad_elem))
       return
     end if
-    st%eq%factor_valid = .false.
+    if (path%newton_refactors) st%eq%factor_valid = .false.
   end subroutine newton_before_factor
 
   !> After it: a tangent whose entries would overflow, or a singular one
@@ -274,9 +278,16 @@ contains
   !> Purpose: CalculiX's test of the iteration (newton_test: the force and
   !> correction criteria; its counts start again after a status change)
   !> and its verdict: a cut-back from it gives the increment up once the
-  !> status has settled or the attempt has used its iterations.
+  !> status has settled or the attempt has used its iterations. An inner
+  !> iteration of the condensed Newton path (st%inner: a status pivot on
+  !> the linearised problem) is no Newton iteration: nothing is judged.
   subroutine newton_judge(st)
     type(iteration_t), intent(inout) :: st
+    st%converged = .false.
+    if (st%inner) then
+      st%ninner = st%ninner + 1
+      return
+    end if
     associate(nt => st%eq%newton)
       nt%it = nt%it + 1
       nt%attempt = nt%attempt + 1

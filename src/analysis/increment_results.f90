@@ -46,6 +46,12 @@ module increment_results
     !> HFL is asked for; empty otherwise); u and rf are zero.
     logical :: heat = .false.
     real(dp), allocatable :: nt(:), rfl(:), hfl_ip(:, :, :)
+    !> A *FREQUENCY step's first mode carries the step's table
+    !> (frequency_step): modes(6, number of modes) the eigenvalue, omega,
+    !> frequency and participation factors along x, y and about z;
+    !> modal_total the total effective masses r^T M r (x, y, about z).
+    real(dp), allocatable :: modes(:, :)
+    real(dp) :: modal_total(3) = 0.0_dp
   end type increment_results_t
 
 contains

@@ -67,6 +67,11 @@ module iteration_state
     real(dp) :: scale = 0.0_dp          ! the force scale of the last residual (relative_residual)
     logical :: converged = .false.      ! the out-of-balance passes the test
     integer :: naug = 0                 ! augmentations of the multipliers (exact enforcement)
+    !> Newton on the condensed path: this iteration only searched the
+    !> contact status of the linearised problem (its solution is not
+    !> whole): no Newton iteration, no Newton test
+    logical :: inner = .false.
+    integer :: ninner = 0               ! inner iterations of the increment
     real(dp), allocatable :: u_start(:, :)   ! a nonlinear step: u at the increment's start
     !> The cycle watch of a nonlinear step: the statuses and out-of-balance
     !> of the last two iterations that changed a status.
@@ -81,6 +86,13 @@ module iteration_state
     !> exact enforcement by augmenting the multipliers (augment_multipliers)
     !> once the status settles; false where the path solves them directly
     logical :: augmented = .true.
+    !> Newton: the loop makes the factor invalid before every iteration
+    !> (the tangent at the new u); false where the path says itself when
+    !> its tangent is made (condensed_equilibrium's Newton path)
+    logical :: newton_refactors = .true.
+    !> NLGEOM with contact: the path searches the contact again itself
+    !> (once its solution is whole), not the loop's search_again step
+    logical :: searches_itself = .false.
   contains
     !> before the status search: the start of the increment
     procedure(path_step), deferred :: begin

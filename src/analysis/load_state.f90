@@ -65,24 +65,6 @@ module load_state
 
 contains
 
-  !> Purpose: piecewise-linear tabular amplitude, constant beyond its ends.
-  pure real(dp) function amplitude_value(a, t)
-    type(amplitude_t), intent(in) :: a
-    real(dp), intent(in) :: t
-    integer :: k, n
-    n = size(a%t)
-    if (t <= a%t(1)) then
-      amplitude_value = a%a(1)
-    else if (t >= a%t(n)) then
-      amplitude_value = a%a(n)
-    else
-      do k = 2, n
-        if (t <= a%t(k)) exit
-      end do
-      amplitude_value = a%a(k - 1) + (a%a(k) - a%a(k - 1)) * (t - a%t(k - 1)) / (a%t(k) - a%t(k - 1))
-    end if
-  end function amplitude_value
-
   !> Purpose: the load state of step `is`, which starts from displacements
   !> u and loads fext (the end of the previous step) at total time
   !> total_time. Dofs held in earlier steps stay where they are unless the
@@ -536,9 +518,9 @@ contains
     integer, intent(in) :: ia
     real(dp), intent(in) :: t
     if (m%amplitudes(ia)%time == amp_total_time) then
-      amp_at = amplitude_value(m%amplitudes(ia), ls%total_time + t)
+      amp_at = amplitude_at(m%amplitudes(ia), ls%total_time + t)
     else
-      amp_at = amplitude_value(m%amplitudes(ia), t)
+      amp_at = amplitude_at(m%amplitudes(ia), t)
     end if
   end function amp_at
 end module load_state

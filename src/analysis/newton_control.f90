@@ -16,7 +16,7 @@ module newton_control
   !> (diverged, no_convergence, too_slow) and the iteration's own stops.
   integer, parameter, public :: diverged = 1, no_convergence = 2, too_slow = 3, bad_element = 4, &
                                 tangent_overflow = 5, singular_tangent = 6, not_finite = 7, &
-                                status_cycle = 8, not_settled = 9
+                                status_cycle = 8, not_settled = 9, not_condensable = 10
 
   !> The state of the Newton iteration of a nonlinear increment and its
   !> tests (CalculiX's manual, "Convergence criteria" and *CONTROLS, with
@@ -181,6 +181,9 @@ contains
       nt%reason = 'the tangent stiffness is singular' // d // ' (a limit load, or a missing support)'
     case (not_finite)
       nt%reason = 'the displacements are not finite numbers'
+    case (not_condensable)
+      nt%cut = nt%ctl%dc
+      nt%reason = 'the contact couplings the search found leave no contact equation to condense'
     case (status_cycle)
       nt%cut = nt%ctl%dc
       nt%reason = 'the contact status cycles (the same statuses and out-of-balance every second iteration)'

@@ -17,7 +17,7 @@ module temperature_field
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use strings, only: itoa, rtoa
-  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, is_continuum, &
+  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, amp_total_time, amplitude_at, is_continuum, &
                    elem_nodes, elem_thickness, node_label, elem_label
   use element_catalogue, only: catalogue, max_nodes, max_ip, shape_tri6
   use heat_element, only: heat_volume_arrays, heat_face_arrays, heat_gradient, conductivity_at, temperature_at
@@ -27,6 +27,7 @@ module temperature_field
   use increment_results, only: increment_results_t
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, wall_time
   use analysis_field, only: field_t
+  use contact_heat, only: contact_heat_t, contact_heat_matrix, contact_heat_residual, same_couplings
   use messages, only: fatal
   implicit none
   private
@@ -57,6 +58,10 @@ module temperature_field
     logical :: tabled = .false.                          ! some conductivity is a table (iterations)
     integer :: factorisations = 0
     real(dp) :: t_factor = 0.0_dp, t_solve = 0.0_dp
+    !> Heat through the contact (contact_heat; a coupled run's driver
+    !> hands it over, take_contact_heat): couplings numbered after the
+    !> elements in the system's structure.
+    type(contact_heat_t) :: ch
   contains
     procedure :: setup
     procedure :: begin_step => begin_heat_step
@@ -70,6 +75,7 @@ module temperature_field
     procedure :: report
     procedure :: end_step
     procedure :: finish
+    procedure :: take_contact_heat
   end type temperature_field_t
 
   !> CalculiX's dof of the temperature.
@@ -301,6 +307,11 @@ contains
       pos = xeq(k)
       eqs(pos:pos + n - 1) = f%eqn(m%conn(1:n, e))
     end do
+    ! the contact's heat couplings after the elements
+    if (f%ch%n > 0) then
+      xeq = [xeq, xeq(size(xeq)) - 1 + f%ch%xnode(2:)]
+      eqs = [eqs, f%eqn(f%ch%node)]
+    end if
     if (f%neq > 0) call sys_setup(f%sys, m%solver, m%ordering, f%neq, xeq, eqs)
   end subroutine number_temperatures
 
@@ -373,30 +384,17 @@ contains
     end if
   end function load_factor
 
-  !> Amplitude ia at step time t (TIME=TOTAL TIME: at the total time),
-  !> linear between its points and constant beyond them.
+  !> Amplitude ia at step time t (TIME=TOTAL TIME: at the total time):
+  !> the model's amplitude_at (tabular or periodic).
   real(dp) function amp_at(f, m, ia, t) result(v)
     class(temperature_field_t), intent(in) :: f
     type(model_t), intent(in) :: m
     integer, intent(in) :: ia
     real(dp), intent(in) :: t
     real(dp) :: tt
-    integer :: k, n
     tt = t
     if (m%amplitudes(ia)%time == amp_total_time) tt = f%total_time + t
-    associate(at => m%amplitudes(ia)%t, av => m%amplitudes(ia)%a)
-      n = size(at)
-      if (tt <= at(1)) then
-        v = av(1)
-      else if (tt >= at(n)) then
-        v = av(n)
-      else
-        do k = 2, n
-          if (tt <= at(k)) exit
-        end do
-        v = av(k - 1) + (av(k) - av(k - 1)) * (tt - at(k - 1)) / (at(k) - at(k - 1))
-      end if
-    end associate
+    v = amplitude_at(m%amplitudes(ia), tt)
   end function amp_at
 
   !> Purpose: the temperatures of t1: the system (C/dt + K + H) T1 =
@@ -503,6 +501,7 @@ contains
     integer, intent(in) :: is, inc
     logical, intent(out) :: ok
     real(dp) :: ae(max_nodes, max_nodes), t0
+    real(dp), allocatable :: ac(:, :)
     integer :: k, n, status, bad
     t0 = wall_time()
     call sys_zero(f%sys)
@@ -510,6 +509,10 @@ contains
       n = elem_nodes(m, f%elems(k))
       call element_matrix(f, m, k, ae)
       call sys_add(f%sys, k, ae(1:n, 1:n))
+    end do
+    do k = 1, f%ch%n
+      call contact_heat_matrix(f%ch, k, ac, n)
+      call sys_add(f%sys, size(f%elems) + k, ac)
     end do
     call sys_factor(f%sys, status, bad)
     ok = status == factor_ok .or. status == factor_fallback
@@ -547,6 +550,11 @@ contains
       a = f%cfluxes(j)%node
       r(a) = r(a) + f%cfluxes(j)%value * load_factor(f, m, f%cfluxes(j)%amp, f%t1)
     end do
+    if (free) then
+      call contact_heat_residual(f%ch, f%temp, r, f%eqn == 0)
+    else
+      call contact_heat_residual(f%ch, f%temp, r)
+    end if
     if (.not. free) return
     rhs = 0.0_dp
     do a = 1, m%nn
@@ -729,6 +737,21 @@ contains
     summary%factorisations = summary%factorisations + f%factorisations
     f%factorisations = 0
   end subroutine end_step
+
+  !> Purpose: the heat couplings of the contact (contact_heat) for the
+  !> next solve, from a coupled run's driver: the matrix is factorised
+  !> again, and its structure made again where the couplings join other
+  !> nodes.
+  subroutine take_contact_heat(f, m, ch)
+    class(temperature_field_t), intent(inout) :: f
+    type(model_t), intent(in) :: m
+    type(contact_heat_t), intent(in) :: ch
+    logical :: same
+    same = same_couplings(f%ch, ch)
+    f%ch = ch
+    if (.not. same .and. allocated(f%eqn)) call number_temperatures(f, m)
+    f%factored_dt = -1.0_dp
+  end subroutine take_contact_heat
 
   !> Purpose: the temperature field's factorisations and solves in the
   !> run's timing.

@@ -25,12 +25,13 @@ module contact
   use mesh_topology, only: is_boundary_edge
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, piece_point, edge_areas, edge_natural, &
                               edge_weights, area_factor, edge_length
-  use shape_functions, only: gauss_line
+  use shape_functions, only: gauss_line, shape_at
   use contact_mortar, only: face_cuts, edge_tol, mortar_t, mortar_integrals
   use edge_tree, only: edge_tree_t, surface_tree, nearest_edge
   use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted, coarse_straight_slave
   use element_interface, only: cfe_in_t, cfe_out_t, max_slave, act_residual
   use cfe_element, only: cfe
+  use contact_wear, only: wear_t, wear_setup, wear_add, wear_at, wear_node_areas
   implicit none
   private
   public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
@@ -157,6 +158,10 @@ module contact
     logical :: sliding = .false.
     real(dp) :: slip_sign = 0.0_dp
     real(dp) :: anchor = 0.0_dp, slip_total = 0.0_dp, slip_inc = 0.0_dp
+    !> Archard wear (contact_wear): the worn depths of the slave surface at
+    !> the point and of the master surface at X_C that gap0 holds (shifted
+    !> by their sum along the normal: refresh_wear).
+    real(dp) :: wear(2) = 0.0_dp
     ! results of the last evaluation
     real(dp) :: gap = 0.0_dp, force = 0.0_dp
     real(dp) :: slide = 0.0_dp, tforce = 0.0_dp    ! t.[[U]], tangential force
@@ -191,6 +196,9 @@ module contact
     !> resolves the pressure less well than the pair swapped would).
     character(len=600), allocatable :: notes(:)
     type(stabilisation_stages_t) :: stages
+    !> Archard wear of the pairs with *WEAR (contact_wear): the worn
+    !> depths, committed with the friction history (contact_commit).
+    type(wear_t) :: wear
   end type contact_set_t
 
 contains
@@ -295,6 +303,7 @@ contains
     if (.not. allocated(cs%notes)) allocate(cs%notes(0))
     cs%uncoupled = unc(1:nunc)
     cs%uncoupled_pair = uncp(1:nunc_p)
+    call attach_wear(m, cs)
   end subroutine contact_search
 
   !> Is s an element surface of 3-node faces? (Mixed straight and 3-node
@@ -751,6 +760,7 @@ contains
     call move_alloc(cs%c, old%c)
     old%n = cs%n
     old%stages = cs%stages
+    if (allocated(cs%wear%pairs)) call move_alloc(cs%wear%pairs, old%wear%pairs)
     call contact_search(m, x, cs)
     cs%stabilised = stabilised
     cs%stages = old%stages
@@ -777,6 +787,11 @@ contains
       call carry_history(m, x, old%c(q), reevaluate, cs%c(j))
     end do
     call keep_lost_couplings(old, matched, reevaluate, cs, nchg)
+    ! the worn depths so far, read by the new couplings
+    if (allocated(old%wear%pairs)) then
+      call move_alloc(old%wear%pairs, cs%wear%pairs)
+      call attach_wear(m, cs)
+    end if
     if (present(changed)) changed = nchg
   end subroutine contact_research
 
@@ -1372,5 +1387,96 @@ contains
         end if
       end associate
     end do
+    if (cs%wear%on) call commit_wear(cs)
   end subroutine contact_commit
+
+  !> Purpose: Archard's wear of the converged increment (contact_wear):
+  !> every closed coupling element of a wearing pair that slid wears both
+  !> surfaces by its normal force times its slip (contact_commit has
+  !> just made slip_inc); the gaps then take the new depths.
+  subroutine commit_wear(cs)
+    type(contact_set_t), intent(inout) :: cs
+    integer :: j
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        if (.not. cs%wear%pairs(c%pair)%on .or. .not. c%closed .or. c%slip_inc == 0.0_dp) cycle
+        call wear_add(cs%wear, j, c%pair, max(0.0_dp, -c%force), c%slip_inc)
+      end associate
+    end do
+    call refresh_wear(cs)
+  end subroutine commit_wear
+
+  !> Purpose: the wear of contact set cs after a search (contact_search,
+  !> contact_research): its state where it has none yet (zero depths),
+  !> every coupling element's link (its nodes and weights, wear_link),
+  !> a slave node surface's areas (the first search's), and the worn
+  !> depths applied to the gaps (refresh_wear). Nothing without *WEAR.
+  subroutine attach_wear(m, cs)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(inout) :: cs
+    integer :: j, ip
+    if (size(m%pairs) == 0) return
+    if (.not. any(m%pairs%wear)) return
+    if (.not. allocated(cs%wear%pairs)) call wear_setup(m, cs%wear)
+    cs%wear%on = .true.
+    if (allocated(cs%wear%link)) deallocate(cs%wear%link)
+    allocate(cs%wear%link(cs%n))
+    do j = 1, cs%n
+      call wear_link(m, cs%c(j), cs%wear%link(j)%node, cs%wear%link(j)%w, cs%wear%link(j)%nsl)
+    end do
+    do ip = 1, size(m%pairs)
+      if (m%pairs(ip)%wear .and. m%surfaces(m%pairs(ip)%slave_surface)%kind /= surf_element) &
+        call wear_node_areas(cs%wear, ip, cs%c(1:cs%n)%pair, cs%c(1:cs%n)%area)
+    end do
+    call refresh_wear(cs)
+  end subroutine attach_wear
+
+  !> Purpose: coupling element c's nodes and weights as the wear shares
+  !> its volumes and reads its depths: slave nodes first (nsl: the slave
+  !> weights sw, or the master-mesh multiplier's S_mj / D_m), then the
+  !> master side's (the shape functions at X_C, or the mortar weights),
+  !> the weights of its B_e (eq. 4) without their signs.
+  !> Arguments: m the model; c the element; node, w, nsl returned.
+  subroutine wear_link(m, c, node, w, nsl)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(in) :: c
+    integer, allocatable, intent(out) :: node(:)
+    real(dp), allocatable, intent(out) :: w(:)
+    integer, intent(out) :: nsl
+    integer, allocatable :: nodes(:)
+    real(dp) :: n(max_nodes), dn(2, max_nodes)
+    integer :: nen
+    call cfe_nodes(m, c, nodes, nen)
+    node = nodes(1:nen)
+    allocate(w(nen))
+    w(1:c%ns) = c%sw(1:c%ns)
+    nsl = c%ns + c%nsl
+    if (c%nm > 0) then
+      w(c%ns + 1:nen) = c%mw(1:c%nm)
+      ! the master-mesh multiplier (ns = 0): its slave nodes' weights are
+      ! stored negative (the element subtracts the master side)
+      w(1:c%nsl) = -c%mw(1:c%nsl)
+    else
+      call shape_at(catalogue(m%etype(c%elem))%shape, c%xi, n, dn)
+      w(c%ns + 1:nen) = n(1:nen - c%ns)
+    end if
+  end subroutine wear_link
+
+  !> Purpose: every coupling element's gap takes the worn depths at its
+  !> point (contact_wear's wear_at): its initial gap [[U]]_0 moves by
+  !> their change along its normal, so that the gap n.[[U]] grows by the
+  !> slave's depth plus the master's (both surfaces recede). The tangential
+  !> component (the friction's slide) is unchanged.
+  subroutine refresh_wear(cs)
+    type(contact_set_t), intent(inout) :: cs
+    real(dp) :: h(2)
+    integer :: j
+    do j = 1, cs%n
+      associate(c => cs%c(j))
+        h = wear_at(cs%wear, j, c%pair)
+        c%gap0 = c%gap0 + (sum(h) - sum(c%wear)) * c%normal
+        c%wear = h
+      end associate
+    end do
+  end subroutine refresh_wear
 end module contact

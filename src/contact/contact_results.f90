@@ -18,6 +18,12 @@
 !> nodal shear traction field beside the pressure field, made the same
 !> way. A frictionless CFE carries exactly zero tangential force, so its
 !> shear columns are zeros and nothing else it reports changes.
+!>
+!> Wear (a model with *WEAR, contact_wear): per slave row the worn depth
+!> of the slave surface at the point and of the master surface at its
+!> projection, and the worn slave surface point (the point moved by its
+!> depth along the master normal, into the slave body); per master row
+!> the node's worn depth and worn position (moved into the master body).
 module contact_results
   use kinds, only: dp
   use model
@@ -25,7 +31,8 @@ module contact_results
   use contact_geometry, only: edge_t, get_edge, edge_weights, surface_areas
   implicit none
   private
-  public :: pair_results_t, contact_results_t, compute_contact_results, model_has_friction, slave_state
+  public :: pair_results_t, contact_results_t, compute_contact_results, model_has_friction, slave_state, &
+            model_has_wear
 
   type :: pair_results_t
     integer :: pair = 0
@@ -47,10 +54,19 @@ module contact_results
     ! slave node (field_rows; the row's force is then the node's
     ! consistent force, which sums to the total)
     real(dp), allocatable :: slave_pressure(:), slave_traction(:)
+    ! heat through the contact (a coupled run with *GAP CONDUCTANCE):
+    ! the heat flux per unit area from the slave side to the master at
+    ! each row's point (allocated only then; filled by the displacement
+    ! field's report, contact_heat)
+    real(dp), allocatable :: slave_heat_flux(:)
     ! master rows
     integer, allocatable :: master_node(:)
     real(dp), allocatable :: master_force(:), master_area(:)
     real(dp), allocatable :: master_shear(:)     ! N_i(X_C) times the slave points' shear forces
+    ! wear (wear_rows; allocated in a model with *WEAR): slave rows' worn
+    ! depths (slave surface, master surface at the projection) and worn
+    ! slave surface points; master rows' worn depths and positions
+    real(dp), allocatable :: slave_wear(:, :), slave_worn(:, :), master_wear(:), master_worn(:, :)
     ! totals: normal-force sum; resultant: the sum of the CFEs' internal
     ! forces at their slave points, force n + tforce t (the contact force
     ! on the master side, the reaction the slave body's supports give);
@@ -84,6 +100,14 @@ contains
     model_has_friction = .false.
     if (allocated(m%pairs)) model_has_friction = any(m%pairs%mu > 0.0_dp)
   end function model_has_friction
+
+  !> Purpose: does any contact pair of the model wear (*WEAR)? (Its
+  !> results then carry the wear columns.)
+  pure logical function model_has_wear(m)
+    type(model_t), intent(in) :: m
+    model_has_wear = .false.
+    if (allocated(m%pairs)) model_has_wear = any(m%pairs%wear)
+  end function model_has_wear
 
   !> Purpose: the state word of slave row j: OPEN, or for a closed point
   !> CLOSED (frictionless pair), STICK or SLIP (frictional pair).
@@ -334,7 +358,75 @@ contains
       end associate
     end do
     if (any(cs%c(sel)%ns == 0)) call field_rows(m, cs, u, ip, sel, r)
+    if (model_has_wear(m)) call wear_rows(m, cs, u, ip, sel, r)
   end subroutine pass_results
+
+  !> Purpose: the wear columns of pair ip's rows (CFEs sel; zero for a
+  !> pair without wear): a slave row of a CFE its worn depths (the
+  !> slave's at the point, the master's at X_C) and the worn slave point
+  !> x + h_slave n; a row of the master-mesh multiplier (a slave node) the
+  !> node's depth and the master depths of the multipliers reaching it,
+  !> interpolated with their hat functions as the pressure (field_rows),
+  !> along their normals likewise; a master row its node's depth and
+  !> worn position x - h_master n, n the CFEs' normals shared as their
+  !> forces are (master_shares).
+  subroutine wear_rows(m, cs, u, ip, sel, r)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: u(:, :)
+    integer, intent(in) :: ip, sel(:)
+    type(pair_results_t), intent(inout) :: r
+    real(dp), allocatable :: nrm(:, :), nrs(:, :), hm(:), ws(:), ww(:)
+    integer, allocatable :: wn(:)
+    integer :: j, k, q, ns, nm
+    ns = size(r%slave_node)
+    nm = size(r%master_node)
+    allocate(r%slave_wear(2, ns), r%master_wear(nm), nrm(2, m%nn), nrs(2, m%nn), hm(m%nn), ws(m%nn))
+    r%slave_wear = 0.0_dp
+    r%master_wear = 0.0_dp
+    r%slave_worn = r%slave_x
+    r%master_worn = m%x(:, r%master_node) + u(:, r%master_node)
+    if (.not. m%pairs(ip)%wear) return
+    nrm = 0.0_dp
+    nrs = 0.0_dp
+    hm = 0.0_dp
+    ws = 0.0_dp
+    associate(depth => cs%wear%pairs(ip)%depth)
+      do k = 1, size(sel)
+        associate(c => cs%c(sel(k)))
+          if (c%ns > 0) then
+            r%slave_wear(:, k) = c%wear
+            r%slave_worn(:, k) = r%slave_x(:, k) + c%wear(1) * c%normal
+          else
+            ! a master node's multiplier: its depth and normal to the slave
+            ! nodes under its hat
+            do q = 1, c%nsl
+              hm(c%mnode(q)) = hm(c%mnode(q)) + c%psi(q) * depth(2, c%lnode)
+              ws(c%mnode(q)) = ws(c%mnode(q)) + c%psi(q)
+              nrs(:, c%mnode(q)) = nrs(:, c%mnode(q)) + c%psi(q) * c%normal
+            end do
+          end if
+          call master_shares(m, c, wn, ww)
+          do q = 1, size(wn)
+            nrm(:, wn(q)) = nrm(:, wn(q)) + ww(q) * c%normal
+          end do
+        end associate
+      end do
+      if (any(cs%c(sel)%ns == 0)) then
+        do j = 1, ns
+          r%slave_wear(1, j) = depth(1, r%slave_node(j))
+          if (ws(r%slave_node(j)) > 0.0_dp) r%slave_wear(2, j) = hm(r%slave_node(j)) / ws(r%slave_node(j))
+          if (norm2(nrs(:, r%slave_node(j))) > 0.0_dp) r%slave_worn(:, j) = r%slave_x(:, j) + &
+            r%slave_wear(1, j) * nrs(:, r%slave_node(j)) / norm2(nrs(:, r%slave_node(j)))
+        end do
+      end if
+      do j = 1, nm
+        r%master_wear(j) = depth(2, r%master_node(j))
+        if (norm2(nrm(:, r%master_node(j))) > 0.0_dp) r%master_worn(:, j) = r%master_worn(:, j) - &
+          r%master_wear(j) * nrm(:, r%master_node(j)) / norm2(nrm(:, r%master_node(j)))
+      end do
+    end associate
+  end subroutine wear_rows
 
   !> Purpose: the results of pair ip before its CFEs are summed: n slave
   !> rows and the master rows (the master surface's nodes, their

@@ -287,10 +287,38 @@ contains
           c%stick_slope = p%inter(it)%stick_slope
           if (p%inter(it)%thickness > 0.0_dp) call check_thickness(p, m, p%inter(it), c)
           if (c%twin /= 0 .and. c%stick_slope > 0.0_dp) c%stick_slope = 0.5_dp * c%stick_slope
+          if (p%inter(it)%wear_line > 0) call pair_wear(p, p%inter(it), pi%line, c)
         end associate
       end associate
     end do
   end subroutine interaction_penalties
+
+  !> Purpose: a pair takes its interaction's *WEAR (Archard wear,
+  !> docs/contact.md "Wear"): its coefficients and cycle-jump factor. Wear
+  !> integrates the friction's slip, so the interaction needs *FRICTION
+  !> (an error at the *WEAR card); a two-pass (SYMMETRIC) pair is refused
+  !> at its *CONTACT PAIR line (each surface would be worn by both passes).
+  !> Arguments: p the parser; it the interaction; line the pair's line; c
+  !> the pair.
+  subroutine pair_wear(p, it, line, c)
+    type(parser_t), intent(inout) :: p
+    type(interaction_t), intent(in) :: it
+    integer, intent(in) :: line
+    type(contact_pair_t), intent(inout) :: c
+    if (.not. c%mu > 0.0_dp) then
+      p%i = it%wear_line
+      call err(p, '*WEAR needs a friction coefficient (*FRICTION) in surface interaction ' // trim(it%name) // &
+               ': the wear integrates the friction''s slip')
+    end if
+    if (c%twin /= 0) then
+      p%i = line
+      call err(p, '*WEAR (surface interaction ' // trim(it%name) // ') is not implemented for two-pass ' // &
+               '(SYMMETRIC) contact; give one pass')
+    end if
+    c%wear = any(it%wear_k > 0.0_dp)
+    c%wear_k = it%wear_k
+    c%wear_jump = it%wear_jump
+  end subroutine pair_wear
 
   !> The out-of-plane thickness on a *SURFACE INTERACTION's data line
   !> (Abaqus, 2D) must be the thickness of the sections of the pair's

@@ -60,6 +60,10 @@ module deck_cursor
     real(dp) :: thickness = -1.0_dp ! its data line: Abaqus' out-of-plane thickness of 2D contact
     real(dp) :: mu = 0.0_dp         ! *FRICTION: coefficient (0: frictionless)
     real(dp) :: stick_slope = -1.0_dp   ! *FRICTION: shear stress per unit slip; < 0: automatic
+    !> *WEAR: Archard coefficients of the slave and master surfaces, the
+    !> cycle-jump factor and the card's line (0: no *WEAR)
+    real(dp) :: wear_k(2) = 0.0_dp, wear_jump = 1.0_dp
+    integer :: wear_line = 0
     integer :: line = 0             ! the *SURFACE INTERACTION line
     !> EXPONENTIAL or TABULAR: the soft law's knots (contact_pair_t%soft_h, %soft_p)
     real(dp), allocatable :: soft_h(:), soft_p(:)

@@ -4,7 +4,8 @@
 !> friction, or a soft pressure-overclosure law (see docs/contact.md,
 !> "Decks written for CalculiX or Abaqus" and "Soft contact laws"). What
 !> cfe2d cannot do (tied contact, friction models other than Coulomb's)
-!> stops at the card that asks for it.
+!> stops at the card that asks for it. *WEAR (cfe2d's own card) adds
+!> Archard wear to the interaction (docs/contact.md, "Wear").
 submodule (deck_parser) deck_interaction_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t
@@ -231,4 +232,41 @@ contains
     p%inter(p%interaction)%mu = mu
     p%inter(p%interaction)%stick_slope = slope
   end subroutine read_friction
+
+  !> Purpose: *WEAR (cfe2d's card, in a *SURFACE INTERACTION block):
+  !> `k_slave, k_master[, N]`, Archard's wear coefficients of the pair's
+  !> slave and master surfaces (worn depth per unit contact pressure and
+  !> unit slip: the dimensional coefficient k = K / H, e.g. mm^2/N) and the
+  !> cycle-jump factor N (default 1: each computed increment's wear counts
+  !> N times). The pairs that take the interaction check that it has
+  !> friction (interaction_penalties).
+  module subroutine read_wear(p, kw)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    real(dp) :: k(2), jump
+    integer :: n, j, card
+    card = p%i
+    call allow_params(p, kw, '')
+    if (p%interaction == 0) call err(p, '*WEAR outside a *SURFACE INTERACTION block')
+    if (p%inter(p%interaction)%wear_line > 0) call err(p, 'a second *WEAR in surface interaction ' // &
+                                                     trim(p%inter(p%interaction)%name))
+    call require_data(p, 'k_slave, k_master[, cycle-jump factor N]')
+    call split_fields(line_text(p), f, n)
+    if (n < 2 .or. n > 3) call err(p, '*WEAR data line needs: k_slave, k_master[, cycle-jump factor N]')
+    k(1) = get_real(p, f(1), 'wear coefficient of the slave surface')
+    k(2) = get_real(p, f(2), 'wear coefficient of the master surface')
+    do j = 1, 2
+      if (k(j) < 0.0_dp) call err(p, 'a wear coefficient must not be negative')
+    end do
+    jump = 1.0_dp
+    if (n == 3) then
+      if (len(f(3)%s) > 0) jump = get_real(p, f(3), 'cycle-jump factor N')
+      if (.not. jump > 0.0_dp) call err(p, 'the cycle-jump factor N must be positive')
+    end if
+    if (next_data(p)) call err(p, '*WEAR takes one data line: k_slave, k_master[, cycle-jump factor N]')
+    p%inter(p%interaction)%wear_k = k
+    p%inter(p%interaction)%wear_jump = jump
+    p%inter(p%interaction)%wear_line = card
+  end subroutine read_wear
 end submodule deck_interaction_cards

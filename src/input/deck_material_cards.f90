@@ -7,7 +7,8 @@ submodule (deck_parser) deck_material_cards
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
   use deck_input, only: param_value, has_param, deck_warning
   use deck_cursor, only: line_text, err, next_data, require_data, no_data, allow_params, required_param, &
-                         name_param, get_real, get_int, is_int, need_elset, param_real, warn_empty_set, elem_ref
+                         name_param, get_real, get_int, is_int, need_elset, param_real, warn_empty_set, elem_ref, &
+                         defined_name, placed, instance_index
   use element_catalogue, only: catalogue, max_ip, state_plane_stress, state_plane_strain, state_axisymmetric, &
                                shape_spring1, shape_spring2, is_spring_shape, shape_mass
   use model, only: material_t, section_t, find_name, elem_label, law_elastic, law_neo_hooke, law_mooney_rivlin, &
@@ -292,7 +293,9 @@ contains
   !> first data line (model's orientation_t) and, optionally, a second
   !> line `axis, angle`: an extra rotation by angle (degrees) about local
   !> axis 1, 2 or 3. The sections that name it (ORIENTATION=) are bound
-  !> to it once the deck is read (check_orientations).
+  !> to it once the deck is read (check_orientations). Inside a *PART (read
+  !> for each instance) it is the instance's: named INSTANCE.NAME as the
+  !> part's sets, and turned with the instance (place_orientation).
   module subroutine read_orientation(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -304,7 +307,7 @@ contains
     integer :: n, k
     call allow_params(p, kw, 'NAME,SYSTEM,DEFINITION')
     if (.not. allocated(m%orientations)) allocate(m%orientations(0))
-    o%name = name_param(p, kw, 'NAME')
+    o%name = defined_name(p, m, name_param(p, kw, 'NAME'))
     if (find_name(m%orientations%name, o%name) > 0) call err(p, 'duplicate orientation ' // trim(o%name))
     o%src%line = p%i
     sys = 'RECTANGULAR'
@@ -337,11 +340,33 @@ contains
       o%angle = get_real(p, f(2), 'rotation angle')
       if (abs(o%angle) > 1e6_dp) call err(p, 'the rotation angle (degrees) is beyond 1e6')
     end if
+    call place_orientation(p, m, o)
     allocate(tmp(size(m%orientations) + 1))
     tmp(1:size(m%orientations)) = m%orientations
     tmp(size(tmp)) = o
     call move_alloc(tmp, m%orientations)
   end subroutine read_orientation
+
+  !> Purpose: an *ORIENTATION read for an instance of a part turns with
+  !> it (Abaqus: a part's orientation is fixed in the part): a rectangular
+  !> system's points are directions from the origin, turned by the
+  !> instance's rotation (placed(a) - placed(0): the translation cancels);
+  !> a cylindrical system's points lie on its axis, placed as the part's
+  !> nodes. Outside an instance placed() leaves them as they are.
+  subroutine place_orientation(p, m, o)
+    type(parser_t), intent(in) :: p
+    type(model_t), intent(in) :: m
+    type(orientation_t), intent(inout) :: o
+    real(dp) :: zero(2)
+    if (o%system == orient_cylindrical) then
+      o%a(1:2) = placed(p, m, o%a(1:2))
+      o%b(1:2) = placed(p, m, o%b(1:2))
+    else
+      zero = placed(p, m, [0.0_dp, 0.0_dp])
+      o%a(1:2) = placed(p, m, o%a(1:2)) - zero
+      o%b(1:2) = placed(p, m, o%b(1:2)) - zero
+    end if
+  end subroutine place_orientation
 
   !> Purpose: the points of an *ORIENTATION define axes: rectangular, a
   !> not zero and b not along a; cylindrical, b apart from a. Scales are
@@ -378,6 +403,12 @@ contains
       p%i = m%sections(s)%src%line
       if (len_trim(m%sections(s)%orientation_name) > 0) then
         m%sections(s)%orientation = find_name(m%orientations%name, m%sections(s)%orientation_name)
+        ! a part's section may name an orientation of the model's own
+        k = index(m%sections(s)%orientation_name, '.')
+        if (m%sections(s)%orientation == 0 .and. k > 1) then
+          if (instance_index(m, m%sections(s)%orientation_name(:k - 1)) > 0) m%sections(s)%orientation = &
+            find_name(m%orientations%name, m%sections(s)%orientation_name(k + 1:))
+        end if
         if (m%sections(s)%orientation == 0) call err(p, 'undefined orientation ' // &
                                                      trim(m%sections(s)%orientation_name))
       end if
@@ -554,8 +585,10 @@ contains
   !> *HYPERELASTIC or *PLASTIC. E > 0, -1 < nu < 0.5, sigma0 > 0, n >= 1,
   !> alpha >= 0, E and sigma0 and E / sigma0 at most 1e100; temperature
   !> dependence (a second data line) stops there.
-  !> The steps of a model with it are nonlinear (Newton), without NLGEOM
-  !> unless the step asks for it.
+  !> The steps of a model with it are nonlinear (Newton) and, as in
+  !> CalculiX (its reader of the card turns NLGEOM on), geometrically
+  !> nonlinear from here on unless a step says NLGEOM=NO (then the
+  !> small-strain law, as Abaqus without NLGEOM).
   module subroutine read_deformation_plasticity(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -591,6 +624,7 @@ contains
         call err(p, 'E and sigma0 must not exceed 1e100, nor E / sigma0 1e100')
       mat%law = law_deformation_plasticity
     end associate
+    p%nlgeom = .true.
     if (next_data(p)) call err(p, 'temperature-dependent *DEFORMATION PLASTICITY data is not implemented')
   end subroutine read_deformation_plasticity
 
@@ -700,7 +734,7 @@ contains
       s%src%line = p%i
       s%state = state_param(p, kw)
       s%nodal_thickness = has_param(kw, 'NODAL THICKNESS')
-      if (has_param(kw, 'ORIENTATION')) s%orientation_name = name_param(p, kw, 'ORIENTATION')
+      if (has_param(kw, 'ORIENTATION')) s%orientation_name = defined_name(p, m, name_param(p, kw, 'ORIENTATION'))
       if (param_real(p, kw, 'OFFSET', 0.0_dp) /= 0.0_dp) call deck_warning(p%deck, p%i, 'OFFSET= moves the ' // &
           'mid-plane of a plane-stress layer out of the plane; it cannot change a 2D answer and is ignored')
       s%thickness = 1.0_dp

@@ -77,7 +77,8 @@ contains
         call err(p, '*INITIAL CONDITIONS, TYPE=STRESS with the nonlinear material ' // &
                  trim(m%materials(imat)%name) // ' is not implemented (only with *ELASTIC)')
       end if
-      ! (*DEFORMATION PLASTICITY is a law of small strain unless NLGEOM)
+      ! (*DEFORMATION PLASTICITY set the parser's NLGEOM at its card: a step
+      ! may still say NLGEOM=NO, where it is a law of small strain)
       hyper = hyper .or. m%materials(imat)%law == law_neo_hooke .or. m%materials(imat)%law == law_mooney_rivlin
       ! the element routines have no thermal strain for these laws
       if (m%materials(imat)%has_expansion .and. m%materials(imat)%alpha /= 0.0_dp) then

@@ -23,6 +23,8 @@
 !>   deck_model_checks    checks that need the whole deck
 !>   deck_heat_cards      (a module) *HEAT TRANSFER, *CONDUCTIVITY, *SPECIFIC HEAT,
 !>                        *BOUNDARY on dof 11, *CFLUX, *DFLUX, *FILM; check_heat_model
+!>   deck_coupled_cards   (a module) *COUPLED TEMPERATURE-DISPLACEMENT; a deck run
+!>                        with both fields settled and checked
 !> The parser state and the helpers every reader uses are in deck_cursor.
 module deck_parser
   use messages, only: fatal
@@ -33,6 +35,8 @@ module deck_parser
   use element_catalogue, only: max_nodes
   use deck_heat_cards, only: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, &
                              read_cflux, read_dflux, read_film, reject_heat_card, is_heat_boundary, check_heat_model
+  use deck_coupled_cards, only: read_coupled_step, settle_coupled_model, check_coupled_model, &
+                                read_gap_conductance, read_gap_heat_generation, gap_heat_pairs
   implicit none
   private
   public :: read_model
@@ -169,6 +173,11 @@ module deck_parser
       type(model_t), intent(inout) :: m
       type(keyword_t), intent(in) :: kw
     end subroutine read_static
+    module subroutine read_frequency(p, m, kw)
+      type(parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: m
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_frequency
     module subroutine read_request(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -211,6 +220,10 @@ module deck_parser
       type(parser_t), intent(inout) :: p
       type(keyword_t), intent(in) :: kw
     end subroutine read_friction
+    module subroutine read_wear(p, kw)
+      type(parser_t), intent(inout) :: p
+      type(keyword_t), intent(in) :: kw
+    end subroutine read_wear
     module subroutine read_nodal_thickness(p, m, kw)
       type(parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: m
@@ -382,11 +395,14 @@ contains
     end if
     call lenient_warnings(p)
     call trim_model(p, m)
+    call settle_coupled_model(m)
     call finish_kinematic_cards(p, m)
     call cut_pretension_sections(p, m)
     call check_model(p, m)
     call check_orientations(p, m)
     call check_heat_model(p, m)
+    call check_coupled_model(p, m)
+    call gap_heat_pairs(p, m)
   end subroutine read_model
 
   !> Purpose: CalculiX reads a deck in passes, its nodes first, then its
@@ -440,7 +456,8 @@ contains
   subroutine card_in_place(p, name)
     type(parser_t), intent(inout) :: p
     character(len=*), intent(in) :: name
-    if (name /= 'SURFACE BEHAVIOR' .and. name /= 'FRICTION') p%interaction = 0
+    if (name /= 'SURFACE BEHAVIOR' .and. name /= 'FRICTION' .and. name /= 'GAP CONDUCTANCE' .and. &
+        name /= 'GAP HEAT GENERATION' .and. name /= 'WEAR') p%interaction = 0
     if (p%coupling_line > 0 .and. name /= 'KINEMATIC' .and. name /= 'DISTRIBUTING') then
       p%i = p%coupling_line
       call err(p, '*COUPLING must be followed by *KINEMATIC or *DISTRIBUTING (the next card)')
@@ -618,6 +635,7 @@ contains
     case ('DENSITY');       call in_step(p, kw, .false.); call read_density(p, m, kw)
     case ('STEP');          call read_step(p, m, kw)
     case ('STATIC');        call in_step(p, kw, .true.); call read_static(p, m, kw)
+    case ('FREQUENCY');     call in_step(p, kw, .true.); call read_frequency(p, m, kw)
     case ('END STEP');      call in_step(p, kw, .true.); call read_end_step(p, m, kw)
     case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'CONTACT PRINT', 'CONTACT FILE')
       call in_step(p, kw, .true.)
@@ -642,6 +660,7 @@ contains
     case ('SURFACE INTERACTION'); call in_step(p, kw, .false.); call read_surface_interaction(p, kw)
     case ('SURFACE BEHAVIOR'); call in_step(p, kw, .false.); call read_surface_behavior(p, kw)
     case ('FRICTION');      call in_step(p, kw, .false.); call read_friction(p, kw)
+    case ('WEAR');          call in_step(p, kw, .false.); call read_wear(p, kw)
     case ('NODAL THICKNESS'); call in_step(p, kw, .false.); call read_nodal_thickness(p, m, kw)
     case ('EQUATION');      call in_step(p, kw, .false.); call read_equation(p, m, kw)
     case ('PRE-TENSION SECTION'); call in_step(p, kw, .false.); call read_pretension_section(p, m, kw)
@@ -660,6 +679,9 @@ contains
     case ('CONTROLS');      call read_controls(p, m, kw)
     case ('SECTION CONTROLS', 'HOURGLASS STIFFNESS'); call in_step(p, kw, .false.); call read_hourglass_card(p, kw)
     case ('HEAT TRANSFER'); call in_step(p, kw, .true.); call read_heat_transfer(p, m, kw)
+    case ('COUPLED TEMPERATURE-DISPLACEMENT'); call in_step(p, kw, .true.); call read_coupled_step(p, m, kw)
+    case ('GAP CONDUCTANCE'); call in_step(p, kw, .false.); call read_gap_conductance(p, m, kw)
+    case ('GAP HEAT GENERATION'); call in_step(p, kw, .false.); call read_gap_heat_generation(p, m, kw)
     case ('CONDUCTIVITY');  call in_step(p, kw, .false.); call read_conductivity(p, m, kw)
     case ('SPECIFIC HEAT'); call in_step(p, kw, .false.); call read_specific_heat(p, m, kw)
     case ('CFLUX');         call in_step(p, kw, .true.); call read_cflux(p, m, kw)

@@ -26,9 +26,10 @@ submodule (deck_parser) deck_part_cards
   !> surfaces, what gives its elements stiffness, and its own constraints
   !> (*RIGID BODY: Abaqus/CAE writes a rigid part's, e.g. an indenter's,
   !> inside the part, naming the part's sets and reference point; each
-  !> instance then has its own rigid body).
+  !> instance then has its own rigid body; *ORIENTATION: the material axes
+  !> of the part's sections, turned with each instance).
   character(len=16), parameter :: part_cards(*) = [character(len=16) :: 'NODE', 'ELEMENT', 'NSET', 'ELSET', &
-    'SURFACE', 'SOLID SECTION', 'SPRING', 'MASS', 'NODAL THICKNESS', 'EQUATION', 'RIGID BODY']
+    'SURFACE', 'SOLID SECTION', 'SPRING', 'MASS', 'NODAL THICKNESS', 'EQUATION', 'RIGID BODY', 'ORIENTATION']
 
 contains
 

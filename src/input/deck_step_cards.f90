@@ -5,7 +5,7 @@
 submodule (deck_parser) deck_step_cards
   use kinds, only: dp
   use strings, only: split_fields, to_upper, field_t, itoa, rtoa
-  use deck_input, only: param_value, has_param, deck_warning
+  use deck_input, only: param_value, has_param, deck_warning, is_keyword
   use deck_cursor, only: max_increments, read_time_line, line_text, err, next_data, require_data, no_data, allow_params, &
                          name_param, check_name_length, get_real, get_int, param_int, is_int, &
                          need_elset, required_param, warn_empty_set, deck_dof, dof_moves, dof_zero, &
@@ -24,21 +24,23 @@ submodule (deck_parser) deck_step_cards
 contains
 
   !> Purpose: *AMPLITUDE, NAME=: a tabular amplitude, `t1, a1, t2, a2, ...`
-  !> over any number of data lines, times strictly increasing.
+  !> over any number of data lines, times strictly increasing; or
+  !> DEFINITION=PERIODIC, Abaqus' Fourier series (read_periodic).
   module subroutine read_amplitude(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     type(field_t), allocatable :: f(:)
     real(dp), allocatable :: t(:), a(:)
-    character(len=:), allocatable :: name, tm
+    character(len=:), allocatable :: name, tm, def
     integer :: n, k, np, na
     call allow_params(p, kw, 'NAME,TIME,DEFINITION,VALUE')
     name = name_param(p, kw, 'NAME')
     if (find_name(m%amplitudes(1:p%namp)%name, name) > 0) call err(p, 'duplicate amplitude ' // name)
-    if (has_param(kw, 'DEFINITION')) then
-      if (to_upper(param_value(kw, 'DEFINITION')) /= 'TABULAR') call err(p, 'only DEFINITION=TABULAR is implemented')
-    end if
+    def = 'TABULAR'
+    if (has_param(kw, 'DEFINITION')) def = to_upper(param_value(kw, 'DEFINITION'))
+    if (def /= 'TABULAR' .and. def /= 'PERIODIC') &
+      call err(p, 'only DEFINITION=TABULAR and PERIODIC are implemented')
     if (has_param(kw, 'VALUE')) then
       if (to_upper(param_value(kw, 'VALUE')) /= 'ABSOLUTE') call err(p, 'only VALUE=ABSOLUTE is implemented')
     end if
@@ -52,6 +54,10 @@ contains
       else if (tm /= 'STEP TIME') then
         call err(p, 'TIME must be STEP TIME or TOTAL TIME')
       end if
+    end if
+    if (def == 'PERIODIC') then
+      call read_periodic(p, m%amplitudes(p%namp))
+      return
     end if
     allocate(t(0), a(0))
     np = 0
@@ -71,6 +77,42 @@ contains
     m%amplitudes(p%namp)%t = t(1:np)
     m%amplitudes(p%namp)%a = a(1:np)
   end subroutine read_amplitude
+
+  !> Purpose: the data of *AMPLITUDE, DEFINITION=PERIODIC as Abaqus writes
+  !> them: `N, omega, t0, A0` (terms, circular frequency, starting time,
+  !> constant), then `A1, B1, A2, B2, ...` (N pairs over any number of
+  !> lines); the amplitude is model's amplitude_at.
+  !> Arguments: p the parser (on the card); a the amplitude, completed.
+  subroutine read_periodic(p, a)
+    type(parser_t), intent(inout) :: p
+    type(amplitude_t), intent(inout) :: a
+    type(field_t), allocatable :: f(:)
+    real(dp), allocatable :: c(:)
+    integer :: n, k, nt, nc
+    call require_data(p, 'N, omega, t0, A0 of a periodic amplitude')
+    call split_fields(line_text(p), f, n)
+    if (n /= 4) call err(p, '*AMPLITUDE, DEFINITION=PERIODIC first data line needs: N (terms), ' // &
+                         'omega (circular frequency), t0 (starting time), A0 (constant)')
+    nt = get_int(p, f(1), 'number of terms N')
+    if (nt < 1 .or. nt > 10000) call err(p, 'the number of terms N must be between 1 and 10000')
+    a%periodic = .true.
+    a%omega = get_real(p, f(2), 'circular frequency omega')
+    if (.not. a%omega > 0.0_dp) call err(p, 'the circular frequency omega must be positive')
+    a%t0 = get_real(p, f(3), 'starting time t0')
+    a%a0 = get_real(p, f(4), 'constant A0')
+    allocate(c(0))
+    nc = 0
+    do while (next_data(p))
+      call split_fields(line_text(p), f, n)
+      do k = 1, n
+        call append(c, nc, get_real(p, f(k), 'Fourier coefficient'))
+      end do
+    end do
+    if (nc /= 2 * nt) call err(p, 'a periodic amplitude of ' // itoa(nt) // ' terms needs ' // itoa(2 * nt) // &
+                               ' coefficients A1, B1, A2, B2, ... after its first data line; found ' // itoa(nc))
+    a%ca = c(1:nc:2)
+    a%cb = c(2:nc:2)
+  end subroutine read_periodic
 
   !> Purpose: *BOUNDARY: prescribed displacements, `node or nset, first
   !> dof[, last dof[, value]]` or a named condition (ENCASTRE, PINNED,
@@ -373,18 +415,49 @@ contains
   !> state the steps before it leave. As the first step (CalculiX then
   !> perturbs the unloaded, undeformed model) it is a linear step: read as
   !> one, NLGEOM off for it (CalculiX's answer, measured). After other
-  !> steps cfe2d has no base state to perturb about: an error.
+  !> steps only a *FREQUENCY step has that base state (a frequency step
+  !> always takes the tangent of the state before it, CalculiX's prestressed
+  !> modes); a static one is an error.
   subroutine perturbation_step(p, kw)
     type(parser_t), intent(inout) :: p
     type(keyword_t), intent(in) :: kw
-    if (p%nsteps > 0) call err(p, 'PERTURBATION after another step (a linear perturbation about the state ' // &
-      'it leaves) is not implemented; as the first step it is a linear step')
+    if (p%nsteps > 0) then
+      if (frequency_follows(p)) return
+      call err(p, 'PERTURBATION after another step (a linear perturbation about the state ' // &
+        'it leaves) is implemented for *FREQUENCY only; as the first step it is a linear step')
+    end if
     if (has_param(kw, 'NLGEOM')) then
       if (to_upper(param_value(kw, 'NLGEOM')) /= 'NO') call err(p, 'PERTURBATION and NLGEOM exclude each ' // &
                                                                    'other (a perturbation step is linear)')
     end if
     p%nlgeom = .false.
   end subroutine perturbation_step
+
+  !> Is the line after p%i a data line (not a keyword line, not the end)?
+  logical function data_follows(p)
+    type(parser_t), intent(in) :: p
+    data_follows = .false.
+    if (p%i + 1 > p%deck%n) return
+    data_follows = .not. is_keyword(p%deck%lines(p%i + 1)%text)
+  end function data_follows
+
+  !> Is the procedure of the step opened at line p%i a *FREQUENCY (the
+  !> first keyword line up to *END STEP that names one)?
+  logical function frequency_follows(p)
+    type(parser_t), intent(in) :: p
+    character(len=:), allocatable :: t
+    integer :: k
+    frequency_follows = .false.
+    do k = p%i + 1, p%deck%n
+      if (.not. is_keyword(p%deck%lines(k)%text)) cycle
+      t = to_upper(adjustl(p%deck%lines(k)%text))
+      if (index(t, '*END STEP') == 1 .or. index(t, '*ENDSTEP') == 1 .or. index(t, '*STATIC') == 1) return
+      if (index(t, '*FREQUENCY') == 1) then
+        frequency_follows = .true.
+        return
+      end if
+    end do
+  end function frequency_follows
 
   !> Purpose: *STATIC: `initial increment, time period[, min, max]`
   !> (default 1, 1). A linear step runs period / increment equal
@@ -402,7 +475,7 @@ contains
     real(dp) :: ratio
     call allow_params(p, kw, 'DIRECT,SOLVER')
     associate(s => m%steps(p%step))
-      if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
+      if (s%period > 0.0_dp .or. s%frequency) call err(p, 'second procedure in one step')
       s%direct = has_param(kw, 'DIRECT')
       call read_time_line(p, '*STATIC', s)
       ! (automatic increments of an NLGEOM step grow from the initial
@@ -415,6 +488,57 @@ contains
           ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
     end associate
   end subroutine read_static
+
+  !> Purpose: *FREQUENCY (CalculiX's card): `number of eigenvalues[,
+  !> lower, upper]`, the bounds in cycles/time (empty: not given; lower
+  !> is also the shift, CalculiX's (2 pi lower)^2). STORAGE= and SOLVER=
+  !> are kept to be reported (cfe2d's eigensolver is its own choice,
+  !> docs/keywords.md); GLOBAL= and CYCMPC= (cyclic symmetry) are read
+  !> and ignored. A frequency step has no time: its period is zero.
+  module subroutine read_frequency(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    logical :: massive
+    call allow_params(p, kw, 'STORAGE,SOLVER,GLOBAL,CYCMPC,MATRIXSTORAGE')
+    associate(s => m%steps(p%step))
+      if (s%period >= 0.0_dp .or. s%frequency) call err(p, 'second procedure in one step')
+      s%frequency = .true.
+      s%period = 0.0_dp
+      s%dt = 1.0_dp
+      s%freq_storage = to_upper(param_value(kw, 'STORAGE'))
+      s%freq_solver = to_upper(param_value(kw, 'SOLVER'))
+      if (s%freq_storage /= '' .and. s%freq_storage /= 'YES' .and. s%freq_storage /= 'NO') &
+        call err(p, 'STORAGE must be YES or NO')
+      call require_data(p, 'number of eigenvalues[, lower, upper frequency]')
+      call split_fields(line_text(p), f, n)
+      if (n > 3) call err(p, '*FREQUENCY data line needs: number of eigenvalues[, lower, upper frequency]')
+      s%nev = get_int(p, f(1), 'number of eigenvalues')
+      if (s%nev < 1) call err(p, 'the number of eigenvalues must be at least 1')
+      if (n >= 2) then
+        if (len(f(2)%s) > 0) s%freq_lower = get_real(p, f(2), 'lower frequency')
+        if (len(f(2)%s) > 0 .and. s%freq_lower < 0.0_dp) call err(p, 'the lower frequency must not be negative')
+      end if
+      if (n >= 3) then
+        if (len(f(3)%s) > 0) s%freq_upper = get_real(p, f(3), 'upper frequency')
+        if (len(f(3)%s) > 0 .and. s%freq_upper <= max(s%freq_lower, 0.0_dp)) &
+          call err(p, 'the upper frequency must be positive and above the lower one')
+      end if
+      if (next_data(p)) call err(p, '*FREQUENCY takes one data line')
+      ! (materials are read ahead, sections precede the steps); named at
+      ! the keyword line, the one before its data line
+      massive = .false.
+      if (allocated(m%materials) .and. p%nmat > 0) massive = any(m%materials(1:p%nmat)%has_density)
+      if (allocated(m%sections) .and. p%nsec > 0) massive = massive .or. any(m%sections(1:p%nsec)%point_mass)
+      if (.not. massive) then
+        p%i = p%i - 1
+        call err(p, '*FREQUENCY: the model has no mass (a *DENSITY in the materials of its elements, or ' // &
+                 'point masses: *MASS on MASS elements)')
+      end if
+    end associate
+  end subroutine read_frequency
 
   !> Purpose: *CONTROLS: the Newton iteration's constants of nonlinear
   !> steps (CalculiX's, model's controls_t), from this step on until
@@ -585,6 +709,14 @@ contains
     end if
     call ignored_params(p, kw, r)
     keep = request_set(p, m, kw, r)
+    if (.not. r%to_file .and. .not. data_follows(p)) then
+      ! a print card without quantities: CalculiX prints nothing for it
+      ! (its test deck spring4), its FREQUENCY= still counts
+      call deck_warning(p%deck, p%i, '*' // kw%name // ' has no output quantities (no data line): it prints ' // &
+                        'nothing, as in CalculiX')
+      call output_schedule(p, m, kw, card, every)
+      return
+    end if
     call request_quantities(p, kw, r)
     call output_schedule(p, m, kw, card, every)
     if (.not. keep .or. every == 0) return

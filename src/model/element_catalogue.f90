@@ -80,7 +80,11 @@ module element_catalogue
   !> shapes and rules of the plane (thickness of the section) and the
   !> axisymmetric continuum elements, for *HEAT TRANSFER steps only
   !> (temperature_field; a mechanical step refuses them, deck_heat_cards).
-  type(element_type_t), parameter :: catalogue(34) = [ &
+  !> CPS3T ... CAX8RT are Abaqus's coupled temperature-displacement
+  !> elements: each the element without the T (the same shape, rule and
+  !> state), whose nodes carry a temperature in a coupled or heat step
+  !> as every continuum element's do in cfe2d (docs/heat.md).
+  type(element_type_t), parameter :: catalogue(49) = [ &
     element_type_t('T3D2', shape_line2, 2, 2, 1, line_edges, 1, state_none, 1, 3), &
     element_type_t('T2D2', shape_line2, 2, 2, 1, line_edges, 1, state_none, 1, 3), &
     element_type_t('T3D3', shape_line3, 3, 2, 1, line3_edges, 2, state_none, 8, 21), &
@@ -114,7 +118,22 @@ module element_catalogue
     element_type_t('DCAX3', shape_tri3, 3, 3, 3, tri_edges, 1, state_axisymmetric, 2, 5), &
     element_type_t('DCAX4', shape_quad4, 4, 4, 4, quad_edges, 4, state_axisymmetric, 3, 9), &
     element_type_t('DCAX6', shape_tri6, 6, 3, 3, tri6_edges, 6, state_axisymmetric, 9, 22), &
-    element_type_t('DCAX8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_axisymmetric, 16, 23)]
+    element_type_t('DCAX8', shape_quad8, 8, 4, 4, quad8_edges, 9, state_axisymmetric, 16, 23), &
+    element_type_t('CPS3T', shape_tri3, 3, 3, 3, tri_edges, 1, state_plane_stress, 2, 5), &
+    element_type_t('CPE3T', shape_tri3, 3, 3, 3, tri_edges, 1, state_plane_strain, 2, 5), &
+    element_type_t('CAX3T', shape_tri3, 3, 3, 3, tri_edges, 1, state_axisymmetric, 2, 5), &
+    element_type_t('CPS4T', shape_quad4, 4, 4, 4, quad_edges, 4, state_plane_stress, 3, 9), &
+    element_type_t('CPE4T', shape_quad4, 4, 4, 4, quad_edges, 4, state_plane_strain, 3, 9), &
+    element_type_t('CAX4T', shape_quad4, 4, 4, 4, quad_edges, 4, state_axisymmetric, 3, 9), &
+    element_type_t('CPS4RT', shape_quad4, 4, 4, 4, quad_edges, 1, state_plane_stress, 3, 9), &
+    element_type_t('CPE4RT', shape_quad4, 4, 4, 4, quad_edges, 1, state_plane_strain, 3, 9), &
+    element_type_t('CAX4RT', shape_quad4, 4, 4, 4, quad_edges, 1, state_axisymmetric, 3, 9), &
+    element_type_t('CPS8T', shape_quad8, 8, 4, 4, quad8_edges, 9, state_plane_stress, 16, 23), &
+    element_type_t('CPE8T', shape_quad8, 8, 4, 4, quad8_edges, 9, state_plane_strain, 16, 23), &
+    element_type_t('CAX8T', shape_quad8, 8, 4, 4, quad8_edges, 9, state_axisymmetric, 16, 23), &
+    element_type_t('CPS8RT', shape_quad8, 8, 4, 4, quad8_edges, 4, state_plane_stress, 16, 23), &
+    element_type_t('CPE8RT', shape_quad8, 8, 4, 4, quad8_edges, 4, state_plane_strain, 16, 23), &
+    element_type_t('CAX8RT', shape_quad8, 8, 4, 4, quad8_edges, 4, state_axisymmetric, 16, 23)]
 
 contains
 
@@ -137,6 +156,10 @@ contains
     case ('M3D9', 'CPS9', 'CPE9')
       s = 'the 9-node quadrilateral is not implemented; gmsh writes 8-node quadrilaterals (CPS8) with ' // &
           '-setnumber Mesh.SecondOrderIncomplete 1'
+    case ('D', 'DCOUP3D')
+      ! CalculiX's network elements: its fluid networks (*FLUID SECTION)
+      s = 'a fluid network element (CalculiX''s networks of *FLUID SECTION): fluid networks are not ' // &
+          'implemented in cfe2d (docs/heat.md)'
     case default
       s = ''
     end select

@@ -18,13 +18,13 @@ module model
             is_continuum, carries_stiffness, is_truss, is_spring, is_mass, is_drawn, axisymmetric_model, &
             elem_nodes, elem_thickness, &
             surf_element, surf_node, coupling_nts, coupling_mortar, &
-            amp_step_time, amp_total_time, find_name, edge_nodes, step_dloads, &
+            amp_step_time, amp_total_time, amplitude_at, find_name, edge_nodes, step_dloads, &
             dload_p, dload_bx, dload_by, dload_grav, dload_centrif, &
             law_elastic, law_neo_hooke, law_mooney_rivlin, law_deformation_plasticity, max_yield, controls_t, &
             nonlinear_material
   public :: orientation_t, orient_rectangular, orient_cylindrical, elastic_iso, elastic_ortho, elastic_aniso
   public :: kept_nodes
-  public :: heat_load_t, heat_bf
+  public :: heat_load_t, heat_bf, gap_heat_t
 
   integer, parameter :: surf_element = 1, surf_node = 2
   !> contact_pair_t%coupling
@@ -209,10 +209,17 @@ module model
     real(dp) :: point(2) = 0.0_dp
   end type dload_t
 
+  !> *AMPLITUDE: tabular (points t, a: linear between them, constant
+  !> beyond), or DEFINITION=PERIODIC (Abaqus' Fourier series, periodic =
+  !> .true.): a0 + sum_n (ca(n) cos(n omega (t - t0)) + cb(n) sin(n omega
+  !> (t - t0))) from t0 on, a0 before (amplitude_at).
   type :: amplitude_t
     character(len=name_len) :: name = ''
     integer :: time = amp_step_time
     real(dp), allocatable :: t(:), a(:)
+    logical :: periodic = .false.
+    real(dp) :: omega = 0.0_dp, t0 = 0.0_dp, a0 = 0.0_dp
+    real(dp), allocatable :: ca(:), cb(:)
   end type amplitude_t
 
   !> *NODE PRINT / *EL PRINT / *NODE FILE / *EL FILE: a set (0 = all) and
@@ -304,6 +311,10 @@ module model
     !> largest temperature change of an automatic increment (DELTMX).
     logical :: heat = .false., steady = .false.
     real(dp) :: deltmx = 0.0_dp
+    !> *COUPLED TEMPERATURE-DISPLACEMENT: a step of both fields (heat
+    !> is then true too), the temperatures solved first in each increment
+    !> and their thermal strain loading the displacements (docs/heat.md).
+    logical :: coupled = .false.
     !> Prescribed temperatures (*BOUNDARY on dof 11; bc_t%dof 11),
     !> concentrated fluxes (*CFLUX; cload_t%dof 11), *DFLUX and *FILM;
     !> new_*: OP=NEW (the lists of earlier steps dropped); otherwise a
@@ -312,6 +323,15 @@ module model
     type(cload_t), allocatable :: cfluxes(:)
     type(heat_load_t), allocatable :: dfluxes(:), films(:)
     logical :: new_tbcs = .false., new_cfluxes = .false., new_dfluxes = .false., new_films = .false.
+    !> *FREQUENCY (docs/keywords.md): the natural frequencies of the
+    !> tangent at the state the steps before leave; nev eigenvalues
+    !> nearest the shift (2 pi freq_lower)^2, those outside [freq_lower,
+    !> freq_upper] (cycles/time; < 0: not given) dropped; STORAGE= and
+    !> SOLVER= as written (read and reported).
+    logical :: frequency = .false.
+    integer :: nev = 10
+    real(dp) :: freq_lower = -1.0_dp, freq_upper = -1.0_dp
+    character(len=16) :: freq_storage = '', freq_solver = ''
   end type step_t
 
   !> A slave (node set or surface) coupled to a master element surface.
@@ -330,6 +350,14 @@ module model
     !> SYMMETRIC: the pair made for the second pass (master and slave
     !> swapped) and the other way round; 0 for a single pass.
     integer :: twin = 0
+    !> Archard wear (*WEAR in its *SURFACE INTERACTION; docs/contact.md,
+    !> "Wear"): wear (any wear), the coefficients of the slave and the
+    !> master surface (worn depth per unit pressure and unit slip) and the
+    !> cycle-jump factor (each computed increment's wear counts wear_jump
+    !> times).
+    logical :: wear = .false.
+    real(dp) :: wear_k(2) = 0.0_dp
+    real(dp) :: wear_jump = 1.0_dp
     !> The coupling: node-to-segment (the paper's CFE at each slave node,
     !> or Gauss points of 3-node slave faces) or segment-to-segment (a
     !> dual mortar CFE per slave node, the gap integrated over the slave
@@ -354,7 +382,28 @@ module model
     !> there); card_line 0 where the pair was not read from a deck.
     character(len=:), allocatable :: card_file, card_text
     integer :: card_line = 0
+    !> Heat through the contact (coupled and heat transfer runs): the
+    !> pair's *GAP CONDUCTANCE and *GAP HEAT GENERATION, m%gap_heats(gap_heat)
+    !> (0: none); halved (conductance) for each pass of a two-pass pair.
+    integer :: gap_heat = 0
   end type contact_pair_t
+
+  !> *GAP CONDUCTANCE and *GAP HEAT GENERATION of a *SURFACE INTERACTION
+  !> (docs/heat.md, "Heat through the contact"): the conductance per unit
+  !> area h(p) of a closed contact point, linear in the contact pressure
+  !> between the table's points (pressure gc_p(i), conductance gc_h(i),
+  !> pressures increasing) and constant beyond (one point: constant); an
+  !> open point conducts nothing. Frictional heat: the fraction eta of the
+  !> frictional power mu p |slip rate| (per unit area) is heat, the
+  !> fraction f of it goes to the slave surface and 1 - f to the master;
+  !> velocity > 0 is CalculiX's given slip rate (2D and axisymmetric models
+  !> whose sliding is out of the plane), else the rate of the slip.
+  type :: gap_heat_t
+    character(len=name_len) :: name = ''
+    real(dp), allocatable :: gc_p(:), gc_h(:)
+    logical :: generation = .false.
+    real(dp) :: eta = 1.0_dp, f = 0.5_dp, velocity = 0.0_dp
+  end type gap_heat_t
 
   !> *EQUATION: sum_k coef(k) * u(dof(k)) of node(k) = 0, one linear
   !> multi-point constraint, imposed by eliminating its first term's dof
@@ -519,6 +568,14 @@ module model
     !> A step is *HEAT TRANSFER: the run's field is the temperatures
     !> (temperature_field) and the materials need no *ELASTIC.
     logical :: heat = .false.
+    !> The run has both fields, the temperatures before the displacements:
+    !> a *COUPLED TEMPERATURE-DISPLACEMENT step, or heat transfer and
+    !> mechanical steps in one deck (heat is then false: the materials
+    !> need *ELASTIC).
+    logical :: coupled = .false.
+    !> *GAP CONDUCTANCE / *GAP HEAT GENERATION by surface interaction
+    !> (contact_pair_t's gap_heat).
+    type(gap_heat_t), allocatable :: gap_heats(:)
   end type model_t
 
 contains
@@ -767,6 +824,38 @@ contains
       end associate
     end do
   end function elem_label
+
+  !> Purpose: the value of amplitude a at time tt (the step time, or the
+  !> total time for TIME=TOTAL TIME: the caller's choice). Tabular: linear
+  !> between its points, constant beyond its ends. PERIODIC (Abaqus'
+  !> definition): a0 before t0, from t0 on the Fourier series
+  !>   a0 + sum_{n=1}^N [ca(n) cos(n omega (tt - t0)) + cb(n) sin(n omega (tt - t0))].
+  pure real(dp) function amplitude_at(a, tt) result(v)
+    type(amplitude_t), intent(in) :: a
+    real(dp), intent(in) :: tt
+    integer :: k, n
+    real(dp) :: phase
+    if (a%periodic) then
+      v = a%a0
+      if (tt < a%t0) return
+      phase = a%omega * (tt - a%t0)
+      do k = 1, size(a%ca)
+        v = v + a%ca(k) * cos(k * phase) + a%cb(k) * sin(k * phase)
+      end do
+      return
+    end if
+    n = size(a%t)
+    if (tt <= a%t(1)) then
+      v = a%a(1)
+    else if (tt >= a%t(n)) then
+      v = a%a(n)
+    else
+      do k = 2, n
+        if (tt <= a%t(k)) exit
+      end do
+      v = a%a(k - 1) + (a%a(k) - a%a(k - 1)) * (tt - a%t(k - 1)) / (a%t(k) - a%t(k - 1))
+    end if
+  end function amplitude_at
 
   !> Index of a name in a list of names (case already folded), 0 if absent.
   pure integer function find_name(names, name)

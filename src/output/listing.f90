@@ -15,7 +15,8 @@ module listing
   use analysis_events, only: analysis_observer_t, step_info_t, iteration_info_t, step_summary_t, solver_info_t, &
                              run_timing_t
   use increment_results, only: increment_results_t
-  use contact_results, only: pair_results_t, model_has_friction, slave_state
+  use contact_results, only: pair_results_t, model_has_friction, model_has_wear, slave_state
+  use contact_heat, only: has_contact_heat
   use output_schedule, only: schedule_t
   implicit none
   private
@@ -30,7 +31,7 @@ module listing
     !> set + 2 reals, node + 2, 4, 5 or 7 reals, element + point + 3 or 5
     !> reals, and a slave contact row without and with friction.
     character(len=:), allocatable :: f_set2, f_node2, f_node4, f_node5, f_node7, f_ip1, f_ip3, f_ip5, f_slave, &
-                                     f_slave_fric
+                                     f_slave_fric, f_wear
     !> Which increments get the requested blocks (FREQUENCY=, TIME POINTS=)
     type(schedule_t) :: schedule
   contains
@@ -61,6 +62,7 @@ contains
     lst%f_ip5 = rowfmt(lst, 'i10,i4', 5)
     lst%f_slave = '(i10,3' // efmt(lst) // ',1x,a6,3' // efmt(lst) // ')'
     lst%f_slave_fric = '(i10,3' // efmt(lst) // ',1x,a6,7' // efmt(lst) // ')'
+    lst%f_wear = '(4' // efmt(lst) // ')'
     open(newunit=lst%unit, file=path, status='replace', action='write', iostat=ios)
     if (ios /= 0) call fatal('cannot write the listing "' // path // '"')
     call register_unit_to_close(lst%unit)
@@ -108,11 +110,16 @@ contains
     integer :: nsolid, u, e
     if (lst%has_csv) then
       if (model_has_friction(m)) then
-        write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure,' // &
-                              'shear_force,shear,slip,slip_increment'
+        write(lst%csv, '(a)', advance='no') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure,' // &
+                                            'shear_force,shear,slip,slip_increment'
       else
-        write(lst%csv, '(a)') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure'
+        write(lst%csv, '(a)', advance='no') 'step,increment,time,pair,side,node,x,y,gap,state,force,pressure'
       end if
+      ! heat through the contact: the heat flux per point, the last column
+      if (m%coupled .and. has_contact_heat(m)) write(lst%csv, '(a)', advance='no') ',heat_flux'
+      ! wear (*WEAR): the worn depths and the worn surface point, last
+      if (model_has_wear(m)) write(lst%csv, '(a)', advance='no') ',wear_slave,wear_master,worn_x,worn_y'
+      write(lst%csv, '(a)') ''
       flush(lst%csv)
     end if
     u = lst%unit
@@ -664,13 +671,15 @@ contains
       'es16.8e3,",",es16.8e3,",",a,",",es16.8e3,",",es16.8e3)'
     character(len=*), parameter :: csv_slave_fric = '(i0,",",i0,",",es16.8e3,",",i0,",slave,",i0,",",es16.8e3,' // &
       '",",es16.8e3,",",es16.8e3,",",a,6(",",es16.8e3))'
+    character(len=*), parameter :: csv_wear = '(4(",",es16.8e3))'
     un = self%unit
     write(un, '(a,i0,a)') '--- CONTACT SLAVE pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%slave_surface)%name)
     if (r%frictional) then
-      write(un, '(a)') 'node x y gap state force area pressure shear_force shear slip slip_inc' // label_column(m)
+      write(un, '(a)') 'node x y gap state force area pressure shear_force shear slip slip_inc' // &
+                       wear_columns(r) // label_column(m)
     else
-      write(un, '(a)') 'node x y gap state force area pressure' // label_column(m)
+      write(un, '(a)') 'node x y gap state force area pressure' // wear_columns(r) // label_column(m)
     end if
     do j = 1, size(r%slave_node)
       nid = 0
@@ -684,16 +693,21 @@ contains
         write(un, self%f_slave, advance='no') nid, r%slave_x(:, j), &
           r%slave_gap(j), st, r%slave_force(j), r%slave_area(j), r%slave_pressure(j)
       end if
+      if (allocated(r%slave_wear)) write(un, self%f_wear, advance='no') r%slave_wear(:, j), r%slave_worn(:, j)
       call end_row(un, m, r%slave_node(j))
       if (.not. self%has_csv) cycle
       if (res%contact%frictional) then
-        write(self%csv, csv_slave_fric) res%step, res%increment, res%total_time, r%pair, nid, r%slave_x(:, j), &
-          r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j), r%slave_shear(j), &
+        write(self%csv, csv_slave_fric, advance='no') res%step, res%increment, res%total_time, r%pair, nid, &
+          r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j), r%slave_shear(j), &
           r%slave_traction(j), r%slave_slip(j), r%slave_slip_inc(j)
       else
-        write(self%csv, csv_slave) res%step, res%increment, res%total_time, r%pair, nid, &
+        write(self%csv, csv_slave, advance='no') res%step, res%increment, res%total_time, r%pair, nid, &
           r%slave_x(:, j), r%slave_gap(j), trim(st), r%slave_force(j), r%slave_pressure(j)
       end if
+      ! heat through the contact: the point's heat flux, slave to master
+      if (allocated(r%slave_heat_flux)) write(self%csv, '(",",es16.8e3)', advance='no') r%slave_heat_flux(j)
+      if (allocated(r%slave_wear)) write(self%csv, csv_wear, advance='no') r%slave_wear(:, j), r%slave_worn(:, j)
+      write(self%csv, '(a)') ''
     end do
   end subroutine write_slave_rows
 
@@ -711,13 +725,14 @@ contains
       'es16.8e3,",0,-,",es16.8e3,",",es16.8e3)'
     character(len=*), parameter :: csv_master_fric = '(i0,",",i0,",",es16.8e3,",",i0,",master,",i0,",",es16.8e3,' // &
       '",",es16.8e3,",0,-,",es16.8e3,",",es16.8e3,",",es16.8e3,",",es16.8e3,",0,0")'
+    character(len=*), parameter :: csv_wear = '(4(",",es16.8e3))'
     un = self%unit
     write(un, '(a,i0,a)') '--- CONTACT MASTER pair=', r%pair, ' surface=' // &
       trim(m%surfaces(m%pairs(r%pair)%master_surface)%name)
     if (r%frictional) then
-      write(un, '(a)') 'node x y force area pressure shear_force shear' // label_column(m)
+      write(un, '(a)') 'node x y force area pressure shear_force shear' // wear_columns(r) // label_column(m)
     else
-      write(un, '(a)') 'node x y force area pressure' // label_column(m)
+      write(un, '(a)') 'node x y force area pressure' // wear_columns(r) // label_column(m)
     end if
     do j = 1, size(r%master_node)
       nd = r%master_node(j)
@@ -734,17 +749,33 @@ contains
       else
         write(un, self%f_node5, advance='no') m%node_id(nd), xs, r%master_force(j), r%master_area(j), p
       end if
+      if (allocated(r%master_wear)) write(un, self%f_wear, advance='no') 0.0_dp, r%master_wear(j), &
+                                                                       r%master_worn(:, j)
       call end_row(un, m, nd)
       if (.not. self%has_csv) cycle
       if (res%contact%frictional) then
-        write(self%csv, csv_master_fric) res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
-          r%master_force(j), p, r%master_shear(j), tau
+        write(self%csv, csv_master_fric, advance='no') res%step, res%increment, res%total_time, r%pair, &
+          m%node_id(nd), xs, r%master_force(j), p, r%master_shear(j), tau
       else
-        write(self%csv, csv_master) res%step, res%increment, res%total_time, r%pair, m%node_id(nd), xs, &
-          r%master_force(j), p
+        write(self%csv, csv_master, advance='no') res%step, res%increment, res%total_time, r%pair, m%node_id(nd), &
+          xs, r%master_force(j), p
       end if
+      ! (heat through the contact: its flux is the slave points')
+      if (allocated(r%slave_heat_flux)) write(self%csv, '(a)', advance='no') ',0'
+      if (allocated(r%master_wear)) write(self%csv, csv_wear, advance='no') 0.0_dp, r%master_wear(j), &
+                                                                            r%master_worn(:, j)
+      write(self%csv, '(a)') ''
     end do
   end subroutine write_master_rows
+
+  !> The wear columns of a contact block's header (a model with *WEAR:
+  !> wear_rows of contact_results), else nothing.
+  function wear_columns(r) result(s)
+    type(pair_results_t), intent(in) :: r
+    character(len=:), allocatable :: s
+    s = ''
+    if (allocated(r%slave_wear)) s = ' wear_slave wear_master worn_x worn_y'
+  end function wear_columns
 
   !> Ends a row of the contact tables: with instances (Abaqus/CAE), the
   !> node's label in the deck's terms (a Gauss point of a slave face, node

@@ -63,6 +63,7 @@ contains
     type(model_t), intent(in) :: m
     type(increment_results_t), intent(in) :: res
     integer :: q
+    if (allocated(res%modes)) call eigenvalue_blocks(self%unit, res%modes, res%modal_total)
     if (.not. self%schedule%due(m, res)) return
     associate(st => m%steps(res%step))
       do q = 1, size(st%requests)
@@ -78,6 +79,41 @@ contains
     end associate
     flush(self%unit)
   end subroutine write_dat_increment
+
+  !> Purpose: a *FREQUENCY step's tables as CalculiX 2.20 prints them,
+  !> before its first mode: eigenvalues (rad/time, cycles/time; no
+  !> imaginary part), participation factors, effective modal masses
+  !> with their totals, the total effective mass. The components out of
+  !> the plane (z, rotations about x and y) are 0 in 2D.
+  !> Arguments: modes(6, n) eigenvalue, omega, frequency, participation
+  !> along x, y and about z; total r^T M r along x, y and about z.
+  subroutine eigenvalue_blocks(u, modes, total)
+    integer, intent(in) :: u
+    real(dp), intent(in) :: modes(:, :), total(3)
+    character(len=*), parameter :: head = 'MODE NO.   X-COMPONENT     Y-COMPONENT     Z-COMPONENT     ' // &
+      'X-ROTATION      Y-ROTATION      Z-ROTATION'
+    character(len=*), parameter :: row = '(i7, 6e16.7)'
+    integer :: k
+    write(u, '(a)') '', '     E I G E N V A L U E   O U T P U T', '', &
+      ' MODE NO    EIGENVALUE                       FREQUENCY   ', &
+      '                                     REAL PART            IMAGINARY PART', &
+      '                           (RAD/TIME)      (CYCLES/TIME     (RAD/TIME)', ''
+    do k = 1, size(modes, 2)
+      write(u, '(i7, 4e16.7)') k, modes(1:3, k), 0.0_dp
+    end do
+    write(u, '(a)') '', '     P A R T I C I P A T I O N   F A C T O R S', '', head, ''
+    do k = 1, size(modes, 2)
+      write(u, row) k, modes(4:5, k), 0.0_dp, 0.0_dp, 0.0_dp, modes(6, k)
+    end do
+    write(u, '(a)') '', '     E F F E C T I V E   M O D A L   M A S S', '', head, ''
+    do k = 1, size(modes, 2)
+      write(u, row) k, modes(4:5, k)**2, 0.0_dp, 0.0_dp, 0.0_dp, modes(6, k)**2
+    end do
+    write(u, '(a, e18.7, 5e16.7)') 'TOTAL', sum(modes(4:5, :)**2, dim=2), 0.0_dp, 0.0_dp, 0.0_dp, sum(modes(6, :)**2)
+    write(u, '(a)') '', '     T O T A L   E F F E C T I V E   M A S S', '', head, ''
+    write(u, '(7x, 6e16.7)') total(1:2), 0.0_dp, 0.0_dp, 0.0_dp, total(3)
+    write(u, '(a)') ''
+  end subroutine eigenvalue_blocks
 
   !> CalculiX's caption: a blank line, the text, a blank line.
   subroutine caption(u, text, time)

@@ -1,0 +1,241 @@
+!> The cards of coupled temperature-displacement analysis (docs/heat.md,
+!> "Coupled temperature-displacement"): *COUPLED TEMPERATURE-DISPLACEMENT
+!> (the procedure of a step of both fields), and the checks of a deck
+!> whose run has both fields once it is read (settle_coupled_model,
+!> check_coupled_model): a coupled step, or heat transfer and mechanical
+!> steps in one deck.
+module deck_coupled_cards
+  use kinds, only: dp
+  use strings, only: split_fields, field_t, itoa, to_upper
+  use deck_input, only: keyword_t, param_value, has_param, deck_warning
+  use deck_cursor, only: parser_t, max_increments, read_time_line, err, allow_params, get_real, line_text, &
+                         next_data, require_data
+  use model, only: model_t, gap_heat_t
+  implicit none
+  private
+  public :: read_coupled_step, settle_coupled_model, check_coupled_model, read_gap_conductance, &
+            read_gap_heat_generation, gap_heat_pairs
+
+contains
+
+  !> Purpose: *COUPLED TEMPERATURE-DISPLACEMENT[, STEADY STATE][, DIRECT]
+  !> [, DELTMX=] (SOLVER= read and ignored, as on *STATIC and *HEAT
+  !> TRANSFER): the step's procedure, a step of the temperatures and the
+  !> displacements; data line `initial increment, period[, min, max]`
+  !> (default 1, 1), as CalculiX reads it. DIRECT: fixed increments of
+  !> the initial size; without it the increments are automatic where a
+  !> field needs them (NLGEOM or a nonlinear material, a transient with
+  !> DELTMX), the driver's rules for either (docs/heat.md).
+  !> Arguments: p the parser at the card, m the model, kw the card.
+  subroutine read_coupled_step(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: n
+    real(dp) :: ratio
+    call allow_params(p, kw, 'STEADY STATE,DIRECT,DELTMX,SOLVER')
+    associate(s => m%steps(p%step))
+      if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
+      m%coupled = .true.
+      s%heat = .true.
+      s%coupled = .true.
+      s%steady = has_param(kw, 'STEADY STATE')
+      s%direct = has_param(kw, 'DIRECT')
+      s%deltmx = 0.0_dp
+      if (has_param(kw, 'DELTMX')) then
+        call split_fields(param_value(kw, 'DELTMX'), f, n)
+        s%deltmx = get_real(p, f(1), 'DELTMX')
+        if (s%deltmx <= 0.0_dp) call err(p, 'DELTMX must be positive')
+      end if
+      call read_time_line(p, '*COUPLED TEMPERATURE-DISPLACEMENT', s)
+      if (s%steady) s%deltmx = 0.0_dp
+      ! (automatic increments: counted as they are made)
+      if (.not. s%direct .and. (s%deltmx > 0.0_dp .or. s%nlgeom)) return
+      ratio = s%period / s%dt
+      if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // itoa(nint(min(ratio, &
+          1.0e9_dp))) // ' or more increments (time period / initial increment); at most ' // &
+          itoa(max_increments) // ' are allowed')
+      if (nint(ratio) > s%max_inc) call err(p, 'the step needs ' // itoa(nint(ratio)) // &
+          ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
+    end associate
+  end subroutine read_coupled_step
+
+  !> Purpose: once the deck is read, before the model's checks: a deck of
+  !> *HEAT TRANSFER and mechanical (*STATIC) steps is run with both
+  !> fields, as a coupled deck is (the mechanical steps take the
+  !> temperatures the heat steps left); its materials then need *ELASTIC
+  !> (m%heat false: that is for decks of heat transfer steps alone).
+  !> Arguments: m the model read.
+  subroutine settle_coupled_model(m)
+    type(model_t), intent(inout) :: m
+    if (size(m%steps) == 0) return
+    if (m%heat .and. .not. all(m%steps%heat)) m%coupled = .true.
+    if (m%coupled) m%heat = .false.
+  end subroutine settle_coupled_model
+
+  !> Purpose: once the deck is read, in a run of both fields: every
+  !> material with a section has *CONDUCTIVITY, and *DENSITY and *SPECIFIC
+  !> HEAT when a step is transient; no *TEMPERATURE (the temperatures of
+  !> the thermal strain are the temperature field's).
+  !> Arguments: p the parser (its line moved to the card in error), m
+  !> the model read.
+  subroutine check_coupled_model(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(in) :: m
+    integer :: s
+    logical :: transient
+    if (.not. m%coupled) return
+    transient = .false.
+    do s = 1, size(m%steps)
+      p%i = m%steps(s)%src%line
+      if (allocated(m%steps(s)%temps)) then
+        if (size(m%steps(s)%temps) > 0) call err(p, '*TEMPERATURE in a deck with a *COUPLED TEMPERATURE-' // &
+            'DISPLACEMENT or *HEAT TRANSFER step: the temperatures of the thermal strain are those the heat ' // &
+            'transfer computes (*BOUNDARY on dof 11 prescribes them)')
+      end if
+      transient = transient .or. (m%steps(s)%heat .and. .not. m%steps(s)%steady)
+    end do
+    do s = 1, size(m%sections)
+      if (m%sections(s)%spring .or. m%sections(s)%point_mass .or. m%sections(s)%material == 0) cycle
+      associate(mat => m%materials(m%sections(s)%material))
+        p%i = mat%src%line
+        if (.not. mat%has_conductivity) call err(p, 'material ' // trim(mat%name) // ' has no *CONDUCTIVITY ' // &
+                                                 '(a coupled temperature-displacement or heat transfer step)')
+        if (transient .and. .not. (mat%has_specific_heat .and. mat%has_density)) call err(p, 'material ' // &
+          trim(mat%name) // ' needs *DENSITY and *SPECIFIC HEAT for a transient heat transfer or coupled step')
+      end associate
+    end do
+  end subroutine check_coupled_model
+
+  !> Purpose: the gap heat entry of the current *SURFACE INTERACTION block
+  !> (made on first use), its index in m%gap_heats.
+  !> Arguments: p the parser (its current interaction), m the model,
+  !> card the card's name for the message outside a block.
+  integer function current_gap_heat(p, m, card) result(k)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    character(len=*), intent(in) :: card
+    character(len=:), allocatable :: name
+    if (p%interaction == 0) call err(p, '*' // card // ' outside a *SURFACE INTERACTION block')
+    name = trim(p%inter(p%interaction)%name)
+    if (.not. allocated(m%gap_heats)) allocate(m%gap_heats(0))
+    do k = 1, size(m%gap_heats)
+      if (m%gap_heats(k)%name == name) return
+    end do
+    m%gap_heats = [m%gap_heats, gap_heat_t(name=name)]
+    k = size(m%gap_heats)
+  end function current_gap_heat
+
+  !> Purpose: *GAP CONDUCTANCE[, PRESSURE] in a *SURFACE INTERACTION block:
+  !> data lines `conductance, contact pressure[, temperature]`, the
+  !> conductance per unit area of a closed contact as a function of its
+  !> pressure (CalculiX's layout, and Abaqus's with PRESSURE), pressures
+  !> increasing, linear between and constant beyond; one line without a
+  !> pressure: constant. Abaqus without PRESSURE reads the second column
+  !> as a clearance: several lines without it are warned about (read as
+  !> pressures); a temperature dependence (different temperatures) and
+  !> USER stop.
+  !> Arguments: p the parser at the card, m the model, kw the card.
+  subroutine read_gap_conductance(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    real(dp), allocatable :: hp(:, :)
+    real(dp) :: t1, t
+    integer :: k, n, line0
+    call allow_params(p, kw, 'PRESSURE,USER')
+    if (has_param(kw, 'USER')) call err(p, '*GAP CONDUCTANCE, USER (a user routine gapcon) is not implemented')
+    k = current_gap_heat(p, m, 'GAP CONDUCTANCE')
+    line0 = p%i
+    call require_data(p, 'conductance')
+    allocate(hp(2, 0))
+    t1 = 0.0_dp
+    do
+      call split_fields(line_text(p), f, n)
+      if (n < 1 .or. n > 3) call err(p, '*GAP CONDUCTANCE data line needs: conductance[, contact pressure' // &
+                                     '[, temperature]]')
+      hp = reshape([hp, get_real(p, f(1), 'conductance'), 0.0_dp], [2, size(hp, 2) + 1])
+      if (n >= 2) then
+        if (len(f(2)%s) > 0) hp(2, size(hp, 2)) = get_real(p, f(2), 'contact pressure')
+      end if
+      t = t1
+      if (n == 3) then
+        if (len(f(3)%s) > 0) t = get_real(p, f(3), 'temperature')
+      end if
+      if (size(hp, 2) == 1) t1 = t
+      if (t /= t1) call err(p, 'a temperature-dependent *GAP CONDUCTANCE is not implemented (one temperature ' // &
+                           'per table)')
+      if (hp(1, size(hp, 2)) < 0.0_dp) call err(p, 'the gap conductance must not be negative')
+      if (size(hp, 2) > 1) then
+        if (hp(2, size(hp, 2)) <= hp(2, size(hp, 2) - 1)) call err(p, 'the pressures of a *GAP CONDUCTANCE ' // &
+                                                                  'table must increase')
+      end if
+      if (.not. next_data(p)) exit
+    end do
+    if (size(hp, 2) > 1 .and. .not. has_param(kw, 'PRESSURE')) call deck_warning(p%deck, line0, &
+        '*GAP CONDUCTANCE table without PRESSURE: its second column is read as the contact pressure, as ' // &
+        'CalculiX reads it (Abaqus would read a clearance); cfe2d has no clearance dependence')
+    m%gap_heats(k)%gc_h = hp(1, :)
+    m%gap_heats(k)%gc_p = hp(2, :)
+  end subroutine read_gap_conductance
+
+  !> Purpose: *GAP HEAT GENERATION in a *SURFACE INTERACTION block: data
+  !> line `eta, f[, velocity]` (defaults 1, 0.5): the fraction eta of the
+  !> frictional power becomes heat, the fraction f of that goes to the
+  !> slave surface; CalculiX's third value, the differential tangential
+  !> velocity, is the slip rate used instead of the computed one (2D
+  !> models sliding out of their plane). USER stops.
+  !> Arguments: p the parser at the card, m the model, kw the card.
+  subroutine read_gap_heat_generation(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    type(field_t), allocatable :: f(:)
+    integer :: k, n
+    call allow_params(p, kw, 'USER')
+    if (has_param(kw, 'USER')) call err(p, '*GAP HEAT GENERATION, USER (a user routine gapheat) is not ' // &
+                                        'implemented')
+    k = current_gap_heat(p, m, 'GAP HEAT GENERATION')
+    associate(g => m%gap_heats(k))
+      g%generation = .true.
+      if (.not. next_data(p)) return
+      call split_fields(line_text(p), f, n)
+      if (n > 3) call err(p, '*GAP HEAT GENERATION data line needs: eta, f[, velocity]')
+      if (len(f(1)%s) > 0) g%eta = get_real(p, f(1), 'eta')
+      if (n >= 2) then
+        if (len(f(2)%s) > 0) g%f = get_real(p, f(2), 'f')
+      end if
+      if (n >= 3) then
+        if (len(f(3)%s) > 0) g%velocity = get_real(p, f(3), 'velocity')
+      end if
+      if (g%eta < 0.0_dp .or. g%eta > 1.0_dp .or. g%f < 0.0_dp .or. g%f > 1.0_dp) call err(p, 'eta and f of ' // &
+          '*GAP HEAT GENERATION must lie in 0 .. 1')
+      if (g%velocity < 0.0_dp) call err(p, 'the velocity of *GAP HEAT GENERATION must not be negative')
+    end associate
+  end subroutine read_gap_heat_generation
+
+  !> Purpose: once the deck is read: each pair read with INTERACTION=
+  !> takes its interaction's gap heat entry (contact_pair_t's gap_heat);
+  !> in a deck of heat transfer steps alone that is an error (a deck of
+  !> mechanical steps alone passes it over: it has no temperatures).
+  !> Arguments: p the parser (its pairs' interaction names), m the model.
+  subroutine gap_heat_pairs(p, m)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    integer :: j, k
+    if (.not. allocated(m%gap_heats)) return
+    do j = 1, p%npair_inter
+      do k = 1, size(m%gap_heats)
+        if (m%gap_heats(k)%name /= p%pair_inter(j)%name) cycle
+        m%pairs(p%pair_inter(j)%pair)%gap_heat = k
+        ! a deck of heat transfer steps alone has no contact pressures
+        p%i = p%pair_inter(j)%line
+        if (m%heat) call err(p, 'heat through the contact (*GAP CONDUCTANCE, *GAP HEAT GENERATION) needs ' // &
+            'the contact''s pressures: a *COUPLED TEMPERATURE-DISPLACEMENT step, or a *STATIC step before the ' // &
+            'heat transfer')
+      end do
+    end do
+  end subroutine gap_heat_pairs
+end module deck_coupled_cards
