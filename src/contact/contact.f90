@@ -26,7 +26,8 @@ module contact
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, piece_point, edge_areas, edge_natural, &
                               edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line, shape_at
-  use contact_mortar, only: nearest_edge, face_cuts, edge_tol, mortar_t, mortar_integrals
+  use contact_mortar, only: face_cuts, edge_tol, mortar_t, mortar_integrals
+  use edge_tree, only: edge_tree_t, surface_tree, nearest_edge
   use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted, coarse_straight_slave
   use element_interface, only: cfe_in_t, cfe_out_t, max_slave, act_residual
   use cfe_element, only: cfe
@@ -334,12 +335,14 @@ contains
     integer :: k, s, best
     real(dp) :: tbest
     type(cfe_t) :: c
+    type(edge_tree_t) :: tree
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
       allocate(area(size(sl%nodes)), h(size(sl%nodes)), emod(size(sl%nodes)))
       call tributary_lengths(m, sl%nodes, area, h, emod)
+      call surface_tree(m, x, ms, tree)
       do k = 1, size(sl%nodes)
         s = sl%nodes(k)
-        call nearest_edge(m, x, ms, x(:, s), s, 0, dmax, best, tbest)
+        call nearest_edge(m, x, ms, x(:, s), s, 0, dmax, best, tbest, tree)
         if (best == 0) then
           call append(unc, nunc, s)
           call append(uncp, nunc_p, ip)
@@ -590,8 +593,10 @@ contains
     real(dp), allocatable :: cuts(:)
     real(dp) :: tg(3), wg(3), t, w(3), p(2), pref(2), dpdt(2), tbest, area, h, em
     integer :: f, ncut, iv, ig, best, npts, ncoupled
+    type(edge_tree_t) :: tree
     call gauss_line(2, tg, wg)
     associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
+      call surface_tree(m, x, ms, tree)
       do f = 1, size(sl%elem)
         ed = get_edge(m, x, sl%elem(f), sl%edge(f))
         ref = get_edge(m, m%x, sl%elem(f), sl%edge(f))
@@ -605,7 +610,7 @@ contains
             npts = npts + 1
             call piece_point(ref, cuts(iv), cuts(iv + 1), tg(ig), wg(ig), t, pref, area)
             call edge_at(ed, t, p, dpdt)
-            call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest)
+            call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest, tree)
             if (best == 0) cycle
             ncoupled = ncoupled + 1
             w = edge_weights(ed, t)

@@ -96,6 +96,7 @@ module contact_master_multipliers
   use contact_geometry, only: edge_t, get_edge, edge_at, piece_point, project_to_edge, edge_weights, area_factor, edge_length, &
                               edge_areas
   use contact_mortar, only: nearest_edge, face_cuts, grow_columns
+  use edge_tree, only: edge_tree_t, surface_tree
   use shape_functions, only: gauss_line
   implicit none
   private
@@ -190,14 +191,16 @@ contains
     real(dp), intent(in) :: dmax
     real(dp), intent(out) :: num, den
     type(edge_t) :: ed, mt
+    type(edge_tree_t) :: tree
     real(dp) :: p(2), dpdt(2), tbest
     integer :: f, best
     num = 0.0_dp
     den = 0.0_dp
+    call surface_tree(m, m%x, ms, tree)
     do f = 1, size(sl%elem)
       ed = get_edge(m, m%x, sl%elem(f), sl%edge(f))
       call edge_at(ed, 0.5_dp, p, dpdt)
-      call nearest_edge(m, m%x, ms, p, 0, sl%elem(f), dmax, best, tbest)
+      call nearest_edge(m, m%x, ms, p, 0, sl%elem(f), dmax, best, tbest, tree)
       if (best == 0) cycle
       mt = get_edge(m, m%x, ms%elem(best), ms%edge(best))
       num = num + edge_length(ed) / edge_length(mt)
@@ -380,11 +383,13 @@ contains
     real(dp), allocatable :: cuts(:)
     real(dp) :: tg(3), wg(3), t, nsl(3), wmst(3), psiw(3), p(2), pref(2), mdp(2), nrm(2), tbest, da
     integer :: f, ncut, iv, ig, best
+    type(edge_tree_t) :: tree
     call gauss_line(3, tg, wg)
+    call surface_tree(m, x, sl, tree)
     do f = 1, size(ms%elem)
       mt = get_edge(m, x, ms%elem(f), ms%edge(f))
       ref = get_edge(m, m%x, ms%elem(f), ms%edge(f))
-      call face_cuts(m, x, mt, sl, dmax, cuts, ncut)
+      call face_cuts(m, x, mt, sl, dmax, cuts, ncut, tree)
       do iv = 1, ncut - 1
         do ig = 1, 3
           call piece_point(ref, cuts(iv), cuts(iv + 1), tg(ig), wg(ig), t, pref, da)
@@ -392,7 +397,7 @@ contains
           psiw = psi_weights(mt, t)
           call edge_at(mt, t, p, mdp)
           nrm = [mdp(2), -mdp(1)] / norm2(mdp)
-          call nearest_edge(m, x, sl, p, 0, ms%elem(f), dmax, best, tbest)
+          call nearest_edge(m, x, sl, p, 0, ms%elem(f), dmax, best, tbest, tree)
           if (best == 0) cycle
           ed = get_edge(m, x, sl%elem(best), sl%edge(best))
           nsl = edge_weights(ed, tbest)
@@ -416,17 +421,19 @@ contains
     real(dp), allocatable :: cuts(:)
     real(dp) :: tg(3), wg(3), t, nsl(3), wmst(3), p(2), pref(2), dpdt(2), mdp(2), nrm(2), tbest, da
     integer :: f, ncut, iv, ig, best
+    type(edge_tree_t) :: tree
     call gauss_line(3, tg, wg)
+    call surface_tree(m, x, ms, tree)
     do f = 1, size(sl%elem)
       ed = get_edge(m, x, sl%elem(f), sl%edge(f))
       ref = get_edge(m, m%x, sl%elem(f), sl%edge(f))
-      call face_cuts(m, x, ed, ms, dmax, cuts, ncut)
+      call face_cuts(m, x, ed, ms, dmax, cuts, ncut, tree)
       do iv = 1, ncut - 1
         do ig = 1, 3
           call piece_point(ref, cuts(iv), cuts(iv + 1), tg(ig), wg(ig), t, pref, da)
           nsl = edge_weights(ref, t)
           call edge_at(ed, t, p, dpdt)
-          call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest)
+          call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest, tree)
           if (best == 0) cycle
           mt = get_edge(m, x, ms%elem(best), ms%edge(best))
           wmst = edge_weights(mt, tbest)

@@ -38,13 +38,11 @@ module contact_mortar
   use model, only: model_t, surface_t
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_weights, area_factor, edge_length, piece_point
   use shape_functions, only: gauss_line
+  use edge_tree, only: edge_tree_t, surface_tree, nearest_edge, slab_candidates, edge_tol
   implicit none
   private
   public :: nearest_edge, face_cuts, mortar_dual, mortar_t, mortar_integrals, edge_tol, grow_columns
 
-  !> A projection this far outside [0, 1] along an edge still counts: it
-  !> catches slave nodes exactly above a master vertex.
-  real(dp), parameter :: edge_tol = 1.0e-6_dp
   !> The initial width of the per-node lists of master nodes and of the
   !> cuts of a face; both grow as a mesh needs (no limit).
   integer, parameter :: initial_width = 16
@@ -68,65 +66,47 @@ module contact_mortar
 
 contains
 
-  !> Purpose: the master edge (index into the master surface) on which the
-  !> orthogonal projection of point xs falls, nearest first; 0 if none.
-  !> Arguments: x configuration searched, skip_node a slave node (edges
-  !> through it are skipped) and skip_elem a slave element (its edges are
-  !> skipped), 0 for none; dmax search distance, tbest the projection's
-  !> position along the edge.
-  subroutine nearest_edge(m, x, ms, xs, skip_node, skip_elem, dmax, best, tbest)
-    type(model_t), intent(in) :: m
-    real(dp), intent(in) :: x(:, :), xs(2), dmax
-    type(surface_t), intent(in) :: ms
-    integer, intent(in) :: skip_node, skip_elem
-    integer, intent(out) :: best
-    real(dp), intent(out) :: tbest
-    type(edge_t) :: ed
-    integer :: j
-    real(dp) :: nvec(2), t, d, dbest
-    best = 0
-    tbest = 0.0_dp
-    dbest = huge(1.0_dp)
-    do j = 1, size(ms%elem)
-      if (ms%elem(j) == skip_elem) cycle
-      ed = get_edge(m, x, ms%elem(j), ms%edge(j))
-      if (any(ed%node(1:ed%nn) == skip_node)) cycle
-      call project_to_edge(ed, xs, t, nvec, d)
-      if (t < -edge_tol .or. t > 1.0_dp + edge_tol) cycle
-      t = min(max(t, 0.0_dp), 1.0_dp)
-      ! A point behind the master edge by more than half its length is on
-      ! the far side of the master body, not in contact with it.
-      if (d < -0.5_dp * edge_length(ed) .or. d > dmax) cycle
-      if (abs(d) < dbest) then
-        dbest = abs(d)
-        best = j
-        tbest = t
-      end if
-    end do
-  end subroutine nearest_edge
-
   !> Purpose: positions along a slave face (sorted, from 0 to 1) where the
   !> corners of the master edges project onto it: between two of them the
   !> slave face faces one master edge, whose shape functions are
   !> polynomials there.
   !> Arguments: cuts(1:ncut) returns them (allocated here, as long as the
-  !> master mesh needs: a coarse face over a fine master has many).
-  subroutine face_cuts(m, x, ed, ms, dmax, cuts, ncut)
+  !> master mesh needs: a coarse face over a fine master has many); tree,
+  !> if present, the tree of ms in x: a straight face looks only at the
+  !> master edges in its strip (edge_tree's slab_candidates), in the same
+  !> order, so the cuts are the same.
+  subroutine face_cuts(m, x, ed, ms, dmax, cuts, ncut, tree)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), dmax
     type(edge_t), intent(in) :: ed
     type(surface_t), intent(in) :: ms
     real(dp), allocatable, intent(out) :: cuts(:)
     integer, intent(out) :: ncut
+    type(edge_tree_t), intent(in), optional :: tree
     real(dp), parameter :: tol = 1.0e-6_dp
     type(edge_t) :: mt
     real(dp), allocatable :: longer(:)
-    real(dp) :: t, nvec(2), d
-    integer :: j, q, a
+    integer, allocatable :: list(:)
+    real(dp) :: t, nvec(2), d, u(2), len
+    integer :: i, j, q, a, nlist
     allocate(cuts(initial_width))
     ncut = 2
     cuts(1:2) = [0.0_dp, 1.0_dp]
-    do j = 1, size(ms%elem)
+    len = edge_length(ed)
+    nlist = -1
+    if (present(tree) .and. ed%nn == 2 .and. len > 0.0_dp .and. len <= huge(1.0_dp)) then
+      if (tree%finite .and. tree%n == size(ms%elem)) then
+        ! an accepted corner: t = (x_a - x_1) . u / len in (tol, 1 - tol), |d| <= dmax
+        u = (ed%x(:, 2) - ed%x(:, 1)) / len
+        call slab_candidates(tree, ed%x(:, 1), u, 0.0_dp, len, [u(2), -u(1)], dmax, list, nlist)
+      end if
+    end if
+    if (nlist < 0) then
+      list = [(j, j = 1, size(ms%elem))]
+      nlist = size(ms%elem)
+    end if
+    do i = 1, nlist
+      j = list(i)
       mt = get_edge(m, x, ms%elem(j), ms%edge(j))
       do q = 1, 2
         a = mt%node(q)
@@ -210,6 +190,7 @@ contains
     type(surface_t), intent(in) :: sl, ms
     type(mortar_t), intent(out) :: mo
     type(edge_t) :: ed, ref, mt
+    type(edge_tree_t) :: tree
     integer, allocatable :: pos(:)
     real(dp), allocatable :: cuts(:)
     real(dp) :: tg(3), wg(3), a(3, 3), t, nsl(3), phi(3), wmst(3), p(2), pref(2), dpdt(2), &
@@ -232,12 +213,13 @@ contains
     mo%medge = 0
     mo%mt = 0.0_dp
     call gauss_line(3, tg, wg)
+    call surface_tree(m, x, ms, tree)
     do f = 1, size(sl%elem)
       ed = get_edge(m, x, sl%elem(f), sl%edge(f))
       ref = get_edge(m, m%x, sl%elem(f), sl%edge(f))
       a = mortar_dual(ref)
       hs = edge_length(ref) / (ref%nn - 1)
-      call face_cuts(m, x, ed, ms, dmax, cuts, ncut)
+      call face_cuts(m, x, ed, ms, dmax, cuts, ncut, tree)
       do iv = 1, ncut - 1
         do ig = 1, 3
           call piece_point(ref, cuts(iv), cuts(iv + 1), tg(ig), wg(ig), t, pref, da)
@@ -248,7 +230,7 @@ contains
             mo%h(k) = min(mo%h(k), hs)
           end do
           call edge_at(ed, t, p, dpdt)
-          call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest)
+          call nearest_edge(m, x, ms, p, 0, sl%elem(f), dmax, best, tbest, tree)
           if (best == 0) cycle
           mt = get_edge(m, x, ms%elem(best), ms%edge(best))
           wmst = edge_weights(mt, tbest)

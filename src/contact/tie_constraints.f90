@@ -27,6 +27,7 @@ module tie_constraints
   use model, only: model_t, tie_t, equation_t, node_label
   use contact_geometry, only: edge_t, get_edge, project_to_edge, edge_at, edge_weights, edge_length
   use contact_mortar, only: mortar_t, mortar_integrals
+  use edge_tree, only: edge_tree_t, boxes_tree, tree_candidates
   implicit none
   private
   public :: tie_surfaces
@@ -121,9 +122,11 @@ contains
     integer, allocatable :: missed(:), skipped(:)
     real(dp) :: tol_face, tol
     integer :: k, s, j, neq, nmissed, nskipped, nshared
+    type(edge_tree_t) :: tree
     call master_faces(m, t, faces, on_master, tol_face)
     tol = t%tolerance
     if (tol <= 0.0_dp) tol = tol_face
+    call reach_tree(faces, tol, tol_face, tree)
     associate(slaves => m%surfaces(t%slave_surface)%nodes)
       allocate(eqs(2 * size(slaves)), missed(size(slaves)), skipped(size(slaves)), lands(size(slaves)))
       neq = 0
@@ -136,7 +139,7 @@ contains
           nshared = nshared + 1
           cycle
         end if
-        l = landing(faces, m%x(:, s), tol, tol_face)
+        l = landing(faces, m%x(:, s), tol, tol_face, tree)
         if (l%face == 0) then
           nmissed = nmissed + 1
           missed(nmissed) = s
@@ -210,19 +213,29 @@ contains
   !> distance) and on the face or at most tol_face beyond its ends, the
   !> one whose nearest point (the projection clamped to the face) is
   !> closest. face = 0 if there is none.
-  function landing(faces, xs, tol, tol_face) result(l)
+  !> Only the faces whose reach (below) holds xs are looked at: with the
+  !> tree of reach_tree, those whose box holds it, in the same order.
+  function landing(faces, xs, tol, tol_face, tree) result(l)
     type(edge_t), intent(in) :: faces(:)
     real(dp), intent(in) :: xs(2), tol, tol_face
+    type(edge_tree_t), intent(in) :: tree
     type(landing_t) :: l
-    real(dp) :: t, nvec(2), d, len, tc, p(2), dpdt(2), best, reach
-    integer :: j
+    real(dp) :: t, nvec(2), d, len, tc, p(2), dpdt(2), best
+    integer, allocatable :: cand(:)
+    integer :: i, j, ncand
     best = huge(1.0_dp)
-    do j = 1, size(faces)
+    if (tree%finite .and. tree%n == size(faces)) then
+      call tree_candidates(tree, xs, 0.0_dp, cand, ncand)
+    else
+      cand = [(j, j = 1, size(faces))]
+      ncand = size(faces)
+    end if
+    do i = 1, ncand
+      j = cand(i)
       associate(f => faces(j))
         len = edge_length(f)
         ! far from every node of the face: skip the projection
-        reach = maxval(norm2(f%x(:, 1:f%nn) - spread(f%x(:, 1), 2, f%nn), dim=1)) + tol + tol_face
-        if (norm2(xs - f%x(:, 1)) > reach) cycle
+        if (norm2(xs - f%x(:, 1)) > face_reach(f, tol, tol_face)) cycle
         call project_to_edge(f, xs, t, nvec, d)
         if (abs(d) > tol) cycle
         if (t * len < -tol_face .or. (t - 1.0_dp) * len > tol_face) cycle
@@ -234,6 +247,34 @@ contains
       end associate
     end do
   end function landing
+
+  !> Purpose: the distance from face f's first node within which landing
+  !> projects a node onto f: to its farthest node, plus tol and tol_face.
+  pure real(dp) function face_reach(f, tol, tol_face)
+    type(edge_t), intent(in) :: f
+    real(dp), intent(in) :: tol, tol_face
+    face_reach = maxval(norm2(f%x(:, 1:f%nn) - spread(f%x(:, 1), 2, f%nn), dim=1)) + tol + tol_face
+  end function face_reach
+
+  !> Purpose: the tree of the faces' reaches (a square about each face's
+  !> first node holding the disc of radius face_reach, widened for
+  !> rounding), so that landing looks only at the faces near a node
+  !> rather than at all (a tie of n nodes on n faces was O(n^2)).
+  subroutine reach_tree(faces, tol, tol_face, tree)
+    type(edge_t), intent(in) :: faces(:)
+    real(dp), intent(in) :: tol, tol_face
+    type(edge_tree_t), intent(out) :: tree
+    real(dp), allocatable :: box(:, :)
+    real(dp) :: r
+    integer :: j
+    allocate(box(4, size(faces)))
+    do j = 1, size(faces)
+      r = face_reach(faces(j), tol, tol_face)
+      r = r + 1.0e-12_dp * (r + maxval(abs(faces(j)%x(:, 1))))
+      box(:, j) = [faces(j)%x(:, 1) - r, faces(j)%x(:, 1) + r]
+    end do
+    call boxes_tree(box, tree)
+  end subroutine reach_tree
 
   !> u_j(s) - sum_i N_i(t) u_j(node i of the face) = 0; master terms with
   !> a zero weight (the node exactly at a corner) are left out.

@@ -1,0 +1,421 @@
+!> The contact search's spatial index: a bounding-volume tree over the
+!> edges of a master surface, so that the nearest master edge of a slave
+!> point is found among the few edges near it rather than among all of
+!> them (issue 32: the search was O(slave points x master edges), 115 s
+!> of a 50 000-point rough surface's 207 s).
+!>
+!> Each edge gets a box that holds every point a projection onto it may
+!> return: the corners and, for a 3-node edge, the control point of the
+!> same curve written as a quadratic Bezier curve (the curve lies in the
+!> triangle of its control points), grown by the edge_tol extension
+!> beyond its ends and by a rounding margin. The tree splits the edges at
+!> the median of their box centres along the longer side, down to leaves
+!> of leaf_size edges.
+!>
+!> The answer does not change: nearest_edge still takes, among the edges
+!> that accept the point, the first (lowest index) of the smallest |d|.
+!> It looks at every edge whose box is within a radius r of the point, in
+!> the order of their indices, and grows r until the best |d| found is at
+!> most r: an edge that accepts the point at distance |d| has the foot of
+!> the projection in its box, so every edge with |d| <= r was looked at.
+!> (For a 3-node edge |d| is the distance to the foot when the projection's
+!> Newton iteration converged, as it does for points near the edge.)
+module edge_tree
+  use kinds, only: dp
+  use model, only: model_t, surface_t
+  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_length
+  implicit none
+  private
+  public :: edge_tree_t, surface_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates
+
+  !> A projection this far outside [0, 1] along an edge still counts: it
+  !> catches slave nodes exactly above a master vertex.
+  real(dp), parameter :: edge_tol = 1.0e-6_dp
+  !> Edges in a leaf of the tree.
+  integer, parameter :: leaf_size = 4
+
+  type :: edge_tree_t
+    integer :: n = 0                       ! edges (of the surface, in its order)
+    integer :: nnode = 0                   ! tree nodes; node 1 is the root
+    real(dp), allocatable :: ebox(:, :)    ! (4, n): xmin, ymin, xmax, ymax of each edge
+    real(dp), allocatable :: box(:, :)     ! (4, nnode): the same of each tree node
+    integer, allocatable :: first(:), last(:)  ! node's edges: perm(first:last)
+    integer, allocatable :: left(:)        ! its first child (the second is left + 1), 0 at a leaf
+    integer, allocatable :: perm(:)        ! edge indices, grouped by node
+    real(dp) :: step = 0.0_dp              ! mean box size: the first radius and its growth
+    !> every coordinate finite: else the searches look at every edge (a
+    !> projection onto an edge with a NaN is judged there as before)
+    logical :: finite = .true.
+  end type edge_tree_t
+
+contains
+
+  !> Purpose: the tree of the edges of element surface ms in configuration x.
+  !> Arguments: tree returns it (empty for a surface without edges).
+  subroutine surface_tree(m, x, ms, tree)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    type(surface_t), intent(in) :: ms
+    type(edge_tree_t), intent(out) :: tree
+    type(edge_t) :: ed
+    real(dp) :: p(2), d0(2), d1(2), c(2), pts(2, 3), grow, scale
+    integer :: j, np
+    tree%n = size(ms%elem)
+    allocate(tree%ebox(4, tree%n))
+    scale = 0.0_dp
+    do j = 1, tree%n
+      ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+      pts(:, 1:2) = ed%x(:, 1:2)
+      np = 2
+      if (ed%nn == 3) then
+        ! the Bezier control point of the quadratic edge
+        c = 2.0_dp * ed%x(:, 3) - 0.5_dp * (ed%x(:, 1) + ed%x(:, 2))
+        pts(:, 3) = c
+        np = 3
+      end if
+      call edge_at(ed, 0.0_dp, p, d0)
+      call edge_at(ed, 1.0_dp, p, d1)
+      ! the feet at t in [-edge_tol, 1 + edge_tol]: |p'| bounds the extension
+      grow = 2.0_dp * edge_tol * max(norm2(d0), norm2(d1))
+      tree%ebox(1:2, j) = minval(pts(:, 1:np), dim=2) - grow
+      tree%ebox(3:4, j) = maxval(pts(:, 1:np), dim=2) + grow
+      scale = max(scale, maxval(abs(pts(:, 1:np))))
+    end do
+    ! rounding of the projection: far below any edge of a sound mesh
+    tree%ebox(1:2, :) = tree%ebox(1:2, :) - 1.0e-10_dp * scale
+    tree%ebox(3:4, :) = tree%ebox(3:4, :) + 1.0e-10_dp * scale
+    tree%finite = all(abs(tree%ebox) <= huge(1.0_dp))
+    call build_tree(tree)
+  end subroutine surface_tree
+
+  !> Purpose: a tree over boxes given by the caller (ebox(1:2, j) the lower
+  !> and ebox(3:4, j) the upper corner of item j), for tree_candidates:
+  !> the items whose box holds a point are those within radius 0.
+  !> Arguments: tree returns it; finite says whether every box was finite
+  !> (a caller then searches all items otherwise).
+  subroutine boxes_tree(ebox, tree)
+    real(dp), intent(in) :: ebox(:, :)
+    type(edge_tree_t), intent(out) :: tree
+    tree%n = size(ebox, 2)
+    tree%ebox = ebox
+    tree%finite = all(abs(ebox) <= huge(1.0_dp))
+    call build_tree(tree)
+  end subroutine boxes_tree
+
+  !> Purpose: the tree's nodes from the edge boxes tree%ebox: each node's
+  !> edges split at the median of their centres along the longer side of
+  !> the node's box, until leaf_size edges remain.
+  subroutine build_tree(tree)
+    type(edge_tree_t), intent(inout) :: tree
+    integer, allocatable :: todo(:)
+    real(dp), allocatable :: key(:)
+    integer :: j, k, ntodo, a, b, axis
+    allocate(tree%perm(tree%n), key(tree%n), todo(2 * tree%n + 1))
+    tree%perm = [(j, j = 1, tree%n)]
+    allocate(tree%box(4, 2 * tree%n + 1), tree%first(2 * tree%n + 1), tree%last(2 * tree%n + 1), &
+             tree%left(2 * tree%n + 1))
+    tree%step = 0.0_dp
+    if (tree%n > 0) tree%step = sum(tree%ebox(3:4, :) - tree%ebox(1:2, :)) / (2 * tree%n)
+    tree%nnode = 1
+    tree%first(1) = 1
+    tree%last(1) = tree%n
+    ntodo = 1
+    todo(1) = 1
+    do while (ntodo > 0)
+      k = todo(ntodo)
+      ntodo = ntodo - 1
+      a = tree%first(k)
+      b = tree%last(k)
+      tree%left(k) = 0
+      if (b < a) then
+        tree%box(:, k) = [huge(1.0_dp), huge(1.0_dp), -huge(1.0_dp), -huge(1.0_dp)]
+        cycle
+      end if
+      tree%box(1:2, k) = minval(tree%ebox(1:2, tree%perm(a:b)), dim=2)
+      tree%box(3:4, k) = maxval(tree%ebox(3:4, tree%perm(a:b)), dim=2)
+      if (b - a + 1 <= leaf_size) cycle
+      axis = 1
+      if (tree%box(4, k) - tree%box(2, k) > tree%box(3, k) - tree%box(1, k)) axis = 2
+      key(a:b) = tree%ebox(axis, tree%perm(a:b)) + tree%ebox(axis + 2, tree%perm(a:b))
+      call sort_by_key(key(a:b), tree%perm(a:b))
+      tree%left(k) = tree%nnode + 1
+      tree%first(tree%nnode + 1) = a
+      tree%last(tree%nnode + 1) = (a + b) / 2
+      tree%first(tree%nnode + 2) = (a + b) / 2 + 1
+      tree%last(tree%nnode + 2) = b
+      todo(ntodo + 1:ntodo + 2) = [tree%nnode + 1, tree%nnode + 2]
+      ntodo = ntodo + 2
+      tree%nnode = tree%nnode + 2
+    end do
+  end subroutine build_tree
+
+  !> Purpose: heap sort of idx by key (ascending key; the order of equal
+  !> keys does not matter: the tree only groups edges).
+  pure subroutine sort_by_key(key, idx)
+    real(dp), intent(inout) :: key(:)
+    integer, intent(inout) :: idx(:)
+    integer :: n, i
+    n = size(key)
+    do i = n / 2, 1, -1
+      call sift(key, idx, i, n)
+    end do
+    do i = n, 2, -1
+      call swap(key, idx, 1, i)
+      call sift(key, idx, 1, i - 1)
+    end do
+  end subroutine sort_by_key
+
+  !> Purpose: moves entry i down the heap key(1:n) (largest at the top).
+  pure subroutine sift(key, idx, i, n)
+    real(dp), intent(inout) :: key(:)
+    integer, intent(inout) :: idx(:)
+    integer, intent(in) :: i, n
+    integer :: p, c
+    p = i
+    do
+      c = 2 * p
+      if (c > n) exit
+      if (c < n) then
+        if (key(c + 1) > key(c)) c = c + 1
+      end if
+      if (.not. key(c) > key(p)) exit
+      call swap(key, idx, p, c)
+      p = c
+    end do
+  end subroutine sift
+
+  !> Purpose: exchanges entries i and j of key and idx.
+  pure subroutine swap(key, idx, i, j)
+    real(dp), intent(inout) :: key(:)
+    integer, intent(inout) :: idx(:)
+    integer, intent(in) :: i, j
+    real(dp) :: tk
+    integer :: ti
+    tk = key(i)
+    key(i) = key(j)
+    key(j) = tk
+    ti = idx(i)
+    idx(i) = idx(j)
+    idx(j) = ti
+  end subroutine swap
+
+  !> Purpose: distance from point p to the box b (xmin, ymin, xmax, ymax);
+  !> 0 inside.
+  pure real(dp) function box_distance(b, p)
+    real(dp), intent(in) :: b(4), p(2)
+    real(dp) :: dx, dy
+    dx = max(b(1) - p(1), 0.0_dp, p(1) - b(3))
+    dy = max(b(2) - p(2), 0.0_dp, p(2) - b(4))
+    box_distance = sqrt(dx * dx + dy * dy)
+  end function box_distance
+
+  !> Purpose: the edges whose box is within distance r of point p, in
+  !> ascending order of their index (the order of a search over all).
+  !> Arguments: cand(1:ncand) returns them (grown as needed).
+  subroutine tree_candidates(tree, p, r, cand, ncand)
+    type(edge_tree_t), intent(in) :: tree
+    real(dp), intent(in) :: p(2), r
+    integer, allocatable, intent(inout) :: cand(:)
+    integer, intent(out) :: ncand
+    integer :: stack(128), ns, k, i, j
+    integer, allocatable :: longer(:)
+    if (.not. allocated(cand)) allocate(cand(32))
+    ncand = 0
+    if (tree%n == 0) return
+    ns = 1
+    stack(1) = 1
+    do while (ns > 0)
+      k = stack(ns)
+      ns = ns - 1
+      if (.not. box_distance(tree%box(:, k), p) <= r) cycle
+      if (tree%left(k) > 0) then
+        stack(ns + 1:ns + 2) = [tree%left(k), tree%left(k) + 1]
+        ns = ns + 2
+        cycle
+      end if
+      do i = tree%first(k), tree%last(k)
+        j = tree%perm(i)
+        if (.not. box_distance(tree%ebox(:, j), p) <= r) cycle
+        if (ncand == size(cand)) then
+          allocate(longer(2 * ncand))
+          longer(1:ncand) = cand(1:ncand)
+          call move_alloc(longer, cand)
+        end if
+        ncand = ncand + 1
+        cand(ncand) = j
+      end do
+    end do
+    call sort_ints(cand(1:ncand))
+  end subroutine tree_candidates
+
+  !> Purpose: the edges whose box meets the strip of the points y with
+  !> lo <= (y - o) . u <= hi and |(y - o) . v| <= dv (u, v unit vectors;
+  !> dv = huge: no limit), in ascending order of their index. The corners
+  !> of master edges that project onto a straight slave face (face_cuts)
+  !> lie in such a strip.
+  !> Arguments: cand(1:ncand) returns them (grown as needed).
+  subroutine slab_candidates(tree, o, u, lo, hi, v, dv, cand, ncand)
+    type(edge_tree_t), intent(in) :: tree
+    real(dp), intent(in) :: o(2), u(2), lo, hi, v(2), dv
+    integer, allocatable, intent(inout) :: cand(:)
+    integer, intent(out) :: ncand
+    integer :: stack(128), ns, k, i, j
+    integer, allocatable :: longer(:)
+    if (.not. allocated(cand)) allocate(cand(32))
+    ncand = 0
+    if (tree%n == 0) return
+    ns = 1
+    stack(1) = 1
+    do while (ns > 0)
+      k = stack(ns)
+      ns = ns - 1
+      if (.not. box_meets(tree%box(:, k), o, u, lo, hi, v, dv)) cycle
+      if (tree%left(k) > 0) then
+        stack(ns + 1:ns + 2) = [tree%left(k), tree%left(k) + 1]
+        ns = ns + 2
+        cycle
+      end if
+      do i = tree%first(k), tree%last(k)
+        j = tree%perm(i)
+        if (.not. box_meets(tree%ebox(:, j), o, u, lo, hi, v, dv)) cycle
+        if (ncand == size(cand)) then
+          allocate(longer(2 * ncand))
+          longer(1:ncand) = cand(1:ncand)
+          call move_alloc(longer, cand)
+        end if
+        ncand = ncand + 1
+        cand(ncand) = j
+      end do
+    end do
+    call sort_ints(cand(1:ncand))
+  end subroutine slab_candidates
+
+  !> Purpose: does box b meet both strips of slab_candidates? (Each tested on its
+  !> own: a box that meets both but not their crossing is kept, which
+  !> only costs a projection.)
+  pure logical function box_meets(b, o, u, lo, hi, v, dv)
+    real(dp), intent(in) :: b(4), o(2), u(2), lo, hi, v(2), dv
+    real(dp) :: c(2), hw(2), su, ru, sv, rv
+    c = 0.5_dp * (b(1:2) + b(3:4)) - o
+    hw = 0.5_dp * (b(3:4) - b(1:2))
+    su = dot_product(c, u)
+    ru = hw(1) * abs(u(1)) + hw(2) * abs(u(2))
+    sv = dot_product(c, v)
+    rv = hw(1) * abs(v(1)) + hw(2) * abs(v(2))
+    box_meets = su + ru >= lo .and. su - ru <= hi .and. abs(sv) - rv <= dv
+  end function box_meets
+
+  !> Purpose: ascending sort of a few integers (insertion; the candidate
+  !> lists are short), longer lists by the heap sort.
+  pure subroutine sort_ints(a)
+    integer, intent(inout) :: a(:)
+    real(dp), allocatable :: key(:)
+    integer :: i, j, v
+    if (size(a) > 64) then
+      key = real(a, dp)
+      call sort_by_key(key, a)
+      return
+    end if
+    do i = 2, size(a)
+      v = a(i)
+      j = i - 1
+      do while (j >= 1)
+        if (a(j) <= v) exit
+        a(j + 1) = a(j)
+        j = j - 1
+      end do
+      a(j + 1) = v
+    end do
+  end subroutine sort_ints
+
+  !> Purpose: the master edge (index into the master surface) on which the
+  !> orthogonal projection of point xs falls, nearest first (the lowest
+  !> index among equally near ones); 0 if none.
+  !> Arguments: x configuration searched, skip_node a slave node (edges
+  !> through it are skipped) and skip_elem a slave element (its edges are
+  !> skipped), 0 for none; dmax search distance, tbest the projection's
+  !> position along the edge; tree, if present, the tree of ms in x
+  !> (surface_tree): the same answer from the edges near xs only.
+  subroutine nearest_edge(m, x, ms, xs, skip_node, skip_elem, dmax, best, tbest, tree)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), xs(2), dmax
+    type(surface_t), intent(in) :: ms
+    integer, intent(in) :: skip_node, skip_elem
+    integer, intent(out) :: best
+    real(dp), intent(out) :: tbest
+    type(edge_tree_t), intent(in), optional :: tree
+    integer, allocatable :: cand(:)
+    integer :: j, ncand
+    real(dp) :: dbest, r, rall
+    best = 0
+    tbest = 0.0_dp
+    dbest = huge(1.0_dp)
+    rall = -1.0_dp
+    if (present(tree)) then
+      if (tree%n == size(ms%elem) .and. tree%n > 0 .and. tree%finite) rall = reach_all(tree, xs)
+    end if
+    if (.not. (rall >= 0.0_dp .and. rall <= huge(1.0_dp))) then
+      ! no tree, or a point or box that is not finite: every edge
+      do j = 1, size(ms%elem)
+        call judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest)
+      end do
+      return
+    end if
+    r = box_distance(tree%box(:, 1), xs) + tree%step
+    do while (r < rall)
+      call tree_candidates(tree, xs, r, cand, ncand)
+      do j = 1, ncand
+        call judge(m, x, ms, cand(j), xs, skip_node, skip_elem, dmax, best, tbest, dbest)
+      end do
+      ! every edge with |d| <= r was judged
+      if (best > 0 .and. dbest <= r) return
+      best = 0
+      tbest = 0.0_dp
+      dbest = huge(1.0_dp)
+      r = 2.0_dp * r + tree%step
+    end do
+    ! a radius that takes in every edge (or one that is not finite)
+    do j = 1, size(ms%elem)
+      call judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest)
+    end do
+  end subroutine nearest_edge
+
+  !> Purpose: the farthest distance from p to a point of the tree's root
+  !> box: a radius that takes in every edge.
+  pure real(dp) function reach_all(tree, p)
+    type(edge_tree_t), intent(in) :: tree
+    real(dp), intent(in) :: p(2)
+    real(dp) :: dx, dy
+    dx = max(abs(p(1) - tree%box(1, 1)), abs(p(1) - tree%box(3, 1)))
+    dy = max(abs(p(2) - tree%box(2, 1)), abs(p(2) - tree%box(4, 1)))
+    reach_all = sqrt(dx * dx + dy * dy)
+  end function reach_all
+
+  !> Purpose: whether edge j of ms takes point xs, and whether it is nearer
+  !> than the best so far (best, tbest, dbest = |d|, updated): its
+  !> projection falls on it (within edge_tol), xs is not behind it by more
+  !> than half its length (the far side of the master body) nor farther
+  !> than dmax in front. Edges of skip_elem and through skip_node are not.
+  subroutine judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), xs(2), dmax
+    type(surface_t), intent(in) :: ms
+    integer, intent(in) :: j, skip_node, skip_elem
+    integer, intent(inout) :: best
+    real(dp), intent(inout) :: tbest, dbest
+    type(edge_t) :: ed
+    real(dp) :: nvec(2), t, d
+    if (ms%elem(j) == skip_elem) return
+    ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+    if (any(ed%node(1:ed%nn) == skip_node)) return
+    call project_to_edge(ed, xs, t, nvec, d)
+    if (t < -edge_tol .or. t > 1.0_dp + edge_tol) return
+    t = min(max(t, 0.0_dp), 1.0_dp)
+    if (d < -0.5_dp * edge_length(ed) .or. d > dmax) return
+    if (abs(d) < dbest) then
+      dbest = abs(d)
+      best = j
+      tbest = t
+    end if
+  end subroutine judge
+end module edge_tree
