@@ -224,8 +224,15 @@ def plot(out, table, jump, computed):
                 f.write(f"{x},{sign * y * 1e-3},{label}\n")
         refs += ["--reference", path]
     every = max(1, computed // 6)
+    # the rows within 0.5 mm of the axis, so that the plot shows the scar
+    trimmed = os.path.join(out, "scar_rows.csv")
+    with open(table) as f, open(trimmed, "w") as g:
+        g.write(f.readline())
+        for line in f:
+            if abs(float(line.split(",")[6])) < 0.5:
+                g.write(line)
     with open(os.path.join(out, "plot.log"), "w") as log:
-        subprocess.run([sys.executable, os.path.join(HERE, "plot_wear.py"), table, "-o",
+        subprocess.run([sys.executable, os.path.join(HERE, "plot_wear.py"), trimmed, "-o",
                         os.path.join(out, "fretting.png"), "--period", "1", "--start", "1", "--jump", str(jump),
                         "--every", str(every), "--scale", "1e3", "--unit", "um"] + refs,
                        check=True, stdout=log, stderr=subprocess.STDOUT)
