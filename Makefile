@@ -42,7 +42,7 @@ OBJS := $(MODULES:%=$(OBJDIR)/%.o)
 
 TESTS := test_elements test_skyline test_cfe test_solvers test_numbering test_constraints test_strings test_contact_status test_nonlinear
 
-.PHONY: all debug sanitize nompi run check bench deps clean help fuzz kernels
+.PHONY: all debug sanitize nompi run check bench deps clean help fuzz kernels fretting
 all: bin/cfe2d
 
 help:
@@ -51,6 +51,8 @@ help:
 	@echo "make sanitize   build build-asan/cfe2d with -fsanitize=address,undefined"
 	@echo "make nompi      build build-nompi/cfe2d without MPI and MUMPS (MUMPS=no), as where they are absent"
 	@echo "make run        install what is missing, then run the main example"
+	@echo "make fretting   McColl's fretting test, 18 000 cycles with a jump of 100 (docs/fretting.md);"
+	@echo "                FRETTING_ARGS=\"--jump 1000\" etc. (scripts/fretting.py --help)"
 	@echo "make check      install what is missing, build, run every test"
 	@echo "make bench      contact history against one factorisation (flagship meshes, 1e6-dof square);"
 	@echo "                BENCH_ARGS=--solvers adds the solver table (about 1e4, 1e5, 1e6 dofs); with MUMPS"
@@ -130,6 +132,14 @@ bench: $(BUILD)/bench bin/cfe2d
 run: deps
 	$(MAKE) bin/cfe2d
 	$(PYTHON) scripts/run_hertz.py
+
+# McColl's fretting test (issue 33): meshes input/fretting/mccoll.geo, runs
+# 18 000 cycles with a cycle jump of 100, plots the worn profiles against the
+# measured one into results/fretting/ (docs/fretting.md).
+FRETTING_ARGS ?=
+fretting: deps
+	$(MAKE) bin/cfe2d
+	$(PYTHON) scripts/fretting.py $(FRETTING_ARGS)
 
 check: deps
 	$(MAKE) bin/cfe2d $(TESTS:%=$(BUILD)/tests/%)

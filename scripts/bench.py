@@ -446,6 +446,7 @@ def main(argv=None):
     if not args.no_mumps and not args.no_square:
         mumps_square_table(args.repeats)
     __import__("bench_frequency").table(args.repeats)
+    __import__("bench_fretting").table()
     if args.surfaces:
         surface_table([int(v) for v in args.surfaces.split(",")], 1, args.condensed_max)
     failed = solver_table(args.exe, args.sizes.split(",")) if args.solvers else False

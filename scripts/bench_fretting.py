@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""`make bench`'s fretting rows (issue 33): McColl's test as
+scripts/fretting.py sets it up (docs/fretting.md), 18 000 cycles,
+
+* with a cycle jump of 100 (180 computed cycles, 7 200 increments):
+  a whole run, target under 10 s;
+* without a jump (18 000 computed cycles, 720 000 increments; target
+  under 10 minutes on 2 cores): a run of the first `--cycles` cycles
+  (default 50) without a jump, its wall time per increment times the
+  720 000 increments (printed as an extrapolation: the increments of a
+  cycle cost the same throughout, the jump run's per-increment cost says
+  by how much they drift).
+
+Printed per row: wall time, increments, wall per increment and where it
+goes (the listing's TIMING block per increment: setup, i.e. the contact
+search and the numbering, analyse, factor, condensed iterations,
+recovery, output), the flat's depth and width.
+
+    python3 scripts/bench_fretting.py [--cycles 50] [--skip-jump]
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+WORK = os.path.join(ROOT, "results", "bench", "fretting")
+sys.path.insert(0, HERE)
+import fretting  # noqa: E402
+
+PARTS = ("setup", "analyse", "factor", "condensed_iterations", "recovery", "output")
+
+
+def timing(listing):
+    """The TIMING block of a listing: {item: seconds} (and the counts)."""
+    out, on = {}, False
+    with open(listing) as f:
+        for line in f:
+            if line.startswith("--- TIMING"):
+                on = True
+                continue
+            if on:
+                w = line.split()
+                if len(w) == 2 and re.match(r"^[0-9.eE+-]+$", w[1]):
+                    out[w[0]] = float(w[1])
+                elif out:
+                    break
+    return out
+
+
+def run(cycles, jump, tag):
+    """A run of `cycles` cycles with the jump in WORK/tag: (wall, increments,
+    timing, depth um, width mm)."""
+    out = os.path.join(WORK, tag)
+    os.makedirs(out, exist_ok=True)
+    computed = cycles // jump
+    name = fretting.mesh(out, 0.01)
+    deck = os.path.join(out, "mccoll.inp")
+    with open(deck, "w") as f:
+        f.write(fretting.deck(name, computed, jump, 40, 40))
+    t0 = time.perf_counter()
+    with open(os.path.join(out, "run.log"), "w") as log:
+        p = subprocess.run([fretting.CFE2D, deck], stdout=log, stderr=subprocess.STDOUT, cwd=out)
+    wall = time.perf_counter() - t0
+    if p.returncode != 0:
+        sys.exit(f"bench_fretting: cfe2d failed in {out}")
+    flat, _ = fretting.last_profiles(os.path.join(out, "mccoll_contact.csv"))
+    d, w = fretting.scar(flat)
+    return wall, computed * 40, timing(os.path.join(out, "mccoll.out")), d * 1e3, w
+
+
+def row(label, wall, n, t, d, w, note=""):
+    """One printed row and its per-increment split."""
+    per = 1e3 * wall / n
+    split = ", ".join(f"{k} {1e3 * t.get(k, 0.0) / n:.1f}" for k in PARTS)
+    print(f"{label:<34} {wall:9.1f} s {n:8d} inc {per:7.1f} ms/inc  depth {d:.2f} um, width {w:.2f} mm{note}")
+    print(f"{'':<34} per increment (ms): {split}; factorisations {int(t.get('numeric_factorisations', 0))}")
+
+
+def table(cycles=50, skip_jump=False):
+    """The fretting rows of make bench."""
+    print("\n=== Fretting: McColl's test, 18 000 cycles (scripts/bench_fretting.py, docs/fretting.md)")
+    if not skip_jump:
+        wall, n, t, d, w = run(18000, 100, "jump100")
+        row("jump 100 (target < 10 s)", wall, n, t, d, w, "  MET" if wall < 10 else "  not met")
+    wall, n, t, d, w = run(cycles, 1, f"jump1_{cycles}")
+    full = wall / n * 720000
+    row(f"no jump, first {cycles} cycles", wall, n, t, d, w)
+    print(f"{'no jump, 18 000 cycles (extrap.)':<34} {full:9.0f} s {720000:8d} inc  (target < 600 s: "
+          f"{'met' if full < 600 else 'not met'})")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--cycles", type=int, default=50, help="cycles of the run without a jump")
+    ap.add_argument("--skip-jump", action="store_true", help="leave out the jump-100 run")
+    args = ap.parse_args()
+    table(args.cycles, args.skip_jump)
+
+
+if __name__ == "__main__":
+    main()

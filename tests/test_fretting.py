@@ -1,0 +1,72 @@
+"""McColl's fretting test as `make fretting` sets it up (scripts/fretting.py,
+docs/fretting.md), at a coarse mesh (h = 0.02 mm in the contact zone, 8
+increments per cycle) and 12 cycles, computed without a cycle jump and
+with jumps of 3 and 12.
+
+What is checked, on the last increment of each run's contact table:
+
+* the cycle jump converges: the jumped runs' worn depth and worn area of
+  the flat against the run without a jump (the scar is young, the cycle
+  nearly steady: measured, depth and area 0.03 % and 0.13 % below at a
+  jump of 3, 0.06 % and 0.72 % at 12 (one computed cycle, whose start
+  from rest is counted 12 times); tolerances 1 % and 2 %);
+* Archard's balance between the surfaces: both wear from the same forces
+  and slips, so the cylinder's worn area over the flat's is k_cyl / k_flat
+  (the areas integrated by the trapezoidal rule along x: exact for the
+  flat; for the cylinder's arc, measured 8e-5 off; tolerance 1e-3);
+* the slip is gross, as in the reproduction: the flat's worn area lies
+  below k P 4 delta C (every point sliding the whole relative travel of
+  the two rigid ends, 4 delta per cycle) and above 0.85 of it (the
+  elastic stick at each reversal: measured 0.966).
+"""
+import os
+import shutil
+import sys
+
+from helpers import ROOT, Skip, run_deck, workdir
+
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import fretting  # noqa: E402
+
+CYCLES, H, INC = 12, 0.02, 8
+
+
+def _mesh():
+    """The coarse mesh, made once (gmsh) in tests/work/fretting_mesh/."""
+    if shutil.which("gmsh") is None:
+        raise Skip("gmsh is not installed")
+    d = os.path.join(ROOT, "tests", "work", "fretting_mesh")
+    path = os.path.join(d, f"mccoll_mesh_h{H:g}.inp")
+    if not os.path.exists(path):
+        d = workdir("fretting_mesh")
+        fretting.mesh(d, H)
+    return path
+
+
+def _run(jump):
+    """(flat, cylinder) worn profiles after CYCLES cycles with the jump."""
+    text = fretting.deck(_mesh(), CYCLES // jump, jump, INC, INC)
+    name = f"fretting_j{jump}"
+    run_deck(name, text).ok()
+    return fretting.last_profiles(os.path.join(ROOT, "tests", "work", name, name + "_contact.csv"))
+
+
+def test_fretting_cycle_jump_converges():
+    """Depth and worn area of the flat with jumps 3 and 12 against no jump."""
+    flat1, _ = _run(1)
+    d1, a1 = max(h for _, h in flat1), fretting.area(flat1)
+    for jump, tol in ((3, 0.01), (12, 0.02)):
+        flat, _ = _run(jump)
+        d, a = max(h for _, h in flat), fretting.area(flat)
+        assert abs(d / d1 - 1) < tol, (jump, d, d1)
+        assert abs(a / a1 - 1) < tol, (jump, a, a1)
+
+
+def test_fretting_archard_balance_and_gross_slip():
+    """Cylinder over flat worn area = k_cyl / k_flat; the flat's worn area
+    between 0.85 and 1 of k P 4 delta C."""
+    flat, cyl = _run(3)
+    af, ac = fretting.area(flat), fretting.area(cyl)
+    assert abs((ac / af) / (fretting.K_CYL / fretting.K_FLAT) - 1) < 1e-3, (ac, af)
+    bound = fretting.K_FLAT * fretting.LOAD * 4 * fretting.STROKE * CYCLES
+    assert 0.85 < af / bound <= 1.0 + 1e-9, af / bound
