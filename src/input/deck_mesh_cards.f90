@@ -283,7 +283,7 @@ contains
     integer, allocatable, intent(inout) :: items(:)
     integer, intent(inout) :: nitems
     type(field_t), allocatable :: f(:)
-    integer :: n, k, a, b, c, id
+    integer :: n, k, a, b, c, id, last
     call split_fields(line_text(p), f, n)
     if (generate) then
       if (n < 2 .or. n > 3) call err(p, 'GENERATE data line needs: first, last[, increment]')
@@ -292,13 +292,21 @@ contains
       c = 1
       if (n == 3) c = get_int(p, f(3), 'increment')
       if (c <= 0 .or. b < a) call err(p, 'GENERATE needs first <= last and a positive increment')
-      do id = a, b, c
-        if (nodes) then
+      if (nodes) then
+        ! no node id lies beyond the lookup table: the numbers past it are
+        ! dropped as a count, not one by one (a range to 2147483647 would
+        ! take the parser minutes)
+        last = b
+        if (b > size(m%node_index)) last = max(a - 1, size(m%node_index))
+        do id = a, last, c
           call add_node_or_drop(p, m, id, items, nitems)
-        else
+        end do
+        if (last < b) call drop_node_range(p, a + c * ((last - a + c) / c), b, c)
+      else
+        do id = a, b, c
           call append(items, nitems, entity_of(p, m, nodes, id))
-        end if
-      end do
+        end do
+      end if
       return
     end if
     do k = 1, n
@@ -337,6 +345,26 @@ contains
     if (p%dropped_line == 0) p%dropped_line = p%i
     if (p%dropped_nodes <= size(p%dropped_ids)) p%dropped_ids(p%dropped_nodes) = id
   end subroutine add_node_or_drop
+
+  !> Purpose: the node numbers first, first + step, ... up to last (none of
+  !> which any *NODE defines) dropped as add_node_or_drop drops one: counted,
+  !> the first few kept for the warning.
+  subroutine drop_node_range(p, first, last, step)
+    type(parser_t), intent(inout) :: p
+    integer, intent(in) :: first, last, step
+    integer :: k, count
+    if (first > last) return
+    count = (last - first) / step + 1
+    if (p%dropped_line == 0) p%dropped_line = p%i
+    do k = p%dropped_nodes + 1, min(size(p%dropped_ids), p%dropped_nodes + count)
+      p%dropped_ids(k) = first + (k - p%dropped_nodes - 1) * step
+    end do
+    if (p%dropped_nodes > huge(count) - count) then
+      p%dropped_nodes = huge(count)
+    else
+      p%dropped_nodes = p%dropped_nodes + count
+    end if
+  end subroutine drop_node_range
 
   !> Internal index of node (nodes) or element id.
   integer function entity_of(p, m, nodes, id)
