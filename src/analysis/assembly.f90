@@ -23,7 +23,7 @@ module assembly
   use contact, only: contact_set_t, cfe_input
   use element_interface, only: elem_in_t, elem_out_t, cfe_in_t, cfe_out_t, max_en, act_tangent, act_stresses, act_thermal, &
                                act_residual, max_hist
-  use element_catalogue, only: max_ip, max_nodes, state_plane_stress, shape_quad4
+  use element_catalogue, only: max_ip, max_nodes, state_plane_stress, shape_quad4, state_axisymmetric
   use materials, only: elastic_matrix
   use distributed_loads, only: follower_pressure_load
   use element_library, only: element_routine, thickness_stretch
@@ -644,7 +644,10 @@ contains
   !> Purpose: the stresses of a linear_path element e as continuum
   !> computes them, without the element call: at each point of its rule
   !> eps = B ue, sig = D (eps - eps0) (eps0 = alpha dT (1, 1, 0, 1), dT
-  !> interpolated from the nodes), then extrapolated to the nodes.
+  !> interpolated from the nodes), then extrapolated to the nodes. B is
+  !> continuum_element's strain_matrix written out on its nonzero entries
+  !> (J = dN X^T, dN/dx = J^-1 dN, the hoop row N / r), summed in its
+  !> order: only terms that are exact zeros are left out.
   !> Arguments: m, e, u; tab the element type's point_table; sip(4, nip)
   !> the stresses (s11, s22, s33, s12) and eip(3, nip) the strains at the
   !> points, snode(4, nen) at the nodes; dtemp(nn) as stress_recovery's.
@@ -655,11 +658,10 @@ contains
     type(point_table_t), intent(in) :: tab
     real(dp), intent(out) :: sip(:, :), eip(:, :), snode(:, :)
     real(dp), intent(in), optional :: dtemp(:)
-    real(dp) :: d(4, 4), xy(2, max_nodes), ue(2 * max_nodes), dt(max_nodes), b(4, 2 * max_nodes), eps(4), &
-                eps0(4), sig(4), detj, r, alpha
-    integer :: k, ip, nen, nd, state
+    real(dp) :: d(4, 4), xy(2, max_nodes), ue(2, max_nodes), dt(max_nodes), jac(2, 2), jinv(2, 2), dx(2, max_nodes), &
+                eps(4), sig(4), detj, r, alpha
+    integer :: k, ip, nen, state
     nen = elem_nodes(m, e)
-    nd = 2 * nen
     state = catalogue(m%etype(e))%state
     associate(mat => m%materials(m%sections(m%elem_section(e))%material))
       d = elastic_matrix(mat%e, mat%nu, state)
@@ -668,19 +670,47 @@ contains
     end associate
     do k = 1, nen
       xy(:, k) = m%x(:, m%conn(k, e))
-      ue(2 * k - 1:2 * k) = u(:, m%conn(k, e))
-      dt(k) = 0.0_dp
-      if (present(dtemp)) dt(k) = dtemp(m%conn(k, e))
+      ue(:, k) = u(:, m%conn(k, e))
+      if (alpha /= 0.0_dp) dt(k) = dtemp(m%conn(k, e))
     end do
     do ip = 1, size(sip, 2)
-      call strain_matrix(nen, xy(:, 1:nen), tab%n(1:nen, ip), tab%dn(:, 1:nen, ip), state, b(:, 1:nd), detj, r)
-      eps0 = alpha * dot_product(tab%n(1:nen, ip), dt(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
-      eps = matmul(b(:, 1:nd), ue(1:nd))
-      sig = matmul(d, eps - eps0)
-      eip(:, ip) = eps(1:3)
-      sip(:, ip) = [sig(1), sig(2), sig(4), sig(3)]
+      associate(n => tab%n(:, ip), dn => tab%dn(:, :, ip))
+        jac = 0.0_dp
+        do k = 1, nen
+          jac(:, 1) = jac(:, 1) + dn(:, k) * xy(1, k)
+          jac(:, 2) = jac(:, 2) + dn(:, k) * xy(2, k)
+        end do
+        detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+        jinv(1, 1) = jac(2, 2) / detj
+        jinv(2, 2) = jac(1, 1) / detj
+        jinv(1, 2) = -jac(1, 2) / detj
+        jinv(2, 1) = -jac(2, 1) / detj
+        eps = 0.0_dp
+        do k = 1, nen
+          dx(:, k) = jinv(:, 1) * dn(1, k) + jinv(:, 2) * dn(2, k)
+          eps(1) = eps(1) + dx(1, k) * ue(1, k)
+          eps(2) = eps(2) + dx(2, k) * ue(2, k)
+          eps(3) = eps(3) + dx(2, k) * ue(1, k)
+          eps(3) = eps(3) + dx(1, k) * ue(2, k)
+        end do
+        if (state == state_axisymmetric) then
+          r = dot_product(n(1:nen), xy(1, 1:nen))
+          do k = 1, nen
+            eps(4) = eps(4) + n(k) / r * ue(1, k)
+          end do
+        end if
+        eip(:, ip) = eps(1:3)
+        if (alpha /= 0.0_dp) eps = eps - alpha * dot_product(n(1:nen), dt(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
+        sig = matmul(d, eps)
+        sip(:, ip) = [sig(1), sig(2), sig(4), sig(3)]
+      end associate
     end do
-    snode = matmul(sip, transpose(tab%ex(1:nen, 1:size(sip, 2))))
+    do k = 1, nen
+      snode(:, k) = 0.0_dp
+      do ip = 1, size(sip, 2)
+        snode(:, k) = snode(:, k) + sip(:, ip) * tab%ex(k, ip)
+      end do
+    end do
   end subroutine linear_stresses
 
   !> Purpose: the initial stress of element e (m%sig0, linear steps) added
