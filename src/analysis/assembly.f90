@@ -8,8 +8,11 @@
 !> assembly, its internal force and its trial history for the residual;
 !> the history committed by the last converged increment is kept per
 !> element and integration point (body_t%hist) and replaced by the trial
-!> one only by commit_history. Stresses are computed by the element
-!> routines once per converged increment. A thermal strain enters as a
+!> one only by commit_history. Stresses are computed once per written
+!> increment: by the element routines, or in a linear step, for the
+!> isotropic linear elastic continuum elements, by linear_stresses from
+!> the coordinates and per-type shape tables (the element call's records
+!> cost more than its arithmetic; nothing is stored). A thermal strain enters as a
 !> load (`thermal_forces`) and in the stresses; the stiffness does not
 !> change. So does an initial stress (*INITIAL CONDITIONS, TYPE=STRESS,
 !> linear steps only): sig = D eps + sig0, its load -integral B^T sig0 dV
