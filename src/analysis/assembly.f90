@@ -8,8 +8,11 @@
 !> assembly, its internal force and its trial history for the residual;
 !> the history committed by the last converged increment is kept per
 !> element and integration point (body_t%hist) and replaced by the trial
-!> one only by commit_history. Stresses are computed by the element
-!> routines once per converged increment. A thermal strain enters as a
+!> one only by commit_history. Stresses are computed once per written
+!> increment: by the element routines, or in a linear step, for the
+!> isotropic linear elastic continuum elements, by linear_stresses from
+!> the coordinates and per-type shape tables (the element call's records
+!> cost more than its arithmetic; nothing is stored). A thermal strain enters as a
 !> load (`thermal_forces`) and in the stresses; the stiffness does not
 !> change. So does an initial stress (*INITIAL CONDITIONS, TYPE=STRESS,
 !> linear steps only): sig = D eps + sig0, its load -integral B^T sig0 dV
@@ -23,7 +26,8 @@ module assembly
   use contact, only: contact_set_t, cfe_input
   use element_interface, only: elem_in_t, elem_out_t, cfe_in_t, cfe_out_t, max_en, act_tangent, act_stresses, act_thermal, &
                                act_residual, max_hist
-  use element_catalogue, only: max_ip, max_nodes, state_plane_stress
+  use element_catalogue, only: max_ip, max_nodes, state_plane_stress, shape_quad4, state_axisymmetric
+  use materials, only: elastic_matrix
   use distributed_loads, only: follower_pressure_load
   use element_library, only: element_routine, thickness_stretch
   use continuum_element, only: strain_matrix, volume_factor, is_one_point_quad, uniform_strain
@@ -83,6 +87,14 @@ module assembly
     !> "Convergence criteria").
     real(dp) :: average_force = 0.0_dp
   end type body_t
+
+  !> The shape functions n, natural derivatives dn and extrapolation ex
+  !> to the nodes at the integration points of one catalogue entry (the
+  !> stress recovery's, built when an element of the type first needs it).
+  type :: point_table_t
+    logical :: ready = .false.
+    real(dp) :: n(max_nodes, max_ip), dn(2, max_nodes, max_ip), ex(max_nodes, max_ip)
+  end type point_table_t
 
   !> How often element routines ran, by purpose.
   type :: element_counts_t
@@ -528,12 +540,16 @@ contains
   !> (a truss: its axial stress and strain), and nodal stresses of the
   !> continuum elements extrapolated from them and averaged over the
   !> elements that share the node (nodes are never shared across bodies,
-  !> so this is an average per body).
+  !> so this is an average per body). In a linear step an isotropic
+  !> linear elastic continuum element with a full integration rule takes
+  !> linear_stresses (no element call: its input and output records cost
+  !> more than its arithmetic); every other element its element routine.
   !> Arguments: nip(ne), sig_ip(4, max_ip, ne), eps_ip(3, max_ip, ne),
   !> sig_node(4, nn); dtemp(nn) the nodal temperature changes if any;
   !> body, in a nonlinear step, gives NLGEOM and the committed history
   !> (the stresses are then Cauchy stresses); peeq_ip(max_ip, ne) returns
-  !> the equivalent plastic strain.
+  !> the equivalent plastic strain. counts%continuum_stresses counts the
+  !> stress evaluations of either kind.
   subroutine stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node, counts, dtemp, body, peeq_ip)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: u(:, :)
@@ -545,9 +561,11 @@ contains
     type(element_counts_t), intent(inout) :: counts
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
-    integer :: e, i, nodes(max_en)
+    type(point_table_t), allocatable :: tab(:)
+    real(dp) :: sn(4, max_nodes)
+    integer :: e, i, nen, nodes(max_en)
     integer, allocatable :: cnt(:)
-    allocate(cnt(m%nn))
+    allocate(cnt(m%nn), tab(size(catalogue)))
     cnt = 0
     nip = 0
     sig_ip = 0.0_dp
@@ -555,21 +573,34 @@ contains
     sig_node = 0.0_dp
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
-      if (present(body)) then
-        call body_input(m, e, u, ein, nodes, dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
-      else
-        call body_input(m, e, u, ein, nodes, dtemp)
-      end if
-      call element_routine(act_stresses, ein, eout)
       counts%continuum_stresses = counts%continuum_stresses + 1
-      call add_initial_stress(m, e, ein, eout)
-      if (present(peeq_ip)) peeq_ip(:, e) = eout%peeq_ip
-      nip(e) = eout%nip
-      sig_ip(:, 1:eout%nip, e) = eout%sig_ip(:, 1:eout%nip)
-      eps_ip(:, 1:eout%nip, e) = eout%eps_ip(:, 1:eout%nip)
-      if (.not. is_continuum(m, e)) cycle
-      do i = 1, ein%nen
-        sig_node(:, nodes(i)) = sig_node(:, nodes(i)) + eout%sig_node(:, i)
+      if (.not. present(body) .and. linear_path(m, e)) then
+        nen = elem_nodes(m, e)
+        nodes(1:nen) = m%conn(1:nen, e)
+        nip(e) = catalogue(m%etype(e))%nip
+        if (.not. tab(m%etype(e))%ready) call point_table(m%etype(e), tab(m%etype(e)))
+        call linear_stresses(m, e, u, tab(m%etype(e)), sig_ip(:, 1:nip(e), e), eps_ip(:, 1:nip(e), e), &
+                             sn(:, 1:nen), dtemp)
+        call add_initial_stress(m, e, catalogue(m%etype(e))%shape, nen, nip(e), sig_ip(:, 1:nip(e), e), &
+                                sn(:, 1:nen))
+      else
+        if (present(body)) then
+          call body_input(m, e, u, ein, nodes, dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+        else
+          call body_input(m, e, u, ein, nodes, dtemp)
+        end if
+        call element_routine(act_stresses, ein, eout)
+        nen = ein%nen
+        call add_initial_stress(m, e, ein%kind, nen, eout%nip, eout%sig_ip(:, 1:eout%nip), eout%sig_node(:, 1:nen))
+        if (present(peeq_ip)) peeq_ip(:, e) = eout%peeq_ip
+        nip(e) = eout%nip
+        sig_ip(:, 1:eout%nip, e) = eout%sig_ip(:, 1:eout%nip)
+        eps_ip(:, 1:eout%nip, e) = eout%eps_ip(:, 1:eout%nip)
+        if (.not. is_continuum(m, e)) cycle
+        sn(:, 1:nen) = eout%sig_node(:, 1:nen)
+      end if
+      do i = 1, nen
+        sig_node(:, nodes(i)) = sig_node(:, nodes(i)) + sn(:, i)
         cnt(nodes(i)) = cnt(nodes(i)) + 1
       end do
     end do
@@ -578,24 +609,130 @@ contains
     end do
   end subroutine stress_recovery
 
-  !> Purpose: the initial stress of element e (m%sig0, linear steps) added
-  !> to the stresses act_stresses gave: at the integration points, and
-  !> extrapolated to the nodes as the element's own stresses are.
-  !> Arguments: m, e; ein the element's input; eout its output, updated.
-  subroutine add_initial_stress(m, e, ein, eout)
+  !> Purpose: does body element e take linear_stresses in a linear step?
+  !> A continuum element of an isotropic linear elastic material without
+  !> hardening, not a one-point quadrilateral (whose mean strain is
+  !> uniform_strain's): the elements for which continuum's stresses are
+  !> D (B ue - eps0) at its own rule's points.
+  pure logical function linear_path(m, e)
     type(model_t), intent(in) :: m
     integer, intent(in) :: e
-    type(elem_in_t), intent(in) :: ein
-    type(elem_out_t), intent(inout) :: eout
+    linear_path = .false.
+    if (.not. is_continuum(m, e)) return
+    if (catalogue(m%etype(e))%shape == shape_quad4 .and. catalogue(m%etype(e))%nip == 1) return
+    associate(sec => m%sections(m%elem_section(e)))
+      if (sec%spring) return
+      associate(mat => m%materials(sec%material))
+        linear_path = mat%law == law_elastic .and. mat%nyield == 0 .and. mat%elastic_type == elastic_iso
+      end associate
+    end associate
+  end function linear_path
+
+  !> Purpose: the shape functions, their natural derivatives and the
+  !> extrapolation to the nodes at the integration points of catalogue
+  !> entry it, which every element of that type shares.
+  pure subroutine point_table(it, tab)
+    integer, intent(in) :: it
+    type(point_table_t), intent(out) :: tab
+    real(dp) :: xg(2, max_ip), wg(max_ip)
+    integer :: ip
+    call gauss_rule(catalogue(it)%shape, catalogue(it)%nip, xg, wg)
+    do ip = 1, catalogue(it)%nip
+      call shape_at(catalogue(it)%shape, xg(:, ip), tab%n(:, ip), tab%dn(:, :, ip))
+    end do
+    call extrapolation(catalogue(it)%shape, catalogue(it)%nodes, catalogue(it)%nip, tab%ex)
+    tab%ready = .true.
+  end subroutine point_table
+
+  !> Purpose: the stresses of a linear_path element e as continuum
+  !> computes them, without the element call: at each point of its rule
+  !> eps = B ue, sig = D (eps - eps0) (eps0 = alpha dT (1, 1, 0, 1), dT
+  !> interpolated from the nodes), then extrapolated to the nodes. B is
+  !> continuum_element's strain_matrix written out on its nonzero entries
+  !> (J = dN X^T, dN/dx = J^-1 dN, the hoop row N / r), summed in its
+  !> order: only terms that are exact zeros are left out.
+  !> Arguments: m, e, u; tab the element type's point_table; sip(4, nip)
+  !> the stresses (s11, s22, s33, s12) and eip(3, nip) the strains at the
+  !> points, snode(4, nen) at the nodes; dtemp(nn) as stress_recovery's.
+  pure subroutine linear_stresses(m, e, u, tab, sip, eip, snode, dtemp)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    real(dp), intent(in) :: u(:, :)
+    type(point_table_t), intent(in) :: tab
+    real(dp), intent(out) :: sip(:, :), eip(:, :), snode(:, :)
+    real(dp), intent(in), optional :: dtemp(:)
+    real(dp) :: d(4, 4), xy(2, max_nodes), ue(2, max_nodes), dt(max_nodes), jac(2, 2), jinv(2, 2), dx(2, max_nodes), &
+                eps(4), sig(4), detj, r, alpha
+    integer :: k, ip, nen, state
+    nen = elem_nodes(m, e)
+    state = catalogue(m%etype(e))%state
+    associate(mat => m%materials(m%sections(m%elem_section(e))%material))
+      d = elastic_matrix(mat%e, mat%nu, state)
+      alpha = 0.0_dp
+      if (present(dtemp)) alpha = mat%alpha
+    end associate
+    do k = 1, nen
+      xy(:, k) = m%x(:, m%conn(k, e))
+      ue(:, k) = u(:, m%conn(k, e))
+      if (alpha /= 0.0_dp) dt(k) = dtemp(m%conn(k, e))
+    end do
+    do ip = 1, size(sip, 2)
+      associate(n => tab%n(:, ip), dn => tab%dn(:, :, ip))
+        jac = 0.0_dp
+        do k = 1, nen
+          jac(:, 1) = jac(:, 1) + dn(:, k) * xy(1, k)
+          jac(:, 2) = jac(:, 2) + dn(:, k) * xy(2, k)
+        end do
+        detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+        jinv(1, 1) = jac(2, 2) / detj
+        jinv(2, 2) = jac(1, 1) / detj
+        jinv(1, 2) = -jac(1, 2) / detj
+        jinv(2, 1) = -jac(2, 1) / detj
+        eps = 0.0_dp
+        do k = 1, nen
+          dx(:, k) = jinv(:, 1) * dn(1, k) + jinv(:, 2) * dn(2, k)
+          eps(1) = eps(1) + dx(1, k) * ue(1, k)
+          eps(2) = eps(2) + dx(2, k) * ue(2, k)
+          eps(3) = eps(3) + dx(2, k) * ue(1, k)
+          eps(3) = eps(3) + dx(1, k) * ue(2, k)
+        end do
+        if (state == state_axisymmetric) then
+          r = dot_product(n(1:nen), xy(1, 1:nen))
+          do k = 1, nen
+            eps(4) = eps(4) + n(k) / r * ue(1, k)
+          end do
+        end if
+        eip(:, ip) = eps(1:3)
+        if (alpha /= 0.0_dp) eps = eps - alpha * dot_product(n(1:nen), dt(1:nen)) * [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
+        sig = matmul(d, eps)
+        sip(:, ip) = [sig(1), sig(2), sig(4), sig(3)]
+      end associate
+    end do
+    do k = 1, nen
+      snode(:, k) = 0.0_dp
+      do ip = 1, size(sip, 2)
+        snode(:, k) = snode(:, k) + sip(:, ip) * tab%ex(k, ip)
+      end do
+    end do
+  end subroutine linear_stresses
+
+  !> Purpose: the initial stress of element e (m%sig0, linear steps) added
+  !> to its stresses: at the integration points, and extrapolated to the
+  !> nodes as the element's own stresses are.
+  !> Arguments: m, e; shape, nen, nip the element's catalogue shape, nodes
+  !> and points; sip(4, nip), snode(4, nen) its stresses, updated.
+  subroutine add_initial_stress(m, e, shape, nen, nip, sip, snode)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e, shape, nen, nip
+    real(dp), intent(inout) :: sip(:, :), snode(:, :)
     real(dp) :: ex(max_nodes, max_ip), s0(4, max_ip)
     if (.not. allocated(m%sig0)) return
     if (e > size(m%sig0, 3)) return
     if (.not. any(m%sig0(:, :, e) /= 0.0_dp)) return
     ! (s11, s22, s12, s33) -> the output order (s11, s22, s33, s12)
-    s0(:, 1:eout%nip) = m%sig0([1, 2, 4, 3], 1:eout%nip, e)
-    eout%sig_ip(:, 1:eout%nip) = eout%sig_ip(:, 1:eout%nip) + s0(:, 1:eout%nip)
-    call extrapolation(ein%kind, ein%nen, eout%nip, ex)
-    eout%sig_node(:, 1:ein%nen) = eout%sig_node(:, 1:ein%nen) + &
-                                  matmul(s0(:, 1:eout%nip), transpose(ex(1:ein%nen, 1:eout%nip)))
+    s0(:, 1:nip) = m%sig0([1, 2, 4, 3], 1:nip, e)
+    sip(:, 1:nip) = sip(:, 1:nip) + s0(:, 1:nip)
+    call extrapolation(shape, nen, nip, ex)
+    snode(:, 1:nen) = snode(:, 1:nen) + matmul(s0(:, 1:nip), transpose(ex(1:nen, 1:nip)))
   end subroutine add_initial_stress
 end module assembly
