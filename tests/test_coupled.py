@@ -628,3 +628,18 @@ def test_calculix_ring3():
     assert swapped != RING3
     again = ring3_temperatures(run_deck("ring3_swapped", swapped).ok())
     assert again == ring3_temperatures(run), "the order of the lines of a *BOUNDARY card changed the answer"
+
+
+def test_calculix_ring4():
+    """ring4 is ring3 with `*GAP HEAT GENERATION,USER` and no data line:
+    CalculiX calls its user routine fricheat, whose default (compiled
+    into ccx) returns eta 0.9, f 0.3, velocity 200, ring3's values (its
+    ring4.dat.ref equals ring3's within 1 in the 7th digit). cfe2d takes
+    those values with a warning quoting the card: the temperatures equal
+    ring3's run exactly."""
+    ring4 = RING3.replace("*GAP HEAT GENERATION\n0.9,0.3,200.\n", "*GAP HEAT GENERATION,USER\n")
+    assert ring4 != RING3
+    run = run_deck("ring4", ring4).ok()
+    assert "warning: *GAP HEAT GENERATION, USER" in run.stderr and "*GAP HEAT GENERATION,USER" in run.stderr, \
+        run.stderr
+    assert ring3_temperatures(run) == ring3_temperatures(run_deck("ring3", RING3).ok())
