@@ -643,3 +643,29 @@ def test_calculix_ring4():
     assert "warning: *GAP HEAT GENERATION, USER" in run.stderr and "*GAP HEAT GENERATION,USER" in run.stderr, \
         run.stderr
     assert ring3_temperatures(run) == ring3_temperatures(run_deck("ring3", RING3).ok())
+
+
+def test_model_data_temperatures_in_a_coupled_deck():
+    """Prescribed temperatures in the model data of a coupled deck (a
+    *BOUNDARY card before *STEP mixing a displacement line with
+    temperature lines on dof 0 and 11) hold as the step's own do: the
+    blocks through a conductance give the same temperatures, reaction
+    fluxes and contact pressures, to the last printed digit (the fuzzer
+    found the displacement field indexing a temperature there: a crash)."""
+    text = blocks_deck("SURFACE TO SURFACE", "25.\n")
+    step_bcs = "*BOUNDARY\nBOTTOM, 11, 11, 100.0\nTOP, 11, 11, 0.0\n"
+    assert step_bcs in text
+    model = text.replace(step_bcs, "").replace("*BOUNDARY\nSIDES, 1, 1\nBOTTOM, 2, 2\n",
+                                                "*BOUNDARY\nSIDES, 1, 1\nBOTTOM, 0, 0, 100.0\nBOTTOM, 2, 2\n"
+                                                "TOP, 11, 11, 0.0\n")
+    assert model.count("*BOUNDARY") == text.count("*BOUNDARY") - 1
+    a = run_deck("coupled_bcs_in_step", text).ok()
+    b = run_deck("coupled_bcs_in_model", model).ok()
+    inc_a, inc_b = a.listing.increments[-1], b.listing.increments[-1]
+    for name, kw in (("NODE NT", {"set": "ATOP"}), ("NODE NT", {"set": "BBOTTOM"}), ("NODE RFL", {"set": "BOTTOM"}),
+                     ("NODE RFL", {"set": "TOP"})):
+        assert inc_a.block(name, **kw) == inc_b.block(name, **kw), (name, kw)
+    assert inc_a.block("CONTACT SUMMARY") == inc_b.block("CONTACT SUMMARY")
+    # q = 100 / (1/50 + 1/25 + 1/50) = 1250 through the blocks of k 50 and h 25: A's top at 100 - q/50
+    nt = inc_b.block("NODE NT", set="ATOP")["NT11"]
+    assert all(abs(t - 75.0) < 1e-9 * 75.0 for t in nt), nt
