@@ -443,6 +443,7 @@ def main(argv=None):
     nonlinear_table(args.repeats)
     __import__("bench_calculix").table(["nlgeom_hertz", "cattaneo_mindlin", "oring"], args.repeats)
     __import__("bench_heat").table(repeats=args.repeats)   # heat: a linear transient against CalculiX (bench_heat.py)
+    __import__("bench_coupled").table(repeats=args.repeats)   # coupled: two blocks through h(p) against CalculiX
     if not args.no_mumps and not args.no_square:
         mumps_square_table(args.repeats)
     __import__("bench_frequency").table(args.repeats)

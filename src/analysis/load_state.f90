@@ -115,6 +115,9 @@ contains
         ls%bc_set = 0
       end if
       do j = 1, size(m%model_bcs)
+        ! a prescribed temperature (dof 11, model data of a coupled deck)
+        ! is the temperature field's (temperature_field), not a displacement
+        if (m%model_bcs(j)%dof > size(ls%presc, 1)) cycle
         if (first) then
           call prescribe(ls, m%model_bcs(j), .false.)
         else if (.not. ls%presc(m%model_bcs(j)%dof, m%model_bcs(j)%node)) then

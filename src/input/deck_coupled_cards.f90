@@ -186,7 +186,8 @@ contains
   !> frictional power becomes heat, the fraction f of that goes to the
   !> slave surface; CalculiX's third value, the differential tangential
   !> velocity, is the slip rate used instead of the computed one (2D
-  !> models sliding out of their plane). USER stops.
+  !> models sliding out of their plane). USER: the values CalculiX's default
+  !> user routine fricheat returns (0.9, 0.3, 200), with a warning.
   !> Arguments: p the parser at the card, m the model, kw the card.
   subroutine read_gap_heat_generation(p, m, kw)
     type(parser_t), intent(inout) :: p
@@ -195,11 +196,22 @@ contains
     type(field_t), allocatable :: f(:)
     integer :: k, n
     call allow_params(p, kw, 'USER')
-    if (has_param(kw, 'USER')) call err(p, '*GAP HEAT GENERATION, USER (a user routine gapheat) is not ' // &
-                                        'implemented')
     k = current_gap_heat(p, m, 'GAP HEAT GENERATION')
     associate(g => m%gap_heats(k))
       g%generation = .true.
+      if (has_param(kw, 'USER')) then
+        ! CalculiX calls its user routine fricheat, whose default (the
+        ! one compiled into ccx) returns eta 0.9, f 0.3 and the velocity
+        ! 200 whatever the data lines say: the same here (CalculiX's ring4)
+        g%eta = 0.9_dp
+        g%f = 0.3_dp
+        g%velocity = 200.0_dp
+        call deck_warning(p%deck, p%i, '*GAP HEAT GENERATION, USER: cfe2d has no user routines; it takes what ' // &
+            'CalculiX''s default fricheat returns: eta 0.9, f 0.3, velocity 200 (data lines ignored)')
+        do while (next_data(p))
+        end do
+        return
+      end if
       if (.not. next_data(p)) return
       call split_fields(line_text(p), f, n)
       if (n > 3) call err(p, '*GAP HEAT GENERATION data line needs: eta, f[, velocity]')

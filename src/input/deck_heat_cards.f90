@@ -21,7 +21,8 @@ module deck_heat_cards
   implicit none
   private
   public :: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, read_cflux, &
-            read_dflux, read_film, read_radiate, read_physical_constants, reject_heat_card, is_heat_boundary, &
+            read_dflux, read_film, read_radiate, read_physical_constants, reject_heat_card, boundary_lines, &
+            is_heat_line, &
             check_heat_model
 
   !> CalculiX's dof of the temperature.
@@ -160,31 +161,51 @@ contains
     end associate
   end subroutine read_specific_heat
 
-  !> Purpose: whether the *BOUNDARY card at line p%i prescribes dof 11 (a
-  !> temperature) on its first data line: then read_heat_boundary reads it.
-  logical function is_heat_boundary(p)
+  !> Purpose: which kinds of lines the *BOUNDARY card at line p%i holds:
+  !> temperature lines (is_heat_line: read_heat_boundary reads them) and
+  !> displacement lines (the mechanical reader's). One card may hold both,
+  !> as CalculiX's ring3 does; the cursor is not moved.
+  !> Arguments: p the parser at the keyword line; has_heat, has_mech out.
+  subroutine boundary_lines(p, has_heat, has_mech)
     type(parser_t), intent(in) :: p
-    type(field_t), allocatable :: f(:)
-    integer :: i, n, d1, d2
-    is_heat_boundary = .false.
+    logical, intent(out) :: has_heat, has_mech
+    integer :: i
+    has_heat = .false.
+    has_mech = .false.
     do i = p%i + 1, p%deck%n
       if (is_keyword(p%deck%lines(i)%text)) return
-      call split_fields(p%deck%lines(i)%text, f, n)
-      if (n < 2) cycle
-      if (.not. is_int(f(2)%s)) return
-      read(f(2)%s, *) d1
-      d2 = d1
-      if (n >= 3) then
-        if (is_int(f(3)%s)) read(f(3)%s, *) d2
+      if (is_heat_line(p%deck%lines(i)%text)) then
+        has_heat = .true.
+      else
+        has_mech = .true.
       end if
-      is_heat_boundary = d1 <= dof_temperature .and. dof_temperature <= d2
-      return
     end do
-  end function is_heat_boundary
+  end subroutine boundary_lines
+
+  !> Purpose: whether a *BOUNDARY data line prescribes the temperature: its
+  !> dof range starts at 11 or at 0, which CalculiX also reads as the
+  !> temperature (bounadd.f maps deck dofs 0 and 11 to its internal dof 0).
+  !> A line the mechanical reader cannot read as dofs is not one (it says why).
+  !> Arguments: text the data line.
+  logical function is_heat_line(text)
+    character(len=*), intent(in) :: text
+    type(field_t), allocatable :: f(:)
+    integer :: n, d1, ios
+    is_heat_line = .false.
+    call split_fields(text, f, n)
+    if (n < 2) return
+    if (.not. is_int(f(2)%s)) return
+    read(f(2)%s, *, iostat=ios) d1
+    if (ios /= 0) return
+    is_heat_line = d1 == 0 .or. d1 == dof_temperature
+  end function is_heat_line
 
   !> Purpose: *BOUNDARY on dof 11: prescribed temperatures, `node or nset,
   !> 11[, 11[, temperature]]` (model data: held from the start; in a step:
   !> from that step on); OP=NEW drops those of earlier steps; AMPLITUDE=.
+  !> Dof 0 is the temperature too (CalculiX's internal number, which its
+  !> decks use: ring3). Reads the card's temperature lines (is_heat_line)
+  !> and passes over its displacement lines, the mechanical reader's.
   subroutine read_heat_boundary(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -203,6 +224,11 @@ contains
     amp = heat_options(p, m, kw, 'BOUNDARY')
     if (p%step == 0 .and. amp > 0) call err(p, 'AMPLITUDE= is only allowed inside *STEP')
     do while (next_data(p))
+      if (.not. is_heat_line(line_text(p))) cycle
+      if (p%step == 0 .and. .not. has_heat_step(p)) call err(p, 'dof 11 is the temperature ' // &
+          '(*BOUNDARY on it is a prescribed temperature; on dof 0 too, as in CalculiX): it belongs to a *HEAT TRANSFER step ' // &
+          'or a *COUPLED TEMPERATURE-DISPLACEMENT one, and this deck has neither (the temperatures of a ' // &
+          'thermal strain are given by *TEMPERATURE)')
       call split_fields(line_text(p), f, n)
       if (n < 2 .or. n > 4) call err(p, '*BOUNDARY data line needs: node or node set, 11[, 11[, temperature]]')
       call target_nodes(p, m, f(1)%s, 'data line', nodes, iset)
@@ -211,8 +237,11 @@ contains
       if (n >= 3) then
         if (len(f(3)%s) > 0) d2 = get_int(p, f(3), 'last dof')
       end if
-      if (d1 /= dof_temperature .or. d2 /= dof_temperature) call err(p, 'a *BOUNDARY of a heat transfer ' // &
-          'analysis prescribes dof 11 (the temperature) only: 11, 11, temperature')
+      if (d1 == 0) d1 = dof_temperature
+      if (d2 == 0) d2 = dof_temperature
+      if (d1 /= dof_temperature .or. d2 /= dof_temperature) call err(p, 'a *BOUNDARY line on the ' // &
+          'temperature prescribes dof 11 (or 0, as CalculiX) only: 11, 11, temperature; the displacements ' // &
+          'go on lines of their own')
       v = 0.0_dp
       if (n == 4) v = get_real(p, f(4), 'temperature')
       allocate(new(size(nodes)))
@@ -231,6 +260,37 @@ contains
       deallocate(new)
     end do
   end subroutine read_heat_boundary
+
+  !> Purpose: whether the deck has a step with a temperature field (a
+  !> *HEAT TRANSFER or *COUPLED TEMPERATURE-DISPLACEMENT card anywhere),
+  !> for a prescribed temperature in the model data, read before the steps.
+  !> Arguments: p the parser (its deck's lines are scanned, not moved).
+  logical function has_heat_step(p)
+    type(parser_t), intent(in) :: p
+    character(len=:), allocatable :: t
+    integer :: i
+    has_heat_step = .false.
+    do i = 1, p%deck%n
+      if (.not. is_keyword(p%deck%lines(i)%text)) cycle
+      t = to_upper(p%deck%lines(i)%text)
+      t = t(1:min(len(t), 40))
+      t = compact(t)
+      has_heat_step = index(t, '*HEATTRANSFER') == 1 .or. index(t, '*COUPLEDTEMPERATURE') == 1
+      if (has_heat_step) return
+    end do
+  end function has_heat_step
+
+  !> Purpose: text without its blanks (CalculiX ignores them in keywords).
+  !> Arguments: t the text.
+  pure function compact(t) result(c)
+    character(len=*), intent(in) :: t
+    character(len=:), allocatable :: c
+    integer :: k
+    c = ''
+    do k = 1, len(t)
+      if (t(k:k) /= ' ') c = c // t(k:k)
+    end do
+  end function compact
 
   !> Purpose: *CFLUX: concentrated heat fluxes, `node or nset, 11, flux`
   !> (into the body; in axisymmetry over the whole circumference).

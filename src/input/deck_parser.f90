@@ -34,7 +34,8 @@ module deck_parser
   use model, only: model_t
   use element_catalogue, only: max_nodes
   use deck_heat_cards, only: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, &
-                             read_cflux, read_dflux, read_film, reject_heat_card, is_heat_boundary, check_heat_model, &
+                             read_cflux, read_dflux, read_film, reject_heat_card, boundary_lines, is_heat_line, &
+                             check_heat_model, &
                              read_radiate, read_physical_constants
   use deck_coupled_cards, only: read_coupled_step, settle_coupled_model, check_coupled_model, &
                                 read_gap_conductance, read_gap_heat_generation, gap_heat_pairs
@@ -582,6 +583,28 @@ contains
     m%elem_src = m%elem_src(1:m%ne)
   end subroutine trim_model
 
+  !> Purpose: *BOUNDARY, each data line to its reader: displacement lines
+  !> to read_boundary, temperature lines (dof 11, or 0 as CalculiX reads
+  !> it: is_heat_line) to read_heat_boundary. One card may hold both, as
+  !> CalculiX's (ring3's); each reader passes over the other's lines, and
+  !> both end at the card's last line. A card without temperature lines
+  !> is read by the mechanical reader alone, as before.
+  !> Arguments: p the parser at the keyword line; m the model; kw the card.
+  subroutine read_boundary_card(p, m, kw)
+    type(parser_t), intent(inout) :: p
+    type(model_t), intent(inout) :: m
+    type(keyword_t), intent(in) :: kw
+    logical :: has_heat, has_mech
+    integer :: i0
+    call boundary_lines(p, has_heat, has_mech)
+    i0 = p%i
+    if (has_mech .or. .not. has_heat) call read_boundary(p, m, kw)
+    if (has_heat) then
+      p%i = i0
+      call read_heat_boundary(p, m, kw)
+    end if
+  end subroutine read_boundary_card
+
   ! ----------------------------------------------------------------- dispatch
 
   !> Purpose: hand the card starting at keyword kw to its reader, after
@@ -624,12 +647,7 @@ contains
     case ('SPRING');        call in_step(p, kw, .false.); call read_spring(p, m, kw)
     case ('MASS');          call in_step(p, kw, .false.); call read_mass(p, m, kw)
     case ('AMPLITUDE');     call read_amplitude(p, m, kw)
-    case ('BOUNDARY')
-      if (is_heat_boundary(p)) then
-        call read_heat_boundary(p, m, kw)
-      else
-        call read_boundary(p, m, kw)
-      end if
+    case ('BOUNDARY');      call read_boundary_card(p, m, kw)
     case ('CLOAD');         call in_step(p, kw, .true.); call read_cload(p, m, kw)
     case ('DLOAD');         call in_step(p, kw, .true.); call read_dload(p, m, kw)
     case ('DSLOAD');        call in_step(p, kw, .true.); call read_dsload(p, m, kw)

@@ -120,6 +120,8 @@ contains
   !> dof is what deck_dof makes of it at each node: dof 6 of a reference
   !> node of *RIGID BODY or *COUPLING (or dof 3 of a ROT NODE) is its
   !> rotation; a dof a 2D model does not have may only be held at zero.
+  !> The card's temperature lines (is_heat_line: dof 11 or 0) are passed
+  !> over: read_heat_boundary reads them (read_boundary_card).
   module subroutine read_boundary(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
@@ -141,6 +143,7 @@ contains
     if (p%step > 0 .and. op == 'NEW') m%steps(p%step)%new_bcs = .true.
     nnew = 0
     do while (next_data(p))
+      if (is_heat_line(line_text(p))) cycle
       call split_fields(line_text(p), f, n)
       if (n > 4) call err(p, '*BOUNDARY data line needs: node or set, first dof[, last dof[, value]]')
       call target_nodes(p, m, f(1)%s, kw%name, nodes, iset)
