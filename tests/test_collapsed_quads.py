@@ -276,3 +276,59 @@ def test_fans_against_calculix():
           ", ".join(f"{k} {v:.1e}" for k, v in worst.items()))
     assert all(v < 1e-6 for v in worst.values()), worst
     assert abs(ref["one"][1][0] - ref["tri"][1][0]) > 0.5 * abs(ref["tri"][1][0]), "CalculiX's own collapsed answer"
+
+
+HEAT_SLAB = """*NODE, NSET=NALL
+1, 0., 0.
+2, 1., 0.
+3, 2., 0.
+4, 0., 1.
+5, 1., 1.
+6, 2., 1.
+*ELEMENT, TYPE={t1}, ELSET=EALL
+{e1}
+*ELEMENT, TYPE={t2}, ELSET=EALL
+{e2}
+*MATERIAL, NAME=M
+*CONDUCTIVITY
+50.
+*SOLID SECTION, ELSET=EALL, MATERIAL=M
+1.
+*STEP
+*HEAT TRANSFER, STEADY STATE
+*BOUNDARY
+1, 11, 11, 100.
+4, 11, 11, 100.
+*FILM
+{film}
+*DFLUX
+{flux}
+*NODE PRINT, NSET=NALL
+NT
+*END STEP
+"""
+
+
+def test_collapsed_heat_quads_are_the_heat_triangles():
+    """A DC2D4 heat quadrilateral naming a node twice is the DC2D3
+    triangle it is (the heat family's triangle: DC2D4 -> DC2D3; it was no
+    type at all: a crash of the debug build, fuzz seed 21 mutant 7403), and
+    its film and face flux follow the renumbered faces (the quad 2-3-6-6 is
+    the triangle 6-2-3: its F2, edge 3-6, the triangle's F3; a film on the
+    collapsed face 6-6 leaves). Temperatures to 1e-12 of the deck written
+    with the triangles 2-3-6 (film F2) and 2-6-5. Were the film left on
+    face 2 of 6-2-3 it would cool edge 2-3 instead."""
+    quad = HEAT_SLAB.format(t1="DC2D4", e1="1, 1, 2, 5, 4", t2="DC2D4", e2="2, 2, 3, 6, 6\n3, 2, 6, 5, 5",
+                            film="2, F2, 20., 25.\n2, F3, 20., 1e6", flux="2, S1, 300.\n3, S3, 0.")
+    tri = HEAT_SLAB.format(t1="DC2D4", e1="1, 1, 2, 5, 4", t2="DC2D3", e2="2, 2, 3, 6\n3, 2, 6, 5",
+                           film="2, F2, 20., 25.", flux="2, S1, 300.\n3, S2, 0.")
+    a = run_deck("collapsed_heat_quads", quad).ok()
+    b = run_deck("collapsed_heat_tris", tri).ok()
+    assert "collapsed quadrilateral" in a.stderr, a.stderr
+    ta = a.listing.increments[-1].block("NODE NT")
+    tb = b.listing.increments[-1].block("NODE NT")
+    scale = max(abs(v) for v in tb["NT11"])
+    worst = max(abs(x - y) for x, y in zip(ta["NT11"], tb["NT11"])) / scale
+    assert worst < 1e-12, (list(ta["NT11"]), list(tb["NT11"]))
+    # the film and flux act: the far corner is neither 100 nor uniform
+    assert min(tb["NT11"]) < 99.0 or max(tb["NT11"]) > 101.0, list(tb["NT11"])

@@ -10,7 +10,7 @@ submodule (deck_parser) deck_model_checks
   use deck_cursor, only: err
   use model, only: is_continuum, carries_stiffness, is_truss, is_spring, is_mass, find_name, bc_t, kept_nodes, &
                    node_label, elem_label, law_elastic, step_dloads, law_neo_hooke, law_mooney_rivlin, &
-                   law_deformation_plasticity
+                   law_deformation_plasticity, heat_load_t, heat_bf
   use constraints, only: mpc_t, resolve_equations
   use element_catalogue, only: catalogue, find_element_type, state_name, state_plane_stress, state_plane_strain, &
                                state_axisymmetric, shape_springa, max_edges
@@ -607,7 +607,11 @@ contains
       name = trim(catalogue(m%etype(e))%name)
       nc = 3
       if (catalogue(m%etype(e))%nodes == 8) nc = 6
-      it = find_element_type(name(1:3) // merge('3', '6', nc == 3))
+      ! the family's letters: CPS, CPE, CAX; DC2D, DCAX of heat transfer
+      j = 3
+      if (name(1:2) == 'DC') j = 4
+      it = find_element_type(name(1:j) // merge('3', '6', nc == 3))
+      if (it == 0) cycle
       map = 0
       conn = m%conn(1:8, e)
       do j = 1, 3
@@ -648,7 +652,31 @@ contains
       end do
       m%steps(s)%dloads = pack(m%steps(s)%dloads, keep)
     end do
+    do s = 1, size(m%steps)
+      if (allocated(m%steps(s)%dfluxes)) call renumber_heat_faces(m%steps(s)%dfluxes, e, map)
+      if (allocated(m%steps(s)%films)) call renumber_heat_faces(m%steps(s)%films, e, map)
+      if (allocated(m%steps(s)%radiates)) call renumber_heat_faces(m%steps(s)%radiates, e, map)
+    end do
   end subroutine renumber_faces
+
+  !> Purpose: the face fluxes, films and radiation of a heat step on element
+  !> e follow its faces (renumber_faces): face j becomes map(j), a face that
+  !> is a point leaves (nothing flows through it); a body flux (face 0)
+  !> stays.
+  subroutine renumber_heat_faces(loads, e, map)
+    type(heat_load_t), allocatable, intent(inout) :: loads(:)
+    integer, intent(in) :: e, map(max_edges)
+    logical, allocatable :: keep(:)
+    integer :: i
+    allocate(keep(size(loads)))
+    keep = .true.
+    do i = 1, size(loads)
+      if (loads(i)%elem /= e .or. loads(i)%face == heat_bf) cycle
+      keep(i) = map(loads(i)%face) > 0
+      if (keep(i)) loads(i)%face = map(loads(i)%face)
+    end do
+    loads = pack(loads, keep)
+  end subroutine renumber_heat_faces
 
   !> Purpose: the collapsed face of a collapsed quadrilateral (a point) is
   !> no face: the topology gets no edge there (neighbour -1), so it is on
