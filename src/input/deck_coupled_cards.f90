@@ -6,11 +6,11 @@
 !> steps in one deck.
 module deck_coupled_cards
   use kinds, only: dp
-  use strings, only: split_fields, field_t, itoa, to_upper
-  use deck_input, only: keyword_t, param_value, has_param, deck_warning
-  use deck_cursor, only: parser_t, max_increments, read_time_line, err, allow_params, get_real, line_text, &
-                         next_data, require_data
+  use strings, only: split_fields, field_t, to_upper
+  use deck_input, only: keyword_t, has_param, deck_warning
+  use deck_cursor, only: parser_t, err, allow_params, get_real, line_text, next_data, require_data
   use model, only: model_t, gap_heat_t
+  use deck_heat_cards, only: read_thermal_procedure, check_fixed_increments
   implicit none
   private
   public :: read_coupled_step, settle_coupled_model, check_coupled_model, read_gap_conductance, &
@@ -31,33 +31,13 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t), allocatable :: f(:)
-    integer :: n
-    real(dp) :: ratio
-    call allow_params(p, kw, 'STEADY STATE,DIRECT,DELTMX,SOLVER')
+    m%coupled = .true.
+    m%steps(p%step)%coupled = .true.
+    call read_thermal_procedure(p, kw, '*COUPLED TEMPERATURE-DISPLACEMENT', m%steps(p%step))
     associate(s => m%steps(p%step))
-      if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
-      m%coupled = .true.
-      s%heat = .true.
-      s%coupled = .true.
-      s%steady = has_param(kw, 'STEADY STATE')
-      s%direct = has_param(kw, 'DIRECT')
-      s%deltmx = 0.0_dp
-      if (has_param(kw, 'DELTMX')) then
-        call split_fields(param_value(kw, 'DELTMX'), f, n)
-        s%deltmx = get_real(p, f(1), 'DELTMX')
-        if (s%deltmx <= 0.0_dp) call err(p, 'DELTMX must be positive')
-      end if
-      call read_time_line(p, '*COUPLED TEMPERATURE-DISPLACEMENT', s)
-      if (s%steady) s%deltmx = 0.0_dp
       ! (automatic increments: counted as they are made)
       if (.not. s%direct .and. (s%deltmx > 0.0_dp .or. s%nlgeom)) return
-      ratio = s%period / s%dt
-      if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // itoa(nint(min(ratio, &
-          1.0e9_dp))) // ' or more increments (time period / initial increment); at most ' // &
-          itoa(max_increments) // ' are allowed')
-      if (nint(ratio) > s%max_inc) call err(p, 'the step needs ' // itoa(nint(ratio)) // &
-          ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
+      call check_fixed_increments(p, s)
     end associate
   end subroutine read_coupled_step
 

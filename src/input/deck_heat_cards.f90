@@ -16,11 +16,12 @@ module deck_heat_cards
                          allow_params, &
                          get_real, get_int, is_int, is_label, elem_ref, need_elset, warn_empty_set, &
                          target_nodes, amplitude_param
-  use model, only: model_t, bc_t, cload_t, heat_load_t, heat_bf, src_t
+  use model, only: model_t, step_t, bc_t, cload_t, heat_load_t, heat_bf, src_t
   use element_catalogue, only: catalogue
   implicit none
   private
-  public :: read_heat_transfer, read_conductivity, read_specific_heat, read_heat_boundary, read_cflux, &
+  public :: read_heat_transfer, read_thermal_procedure, check_fixed_increments, read_conductivity, &
+            read_specific_heat, read_heat_boundary, read_cflux, &
             read_dflux, read_film, read_radiate, read_physical_constants, reject_heat_card, boundary_lines, &
             is_heat_line, &
             check_heat_model
@@ -41,34 +42,54 @@ contains
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
+    m%heat = .true.
+    call read_thermal_procedure(p, kw, '*HEAT TRANSFER', m%steps(p%step))
+    ! fixed increments are counted here (automatic ones as they are made)
+    if (m%steps(p%step)%direct) call check_fixed_increments(p, m%steps(p%step))
+  end subroutine read_heat_transfer
+
+  !> Purpose: what *HEAT TRANSFER and *COUPLED TEMPERATURE-DISPLACEMENT
+  !> share: STEADY STATE, DIRECT, DELTMX= (positive; none in a steady
+  !> step) and the time line (read_time_line) into step s, which becomes a
+  !> heat step; a second procedure in one step stops.
+  !> Arguments: p the parser at the card, kw the card, card its name for
+  !> the messages, s the step.
+  subroutine read_thermal_procedure(p, kw, card, s)
+    type(parser_t), intent(inout) :: p
+    type(keyword_t), intent(in) :: kw
+    character(len=*), intent(in) :: card
+    type(step_t), intent(inout) :: s
     type(field_t), allocatable :: f(:)
     integer :: n
-    real(dp) :: ratio
     call allow_params(p, kw, 'STEADY STATE,DIRECT,DELTMX,SOLVER')
-    associate(s => m%steps(p%step))
-      if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
-      m%heat = .true.
-      s%heat = .true.
-      s%steady = has_param(kw, 'STEADY STATE')
-      s%direct = has_param(kw, 'DIRECT')
-      s%deltmx = 0.0_dp
-      if (has_param(kw, 'DELTMX')) then
-        call split_fields(param_value(kw, 'DELTMX'), f, n)
-        s%deltmx = get_real(p, f(1), 'DELTMX')
-        if (s%deltmx <= 0.0_dp) call err(p, 'DELTMX must be positive')
-      end if
-      call read_time_line(p, '*HEAT TRANSFER', s)
-      if (s%steady) s%deltmx = 0.0_dp
-      ! fixed increments are counted here (automatic ones as they are made)
-      if (.not. s%direct) return
-      ratio = s%period / s%dt
-      if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // itoa(nint(min(ratio, &
-          1.0e9_dp))) // ' or more increments (time period / initial increment); at most ' // &
-          itoa(max_increments) // ' are allowed')
-      if (nint(ratio) > s%max_inc) call err(p, 'the step needs ' // itoa(nint(ratio)) // &
-          ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
-    end associate
-  end subroutine read_heat_transfer
+    if (s%period > 0.0_dp) call err(p, 'second procedure in one step')
+    s%heat = .true.
+    s%steady = has_param(kw, 'STEADY STATE')
+    s%direct = has_param(kw, 'DIRECT')
+    s%deltmx = 0.0_dp
+    if (has_param(kw, 'DELTMX')) then
+      call split_fields(param_value(kw, 'DELTMX'), f, n)
+      s%deltmx = get_real(p, f(1), 'DELTMX')
+      if (s%deltmx <= 0.0_dp) call err(p, 'DELTMX must be positive')
+    end if
+    call read_time_line(p, card, s)
+    if (s%steady) s%deltmx = 0.0_dp
+  end subroutine read_thermal_procedure
+
+  !> Purpose: a step of fixed increments takes period / initial increment
+  !> of them: at most max_increments, and at most INC= of its *STEP.
+  !> Arguments: p the parser at the card, s the step.
+  subroutine check_fixed_increments(p, s)
+    type(parser_t), intent(inout) :: p
+    type(step_t), intent(in) :: s
+    real(dp) :: ratio
+    ratio = s%period / s%dt
+    if (.not. (ratio <= real(max_increments, dp))) call err(p, 'the step would need ' // itoa(nint(min(ratio, &
+        1.0e9_dp))) // ' or more increments (time period / initial increment); at most ' // &
+        itoa(max_increments) // ' are allowed')
+    if (nint(ratio) > s%max_inc) call err(p, 'the step needs ' // itoa(nint(ratio)) // &
+        ' increments, more than INC=' // itoa(s%max_inc) // ' on *STEP allows')
+  end subroutine check_fixed_increments
 
   !> Purpose: *CONDUCTIVITY[, TYPE=ISO]: `k[, temperature]`;
   !> TYPE=ORTHO: `k11, k22, k33[, temperature]` along the global axes
