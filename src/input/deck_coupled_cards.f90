@@ -6,7 +6,7 @@
 !> steps in one deck.
 module deck_coupled_cards
   use kinds, only: dp
-  use strings, only: split_fields, field_t, to_upper
+  use strings, only: split_fields, field_t
   use deck_input, only: keyword_t, has_param, deck_warning
   use deck_cursor, only: parser_t, err, allow_params, get_real, line_text, next_data, require_data
   use model, only: model_t, gap_heat_t
