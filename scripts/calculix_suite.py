@@ -119,7 +119,9 @@ def cfe2d_keywords(parser=os.path.join(ROOT, "src", "input", "deck_parser.f90"))
     the program."""
     with open(parser) as f:
         text = f.read()
-    body = text[text.index("subroutine dispatch"):text.index("end subroutine dispatch")]
+    # the dispatch and the routines it hands the other cards to (dispatch_*)
+    body = "\n".join(m.group(0) for m in re.finditer(
+        r"subroutine (dispatch\w*)\(.*?end subroutine \1", text, re.S))
     body = body.replace("&\n", " ")
     names = set()
     for labels in re.findall(r"case \(([^)]*)\)", re.sub(r"&\s*\n\s*", " ", body)):

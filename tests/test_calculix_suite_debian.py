@@ -24,7 +24,10 @@ DEBIAN = "/usr/share/doc/calculix-ccx-test/examples/test"
 # elements, 14 ran, 13 rejected, 0 crashed); a deck that stops running is a
 # regression.
 MUST_RUN = ("ax6", "axial", "axiplane", "oneel", "planestrain", "planestrain2", "planestress", "planestress2",
-            "planestress3", "plate", "pret2", "ring1", "ring2", "thread", "spring4")
+            "planestress3", "plate", "pret2", "ring1", "ring2", "thread", "spring4",
+            # since issues 28, 30 and 31 (27 November 2026: 19 ran, 8
+            # rejected: the fluid networks and cavity radiation)
+            "scheibe", "bolt", "ax6ht", "dam")
 # judged decks whose difference is explained in docs/calculix-suite.md, and
 # the largest displacement difference measured (held with a small margin)
 EXPLAINED = {"axial": 4.5e-3, "ax6": 1.7e-3}
