@@ -243,8 +243,27 @@ contains
                    all(ieee_is_finite(p%slave_shear)) .and. all(ieee_is_finite(p%master_shear)) .and. &
                    all(ieee_is_finite(p%slave_slip)) .and. all(ieee_is_finite(p%slave_slip_inc)))) &
           call stop_at('contact force', 'pair', itoa(p%pair))
+        ! the pressures the writers print, force over area: a tiny area
+        ! (a subnormal thickness) turns a finite force into Infinity
+        do a = 1, size(p%master_area)
+          if (p%master_area(a) > 0.0_dp) then
+            if (.not. (ieee_is_finite(p%master_force(a) / p%master_area(a)) .and. &
+                       ieee_is_finite(p%master_shear(a) / p%master_area(a)))) &
+              call stop_at('contact pressure', 'pair', itoa(p%pair))
+          end if
+        end do
+        if (allocated(p%slave_pressure)) then
+          if (.not. all(ieee_is_finite(p%slave_pressure))) call stop_at('contact pressure', 'pair', itoa(p%pair))
+        end if
+        if (allocated(p%slave_traction)) then
+          if (.not. all(ieee_is_finite(p%slave_traction))) call stop_at('contact pressure', 'pair', itoa(p%pair))
+        end if
       end associate
     end do
+    if (allocated(res%contact%pressure)) then
+      if (.not. (all(ieee_is_finite(res%contact%pressure)) .and. all(ieee_is_finite(res%contact%shear)))) &
+        call stop_at('contact pressure', 'model', 'nodes')
+    end if
   contains
     subroutine stop_at(quantity, what, id)
       character(len=*), intent(in) :: quantity, what, id

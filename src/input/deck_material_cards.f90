@@ -745,10 +745,10 @@ contains
           s%thickness_given = .true.
         end if
         if (s%thickness <= 0.0_dp) call err(p, 'the section''s thickness must be positive (a truss'' cross-sectional area)')
-        ! a subnormal thickness makes the contact areas subnormal, and a
-        ! pressure, force over area, infinite
-        if (s%thickness < 1.0e-100_dp .or. s%thickness > 1.0e100_dp) call err(p, 'the section''s thickness ' // &
-            '(a truss'' cross-sectional area) must lie between 1e-100 and 1e100')
+        ! a subnormal thickness has lost its digits (and makes the contact
+        ! areas subnormal, a pressure, force over area, infinite)
+        if (s%thickness < tiny(1.0_dp)) call err(p, 'the section''s thickness (a truss'' cross-sectional ' // &
+            'area) must be at least 2.2e-308 (a normal floating-point number)')
       end if
     end associate
   end subroutine read_section
