@@ -34,6 +34,7 @@
 !> master: its normal; on a curved one: the normal under the node).
 module contact_mortar
   use kinds, only: dp
+  use growable, only: append
   use small_matrices, only: inv3
   use model, only: model_t, surface_t
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_weights, area_factor, edge_length, piece_point
@@ -85,7 +86,6 @@ contains
     type(edge_tree_t), intent(in), optional :: tree
     real(dp), parameter :: tol = 1.0e-6_dp
     type(edge_t) :: mt
-    real(dp), allocatable :: longer(:)
     integer, allocatable :: list(:)
     real(dp) :: t, nvec(2), d, u(2), len
     integer :: i, j, q, a, nlist
@@ -114,13 +114,7 @@ contains
         call project_to_edge(ed, x(:, a), t, nvec, d)
         if (t <= tol .or. t >= 1.0_dp - tol .or. abs(d) > dmax) cycle
         if (any(abs(cuts(1:ncut) - t) <= tol)) cycle
-        if (ncut == size(cuts)) then
-          allocate(longer(2 * ncut))
-          longer(1:ncut) = cuts(1:ncut)
-          call move_alloc(longer, cuts)
-        end if
-        ncut = ncut + 1
-        cuts(ncut) = t
+        call append(cuts, ncut, t)
       end do
     end do
     call sort_reals(cuts(1:ncut))

@@ -22,6 +22,7 @@
 !> Newton iteration converged, as it does for points near the edge.)
 module edge_tree
   use kinds, only: dp
+  use growable, only: append
   use model, only: model_t, surface_t
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_length
   implicit none
@@ -218,8 +219,7 @@ contains
     integer, allocatable, intent(inout) :: cand(:)
     integer, intent(out) :: ncand
     integer :: stack(128), ns, k, i, j
-    integer, allocatable :: longer(:)
-    if (.not. allocated(cand)) allocate(cand(32))
+    if (.not. allocated(cand)) allocate(cand(32))   ! (callers read cand(1:ncand))
     ncand = 0
     if (tree%n == 0) return
     ns = 1
@@ -236,13 +236,7 @@ contains
       do i = tree%first(k), tree%last(k)
         j = tree%perm(i)
         if (.not. box_distance(tree%ebox(:, j), p) <= r) cycle
-        if (ncand == size(cand)) then
-          allocate(longer(2 * ncand))
-          longer(1:ncand) = cand(1:ncand)
-          call move_alloc(longer, cand)
-        end if
-        ncand = ncand + 1
-        cand(ncand) = j
+        call append(cand, ncand, j)
       end do
     end do
     call sort_ints(cand(1:ncand))
@@ -260,8 +254,7 @@ contains
     integer, allocatable, intent(inout) :: cand(:)
     integer, intent(out) :: ncand
     integer :: stack(128), ns, k, i, j
-    integer, allocatable :: longer(:)
-    if (.not. allocated(cand)) allocate(cand(32))
+    if (.not. allocated(cand)) allocate(cand(32))   ! (callers read cand(1:ncand))
     ncand = 0
     if (tree%n == 0) return
     ns = 1
@@ -278,13 +271,7 @@ contains
       do i = tree%first(k), tree%last(k)
         j = tree%perm(i)
         if (.not. box_meets(tree%ebox(:, j), o, u, lo, hi, v, dv)) cycle
-        if (ncand == size(cand)) then
-          allocate(longer(2 * ncand))
-          longer(1:ncand) = cand(1:ncand)
-          call move_alloc(longer, cand)
-        end if
-        ncand = ncand + 1
-        cand(ncand) = j
+        call append(cand, ncand, j)
       end do
     end do
     call sort_ints(cand(1:ncand))
