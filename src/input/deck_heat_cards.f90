@@ -125,15 +125,7 @@ contains
         if (nv == 3) then
           if (get_real(p, f(3), 'k33') <= 0.0_dp) call err(p, 'the conductivities must be positive')
         end if
-        t = 0.0_dp
-        if (n == nv + 1) then
-          if (len(f(n)%s) > 0) t = get_real(p, f(n), 'temperature')
-        end if
-        if (mat%nk > 0) then
-          if (t <= mat%ktab(1, mat%nk)) call err(p, 'the temperatures of a *CONDUCTIVITY table must increase')
-        end if
-        if (mat%nk == size(mat%ktab, 2)) call err(p, 'a *CONDUCTIVITY table of more than ' // &
-                                                 itoa(size(mat%ktab, 2)) // ' lines')
+        t = table_temperature(p, f, n, nv + 1, mat%ktab, mat%nk, '*CONDUCTIVITY')
         mat%nk = mat%nk + 1
         mat%ktab(:, mat%nk) = [t, k]
         if (.not. next_data(p)) exit
@@ -142,6 +134,29 @@ contains
       mat%has_conductivity = .true.
     end associate
   end subroutine read_conductivity
+
+  !> Purpose: the temperature of a data line of a material table
+  !> (*CONDUCTIVITY, *SPECIFIC HEAT): field pos when the line has it and
+  !> it is not blank, else 0; it must exceed the table's last (rows 1:nrows
+  !> of tab, temperatures in row 1), and the table must have room for one
+  !> more row.
+  !> Arguments: p the parser at the line, f(1:n) its fields, pos the
+  !> temperature's field, tab and nrows the table so far, card its name.
+  real(dp) function table_temperature(p, f, n, pos, tab, nrows, card) result(t)
+    type(parser_t), intent(inout) :: p
+    type(field_t), intent(in) :: f(:)
+    integer, intent(in) :: n, pos, nrows
+    real(dp), intent(in) :: tab(:, :)
+    character(len=*), intent(in) :: card
+    t = 0.0_dp
+    if (n == pos) then
+      if (len(f(pos)%s) > 0) t = get_real(p, f(pos), 'temperature')
+    end if
+    if (nrows > 0) then
+      if (t <= tab(1, nrows)) call err(p, 'the temperatures of a ' // card // ' table must increase')
+    end if
+    if (nrows == size(tab, 2)) call err(p, 'a ' // card // ' table of more than ' // itoa(size(tab, 2)) // ' lines')
+  end function table_temperature
 
   !> Purpose: *SPECIFIC HEAT: `c[, temperature]`; several data lines,
   !> temperatures increasing: a table, linear between its points and
@@ -164,15 +179,7 @@ contains
         if (n > 2) call err(p, '*SPECIFIC HEAT data line needs: specific heat[, temperature]')
         c = get_real(p, f(1), 'specific heat')
         if (c <= 0.0_dp) call err(p, 'the specific heat must be positive')
-        t = 0.0_dp
-        if (n == 2) then
-          if (len(f(2)%s) > 0) t = get_real(p, f(2), 'temperature')
-        end if
-        if (mat%nc > 0) then
-          if (t <= mat%ctab(1, mat%nc)) call err(p, 'the temperatures of a *SPECIFIC HEAT table must increase')
-        end if
-        if (mat%nc == size(mat%ctab, 2)) call err(p, 'a *SPECIFIC HEAT table of more than ' // &
-                                                 itoa(size(mat%ctab, 2)) // ' lines')
+        t = table_temperature(p, f, n, 2, mat%ctab, mat%nc, '*SPECIFIC HEAT')
         mat%nc = mat%nc + 1
         mat%ctab(:, mat%nc) = [t, c]
         if (.not. next_data(p)) exit
