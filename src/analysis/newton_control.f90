@@ -41,6 +41,11 @@ module newton_control
     character(len=:), allocatable :: reason
     type(controls_t) :: ctl             ! the step's *CONTROLS
     logical :: singular = .false.       ! the last factorisation of the tangent was singular
+    !> The predictor's correction (extrapolate_predictor): the first
+    !> iteration's step of the last converged increment (pred) and what
+    !> the later iterations added to it (corr); have_corr when it holds.
+    real(dp), allocatable :: pred(:, :), corr(:, :)
+    logical :: have_corr = .false.
   end type newton_t
 
 
@@ -139,6 +144,7 @@ contains
     type(newton_t), intent(inout) :: nt
     type(controls_t), intent(in) :: ctl
     nt%ctl = ctl
+    nt%have_corr = .false.
     if (nt%q_count > 0) then
       nt%q_sum = nt%q_sum / nt%q_count
       nt%q_count = 1
@@ -161,6 +167,8 @@ contains
     character(len=:), allocatable :: d
     d = ''
     if (present(detail)) d = detail
+    ! the correction of an increment given up is not the path's
+    nt%have_corr = .false.
     nt%cut = nt%ctl%df
     select case (why)
     case (diverged)
