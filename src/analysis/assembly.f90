@@ -312,20 +312,31 @@ contains
   !> converged at u0 (from the history before its commit, body%hist_old):
   !> evaluated from the committed history at u0 itself, a point on the
   !> yield surface would be elastic or plastic by round-off, and the
-  !> builds would take different first iterations.
-  subroutine body_predictor_forces(m, body, u0, du, f, counts)
+  !> builds would take different first iterations. f0, if given, is
+  !> f_int(u0) of that last iteration (the caller's, without follower
+  !> pressures or thermal strain, which move with the increment): then only
+  !> the elements that du moves are evaluated, for K_T(u0) du.
+  subroutine body_predictor_forces(m, body, u0, du, f, counts, f0)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     real(dp), intent(in) :: u0(:, :), du(:, :)
     real(dp), intent(out) :: f(:, :)
     type(element_counts_t), intent(inout) :: counts
+    real(dp), intent(in), optional :: f0(:, :)
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
     integer :: e, k, nd, nodes(max_en)
     real(dp) :: due(2 * max_en), fe(2 * max_en)
+    logical :: moved_only
+    moved_only = present(f0) .and. .not. allocated(body%dtemp0)
+    if (allocated(body%fl_ptr)) moved_only = moved_only .and. body%fl_ptr(size(body%fl_ptr)) == body%fl_ptr(1)
     f = 0.0_dp
+    if (moved_only) f = f0
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
+      if (moved_only) then
+        if (all(du(:, m%conn(1:elem_nodes(m, e), e)) == 0.0_dp)) cycle
+      end if
       ! (an unallocated body%dtemp0 is an absent argument: no thermal strain)
       call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
       call element_routine(ior(act_tangent, act_residual), ein, eout)
@@ -338,6 +349,7 @@ contains
         call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .true.)
         call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .false.)
       end if
+      if (moved_only) eout%fe(1:nd) = 0.0_dp
       fe(1:nd) = eout%fe(1:nd) + matmul(eout%ke(1:nd, 1:nd), due(1:nd))
       do k = 1, ein%nen
         f(:, nodes(k)) = f(:, nodes(k)) + fe(2 * k - 1:2 * k)
