@@ -431,6 +431,92 @@ def write_reference(path, full, every_h=0.025, against=None):
         json.dump(out, fh, indent=1)
 
 
+#: The approach (the reference node's vertical displacement) at which the
+#: deck's bodies carry P (cfe2d, small deformation, EXACT): the CalculiX
+#: check is displacement-controlled (a cylinder held by contact alone is
+#: singular there).
+APPROACH = 0.05043057
+
+
+def write_calculix_frictionless(d, nlgeom=False):
+    """The frictionless check of tests/calculix/stick_slip_frictionless.csv
+    in directory d (mesh.inp beside it): the default mesh (the plate
+    PLATE_SIZE), CalculiX's own contact cards (SURFACE TO SURFACE, a
+    linear pressure-overclosure of 4e8 N/mm^3), the top pressed down by
+    APPROACH in 4 DIRECT increments; read unchanged by CalculiX and cfe2d.
+    nlgeom: the step with NLGEOM (CalculiX poses its contact on the
+    deformed configuration). Returns (deck path, xy, cylinder surface
+    nodes, plate top nodes with |x| < 2, each sorted by x)."""
+    os.makedirs(d, exist_ok=True)
+    xy, slave, top, nel = write_mesh(os.path.join(d, "mesh.inp"), plate_size=PLATE_SIZE)
+    ref = top[0]
+    eqs = "".join(f"2\n{n}, {k}, 1.0, {ref}, {k}, -1.0\n" for n in top[1:] for k in (1, 2))
+    deck = f"""*HEADING
+Stick and slip, issue 33: cylinder R = {R} on a plate, a/R = 0.05, frictionless, pressed by the approach of P
+*INCLUDE, INPUT=mesh.inp
+*NSET, NSET=REF
+{ref}
+*MATERIAL, NAME=STEEL
+*ELASTIC
+{E}, {NU}
+*SOLID SECTION, ELSET=PLATE, MATERIAL=STEEL
+1.
+*SOLID SECTION, ELSET=CYLINDER, MATERIAL=STEEL
+1.
+*SURFACE INTERACTION, NAME=SI
+*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR
+4.e8
+*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE
+CYL_ARC, PLATE_TOP
+*EQUATION
+{eqs}*BOUNDARY
+PLATE_BOTTOM, 1, 2
+*STEP, NLGEOM{'' if nlgeom else '=NO'}, INC=1000
+*STATIC, DIRECT
+0.25, 1.0
+*BOUNDARY
+REF, 1, 1, 0.0
+REF, 2, 2, {-APPROACH}
+*NODE PRINT, NSET=CYL_TOP, TOTALS=ONLY
+RF
+*NODE FILE
+U
+*END STEP
+"""
+    path = os.path.join(d, "frictionless.inp")
+    with open(path, "w") as f:
+        f.write(deck)
+    plate_top = sorted((n for n, (x, y) in xy.items() if n > 1000000 and y == 0.0 and abs(x) < 2.0),
+                       key=lambda n: xy[n][0])
+    return path, xy, slave, plate_top
+
+
+def surface_mismatch(frd, xy, slave, plate_top, a=A_TARGET):
+    """The relative tangential displacement of the two surfaces, delta(x) =
+    u_x(cylinder) - u_x(plate) at the cylinder's surface nodes with
+    |x| < a (the plate's u_x interpolated on its surface nodes), from the
+    last displacement block of a .frd file (CalculiX's or cfe2d's): (x,
+    delta, u_x of the cylinder). Two half-spaces of one material have
+    delta = 0 under a normal load (Dundurs' beta = 0)."""
+    disp, cur = None, None
+    with open(frd) as f:
+        for line in f:
+            if line.startswith(" -4"):
+                cur = {} if line.split()[1] == "DISP" else None
+                if cur is not None:
+                    disp = cur
+            elif line.startswith(" -1") and cur is not None:
+                cur[int(line[3:13])] = (float(line[13:25]), float(line[25:37]))
+            elif line.startswith(" -3"):
+                cur = None
+    x = np.array([xy[n][0] for n in slave])
+    ux = np.array([disp[n][0] for n in slave])
+    xp = np.array([xy[n][0] for n in plate_top])
+    delta = ux - np.interp(x, xp, np.array([disp[n][0] for n in plate_top]))
+    keep = np.abs(x) < a
+    return x[keep], delta[keep], ux[keep]
+
+
 CASES = {"nts": "NODE TO SURFACE", "sts": "SURFACE TO SURFACE"}
 
 
