@@ -37,7 +37,7 @@ module condensed_contact
   private
   public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
-            condensed_energy, direct_multipliers, condensed_multipliers
+            condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -87,6 +87,17 @@ module condensed_contact
     !> independent dofs are contact equations (or prescribed), so they
     !> follow the status iterations.
     integer, allocatable :: cdep(:)
+    !> A pairing history (UPDATE SEARCH in a linear step: the couplings
+    !> paired again at every increment): the contact equations are those
+    !> of zone(2, nn), every dof some pairing of the step has reached so
+    !> far (number_equations with grow), so that a new pairing whose dofs
+    !> lie in the zone keeps the numbering and the bodies' factor
+    !> (condensed_repair). S0 is then the bodies' Schur complement alone
+    !> (K0's open CFEs taken out of it and of diag22, ke0 zero), and S of
+    !> a status adds every CFE's whole tangent: the same matrix as
+    !> S0 + (tangent now - tangent in K0) of the pairing K0 was made with.
+    logical :: keep_pairing = .false.
+    logical, allocatable :: zone(:, :)
   end type condensed_t
 
 contains
@@ -110,8 +121,12 @@ contains
   !> solve with UMFPACK (the tangent may be unsymmetric, F-bar and
   !> follower pressures, or indefinite). keep, if true (a renumbering
   !> inside an increment), keeps the solve cd had: the iteration's path
-  !> stays (condensed: where any contact equation is left).
-  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse, nonlinear, keep)
+  !> stays (condensed: where any contact equation is left). grow, if true
+  !> (a linear step that pairs again at every increment), makes the
+  !> contact equations those of every dof the couplings reached since
+  !> (cd%zone, still free) and of the couplings of cs, and sets
+  !> cd%keep_pairing: a later pairing within the zone keeps this numbering.
+  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse, nonlinear, keep, grow)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
@@ -120,15 +135,18 @@ contains
     type(linear_system_t), intent(inout) :: sys
     type(condensed_t), intent(inout) :: cd
     real(dp), intent(out) :: t_analyse
-    logical, intent(in), optional :: nonlinear, keep
+    logical, intent(in), optional :: nonlinear, keep, grow
     logical, allocatable :: mask(:, :)
     integer :: mc, solver
     real(dp) :: flops
     integer(kind=8) :: c0, c1, rate
-    logical :: want_full, nl, stay, was_active
+    logical :: want_full, nl, stay, was_active, zone
     t_analyse = 0.0_dp
     stay = .false.
     if (present(keep)) stay = keep
+    zone = .false.
+    if (present(grow)) zone = grow
+    cd%keep_pairing = .false.
     was_active = cd%active
     cd%active = .false.
     cd%m = 0
@@ -138,6 +156,11 @@ contains
     if (stay) want_full = .not. was_active
     if (.not. want_full .and. (m%solver == solver_cholmod .or. m%solver == solver_mumps) .and. cs%n > 0) then
       call contact_dof_mask(m, cs, prescribed, mpc, mask)
+      if (zone) then
+        if (allocated(cd%zone)) then
+          if (all(shape(cd%zone) == shape(mask))) mask = mask .or. (cd%zone .and. .not. prescribed .and. mpc%dep == 0)
+        end if
+      end if
       mc = count(mask)
       if (mc > 0) then
         call number_dofs(m, cs, prescribed, m%solver, m%ordering, dm, sys, mask, mpc)
@@ -154,6 +177,8 @@ contains
         if (cd%active) then
           cd%n = dm%neq
           cd%m = mc
+          cd%keep_pairing = zone
+          if (zone) cd%zone = mask
           return
         end if
       end if
@@ -296,7 +321,63 @@ contains
       cd%l22(p + 1:mc, p) = cd%s(p + 1:mc, p)
     end do
     call map_cfes(cd, m, cs, dm, open_set, counts)
+    if (cd%keep_pairing) call bodies_alone(cd, cs%n)
   end subroutine condensed_factor_k0
+
+  !> S0 and diag22 of the bodies alone: K0's open CFE tangents (ke0) taken
+  !> out of them, ke0 zero (keep_pairing: a later pairing's CFEs add
+  !> their whole tangents to this S0, condensed_status).
+  subroutine bodies_alone(cd, ncfe)
+    type(condensed_t), intent(inout) :: cd
+    integer, intent(in) :: ncfe
+    integer :: j, a, b, pa, pb
+    do j = 1, ncfe
+      do b = 1, size(cd%cfe_pos, 1)
+        pb = cd%cfe_pos(b, j)
+        if (pb == 0) cycle
+        do a = 1, size(cd%cfe_pos, 1)
+          pa = cd%cfe_pos(a, j)
+          if (pa == 0 .or. pa < pb) cycle
+          if (pa == pb) then
+            cd%s0_diag(pa) = cd%s0_diag(pa) - cd%ke0(a, b, j)
+            cd%diag22(pa) = cd%diag22(pa) - cd%ke0(a, b, j)
+          else
+            cd%l22(pa, pb) = cd%l22(pa, pb) - cd%ke0(a, b, j)
+          end if
+        end do
+      end do
+    end do
+    cd%ke0 = 0.0_dp
+  end subroutine bodies_alone
+
+  !> Purpose: the couplings of cs were paired again (a linear step's
+  !> UPDATE SEARCH) and the equations were numbered for a zone
+  !> (keep_pairing): if every dof the new couplings reach is a contact
+  !> equation of the numbering, the numbering and the bodies' factor stay
+  !> and the CFEs are mapped to their trailing positions (fits true; S of
+  !> a status is then made from S0 of the bodies alone); otherwise fits
+  !> is false and nothing changed (the caller numbers again, the zone
+  !> grown by the new couplings' dofs).
+  !> Arguments: prescribed, mpc as number_equations; counts counts the
+  !> CFE routine calls.
+  subroutine condensed_repair(cd, m, cs, prescribed, mpc, dm, counts, fits)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    logical, intent(in) :: prescribed(:, :)
+    type(mpc_t), intent(in) :: mpc
+    type(dofmap_t), intent(in) :: dm
+    type(element_counts_t), intent(inout) :: counts
+    logical, intent(out) :: fits
+    logical, allocatable :: mask(:, :)
+    fits = .false.
+    if (.not. (cd%active .and. cd%keep_pairing) .or. .not. allocated(cd%ke0) .or. cs%n == 0) return
+    call contact_dof_mask(m, cs, prescribed, mpc, mask)
+    fits = .not. any(mask .and. .not. cd%zone)
+    if (.not. fits) return
+    call map_cfes(cd, m, cs, dm, cs, counts)
+    cd%ke0 = 0.0_dp
+  end subroutine condensed_repair
 
   !> Trailing positions of every CFE's rows (its dofs, or with
   !> constraints the equations its transformed tangent reaches), its
@@ -747,7 +828,8 @@ contains
       sx = 0.5_dp * cd%s0_diag(q) * x(q) + dot_product(cd%l22(q + 1:cd%m, q), x(q + 1:cd%m))
       e = e + x(q) * sx - cd%q0(q) * x(q)
     end do
-    e = e - 0.5_dp * sum(cs%c(1:cs%n)%k_open * (cs%c(1:cs%n)%gap - cd%gap_start)**2)
+    ! (keep_pairing: S0 is the bodies' alone, no CFE's share in it)
+    if (.not. cd%keep_pairing) e = e - 0.5_dp * sum(cs%c(1:cs%n)%k_open * (cs%c(1:cs%n)%gap - cd%gap_start)**2)
   end function condensed_energy
 
   !> x := S^-1 x with the factor of the current status.
