@@ -98,6 +98,19 @@ module condensed_contact
     !> S0 + (tangent now - tangent in K0) of the pairing K0 was made with.
     logical :: keep_pairing = .false.
     logical, allocatable :: zone(:, :)
+    !> The low-rank status solve (keep_pairing; docs/fretting.md): finv
+    !> (m, m) the inverse of S_ref, the condensed matrix of a reference
+    !> status (ref_valid: the last one factored densely), and its closed
+    !> CFEs' positions and tangents (ref_pos, ref_k). A status differs
+    !> from it by dmat on the positions dset of its own and the
+    !> reference's closed CFEs, S = S_ref + E dmat E^T (the open CFEs'
+    !> share of the difference, 1e-12 of a closed one's, is left to the
+    !> refinement), solved through the capacitance matrix
+    !> cap = I + finv(D, D) dmat (LU, cap_piv) and refined against S
+    !> itself: S0 and the status's tangents kt_all (kt_ng rows each).
+    logical :: lowrank = .false., ref_valid = .false.
+    real(dp), allocatable :: finv(:, :), ref_k(:, :, :), kt_all(:, :, :), dmat(:, :), cap(:, :)
+    integer, allocatable :: ref_pos(:, :), kt_ng(:), dset(:), cap_piv(:)
   end type condensed_t
 
 contains
@@ -321,6 +334,7 @@ contains
       cd%l22(p + 1:mc, p) = cd%s(p + 1:mc, p)
     end do
     call map_cfes(cd, m, cs, dm, open_set, counts)
+    cd%ref_valid = .false.
     if (cd%keep_pairing) call bodies_alone(cd, cs%n)
   end subroutine condensed_factor_k0
 
@@ -478,7 +492,10 @@ contains
 
   !> Purpose: factors S of the current contact status (cs: statuses and
   !> stabilisation): S0 plus every CFE's tangent minus its tangent in K0
-  !> (the lower triangles; LAPACK leaves the upper one alone).
+  !> (the lower triangles; LAPACK leaves the upper one alone). With
+  !> keep_pairing, a status close to the reference one (lowrank_status)
+  !> is not factored: its solves go through the reference's inverse
+  !> (cd%lowrank); a status factored densely becomes the reference.
   !> Arguments: kbody the bodies' largest element diagonal; status
   !> factor_ok or factor_singular (bad: the equation whose pivot vanished,
   !> judged as the sparse backends judge theirs: relative to the diagonal
@@ -491,23 +508,52 @@ contains
     real(dp), intent(in) :: kbody
     type(element_counts_t), intent(inout) :: counts
     integer, intent(out) :: status, bad
-    real(dp), allocatable :: kt(:, :)
-    integer, allocatable :: geq(:)
-    integer :: j, a, b, pa, pb, ng, info
-    real(dp) :: dk, ratio, kraw
     ! S0: its diagonal and strict lower triangle; the whole matrix when a
     ! sliding CFE's tangent is unsymmetric (never symmetrised)
     cd%lu = any(cs%c(1:cs%n)%closed .and. cs%c(1:cs%n)%sliding)
+    cd%lowrank = .false.
+    status = factor_ok
+    bad = 0
+    if (cd%keep_pairing) then
+      call status_tangents(cd, m, cs, dm, kbody, counts)
+      cd%lowrank = lowrank_status(cd, cs)
+      if (cd%lowrank) return
+    end if
+    call dense_status_matrix(cd, m, cs, dm, kbody, counts)
+    call factor_dense_status(cd, status, bad)
+    if (status == factor_ok .and. cd%keep_pairing) call set_reference(cd, cs)
+  end subroutine condensed_status
+
+  !> S of the status in cd%s (lower triangle, or whole for LU) and the
+  !> diagonal its pivots are judged against (kdiag); kmax the largest
+  !> element diagonal. The tangents are kt_all's with keep_pairing
+  !> (status_tangents), the element's otherwise.
+  subroutine dense_status_matrix(cd, m, cs, dm, kbody, counts)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: kbody
+    type(element_counts_t), intent(inout) :: counts
+    real(dp), allocatable :: kt(:, :)
+    integer, allocatable :: geq(:)
+    integer :: j, a, b, pa, pb, ng
+    real(dp) :: dk, kraw
     do b = 1, cd%m
       cd%s(b, b) = cd%s0_diag(b)
       cd%s(b + 1:cd%m, b) = cd%l22(b + 1:cd%m, b)
       if (cd%lu) cd%s(b, b + 1:cd%m) = cd%l22(b + 1:cd%m, b)
     end do
     cd%kdiag = cd%diag22
-    cd%kmax = kbody
+    if (.not. cd%keep_pairing) cd%kmax = kbody
     do j = 1, cs%n
-      call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
-      cd%kmax = max(cd%kmax, kraw)
+      if (cd%keep_pairing) then
+        ng = cd%kt_ng(j)
+        kt = cd%kt_all(1:ng, 1:ng, j)
+      else
+        call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
+        cd%kmax = max(cd%kmax, kraw)
+      end if
       do b = 1, ng
         pb = cd%cfe_pos(b, j)
         if (pb == 0) cycle
@@ -521,6 +567,15 @@ contains
         end do
       end do
     end do
+  end subroutine dense_status_matrix
+
+  !> Cholesky (LU where a CFE slides) of cd%s, its pivots judged against
+  !> kdiag: status factor_singular and bad the equation where one vanished.
+  subroutine factor_dense_status(cd, status, bad)
+    type(condensed_t), intent(inout) :: cd
+    integer, intent(out) :: status, bad
+    integer :: a, info
+    real(dp) :: ratio
     status = factor_ok
     bad = 0
     if (cd%lu) then
@@ -562,7 +617,143 @@ contains
         return
       end if
     end do
-  end subroutine condensed_status
+  end subroutine factor_dense_status
+
+  !> Every CFE's tangent of the status (stabilised as cs says) in
+  !> kt_all (kt_ng rows; on cfe_pos), kmax the largest element diagonal
+  !> (kbody's or a CFE's).
+  subroutine status_tangents(cd, m, cs, dm, kbody, counts)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: kbody
+    type(element_counts_t), intent(inout) :: counts
+    real(dp), allocatable :: kt(:, :)
+    integer, allocatable :: geq(:)
+    integer :: j, ng, maxng
+    real(dp) :: kraw
+    maxng = size(cd%cfe_pos, 1)
+    if (allocated(cd%kt_all)) then
+      if (size(cd%kt_all, 1) /= maxng .or. size(cd%kt_all, 3) /= cs%n) deallocate(cd%kt_all, cd%kt_ng)
+    end if
+    if (.not. allocated(cd%kt_all)) allocate(cd%kt_all(maxng, maxng, cs%n), cd%kt_ng(cs%n))
+    cd%kmax = kbody
+    do j = 1, cs%n
+      call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
+      cd%kmax = max(cd%kmax, kraw)
+      cd%kt_ng(j) = ng
+      cd%kt_all(1:ng, 1:ng, j) = kt
+    end do
+  end subroutine status_tangents
+
+  !> Purpose: may the status of cs be solved by the low-rank form about
+  !> the reference (true: dset, dmat and the capacitance's LU made)? Not
+  !> without a reference, with exact CFEs (their multipliers take the
+  !> dense factor) or the stabilisation (its open penalty is no longer
+  !> small), where the closed CFEs of the status and the reference touch
+  !> more than a quarter of the contact equations, or where a pivot of
+  !> the capacitance matrix is below pivot_ratio_min of its column's
+  !> scale (S near singular: the dense factor judges it).
+  logical function lowrank_status(cd, cs) result(ok)
+    type(condensed_t), intent(inout) :: cd
+    type(contact_set_t), intent(in) :: cs
+    integer, allocatable :: at(:)
+    real(dp), allocatable :: colscale(:)
+    integer :: j, k, p, info
+    ok = .false.
+    if (.not. cd%ref_valid .or. cs%stabilised .or. any(cs%c(1:cs%n)%exact)) return
+    allocate(at(cd%m))
+    at = 0
+    k = 0
+    do j = 1, cs%n
+      if (cs%c(j)%closed) call add_positions(cd%cfe_pos(:, j), at, k)
+    end do
+    do j = 1, size(cd%ref_pos, 2)
+      call add_positions(cd%ref_pos(:, j), at, k)
+    end do
+    if (4 * k > cd%m) return
+    if (allocated(cd%dset)) deallocate(cd%dset, cd%dmat)
+    allocate(cd%dset(k), cd%dmat(k, k))
+    do p = 1, cd%m
+      if (at(p) > 0) cd%dset(at(p)) = p
+    end do
+    cd%dmat = 0.0_dp
+    do j = 1, cs%n
+      if (cs%c(j)%closed) call scatter_tangent(cd%kt_all(:, :, j), cd%cfe_pos(:, j), at, 1.0_dp, cd%dmat)
+    end do
+    do j = 1, size(cd%ref_pos, 2)
+      call scatter_tangent(cd%ref_k(:, :, j), cd%ref_pos(:, j), at, -1.0_dp, cd%dmat)
+    end do
+    cd%cap = matmul(cd%finv(cd%dset, cd%dset), cd%dmat)
+    do j = 1, k
+      cd%cap(j, j) = cd%cap(j, j) + 1.0_dp
+    end do
+    if (allocated(cd%cap_piv)) deallocate(cd%cap_piv)
+    allocate(cd%cap_piv(k))
+    ! (the scale of each column before the factorisation, as for S's LU)
+    colscale = [(maxval(abs(cd%cap(:, j))), j = 1, k)]
+    call lu_factor(cd%cap, cd%cap_piv, info)
+    if (info > 0) return
+    do j = 1, k
+      if (.not. abs(cd%cap(j, j)) >= pivot_ratio_min * colscale(j)) return
+    end do
+    ok = .true.
+  end function lowrank_status
+
+  !> The positions pos (0: none) not yet in the set at (at(p) its index
+  !> there, k the set's size) added to it.
+  pure subroutine add_positions(pos, at, k)
+    integer, intent(in) :: pos(:)
+    integer, intent(inout) :: at(:), k
+    integer :: a
+    do a = 1, size(pos)
+      if (pos(a) == 0) cycle
+      if (at(pos(a)) > 0) cycle
+      k = k + 1
+      at(pos(a)) = k
+    end do
+  end subroutine add_positions
+
+  !> d(at(pa), at(pb)) += sign kt(a, b) for the positions pa, pb of pos.
+  pure subroutine scatter_tangent(kt, pos, at, sign, d)
+    real(dp), intent(in) :: kt(:, :), sign
+    integer, intent(in) :: pos(:), at(:)
+    real(dp), intent(inout) :: d(:, :)
+    integer :: a, b
+    do b = 1, size(pos)
+      if (pos(b) == 0) cycle
+      do a = 1, size(pos)
+        if (pos(a) == 0) cycle
+        d(at(pos(a)), at(pos(b))) = d(at(pos(a)), at(pos(b))) + sign * kt(a, b)
+      end do
+    end do
+  end subroutine scatter_tangent
+
+  !> The status just factored densely becomes the reference of the
+  !> low-rank solves (where it may be one: no exact CFE, not stabilised):
+  !> finv = S^-1 column by column, its closed CFEs' positions and tangents.
+  subroutine set_reference(cd, cs)
+    type(condensed_t), intent(inout) :: cd
+    type(contact_set_t), intent(in) :: cs
+    integer, allocatable :: closed(:)
+    integer :: j
+    cd%ref_valid = .false.
+    if (cs%stabilised .or. any(cs%c(1:cs%n)%exact)) return
+    if (allocated(cd%finv)) then
+      if (size(cd%finv, 1) /= cd%m) deallocate(cd%finv)
+    end if
+    if (.not. allocated(cd%finv)) allocate(cd%finv(cd%m, cd%m))
+    do j = 1, cd%m
+      cd%finv(:, j) = 0.0_dp
+      cd%finv(j, j) = 1.0_dp
+      call solve_s(cd, cd%finv(:, j))
+    end do
+    closed = pack([(j, j = 1, cs%n)], cs%c(1:cs%n)%closed)
+    cd%ref_pos = cd%cfe_pos(:, closed)
+    cd%ref_k = cd%kt_all(:, :, closed)
+    cd%ref_valid = .true.
+  end subroutine set_reference
 
   !> Purpose: condenses the right-hand side of an increment that starts
   !> from displacements u (prescribed values in place) under loads fext:
@@ -832,16 +1023,90 @@ contains
     if (.not. cd%keep_pairing) e = e - 0.5_dp * sum(cs%c(1:cs%n)%k_open * (cs%c(1:cs%n)%gap - cd%gap_start)**2)
   end function condensed_energy
 
-  !> x := S^-1 x with the factor of the current status.
+  !> x := S^-1 x with the factor of the current status (or its low-rank
+  !> form about the reference, lowrank_solve).
   subroutine solve_s(cd, x)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(inout) :: x(:)
-    if (cd%lu) then
+    if (cd%lowrank) then
+      call lowrank_solve(cd, x)
+    else if (cd%lu) then
       call lu_solve(cd%s, cd%ipiv, x)
     else
       call dense_solve(cd%s, x)
     end if
   end subroutine solve_s
+
+  !> x := S^-1 x for a status of the low-rank form: M = S_ref + E dmat E^T
+  !> solved by the capacitance matrix (Woodbury's identity: with
+  !> F = S_ref^-1 and y = F r, E^T x = cap^-1 E^T y and
+  !> x = y - F E dmat E^T x), then refined against S itself: r - S x
+  !> solved by M again and added, until a correction is below 1e-13 of x
+  !> or no longer half the last one (round-off: the residual of S's
+  !> solution, as the dense factor's, is about cond(S) eps), at most
+  !> max_refine times. The first correction takes the open CFEs' share of
+  !> S - M (1e-12 of a closed one's) and Woodbury's round-off: measured on
+  !> McColl's case, 3e-13 of x, the second 1e-14 (the floor).
+  subroutine lowrank_solve(cd, x)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(inout) :: x(:)
+    integer, parameter :: max_refine = 3
+    real(dp) :: r(size(x)), dx(size(x)), last, now
+    integer :: it
+    r = x
+    call apply_reference(cd, x)
+    last = huge(1.0_dp)
+    do it = 1, max_refine
+      call status_times(cd, x, dx)
+      dx = r - dx
+      call apply_reference(cd, dx)
+      x = x + dx
+      now = maxval(abs(dx))
+      if (.not. (now > 1.0e-13_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)) exit
+      last = now
+    end do
+  end subroutine lowrank_solve
+
+  !> x := M^-1 x, M = S_ref + E dmat E^T (lowrank_solve).
+  subroutine apply_reference(cd, x)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(inout) :: x(:)
+    real(dp), allocatable :: w(:)
+    integer :: i
+    x = matmul(cd%finv, x)
+    w = x(cd%dset)
+    call lu_solve(cd%cap, cd%cap_piv, w)
+    w = matmul(cd%dmat, w)
+    do i = 1, size(w)
+      x = x - w(i) * cd%finv(:, cd%dset(i))
+    end do
+  end subroutine apply_reference
+
+  !> y = S x for the status whose tangents are kt_all: S0 (its diagonal
+  !> and strict lower triangle) plus every CFE's tangent on its positions
+  !> (keep_pairing: ke0 is zero).
+  subroutine status_times(cd, x, y)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: y(:)
+    integer :: q, j, a, b, pa, pb
+    do q = 1, cd%m
+      y(q) = cd%s0_diag(q) * x(q) + dot_product(cd%l22(q + 1:cd%m, q), x(q + 1:cd%m))
+    end do
+    do q = 1, cd%m - 1
+      y(q + 1:cd%m) = y(q + 1:cd%m) + cd%l22(q + 1:cd%m, q) * x(q)
+    end do
+    do j = 1, size(cd%kt_ng)
+      do b = 1, cd%kt_ng(j)
+        pb = cd%cfe_pos(b, j)
+        if (pb == 0) cycle
+        do a = 1, cd%kt_ng(j)
+          pa = cd%cfe_pos(a, j)
+          if (pa > 0) y(pa) = y(pa) + cd%kt_all(a, b, j) * x(pb)
+        end do
+      end do
+    end do
+  end subroutine status_times
 
   !> u(contact equations) = u0 + x2.
   subroutine add_contact_part(cd, dm, u)
