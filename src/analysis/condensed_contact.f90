@@ -685,10 +685,7 @@ contains
     do j = 1, size(cd%ref_pos, 2)
       call scatter_tangent(cd%ref_k(:, :, j), cd%ref_pos(:, j), at, -1.0_dp, cd%dmat)
     end do
-    cd%cap = matmul(cd%finv(cd%dset, cd%dset), cd%dmat)
-    do j = 1, k
-      cd%cap(j, j) = cd%cap(j, j) + 1.0_dp
-    end do
+    call capacitance(cd, k)
     if (allocated(cd%cap_piv)) deallocate(cd%cap_piv)
     allocate(cd%cap_piv(k))
     ! (the scale of each column before the factorisation, as for S's LU)
@@ -700,6 +697,26 @@ contains
     end do
     ok = .true.
   end function lowrank_status
+
+  !> cap = I + finv(D, D) dmat, its sums in a fixed order (explicit
+  !> loops, not matmul, whose inlining differs between the optimised and
+  !> the debug build: both builds give the same digits).
+  subroutine capacitance(cd, k)
+    type(condensed_t), intent(inout) :: cd
+    integer, intent(in) :: k
+    integer :: a, b, c
+    if (allocated(cd%cap)) deallocate(cd%cap)
+    allocate(cd%cap(k, k))
+    cd%cap = 0.0_dp
+    do b = 1, k
+      do c = 1, k
+        do a = 1, k
+          cd%cap(a, b) = cd%cap(a, b) + cd%finv(cd%dset(a), cd%dset(c)) * cd%dmat(c, b)
+        end do
+      end do
+      cd%cap(b, b) = cd%cap(b, b) + 1.0_dp
+    end do
+  end subroutine capacitance
 
   !> The positions pos (0: none) not yet in the set at (at(p) its index
   !> there, k the set's size) added to it.
@@ -731,15 +748,26 @@ contains
   end subroutine scatter_tangent
 
   !> The status just factored densely becomes the reference of the
-  !> low-rank solves (where it may be one: no exact CFE, not stabilised):
-  !> finv = S^-1 column by column, its closed CFEs' positions and tangents.
+  !> low-rank solves where it may be one (no exact CFE, not stabilised)
+  !> and is likely to pay: its closed CFEs touch at most an eighth of the
+  !> contact equations (a later status, with the reference's and its own
+  !> closed CFEs, within lowrank_status's quarter). finv = S^-1 column by
+  !> column (about two dense factorisations' work), its closed CFEs'
+  !> positions and tangents.
   subroutine set_reference(cd, cs)
     type(condensed_t), intent(inout) :: cd
     type(contact_set_t), intent(in) :: cs
-    integer, allocatable :: closed(:)
-    integer :: j
+    integer, allocatable :: closed(:), at(:)
+    integer :: j, k
     cd%ref_valid = .false.
     if (cs%stabilised .or. any(cs%c(1:cs%n)%exact)) return
+    allocate(at(cd%m))
+    at = 0
+    k = 0
+    do j = 1, cs%n
+      if (cs%c(j)%closed) call add_positions(cd%cfe_pos(:, j), at, k)
+    end do
+    if (8 * k > cd%m) return
     if (allocated(cd%finv)) then
       if (size(cd%finv, 1) /= cd%m) deallocate(cd%finv)
     end if
@@ -1071,15 +1099,23 @@ contains
   subroutine apply_reference(cd, x)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(inout) :: x(:)
-    real(dp), allocatable :: w(:)
-    integer :: i
-    x = matmul(cd%finv, x)
-    w = x(cd%dset)
-    call lu_solve(cd%cap, cd%cap_piv, w)
-    w = matmul(cd%dmat, w)
-    do i = 1, size(w)
-      x = x - w(i) * cd%finv(:, cd%dset(i))
+    real(dp) :: y(size(x)), w(size(cd%dset)), v(size(cd%dset))
+    integer :: i, j
+    ! (explicit loops in a fixed order, as capacitance)
+    y = 0.0_dp
+    do j = 1, size(x)
+      y = y + x(j) * cd%finv(:, j)
     end do
+    w = y(cd%dset)
+    call lu_solve(cd%cap, cd%cap_piv, w)
+    v = 0.0_dp
+    do j = 1, size(w)
+      v = v + w(j) * cd%dmat(:, j)
+    end do
+    do i = 1, size(v)
+      y = y - v(i) * cd%finv(:, cd%dset(i))
+    end do
+    x = y
   end subroutine apply_reference
 
   !> y = S x for the status whose tangents are kt_all: S0 (its diagonal
