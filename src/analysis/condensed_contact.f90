@@ -109,6 +109,9 @@ module condensed_contact
     !> cap = I + finv(D, D) dmat (LU, cap_piv) and refined against S
     !> itself: S0 and the status's tangents kt_all (kt_ng rows each).
     logical :: lowrank = .false., ref_valid = .false.
+    !> s0_full: S0 of the bodies alone as a whole (symmetric) matrix, for
+    !> the refinement's products (column by column).
+    real(dp), allocatable :: s0_full(:, :)
     real(dp), allocatable :: finv(:, :), ref_k(:, :, :), kt_all(:, :, :), dmat(:, :), cap(:, :)
     integer, allocatable :: ref_pos(:, :), kt_ng(:), dset(:), cap_piv(:)
   end type condensed_t
@@ -362,6 +365,13 @@ contains
       end do
     end do
     cd%ke0 = 0.0_dp
+    if (allocated(cd%s0_full)) deallocate(cd%s0_full)
+    allocate(cd%s0_full(cd%m, cd%m))
+    do b = 1, cd%m
+      cd%s0_full(b, b) = cd%s0_diag(b)
+      cd%s0_full(b + 1:cd%m, b) = cd%l22(b + 1:cd%m, b)
+      cd%s0_full(b, b + 1:cd%m) = cd%l22(b + 1:cd%m, b)
+    end do
   end subroutine bodies_alone
 
   !> Purpose: the couplings of cs were paired again (a linear step's
@@ -1118,19 +1128,17 @@ contains
     x = y
   end subroutine apply_reference
 
-  !> y = S x for the status whose tangents are kt_all: S0 (its diagonal
-  !> and strict lower triangle) plus every CFE's tangent on its positions
+  !> y = S x for the status whose tangents are kt_all: S0 (s0_full,
+  !> column by column) plus every CFE's tangent on its positions
   !> (keep_pairing: ke0 is zero).
   subroutine status_times(cd, x, y)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(in) :: x(:)
     real(dp), intent(out) :: y(:)
     integer :: q, j, a, b, pa, pb
+    y = 0.0_dp
     do q = 1, cd%m
-      y(q) = cd%s0_diag(q) * x(q) + dot_product(cd%l22(q + 1:cd%m, q), x(q + 1:cd%m))
-    end do
-    do q = 1, cd%m - 1
-      y(q + 1:cd%m) = y(q + 1:cd%m) + cd%l22(q + 1:cd%m, q) * x(q)
+      y = y + cd%s0_full(:, q) * x(q)
     end do
     do j = 1, size(cd%kt_ng)
       do b = 1, cd%kt_ng(j)
