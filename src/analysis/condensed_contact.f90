@@ -662,7 +662,8 @@ contains
   !> without a reference, with exact CFEs (their multipliers take the
   !> dense factor) or the stabilisation (its open penalty is no longer
   !> small), where the closed CFEs of the status and the reference touch
-  !> more than a quarter of the contact equations, or where a pivot of
+  !> more than half of the contact equations (the capacitance's LU, k^3
+  !> 2/3, then costs at most a quarter of S's Cholesky), or where a pivot of
   !> the capacitance matrix is below pivot_ratio_min of its column's
   !> scale (S near singular: the dense factor judges it).
   logical function lowrank_status(cd, cs) result(ok)
@@ -682,7 +683,7 @@ contains
     do j = 1, size(cd%ref_pos, 2)
       call add_positions(cd%ref_pos(:, j), at, k)
     end do
-    if (4 * k > cd%m) return
+    if (2 * k > cd%m) return
     if (allocated(cd%dset)) deallocate(cd%dset, cd%dmat)
     allocate(cd%dset(k), cd%dmat(k, k))
     do p = 1, cd%m
@@ -695,7 +696,7 @@ contains
     do j = 1, size(cd%ref_pos, 2)
       call scatter_tangent(cd%ref_k(:, :, j), cd%ref_pos(:, j), at, -1.0_dp, cd%dmat)
     end do
-    call capacitance(cd, k)
+    call capacitance(cd, cs, at)
     if (allocated(cd%cap_piv)) deallocate(cd%cap_piv)
     allocate(cd%cap_piv(k))
     ! (the scale of each column before the factorisation, as for S's LU)
@@ -708,24 +709,46 @@ contains
     ok = .true.
   end function lowrank_status
 
-  !> cap = I + finv(D, D) dmat, its sums in a fixed order (explicit
-  !> loops, not matmul, whose inlining differs between the optimised and
-  !> the debug build: both builds give the same digits).
-  subroutine capacitance(cd, k)
+  !> cap = I + finv(D, D) dmat, dmat taken block by block (each closed
+  !> CFE's tangent, the reference's with sign -1: a few columns of
+  !> finv(D, D) each, not a k^3 product), its sums in a fixed order
+  !> (explicit loops, not matmul, whose inlining differs between the
+  !> optimised and the debug build: both builds give the same digits).
+  !> at(p) is the index in D of position p.
+  subroutine capacitance(cd, cs, at)
     type(condensed_t), intent(inout) :: cd
-    integer, intent(in) :: k
-    integer :: a, b, c
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: at(:)
+    real(dp), allocatable :: fdd(:, :)
+    integer :: j, k
+    k = size(cd%dset)
+    fdd = cd%finv(cd%dset, cd%dset)
     if (allocated(cd%cap)) deallocate(cd%cap)
     allocate(cd%cap(k, k))
     cd%cap = 0.0_dp
-    do b = 1, k
-      do c = 1, k
-        do a = 1, k
-          cd%cap(a, b) = cd%cap(a, b) + cd%finv(cd%dset(a), cd%dset(c)) * cd%dmat(c, b)
+    do j = 1, k
+      cd%cap(j, j) = 1.0_dp
+    end do
+    do j = 1, cs%n
+      if (cs%c(j)%closed) call add_block(cd%kt_all(:, :, j), cd%cfe_pos(:, j), 1.0_dp)
+    end do
+    do j = 1, size(cd%ref_pos, 2)
+      call add_block(cd%ref_k(:, :, j), cd%ref_pos(:, j), -1.0_dp)
+    end do
+  contains
+    !> cap(:, at(pb)) += sign kt(a, b) fdd(:, at(pa)) over the block.
+    subroutine add_block(kt, pos, sign)
+      real(dp), intent(in) :: kt(:, :), sign
+      integer, intent(in) :: pos(:)
+      integer :: a, b
+      do b = 1, size(pos)
+        if (pos(b) == 0) cycle
+        do a = 1, size(pos)
+          if (pos(a) == 0) cycle
+          cd%cap(:, at(pos(b))) = cd%cap(:, at(pos(b))) + (sign * kt(a, b)) * fdd(:, at(pos(a)))
         end do
       end do
-      cd%cap(b, b) = cd%cap(b, b) + 1.0_dp
-    end do
+    end subroutine add_block
   end subroutine capacitance
 
   !> The positions pos (0: none) not yet in the set at (at(p) its index
@@ -759,9 +782,9 @@ contains
 
   !> The status just factored densely becomes the reference of the
   !> low-rank solves where it may be one (no exact CFE, not stabilised)
-  !> and is likely to pay: its closed CFEs touch at most an eighth of the
+  !> and is likely to pay: its closed CFEs touch at most a quarter of the
   !> contact equations (a later status, with the reference's and its own
-  !> closed CFEs, within lowrank_status's quarter). finv = S^-1 column by
+  !> closed CFEs, within lowrank_status's half). finv = S^-1 column by
   !> column (about two dense factorisations' work), its closed CFEs'
   !> positions and tangents.
   subroutine set_reference(cd, cs)
@@ -777,7 +800,7 @@ contains
     do j = 1, cs%n
       if (cs%c(j)%closed) call add_positions(cd%cfe_pos(:, j), at, k)
     end do
-    if (8 * k > cd%m) return
+    if (4 * k > cd%m) return
     if (allocated(cd%finv)) then
       if (size(cd%finv, 1) /= cd%m) deallocate(cd%finv)
     end if
