@@ -18,6 +18,12 @@
 !> factor's trailing order (sys_trailing_order).
 !> Measurements and the choice against the other ways in (a Schur
 !> complement by many right-hand sides, Woodbury): docs/benchmark.md.
+!> A linear step paired again at every increment (UPDATE SEARCH) numbers
+!> the contact equations for the zone its pairings reach, keeps the
+!> numbering and K0's factor across pairings (condensed_repair) and
+!> solves a status near a reference one in low-rank form: the
+!> reference's inverse, a capacitance matrix on the closed couplings'
+!> equations, a refinement against S (docs/fretting.md, "Cost").
 module condensed_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
