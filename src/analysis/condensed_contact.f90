@@ -1108,12 +1108,14 @@ contains
   !> solved by the capacitance matrix (Woodbury's identity: with
   !> F = S_ref^-1 and y = F r, E^T x = cap^-1 E^T y and
   !> x = y - F E dmat E^T x), then refined against S itself: r - S x
-  !> solved by M again and added, until a correction is below 1e-13 of x
-  !> or no longer half the last one (round-off: the residual of S's
-  !> solution, as the dense factor's, is about cond(S) eps), at most
-  !> max_refine times. The first correction takes the open CFEs' share of
-  !> S - M (1e-12 of a closed one's) and Woodbury's round-off: measured on
-  !> McColl's case, 3e-13 of x, the second 1e-14 (the floor).
+  !> solved by M again and added. A correction c of x is about
+  !> rho |x| with rho = |M^-1 (S - M)| (the open CFEs' share of S - M,
+  !> 1e-12 of a closed one's, and Woodbury's round-off), and leaves an
+  !> error of about rho |c| = |c|^2 / |x|: the refinement stops once a
+  !> correction is below 1e-8 of x (the error left below 1e-16 of x, the
+  !> round-off of S's own solution), or no longer half the last one (the
+  !> round-off floor), at most max_refine times. Measured on McColl's
+  !> case: the first correction 3e-13 of x, so one refinement.
   subroutine lowrank_solve(cd, x)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(inout) :: x(:)
@@ -1129,7 +1131,7 @@ contains
       call apply_reference(cd, dx)
       x = x + dx
       now = maxval(abs(dx))
-      if (.not. (now > 1.0e-13_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)) exit
+      if (.not. (now > 1.0e-8_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)) exit
       last = now
     end do
   end subroutine lowrank_solve
