@@ -116,7 +116,9 @@ module condensed_contact
     !> itself: S0 and the status's tangents kt_all (kt_ng rows each).
     logical :: lowrank = .false., ref_valid = .false.
     !> s0_full: S0 of the bodies alone as a whole (symmetric) matrix, for
-    !> the refinement's products (column by column).
+    !> the refinement's products (column by column); made with the first
+    !> reference of a factor of K0. The low-rank form keeps two more m x m
+    !> matrices (s0_full, finv) beside l22 and s.
     real(dp), allocatable :: s0_full(:, :)
     real(dp), allocatable :: finv(:, :), ref_k(:, :, :), kt_all(:, :, :), dmat(:, :), cap(:, :)
     integer, allocatable :: ref_pos(:, :), kt_ng(:), dset(:), cap_piv(:)
@@ -371,14 +373,22 @@ contains
       end do
     end do
     cd%ke0 = 0.0_dp
+    ! (the whole copy of S0 is made with the first reference, set_reference)
     if (allocated(cd%s0_full)) deallocate(cd%s0_full)
+  end subroutine bodies_alone
+
+  !> s0_full: S0 of the bodies alone as a whole matrix (from its diagonal
+  !> and strict lower triangle).
+  subroutine whole_s0(cd)
+    type(condensed_t), intent(inout) :: cd
+    integer :: b
     allocate(cd%s0_full(cd%m, cd%m))
     do b = 1, cd%m
       cd%s0_full(b, b) = cd%s0_diag(b)
       cd%s0_full(b + 1:cd%m, b) = cd%l22(b + 1:cd%m, b)
       cd%s0_full(b, b + 1:cd%m) = cd%l22(b + 1:cd%m, b)
     end do
-  end subroutine bodies_alone
+  end subroutine whole_s0
 
   !> Purpose: the couplings of cs were paired again (a linear step's
   !> UPDATE SEARCH) and the equations were numbered for a zone
@@ -807,6 +817,7 @@ contains
       if (cs%c(j)%closed) call add_positions(cd%cfe_pos(:, j), at, k)
     end do
     if (4 * k > cd%m) return
+    if (.not. allocated(cd%s0_full)) call whole_s0(cd)
     if (allocated(cd%finv)) then
       if (size(cd%finv, 1) /= cd%m) deallocate(cd%finv)
     end if
