@@ -807,13 +807,15 @@ contains
     end do
   end subroutine heat_fluxes
 
-  !> Purpose: the step's factorisations and iterations (the solves of its
-  !> increments and their tries: one each where the step is linear).
+  !> Purpose: the step's factorisations (also apart: the listing's per
+  !> field line) and iterations (the solves of its increments and their
+  !> tries: one each where the step is linear).
   subroutine end_step(f, obs, summary)
     class(temperature_field_t), intent(inout) :: f
     type(observer_ref_t), intent(in) :: obs(:)
     type(step_summary_t), intent(inout) :: summary
     summary%factorisations = summary%factorisations + f%factorisations
+    summary%temperature_factorisations = f%factorisations
     summary%newton_iterations = summary%newton_iterations + f%iterations
     f%run_factorisations = f%run_factorisations + f%factorisations
     f%factorisations = 0
@@ -821,18 +823,24 @@ contains
   end subroutine end_step
 
   !> Purpose: the heat couplings of the contact (contact_heat) for the
-  !> next solve, from a coupled run's driver: the matrix is factorised
-  !> again, and its structure made again where the couplings join other
-  !> nodes.
+  !> next solve, from a coupled run's driver: the structure made again
+  !> where the couplings join other nodes; the matrix factorised again
+  !> only where a coupling's h A w w^T changed (a pressure-dependent
+  !> conductance, a point that opened or closed, a re-search), so that a
+  !> constant conductance keeps the factor across the passes and
+  !> increments as the conduction alone does (the frictional heat is on
+  !> the right-hand side only).
   subroutine take_contact_heat(f, m, ch)
     class(temperature_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
     type(contact_heat_t), intent(in) :: ch
-    logical :: same
+    logical :: same, same_matrix
     same = same_couplings(f%ch, ch)
+    same_matrix = .false.
+    if (same .and. ch%n > 0) same_matrix = all(f%ch%ha == ch%ha) .and. all(f%ch%w == ch%w)
     f%ch = ch
     if (.not. same .and. allocated(f%eqn)) call number_temperatures(f, m)
-    f%factored_dt = -1.0_dp
+    if (.not. same_matrix) f%factored_dt = -1.0_dp
   end subroutine take_contact_heat
 
   !> Purpose: the temperature field's factorisations (their count too)
