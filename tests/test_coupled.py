@@ -669,3 +669,71 @@ def test_model_data_temperatures_in_a_coupled_deck():
     # q = 100 / (1/50 + 1/25 + 1/50) = 1250 through the blocks of k 50 and h 25: A's top at 100 - q/50
     nt = inc_b.block("NODE NT", set="ATOP")["NT11"]
     assert all(abs(t - 75.0) < 1e-9 * 75.0 for t in nt), nt
+
+
+def transient(text, dt=0.1, period=1.0):
+    """A blocks_deck made a transient coupled step of fixed increments
+    (DIRECT, period / dt of them), rho c = 100 in both blocks."""
+    text = text.replace("*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE",
+                        f"*COUPLED TEMPERATURE-DISPLACEMENT, DIRECT\n{dt}, {period}")
+    return text.replace("*CONDUCTIVITY\n", "*DENSITY\n1.\n*SPECIFIC HEAT\n100.\n*CONDUCTIVITY\n")
+
+
+def per_field(run):
+    """The step summary's numeric factorisations per field: (temperature,
+    displacement), and the condensed factorisations."""
+    block = [b for b in run.listing.header if b.name == "STEP SUMMARY"][-1].as_dict()
+    words = dict(w.split("=") for w in block["numeric_factorisations_per_field"].split())
+    assert int(words["temperature"]) + int(words["displacement"]) == int(block["numeric_factorisations"]), block
+    return int(words["temperature"]), int(words["displacement"]), int(block["condensed_factorisations"])
+
+
+def test_coupled_step_factors_bodies_once():
+    """A coupled step keeps the condensed contact solve for the
+    displacements: the blocks through a gap conductance, a transient of 10
+    fixed increments (each of 2 or more passes of the two fields), with
+    CONTACT SOLVE=CONDENSED: the bodies are factored once for the whole
+    step (the listing's per-field line: displacement=1, one condensed
+    factorisation: the status holds), with segment-to-segment and with a
+    SMALL SLIDING node-to-segment pair (searched once); the temperature
+    matrix once too where the conductance is constant (h = 25: its
+    couplings' h A w w^T do not change), again at every pass where it
+    follows the pressure (h(p) = 10 + 0.18 p on blocks held at both ends:
+    more than one per increment). Every increment's temperatures, reaction
+    fluxes, displacements and contact force equal those of CONTACT
+    SOLVE=FULL (1e-9 of each block's largest value)."""
+    const = transient(blocks_deck("SURFACE TO SURFACE", "25.\n"))
+    two_way = transient(blocks_deck("SURFACE TO SURFACE", "10., 0.\n100., 500.\n", k1=50.0, k2=10.0,
+                                    alpha=1.2e-5, top_held=True, shape="Q8", et="CPE8T", nx=1, ny=2))
+    small = const.replace("TYPE=SURFACE TO SURFACE", "TYPE=NODE TO SURFACE, SMALL SLIDING")
+    for name, text, constant in (("const", const, True), ("two_way", two_way, False), ("small", small, True)):
+        text = text.replace("*NODE PRINT, NSET=ATOP", "*NODE PRINT, NSET=NALL\nU\n*NODE PRINT, NSET=ATOP")
+        runs = {}
+        for solve in ("CONDENSED", "FULL"):
+            deck = text.replace("*STEP\n", f"*SOLVER, CONTACT SOLVE={solve}\n*STEP\n", 1)
+            runs[solve] = run_deck(f"coupled_factors_{name}_{solve.lower()}", deck).ok()
+        cond, full = runs["CONDENSED"], runs["FULL"]
+        t_cond, d_cond, c_cond = per_field(cond)
+        t_full, d_full, _ = per_field(full)
+        with open(cond.listing_path) as f:
+            passes = [int(line.split("settled in ")[1].split()[0]) for line in f if "settled in" in line]
+        assert len(cond.listing.increments) == 10 and len(passes) == 10 and min(passes) >= 2, (name, passes)
+        assert d_cond == 1 and c_cond == 1, (name, d_cond, c_cond)
+        assert d_full == 1, (name, d_full)
+        if constant:
+            assert t_cond == 1 and t_full == 1, (name, t_cond, t_full)
+        else:
+            assert t_cond > len(passes) and t_cond == t_full, (name, t_cond, t_full, passes)
+        print(f"  {name}: factorisations temperature {t_cond}, displacement {d_cond} (condensed {c_cond}) "
+              f"in 10 increments of {sum(passes)} passes")
+        for a, b in zip(cond.listing.increments, full.listing.increments):
+            for block, kw, comps in (("NODE NT", {"set": "ATOP"}, ("NT11",)), ("NODE NT", {"set": "BBOTTOM"},
+                                     ("NT11",)), ("NODE RFL", {"set": "BOTTOM"}, ("RFL11",)),
+                                     ("NODE U", {"set": "NALL"}, ("U1", "U2")),
+                                     ("CONTACT SUMMARY", {}, ("total_force",))):
+                x, y = a.block(block, **kw), b.block(block, **kw)
+                scale = max(max(abs(v) for v in y[c]) for c in comps)
+                assert scale > 0.0, (name, block)
+                for c in comps:
+                    err = max(abs(p - q) for p, q in zip(x[c], y[c]))
+                    assert err <= 1e-9 * scale, (name, a.attrs, block, c, err, scale)
