@@ -116,11 +116,12 @@ contains
   !> Purpose: CFE c's conductance times area ha and frictional heat per
   !> unit time into its slave (qs) and master (qm) side, from its pair's
   !> gap heat entry: a closed point at pressure p = -force / area conducts
-  !> h(p) A; sliding, it makes eta mu p A v of heat (v the given velocity
-  !> or the slip since its anchor over dt), the fraction f to the slave.
-  !> A pass of a two-pass pair takes half of each, at the interface's
-  !> pressure (twice the pass's own); f is the deck's slave surface's
-  !> share in both passes.
+  !> h(p) A, an open one nothing; with Abaqus's clearance table every
+  !> point conducts h(d) A (clearance_of: d = 0 closed). Sliding, a point
+  !> makes eta mu p A v of heat (v the given velocity or the slip since
+  !> its anchor over dt), the fraction f to the slave. A pass of a
+  !> two-pass pair takes half of each, at the interface's pressure (twice
+  !> the pass's own); f is the deck's slave surface's share in both passes.
   subroutine point_heat(m, c, dt, ha, qs, qm)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
@@ -130,12 +131,14 @@ contains
     ha = 0.0_dp
     qs = 0.0_dp
     qm = 0.0_dp
-    if (.not. c%closed .or. c%area <= 0.0_dp) return
+    if (c%area <= 0.0_dp) return
     share = merge(0.5_dp, 1.0_dp, m%pairs(c%pair)%twin /= 0)
     associate(g => m%gap_heats(m%pairs(c%pair)%gap_heat))
+      if (allocated(g%gc_h) .and. g%clearance) ha = share * clearance_conductance(g, clearance_of(c)) * c%area
+      if (.not. c%closed) return
       ! (a pass of a two-pass pair carries half of the interface's pressure)
       p = max(0.0_dp, -c%force / c%area) / share
-      if (allocated(g%gc_h)) ha = share * conductance_at(g, p) * c%area
+      if (allocated(g%gc_h) .and. .not. g%clearance) ha = share * conductance_at(g, p) * c%area
       if (.not. g%generation .or. c%mu <= 0.0_dp) return
       power = 0.0_dp
       if (g%velocity > 0.0_dp) then
@@ -155,8 +158,42 @@ contains
     end associate
   end subroutine point_heat
 
+  !> Purpose: the clearance of CFE c across the gap: 0 where it is
+  !> closed, else its gap along the master normal at the last evaluation
+  !> of the contact set (contact_forces). A coupling never evaluated (its
+  !> gap and force still 0: a heat transfer step before any mechanical
+  !> step of the run, or the first pass of a run's first increment) has
+  !> the gap of the initial search, the normal part of its initial
+  !> relative position gap0 (the gap at zero displacement, where it is
+  !> evaluated as well).
+  pure real(dp) function clearance_of(c) result(d)
+    type(cfe_t), intent(in) :: c
+    d = 0.0_dp
+    if (c%closed) return
+    d = c%gap
+    if (c%gap == 0.0_dp .and. c%force == 0.0_dp) d = dot_product(c%normal, c%gap0)
+    d = max(0.0_dp, d)
+  end function clearance_of
+
+  !> Purpose: Abaqus's conductance per unit area of gap heat entry g at
+  !> clearance d (its table's second column the clearances, increasing):
+  !> linear between the table's points, the first value below the first
+  !> clearance, zero beyond the last (Abaqus's keyword reference of *GAP
+  !> CONDUCTANCE: the conductance "drops to zero immediately after the
+  !> last data point").
+  pure real(dp) function clearance_conductance(g, d) result(h)
+    type(gap_heat_t), intent(in) :: g
+    real(dp), intent(in) :: d
+    integer :: n
+    n = size(g%gc_h)
+    h = 0.0_dp
+    if (d > g%gc_p(n)) return
+    h = conductance_at(g, d)
+  end function clearance_conductance
+
   !> Purpose: the conductance per unit area of gap heat entry g at contact
-  !> pressure p: linear in p between the table's points, constant beyond.
+  !> pressure p (or clearance): linear in p between the table's points,
+  !> constant beyond.
   pure real(dp) function conductance_at(g, p) result(h)
     type(gap_heat_t), intent(in) :: g
     real(dp), intent(in) :: p
