@@ -575,7 +575,8 @@ contains
     logical, intent(out) :: ok
     real(dp) :: ae(max_nodes, max_nodes), t0
     real(dp), allocatable :: ac(:, :)
-    integer :: k, n, status, bad
+    character(len=:), allocatable :: at
+    integer :: k, n, status, bad, a
     t0 = wall_time()
     call sys_zero(f%sys)
     do k = 1, size(f%elems)
@@ -589,13 +590,82 @@ contains
     end do
     call sys_factor(f%sys, status, bad)
     ok = status == factor_ok .or. status == factor_fallback
-    if (.not. ok) call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // ': the heat conduction ' // &
-      'matrix is singular at equation ' // itoa(bad) // ': a region without a prescribed temperature or a film ' // &
-      '(or radiating at absolute zero)')
+    if (.not. ok) then
+      ! a node of a region that nothing holds (floating_node), else the
+      ! one where the factorisation met the zero pivot (round-off decides
+      ! which), as an example
+      a = floating_node(f, m)
+      at = ':'
+      if (a > 0) then
+        at = ': node ' // node_label(m, a) // ' is in'
+      else if (bad > 0) then
+        a = findloc(f%eqn, bad, dim=1)
+        if (a > 0) at = ' (at node ' // node_label(m, a) // ', for example):'
+      end if
+      call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // ': the heat conduction matrix is ' // &
+        'singular' // at // ' a region without a prescribed temperature or a film (or radiating at absolute zero)')
+    end if
     f%factored_dt = merge(0.0_dp, f%dt, f%steady)
     f%factorisations = f%factorisations + 1
     f%t_factor = f%t_factor + (wall_time() - t0)
   end subroutine factor
+
+  !> The first node (in the model's order) of a region of conducting
+  !> elements, joined through their nodes and the contact's conducting
+  !> heat couplings, that has no prescribed temperature, film or
+  !> radiation, where a steady conduction matrix is singular; 0 if there
+  !> is none. It names the region in the error whatever the pivot order
+  !> (the node the factorisation stops at depends on round-off).
+  integer function floating_node(f, m) result(first)
+    class(temperature_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    integer, allocatable :: root(:)
+    logical, allocatable :: held(:)
+    integer :: k, e, n, j, a
+    allocate(root(m%nn), held(m%nn))
+    root = [(a, a = 1, m%nn)]
+    held = f%presc
+    do k = 1, size(f%elems)
+      e = f%elems(k)
+      n = elem_nodes(m, e)
+      do j = 2, n
+        call join(m%conn(1, e), m%conn(j, e))
+      end do
+      if (f%xfilm(k + 1) > f%xfilm(k) .or. f%xrad(k + 1) > f%xrad(k)) held(m%conn(1, e)) = .true.
+    end do
+    do k = 1, f%ch%n
+      if (f%ch%ha(k) <= 0.0_dp) cycle
+      do j = f%ch%xnode(k) + 1, f%ch%xnode(k + 1) - 1
+        call join(f%ch%node(f%ch%xnode(k)), f%ch%node(j))
+      end do
+    end do
+    do a = 1, m%nn
+      if (held(a)) held(top(a)) = .true.
+    end do
+    first = 0
+    do a = 1, m%nn
+      if (f%eqn(a) > 0 .and. .not. held(top(a))) then
+        first = a
+        return
+      end if
+    end do
+  contains
+    integer function top(i)
+      integer, intent(in) :: i
+      top = i
+      do while (root(top) /= top)
+        root(top) = root(root(top))      ! (path halving: short chains)
+        top = root(top)
+      end do
+    end function top
+    subroutine join(i, j2)
+      integer, intent(in) :: i, j2
+      integer :: ri, rj
+      ri = top(i)
+      rj = top(j2)
+      if (ri /= rj) root(max(ri, rj)) = min(ri, rj)
+    end subroutine join
+  end function floating_node
 
   !> The residual r(nn) = F - A T of every node at the current
   !> temperatures T (F with the radiation at T), and rhs(neq) its free
