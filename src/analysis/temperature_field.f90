@@ -907,7 +907,8 @@ contains
     logical :: same, same_matrix
     same = same_couplings(f%ch, ch)
     same_matrix = .false.
-    if (same .and. ch%n > 0) same_matrix = all(f%ch%ha == ch%ha) .and. all(f%ch%w == ch%w)
+    ! (the same structure: both were built, their arrays allocated)
+    if (same) same_matrix = all(f%ch%ha == ch%ha) .and. all(f%ch%w == ch%w)
     f%ch = ch
     if (.not. same .and. allocated(f%eqn)) call number_temperatures(f, m)
     if (.not. same_matrix) f%factored_dt = -1.0_dp

@@ -202,7 +202,9 @@ contains
   end subroutine read_conductance_table
 
   !> Purpose: is the deck an Abaqus/CAE one (a *PART or an *ASSEMBLY
-  !> anywhere in it), whose cards mean what Abaqus reads?
+  !> anywhere in it, before or after the card asking), whose cards mean
+  !> what Abaqus reads?
+  !> Arguments: p the parser (its deck's lines).
   logical function has_parts(p)
     type(parser_t), intent(in) :: p
     type(keyword_t) :: kw
