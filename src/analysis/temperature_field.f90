@@ -28,7 +28,8 @@ module temperature_field
   use increment_results, only: increment_results_t
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, wall_time
   use analysis_field, only: field_t
-  use contact_heat, only: contact_heat_t, contact_heat_matrix, contact_heat_residual, same_couplings
+  use contact_heat, only: contact_heat_t, contact_heat_matrix, contact_heat_residual, same_couplings, &
+                          same_matrices
   use messages, only: fatal
   implicit none
   private
@@ -591,19 +592,15 @@ contains
     call sys_factor(f%sys, status, bad)
     ok = status == factor_ok .or. status == factor_fallback
     if (.not. ok) then
-      ! a node of a region that nothing holds (floating_node), else the
-      ! one where the factorisation met the zero pivot (round-off decides
-      ! which), as an example
+      ! a region that nothing holds, named by its first node (the node of
+      ! the zero pivot is round-off's pick); without one the matrix is
+      ! singular to round-off only, which no node explains
       a = floating_node(f, m)
-      at = ':'
-      if (a > 0) then
-        at = ': node ' // node_label(m, a) // ' is in'
-      else if (bad > 0) then
-        a = findloc(f%eqn, bad, dim=1)
-        if (a > 0) at = ' (at node ' // node_label(m, a) // ', for example):'
-      end if
+      at = ' to round-off: conductances (*CONDUCTIVITY, *FILM, *GAP CONDUCTANCE) of too different magnitudes'
+      if (a > 0) at = ': node ' // node_label(m, a) // ' is in a region without a prescribed temperature ' // &
+                      'or a film (or radiating at absolute zero)'
       call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // ': the heat conduction matrix is ' // &
-        'singular' // at // ' a region without a prescribed temperature or a film (or radiating at absolute zero)')
+        'singular' // at)
     end if
     f%factored_dt = merge(0.0_dp, f%dt, f%steady)
     f%factorisations = f%factorisations + 1
@@ -908,7 +905,7 @@ contains
     same = same_couplings(f%ch, ch)
     same_matrix = .false.
     ! (the same structure: both were built, their arrays allocated)
-    if (same) same_matrix = all(f%ch%ha == ch%ha) .and. all(f%ch%w == ch%w)
+    if (same) same_matrix = same_matrices(f%ch, ch)
     f%ch = ch
     if (.not. same .and. allocated(f%eqn)) call number_temperatures(f, m)
     if (.not. same_matrix) f%factored_dt = -1.0_dp

@@ -27,7 +27,7 @@ module contact_heat
   implicit none
   private
   public :: contact_heat_t, contact_heat_build, contact_heat_matrix, contact_heat_residual, same_couplings, &
-            contact_heat_flux, has_contact_heat
+            same_matrices, contact_heat_flux, has_contact_heat
 
   !> The heat couplings of a contact set: n of them, coupling k of CFE
   !> cfe(k) joining nodes node(xnode(k):xnode(k+1)-1) with the jump
@@ -275,6 +275,23 @@ contains
     if (size(a%node) /= size(b%node)) return
     same_couplings = all(a%xnode == b%xnode) .and. all(a%node == b%node)
   end function same_couplings
+
+  !> Purpose: do a and b, which couple the same nodes (same_couplings),
+  !> add the same matrices h A w w^T to the temperature equations? A
+  !> coupling that conducts nothing in both adds nothing whatever its
+  !> weights (which move by round-off where the contact is searched
+  !> again: the factor is kept the same on every build).
+  pure logical function same_matrices(a, b)
+    type(contact_heat_t), intent(in) :: a, b
+    integer :: k
+    same_matrices = all(a%ha == b%ha)
+    if (.not. same_matrices) return
+    do k = 1, a%n
+      if (a%ha(k) == 0.0_dp) cycle
+      same_matrices = all(a%w(a%xnode(k):a%xnode(k + 1) - 1) == b%w(b%xnode(k):b%xnode(k + 1) - 1))
+      if (.not. same_matrices) return
+    end do
+  end function same_matrices
 
   !> Purpose: the heat flux across each CFE of the contact set (ncfe of
   !> them) at temperatures temp: per unit area, from the slave side to the
