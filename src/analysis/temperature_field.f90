@@ -647,6 +647,7 @@ contains
       end if
     end do
   contains
+    !> The root of node i's region (its smallest node once joined).
     integer function top(i)
       integer, intent(in) :: i
       top = i
@@ -655,6 +656,7 @@ contains
         top = root(top)
       end do
     end function top
+    !> Nodes i and j2 in one region.
     subroutine join(i, j2)
       integer, intent(in) :: i, j2
       integer :: ri, rj
