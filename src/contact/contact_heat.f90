@@ -19,6 +19,7 @@
 !> evaluation of the contact set (contact_forces): its pressures and the
 !> slip of its sliding points since their anchors.
 module contact_heat
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kinds, only: dp
   use model, only: model_t, gap_heat_t, elem_nodes
   use element_catalogue, only: catalogue, max_nodes
@@ -199,7 +200,12 @@ contains
     real(dp), intent(in) :: p
     integer :: k, n
     n = size(g%gc_h)
-    if (n == 1 .or. p <= g%gc_p(1)) then
+    if (ieee_is_nan(p)) then
+      ! (a pressure or clearance that is not a number, magnitudes of the
+      ! deck that overflow: so is the conductance, and the temperatures
+      ! stop the run naming a node, temperature_field)
+      h = p
+    else if (n == 1 .or. p <= g%gc_p(1)) then
       h = g%gc_h(1)
     else if (p >= g%gc_p(n)) then
       h = g%gc_h(n)
