@@ -708,9 +708,9 @@ def test_coupled_step_factors_bodies_once():
     factorisation: the status holds), with segment-to-segment and with a
     SMALL SLIDING node-to-segment pair (searched once); the temperature
     matrix once too where the conductance is constant (h = 25: its
-    couplings' h A w w^T do not change), again at every pass where it
+    couplings' h A w w^T do not change), again at the passes where it
     follows the pressure (h(p) = 10 + 0.18 p on blocks held at both ends:
-    more than one per increment). Every increment's temperatures, reaction
+    more than once per increment, the same count with either solve). Every increment's temperatures, reaction
     fluxes, displacements and contact force equal those of CONTACT
     SOLVE=FULL (1e-9 of each block's largest value)."""
     const = transient(blocks_deck("SURFACE TO SURFACE", "25.\n"))

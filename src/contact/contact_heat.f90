@@ -41,6 +41,11 @@ module contact_heat
     real(dp), allocatable :: w(:), ha(:), qs(:), qm(:), area(:)
   end type contact_heat_t
 
+  !> Couplings whose h A and weights differ by at most this fraction of
+  !> the largest are the same matrix (same_matrices): far below what the
+  !> passes settle to (1e-9), far above round-off.
+  real(dp), parameter :: same_tolerance = 1.0e-12_dp
+
 contains
 
   !> Purpose: does some pair of model m carry heat through its contact?
@@ -283,18 +288,26 @@ contains
   end function same_couplings
 
   !> Purpose: do a and b, which couple the same nodes (same_couplings),
-  !> add the same matrices h A w w^T to the temperature equations? A
-  !> coupling that conducts nothing in both adds nothing whatever its
-  !> weights (which move by round-off where the contact is searched
-  !> again: the factor is kept the same on every build).
+  !> add the same matrices h A w w^T to the temperature equations, to
+  !> round-off (same_tolerance of the largest h A, and of the largest
+  !> weight)? A coupling that conducts nothing in both adds nothing
+  !> whatever its weights (they move by round-off where the contact is
+  !> searched again). Round-off must not decide: the two builds, and the
+  !> BLAS kernels, then keep or renew the factor alike.
   pure logical function same_matrices(a, b)
     type(contact_heat_t), intent(in) :: a, b
+    real(dp) :: hmax, wmax
     integer :: k
-    same_matrices = all(a%ha == b%ha)
+    same_matrices = .true.
+    if (a%n == 0) return
+    hmax = max(maxval(abs(a%ha)), maxval(abs(b%ha)))
+    wmax = max(maxval(abs(a%w)), maxval(abs(b%w)))
+    same_matrices = all(abs(a%ha - b%ha) <= same_tolerance * hmax)
     if (.not. same_matrices) return
     do k = 1, a%n
-      if (a%ha(k) == 0.0_dp) cycle
-      same_matrices = all(a%w(a%xnode(k):a%xnode(k + 1) - 1) == b%w(b%xnode(k):b%xnode(k + 1) - 1))
+      if (a%ha(k) == 0.0_dp .and. b%ha(k) == 0.0_dp) cycle
+      same_matrices = all(abs(a%w(a%xnode(k):a%xnode(k + 1) - 1) - b%w(b%xnode(k):b%xnode(k + 1) - 1)) <= &
+                          same_tolerance * wmax)
       if (.not. same_matrices) return
     end do
   end function same_matrices
