@@ -209,9 +209,16 @@ contains
     character(len=*), intent(in) :: text
     integer, intent(in) :: ifile, lineno
     type(deck_line_t), allocatable :: tmp(:)
+    integer :: i
     if (deck%n == size(deck%lines)) then
       allocate(tmp(new_capacity(deck%n, deck%n + 1)))
-      tmp(1:deck%n) = deck%lines(1:deck%n)
+      ! each line's text moved, not copied: an assignment of the array
+      ! would allocate and copy every line again at every growth
+      do i = 1, deck%n
+        call move_alloc(deck%lines(i)%text, tmp(i)%text)
+        tmp(i)%file = deck%lines(i)%file
+        tmp(i)%line = deck%lines(i)%line
+      end do
       call move_alloc(tmp, deck%lines)
     end if
     deck%n = deck%n + 1
