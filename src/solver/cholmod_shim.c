@@ -164,6 +164,9 @@ int cfe_cholmod_factor(void *handle, int n, int *ap, int *ai, double *ax, int ns
         }
     }
     free(diag);
+    /* the workspace in Common (n-sized integer arrays) is made again by
+     * the next factorisation; the solves do without it */
+    cholmod_free_work(&h->c);
     return CFE_OK;
 }
 
