@@ -326,12 +326,20 @@ contains
     call factor_made(st%eq, st%cs)
   end subroutine condensed_factor_if_needed
 
-  !> One dense factorisation of the condensed matrix (counted).
+  !> The condensed matrix of the status: one dense factorisation, or
+  !> (UPDATE SEARCH in a linear step) the low-rank form against the
+  !> reference's inverse, which factors nothing of size m; each counted
+  !> on its own (condensed_factorisations, condensed_lowrank).
   subroutine dense_status(st, kbody, status, bad)
     type(iteration_t), intent(inout) :: st
     real(dp), intent(in) :: kbody
     integer, intent(out) :: status, bad
     call condensed_status(st%eq%cd, st%m, st%cs, st%dm, kbody, st%eq%counts, status, bad)
+    if (st%eq%cd%lowrank) then
+      st%eq%condensed_lowrank = st%eq%condensed_lowrank + 1
+      st%eq%timing%condensed_lowrank = st%eq%timing%condensed_lowrank + 1
+      return
+    end if
     st%eq%condensed_factorisations = st%eq%condensed_factorisations + 1
     st%eq%timing%condensed_factorisations = st%eq%timing%condensed_factorisations + 1
   end subroutine dense_status

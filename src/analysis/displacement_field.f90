@@ -510,6 +510,7 @@ contains
       ' times for changed couplings')
     summary%factorisations = summary%factorisations + f%eq%factorisations
     summary%condensed_factorisations = f%eq%condensed_factorisations
+    summary%condensed_lowrank = f%eq%condensed_lowrank
     summary%iterations = f%eq%iterations
     summary%block_pivots = f%eq%search%block_pivots
     summary%single_pivots = f%eq%search%single_pivots
@@ -533,6 +534,7 @@ contains
       t%recovery = t%recovery + e%recovery
       t%numeric_factorisations = t%numeric_factorisations + e%numeric_factorisations
       t%condensed_factorisations = t%condensed_factorisations + e%condensed_factorisations
+      t%condensed_lowrank = t%condensed_lowrank + e%condensed_lowrank
     end associate
   end subroutine finish
 end module displacement_field
