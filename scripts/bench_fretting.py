@@ -89,7 +89,9 @@ def row(label, wall, n, t, d, w, note=""):
     print(f"{label:<34} {wall:9.1f} s {n:8d} inc {per:7.2f} ms/inc  depth {d:.3f} um, width {w:.3f} mm{note}")
     print(f"{'':<34} CPU {t['cpu']:.1f} s ({1e3 * t['cpu'] / n:.2f} ms/inc), load average before {t['load']:.1f}")
     print(f"{'':<34} per increment (wall ms): {split}; numeric factorisations "
-          f"{int(t.get('numeric_factorisations', 0))}")
+          f"{int(t.get('numeric_factorisations', 0))}, condensed factorisations "
+          f"{int(t.get('condensed_factorisations', 0))}, low-rank statuses "
+          f"{int(t.get('condensed_lowrank_statuses', 0))}")
 
 
 def table(cycles=50, skip_jump=False):

@@ -51,8 +51,8 @@ sys.path.insert(0, HERE)
 
 # what a test run leaves beside its decks that is output, not input
 OUTPUT_ENDINGS = (".out", ".csv", ".vtu", ".pvd", ".frd", ".msh", ".ref", ".dat", ".sta", ".cvg")
-COUNT_KEYS = ("numeric_factorisations", "condensed_factorisations", "contact_iterations", "newton_iterations",
-              "cutbacks", "contact_block_pivots", "contact_single_pivots")
+COUNT_KEYS = ("numeric_factorisations", "condensed_factorisations", "condensed_lowrank_statuses", "contact_iterations",
+              "newton_iterations", "cutbacks", "contact_block_pivots", "contact_single_pivots")
 MESHES = ("coarse", "default", "fine")
 COUPLINGS = ("NODE TO SURFACE", "SURFACE TO SURFACE")
 

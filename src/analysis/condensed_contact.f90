@@ -43,7 +43,8 @@ module condensed_contact
   private
   public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
-            condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair
+            condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair, &
+            condense_change, condensed_begin_lazy, s0_times
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -122,6 +123,26 @@ module condensed_contact
     real(dp), allocatable :: s0_full(:, :)
     real(dp), allocatable :: finv(:, :), ref_k(:, :, :), kt_all(:, :, :), dmat(:, :), cap(:, :)
     integer, allocatable :: ref_pos(:, :), kt_ng(:), dset(:), cap_piv(:)
+    !> Increments solved on the contact equations alone (keep_pairing;
+    !> docs/fretting.md, "Cost"). The condensed right-hand side of an
+    !> increment that starts from u (free dofs those of the last converged
+    !> increment) under loads fext is
+    !>   q0 = qnext + C (fext - fext_last - K_body (u - u_last))
+    !> with C the condensation r -> L22 z2 (z = L^-1 P r), qnext = q0 - S0 x2
+    !> of the last converged increment (C of K_body is S0 on the contact
+    !> equations: S0 u_C; the other equations cancel), fext_last its loads.
+    !> The change of the loads and prescribed values lies in the span of a
+    !> few directions (basis, orthonormal, n x nb; a load scaled by an
+    !> amplitude is one), each condensed once (basis_q, m x nb), so that an
+    !> increment needs no forward solve; the other equations are recovered
+    !> only where results need them (condensed_equilibrium's
+    !> condensed_complete). z_valid: z is the forward solve of this
+    !> increment's start (condensed_begin); lazy: the last converged
+    !> increment was not recovered (u's other equations are those of an
+    !> earlier increment); qnext_fresh: qnext was made from the last x2.
+    logical :: z_valid = .false., lazy = .false., qnext_valid = .false., qnext_fresh = .false.
+    real(dp), allocatable :: qnext(:), fext_last(:, :), basis(:, :), basis_q(:, :)
+    integer :: nb = 0
   end type condensed_t
 
 contains
@@ -346,6 +367,12 @@ contains
     end do
     call map_cfes(cd, m, cs, dm, open_set, counts)
     cd%ref_valid = .false.
+    ! a new factor: no condensed direction or right-hand side carries over
+    cd%nb = 0
+    if (allocated(cd%qnext)) deallocate(cd%qnext)
+    cd%qnext_valid = .false.
+    cd%qnext_fresh = .false.
+    cd%z_valid = .false.
     if (cd%keep_pairing) call bodies_alone(cd, cs%n)
   end subroutine condensed_factor_k0
 
@@ -868,7 +895,87 @@ contains
     call sys_forward(sys, cd%z)
     cd%q0 = cd%z(cd%n - cd%m + 1:cd%n)
     call upper_times(cd%l22, cd%q0, .true.)
+    cd%z_valid = .true.
   end subroutine condensed_begin
+
+  !> Purpose: the start of an increment on the contact equations alone
+  !> (keep_pairing, qnext_valid): u (prescribed values in place, free
+  !> dofs the last converged increment's) kept as the start, the
+  !> condensed right-hand side q0 = qnext + dq, dq the condensed change of
+  !> the loads (condense_change); no forward solve (z_valid false).
+  subroutine condensed_begin_lazy(cd, m, dm, u, dq)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: u(:, :), dq(:)
+    integer :: a, d, e
+    cd%u0 = u
+    if (.not. allocated(cd%fw)) then
+      allocate(cd%fw(2, m%nn))
+      cd%fw = 0.0_dp
+    end if
+    cd%umax_rest = 0.0_dp
+    do a = 1, m%nn
+      do d = 1, 2
+        e = dm%eq(d, a)
+        if (e > 0) then
+          if (cd%pos(e) > 0) cycle
+        end if
+        cd%umax_rest = max(cd%umax_rest, abs(u(d, a)))
+      end do
+    end do
+    cd%q0 = cd%qnext + dq
+    cd%z_valid = .false.
+  end subroutine condensed_begin_lazy
+
+  !> Purpose: dq = C r, the condensed part of a change r(n) of the
+  !> right-hand side (overwritten): r projected on the basis of directions
+  !> condensed before (twice, Gram-Schmidt with reorthogonalisation); a
+  !> remainder above 1e-13 of |r| becomes a new direction, condensed by one
+  !> forward solve (z = L^-1 P w, L22 z2); past max_basis directions the
+  !> remainder is condensed without being kept. A remainder below 1e-13
+  !> of |r| is left out (round-off of r itself).
+  subroutine condense_change(cd, sys, r, dq)
+    type(condensed_t), intent(inout) :: cd
+    type(linear_system_t), intent(inout) :: sys
+    real(dp), intent(inout) :: r(:)
+    real(dp), intent(out) :: dq(:)
+    integer, parameter :: max_basis = 8
+    real(dp) :: rnorm, rest, beta
+    real(dp), allocatable :: w(:), q(:)
+    integer :: k, pass
+    logical :: kept
+    dq = 0.0_dp
+    rnorm = norm2(r)
+    if (rnorm == 0.0_dp) return
+    if (allocated(cd%basis)) then
+      if (size(cd%basis, 1) /= cd%n .or. size(cd%basis_q, 1) /= cd%m) deallocate(cd%basis, cd%basis_q)
+    end if
+    if (.not. allocated(cd%basis)) then
+      allocate(cd%basis(cd%n, max_basis), cd%basis_q(cd%m, max_basis))
+      cd%nb = 0
+    end if
+    do pass = 1, 2
+      do k = 1, cd%nb
+        beta = dot_product(cd%basis(:, k), r)
+        r = r - beta * cd%basis(:, k)
+        dq = dq + beta * cd%basis_q(:, k)
+      end do
+    end do
+    rest = norm2(r)
+    if (rest <= 1.0e-13_dp * rnorm) return
+    w = r / rest
+    kept = cd%nb < max_basis
+    if (kept) then
+      cd%nb = cd%nb + 1
+      cd%basis(:, cd%nb) = w
+    end if
+    call sys_forward(sys, w)
+    q = w(cd%n - cd%m + 1:cd%n)
+    call upper_times(cd%l22, q, .true.)
+    if (kept) cd%basis_q(:, cd%nb) = q
+    dq = dq + rest * q
+  end subroutine condense_change
 
   !> Purpose: the CFEs' internal forces at displacements u on the contact
   !> equations, f(m) in trailing order (the contact layer also keeps each
@@ -964,6 +1071,7 @@ contains
     call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
     cd%gap_start = cs%c(1:cs%n)%gap
     cd%x2 = cd%q0 - fc
+    cd%qnext_fresh = .false.
     call solve_s(cd, cd%x2)
     finite = all(ieee_is_finite(cd%x2))
     call add_contact_part(cd, dm, u)
@@ -1193,6 +1301,22 @@ contains
       end do
     end do
   end subroutine status_times
+
+  !> Purpose: y = S0 x, S0 from its diagonal and strict lower triangle
+  !> (with keep_pairing the bodies' Schur complement alone), column by
+  !> column in a fixed order.
+  subroutine s0_times(cd, x, y)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: y(:)
+    integer :: j, mc
+    mc = cd%m
+    y = cd%s0_diag(1:mc) * x(1:mc)
+    do j = 1, mc - 1
+      y(j + 1:mc) = y(j + 1:mc) + cd%l22(j + 1:mc, j) * x(j)
+      y(j) = y(j) + dot_product(cd%l22(j + 1:mc, j), x(j + 1:mc))
+    end do
+  end subroutine s0_times
 
   !> u(contact equations) = u0 + x2.
   subroutine add_contact_part(cd, dm, u)

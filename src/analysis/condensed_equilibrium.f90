@@ -21,13 +21,15 @@ module condensed_equilibrium
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use contact, only: contact_forces
-  use assembly, only: body_forces, free_residual, nonlinear_body_forces, body_predictor_forces
-  use dof_numbering, only: expand_dependent, reduce_dependent
-  use linear_solver, only: sys_analyse, factor_singular
+  use model, only: model_t
+  use assembly, only: body_t, body_forces, free_residual, nonlinear_body_forces, body_predictor_forces
+  use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
+  use linear_solver, only: linear_system_t, sys_analyse, sys_forward, factor_singular
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
-                               condensed_energy, direct_multipliers, condensed_multipliers
-  use equilibrium_common, only: relative_residual, check_finite, describe, singular, stabilise_open, &
+                               condensed_energy, direct_multipliers, condensed_multipliers, condense_change, &
+                               condensed_begin_lazy, s0_times
+  use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, stabilise_open, &
                                 set_aside_or_stop, factor_fits, factor_made
   use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
   use analysis_events, only: tell_note, wall_time
@@ -36,7 +38,7 @@ module condensed_equilibrium
   use contact_repairing, only: search_in_iteration, coupling_length
   implicit none
   private
-  public :: condensed_path_t, newton_condensed_path_t
+  public :: condensed_path_t, newton_condensed_path_t, condensed_complete
 
   !> The condensed path's state in an increment. Exact enforcement solves
   !> the multipliers directly per status (no augmentation: augmented
@@ -179,7 +181,24 @@ contains
       call tell_note(st%obs, 'exact contact: ' // trim(buf) // ' direct multiplier solves in the increment')
     end if
     st%eq%u_last = st%u
-    st%eq%fbody_last = st%eq%fbody
+    associate(cd => st%eq%cd)
+      if (cd%lazy) then
+        ! the bodies' forces of u's other equations are not at hand
+        if (allocated(st%eq%fbody_last)) deallocate(st%eq%fbody_last)
+      else
+        st%eq%fbody_last = st%eq%fbody
+      end if
+      if (cd%keep_pairing) then
+        ! the next increment's condensed right-hand side (condensed_begin_lazy)
+        if (.not. cd%qnext_fresh) then
+          if (.not. allocated(cd%qnext)) allocate(cd%qnext(cd%m))
+          call s0_times(cd, cd%x2, cd%qnext)
+          cd%qnext = cd%q0 - cd%qnext
+        end if
+        cd%fext_last = st%fext
+        cd%qnext_valid = .true.
+      end if
+    end associate
   end subroutine condensed_converged
 
   !> The start of the increment: the free equations from the last
@@ -191,7 +210,11 @@ contains
     associate(eq => st%eq, m => st%m, dm => st%dm, u => st%u)
       if (allocated(eq%u_last)) where (dm%eq > 0) u = eq%u_last
       call expand_dependent(dm, u)
-      if (allocated(eq%u_last)) then
+      if (lazy_start(st)) then
+        call start_on_contact_equations(st)
+        return
+      end if
+      if (allocated(eq%u_last) .and. allocated(eq%fbody_last)) then
         fbody = eq%fbody_last
         call add_body_forces(m, st%body, u - eq%u_last, fbody)
       else
@@ -202,16 +225,167 @@ contains
     end associate
   end subroutine start_from_last
 
+  !> May this increment be solved on the contact equations alone
+  !> (docs/fretting.md, "Cost")? A linear step paired at every increment
+  !> (keep_pairing) whose couplings are all penalty ones, not stabilised,
+  !> without dependent dofs at their nodes: their forces are then affine
+  !> in the contact equations (the status solve's), and only results
+  !> need the other equations.
+  logical function lazy_path(st)
+    type(iteration_t), intent(in) :: st
+    lazy_path = .false.
+    if (.not. st%eq%cd%keep_pairing .or. st%body%nonlinear .or. st%cs%stabilised) return
+    if (size(st%eq%cd%cdep) > 0) return
+    lazy_path = .not. any(st%cs%c(1:st%cs%n)%exact)
+  end function lazy_path
+
+  !> Does the increment start on the contact equations alone: lazy_path,
+  !> and the last converged increment left its condensed right-hand side
+  !> for this numbering (qnext_valid) with its loads?
+  logical function lazy_start(st)
+    type(iteration_t), intent(in) :: st
+    lazy_start = .false.
+    if (.not. lazy_path(st) .or. .not. st%eq%cd%qnext_valid) return
+    if (.not. allocated(st%eq%u_last) .or. .not. allocated(st%eq%cd%fext_last)) return
+    lazy_start = size(st%eq%cd%qnext) == st%eq%cd%m
+  end function lazy_start
+
+  !> The start of an increment on the contact equations alone: the change
+  !> of the right-hand side since the last converged increment,
+  !> r = f_ext - f_ext,last - K_body (u - u_last) (only prescribed values
+  !> moved; the elements they touch), condensed through the directions
+  !> condensed before (condense_change), added to that increment's qnext.
+  subroutine start_on_contact_equations(st)
+    type(iteration_t), intent(inout) :: st
+    real(dp), allocatable :: df(:, :), r(:), dq(:)
+    associate(eq => st%eq, cd => st%eq%cd, m => st%m, dm => st%dm, u => st%u)
+      allocate(df(2, m%nn), r(cd%n), dq(cd%m))
+      df = 0.0_dp
+      call add_body_forces(m, st%body, u - eq%u_last, df)
+      call free_residual(dm, st%fext - cd%fext_last, df, r)
+      call condense_change(cd, st%sys, r, dq)
+      call condensed_begin_lazy(cd, m, dm, u, dq)
+    end associate
+  end subroutine start_on_contact_equations
+
+  !> The settled status's out-of-balance on the contact equations alone
+  !> (lazy_path): q0 - S0 x2 - f_CFE(u), the rest of K u = f being
+  !> in balance by construction once recovered (a linear step), relative
+  !> to the scale of change_residual; S0 x2 kept for the next increment
+  !> (qnext). The reactions' contact and load parts are put in rf (the
+  !> bodies' part is added where the increment is recovered,
+  !> condensed_complete). ok false where it is not below the tolerance:
+  !> the caller recovers the whole solution as the full path does.
+  subroutine settled_on_contact_equations(st, ok)
+    type(iteration_t), intent(inout) :: st
+    logical, intent(out) :: ok
+    real(dp) :: fc(st%eq%cd%m), ref, umax, r
+    integer :: p, e
+    associate(eq => st%eq, cd => st%eq%cd, cs => st%cs, dm => st%dm, u => st%u, rf => st%rf)
+      rf = 0.0_dp
+      call contact_forces(st%m, cs, u, rf, eq%counts%coupling)
+      umax = cd%umax_rest
+      do p = 1, cd%m
+        e = cd%eq_at(p)
+        fc(p) = rf(dm%dof_of_eq(e), dm%node_of_eq(e))
+        umax = max(umax, abs(u(dm%dof_of_eq(e), dm%node_of_eq(e))))
+      end do
+      rf = rf - st%fext
+      if (.not. allocated(cd%qnext)) allocate(cd%qnext(cd%m))
+      call s0_times(cd, cd%x2, cd%qnext)
+      cd%qnext = cd%q0 - cd%qnext
+      cd%qnext_fresh = .true.
+      ref = max(st%fext_norm, sum(abs(cs%c(1:cs%n)%force)), 1.0e-6_dp * eq%kmax * umax, tiny(1.0_dp))
+      r = norm2(cd%qnext - fc) / max(ref, eq%force_history)
+      ok = r < st%m%contact_tolerance
+      if (.not. ok) return
+      eq%residual = r
+      st%scale = ref
+      cd%lazy = .true.
+    end associate
+  end subroutine settled_on_contact_equations
+
+  !> Purpose: the whole solution of the last converged increment where it
+  !> was solved on the contact equations alone (eq%cd%lazy; results need
+  !> it: a written increment, reaction sums): the right-hand side of its
+  !> start condensed (a forward solve, unless its start made it), the
+  !> other equations recovered (condensed_recover), the bodies' forces at
+  !> u added to rf (which holds the contact forces minus the loads:
+  !> settled_on_contact_equations) and reduced to the independent dofs;
+  !> u and the bodies' forces become the next increment's start.
+  !> Arguments: eq the equilibrium state; m the model; body the bodies'
+  !> stiffness; dm the numbering; sys the solver with K0's factor; u the
+  !> displacements (the contact equations solved; returns whole); rf the
+  !> residual forces (returns f_int - f_ext, T^T applied).
+  subroutine condensed_complete(eq, m, body, dm, sys, u, rf)
+    type(equilibrium_t), intent(inout) :: eq
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    type(dofmap_t), intent(in) :: dm
+    type(linear_system_t), intent(inout) :: sys
+    real(dp), intent(inout) :: u(:, :), rf(:, :)
+    real(dp) :: t0
+    if (.not. eq%cd%lazy) return
+    t0 = wall_time()
+    call forward_start(eq, m, body, dm, sys, eq%cd%fext_last)
+    call condensed_recover(eq%cd, dm, sys, u)
+    if (.not. allocated(eq%fbody)) allocate(eq%fbody(2, m%nn))
+    call body_forces(m, body, u, eq%fbody)
+    rf = rf + eq%fbody
+    call reduce_dependent(dm, rf)
+    eq%u_last = u
+    eq%fbody_last = eq%fbody
+    eq%cd%lazy = .false.
+    eq%timing%recovery = eq%timing%recovery + (wall_time() - t0)
+  end subroutine condensed_complete
+
+  !> The forward-solved right-hand side of the increment's start (cd%z),
+  !> where the start did not make it (condensed_begin_lazy): the bodies'
+  !> forces at u0 (every element: its other equations are an earlier
+  !> increment's), r = f_ext - f_body on the free equations, z = L^-1 P r;
+  !> fext the increment's loads.
+  subroutine forward_start(eq, m, body, dm, sys, fext)
+    type(equilibrium_t), intent(inout) :: eq
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    type(dofmap_t), intent(in) :: dm
+    type(linear_system_t), intent(inout) :: sys
+    real(dp), intent(in) :: fext(:, :)
+    real(dp), allocatable :: fb(:, :)
+    associate(cd => eq%cd)
+      if (cd%z_valid) return
+      allocate(fb(2, m%nn))
+      call body_forces(m, body, cd%u0, fb)
+      if (allocated(cd%z)) then
+        if (size(cd%z) /= cd%n) deallocate(cd%z)
+      end if
+      if (.not. allocated(cd%z)) allocate(cd%z(cd%n))
+      call free_residual(dm, fext, fb, cd%z)
+      call sys_forward(sys, cd%z)
+      cd%z_valid = .true.
+    end associate
+  end subroutine forward_start
+
   !> The status has settled: the other equations (unless u already holds
   !> them: whole), then forces, reactions and the out-of-balance as the
-  !> full path has them.
+  !> full path has them; on the contact equations alone where the
+  !> increment may be (lazy_path) and is in balance there.
   subroutine settled_residual(st, whole)
     type(iteration_t), intent(inout) :: st
     logical, intent(inout) :: whole
     real(dp) :: t0
+    logical :: ok
     t0 = wall_time()
+    st%eq%cd%lazy = .false.
+    if (.not. whole .and. lazy_path(st)) then
+      call settled_on_contact_equations(st, ok)
+      st%eq%timing%recovery = st%eq%timing%recovery + (wall_time() - t0)
+      if (ok) return
+      st%eq%cd%lazy = .false.
+    end if
     associate(eq => st%eq, m => st%m, dm => st%dm, u => st%u, rf => st%rf)
       if (.not. whole) then
+        call forward_start(eq, m, st%body, dm, st%sys, st%fext)
         call condensed_recover(eq%cd, dm, st%sys, u)
         call check_finite(m, st%is, st%inc, u)
       end if
@@ -326,12 +500,20 @@ contains
     call factor_made(st%eq, st%cs)
   end subroutine condensed_factor_if_needed
 
-  !> One dense factorisation of the condensed matrix (counted).
+  !> The condensed matrix of the status: one dense factorisation, or
+  !> (UPDATE SEARCH in a linear step) the low-rank form against the
+  !> reference's inverse, which factors nothing of size m; each counted
+  !> on its own (condensed_factorisations, condensed_lowrank).
   subroutine dense_status(st, kbody, status, bad)
     type(iteration_t), intent(inout) :: st
     real(dp), intent(in) :: kbody
     integer, intent(out) :: status, bad
     call condensed_status(st%eq%cd, st%m, st%cs, st%dm, kbody, st%eq%counts, status, bad)
+    if (st%eq%cd%lowrank) then
+      st%eq%condensed_lowrank = st%eq%condensed_lowrank + 1
+      st%eq%timing%condensed_lowrank = st%eq%timing%condensed_lowrank + 1
+      return
+    end if
     st%eq%condensed_factorisations = st%eq%condensed_factorisations + 1
     st%eq%timing%condensed_factorisations = st%eq%timing%condensed_factorisations + 1
   end subroutine dense_status

@@ -19,7 +19,8 @@ module displacement_field
   use equilibrium, only: equilibrium_t, begin_equilibrium, solve_increment, renumber_couplings, note_numbering, &
                          numbering_fits
   use newton_control, only: newton_new_step
-  use increment_results, only: increment_results_t, compute_increment_results
+  use increment_results, only: increment_results_t, compute_increment_results, written_here
+  use condensed_equilibrium, only: condensed_complete
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, tell_note, wall_time
   use analysis_field, only: field_t
   use element_catalogue, only: catalogue, max_nodes, max_ip
@@ -402,6 +403,14 @@ contains
     real(dp) :: t0, t1
     real(dp), allocatable :: dtemp(:)
     t0 = wall_time()
+    ! an increment solved on the contact equations alone: the others where
+    ! results need them (written, reaction sums printed every increment,
+    ! the temperatures' field); wear and the contact results need only
+    ! the contact equations
+    if (f%eq%cd%lazy) then
+      if (written_here(m, is, inc, t, total_time, dt) .or. size(f%ls%set_ids) > 0 .or. f%coupled) &
+        call condensed_complete(f%eq, m, f%body, f%dm, f%sys, f%u, f%rf)
+    end if
     ! the slip of the whole increment (its sub-increments' too)
     if (allocated(f%slip_since)) then
       if (size(f%slip_since) == f%cs%n) f%cs%c(1:f%cs%n)%slip_inc = f%slip_since
@@ -510,6 +519,7 @@ contains
       ' times for changed couplings')
     summary%factorisations = summary%factorisations + f%eq%factorisations
     summary%condensed_factorisations = f%eq%condensed_factorisations
+    summary%condensed_lowrank = f%eq%condensed_lowrank
     summary%iterations = f%eq%iterations
     summary%block_pivots = f%eq%search%block_pivots
     summary%single_pivots = f%eq%search%single_pivots
@@ -533,6 +543,7 @@ contains
       t%recovery = t%recovery + e%recovery
       t%numeric_factorisations = t%numeric_factorisations + e%numeric_factorisations
       t%condensed_factorisations = t%condensed_factorisations + e%condensed_factorisations
+      t%condensed_lowrank = t%condensed_lowrank + e%condensed_lowrank
     end associate
   end subroutine finish
 end module displacement_field

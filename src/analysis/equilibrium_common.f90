@@ -44,6 +44,8 @@ module equilibrium_common
     logical :: k0_valid = .false.
     ! counters of the step
     integer :: factorisations = 0, iterations = 0, condensed_factorisations = 0
+    !> statuses of the condensed solve solved in low-rank form (not factored)
+    integer :: condensed_lowrank = 0
     type(element_counts_t) :: counts
     !> Wall time by part and factorisation counts of the whole run.
     type(run_timing_t) :: timing
@@ -97,6 +99,7 @@ contains
       eq%described = .false.
       eq%factorisations = 0
       eq%condensed_factorisations = 0
+      eq%condensed_lowrank = 0
       eq%iterations = 0
       eq%search = status_search_t()
       eq%searches = 0

@@ -14,7 +14,7 @@ module increment_results
   use assembly, only: stress_recovery, element_counts_t, body_t
   implicit none
   private
-  public :: increment_results_t, compute_increment_results, output_due
+  public :: increment_results_t, compute_increment_results, output_due, written_here
 
   type :: increment_results_t
     integer :: step = 0, increment = 0, iterations = 0

@@ -325,6 +325,8 @@ contains
     write(u, '(a,i0)') 'increments ', summary%increments
     write(u, '(a,i0)') 'numeric_factorisations ', summary%factorisations
     write(u, '(a,i0)') 'condensed_factorisations ', summary%condensed_factorisations
+    ! (only where a step solved statuses in low-rank form: UPDATE SEARCH in a linear step)
+    if (summary%condensed_lowrank > 0) write(u, '(a,i0)') 'condensed_lowrank_statuses ', summary%condensed_lowrank
     if (summary%temperature_factorisations >= 0) write(u, '(a,i0,a,i0)') &
       'numeric_factorisations_per_field temperature=', summary%temperature_factorisations, &
       ' displacement=', summary%factorisations - summary%temperature_factorisations
@@ -365,6 +367,7 @@ contains
     write(u, '(a,a)') 'total ', ftoa(timing%total, 3)
     write(u, '(a,i0)') 'numeric_factorisations ', timing%numeric_factorisations
     write(u, '(a,i0)') 'condensed_factorisations ', timing%condensed_factorisations
+    if (timing%condensed_lowrank > 0) write(u, '(a,i0)') 'condensed_lowrank_statuses ', timing%condensed_lowrank
     flush(u)
   end subroutine write_timing
 

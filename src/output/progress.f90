@@ -59,8 +59,13 @@ contains
       ftoa(timing%factor, 3) // ', condensed iterations ' // ftoa(timing%condensed, 3) // ', full iterations ' // &
       ftoa(timing%solve, 3) // ', recovery ' // ftoa(timing%recovery, 3) // ', results ' // ftoa(timing%results, 3) // &
       ', output ' // ftoa(timing%output, 3) // ', total ' // ftoa(timing%total, 3)
-    write(output_unit, '(a,i0,a,i0)') 'factorisations: numeric ', timing%numeric_factorisations, &
-      ', condensed ', timing%condensed_factorisations
+    if (timing%condensed_lowrank > 0) then
+      write(output_unit, '(a,i0,a,i0,a,i0,a)') 'factorisations: numeric ', timing%numeric_factorisations, &
+        ', condensed ', timing%condensed_factorisations, ' (low-rank statuses ', timing%condensed_lowrank, ')'
+    else
+      write(output_unit, '(a,i0,a,i0)') 'factorisations: numeric ', timing%numeric_factorisations, &
+        ', condensed ', timing%condensed_factorisations
+    end if
     flush(output_unit)
   end subroutine progress_timing
 
