@@ -110,7 +110,11 @@ def thread_variants():
     """bin/cfe2d on the reference's kernel with each count of THREADS the
     reference run does not already have."""
     ref, _ = reference_and_debug()
-    return [Variant(f"{n} threads", CFE2D, ref.core, n) for n in THREADS if n != inherited_threads()]
+    return [Variant(threads_label(n), CFE2D, ref.core, n) for n in THREADS if n != inherited_threads()]
+
+
+def threads_label(n):
+    return f"{n} thread" + ("s" if n > 1 else "")
 
 
 def cpu_flags():
@@ -792,9 +796,9 @@ def check_threads(name):
             continue
         diff = bit_difference(base, run)
         if diff:
-            failures.append(f"{v.label} against {ref.label} ({inherited_threads()} thread(s)): {diff}")
+            failures.append(f"{v.label} against {ref.label} ({threads_label(inherited_threads())}): {diff}")
     print(f"  {name}: {', '.join(v.label for v in thread_variants())} against {ref.label} "
-          f"({inherited_threads()} thread(s)): " + ("differ" if failures else "the same bits"))
+          f"({threads_label(inherited_threads())}): " + ("differ" if failures else "the same bits"))
     if failures:
         raise AssertionError(f"{name}: " + " | ".join(failures))
 
