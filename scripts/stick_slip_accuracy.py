@@ -6,6 +6,11 @@ contact with 3:1 transition rows; then pushed sideways to Q* = mu P / 2 and
 back to Q = 0 (Cattaneo-Mindlin, Mindlin-Deresiewicz).
 
     python3 scripts/stick_slip_accuracy.py [--cases nts,sts] [--hs 0.025 --hm 0.03] [--out DIR]
+    # the converged reference of tests/test_stick_slip_accuracy.py (about 10 minutes):
+    python3 scripts/stick_slip_accuracy.py --cases sts --fixed-plate --incs 2,16,16 --hs 0.00625 --hm 0.0075 \
+        --save fine.json --reference tests/stick_slip_converged.json --coarser h2.json
+    # (h2.json: the same with --hs 0.0125 --hm 0.015 --save h2.json)
+    # a/R = 0.025 on the mesh scaled with a:  --load 0.25 --hs 0.0125 --hm 0.015
 
 Three figures per coupling, against the closed forms of two half-spaces of
 one material (tests/test_friction.py states them):
@@ -48,6 +53,9 @@ A_TARGET = 0.05 * R                          # a/R = 0.05
 ESTAR = E / (2.0 * (1.0 - NU ** 2))          # plane strain, one material
 P = math.pi * ESTAR * A_TARGET ** 2 / (4.0 * R)     # Hertz: a^2 = 4 P R / (pi E*)
 QSTAR = 0.5 * MU * P
+#: The default mesh's plate (hm = 0.03, W = 20): 38.88 mm wide, 20.01 deep;
+#: the refinement study keeps it (write_mesh's plate_size).
+PLATE_SIZE = (19.44, 20.01)
 
 
 class Body:
@@ -142,12 +150,15 @@ def columns(width, w, levels):
 
 
 def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=2.0 * R, contact=2.5 * A_TARGET,
-               swap=False):
+               swap=False, plate_size=None):
     """Writes the *NODE/*ELEMENT/sets of the cylinder (slave, element ids
     from 1) and the plate (from 100001) to path; returns (xy of every
     node, the cylinder's slave nodes sorted by x, the top's node ids, the
     number of elements). swap: the plate's surface nodes instead (the
-    plate the slave)."""
+    plate the slave). plate_size: (half width, depth) the plate gets
+    exactly, whatever hm (the rows stretched to the depth; the width a
+    whole number of the coarsest columns), so that a mesh refinement
+    study keeps the bodies (PLATE_SIZE: the default mesh's)."""
     cap = 0.8 * R
     nc = columns(2 * cap, hs, levels)
     cap = 0.5 * nc * hs
@@ -163,7 +174,14 @@ def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=
     cylinder.mapxy = lambda s, d: cyl(s, d * scale)
     cylinder.finish()
     npl = columns(2 * plate_half, hm, levels)
-    plate = Body(npl, hm, levels, rows, plate_half, lambda s, d: (s, -d), 1000001, 100001).finish()
+    if plate_size is not None:
+        npl = round(2 * plate_size[0] / hm)
+        assert npl % (2 * 3 ** levels) == 0 and abs(npl * hm - 2 * plate_size[0]) < 1e-9, (hm, plate_size)
+    plate = Body(npl, hm, levels, rows, plate_half, lambda s, d: (s, -d), 1000001, 100001)
+    if plate_size is not None:
+        stretch = plate_size[1] / plate.depth
+        plate.mapxy = lambda s, d: (s, -d * stretch)
+    plate.finish()
     lines = ["*NODE"]
     for body in (cylinder, plate):
         lines += [f"{n}, {x:.15g}, {y:.15g}" for n, (x, y) in sorted(body.xy.items())]
@@ -304,6 +322,13 @@ def measure(path, xy, slave, incs=(2, 4, 4)):
     """The three figures of the run (module docstring) and per-increment
     detail: a dict."""
     rows = slave_rows(path)
+    # each step's last increment (with automatic splits the steps may
+    # take more increments than incs asks for)
+    last = {}
+    for step, inc in rows:
+        last[step] = max(inc, last.get(step, 0))
+    incs = (last[1], last[2], last[3])
+    out_incs = incs
     hertz_a = math.sqrt(4 * P * R / (math.pi * ESTAR))
     out = {"stick": [], "incs": {}}
     qstar_fit = None
@@ -347,9 +372,149 @@ def measure(path, xy, slave, incs=(2, 4, 4)):
                 out["shear_back_max"] = float(np.max(np.abs(q - expect)[inside]) / (MU * p0))
         rec.update(x=x, p=p, q=q, state=state)
         out["incs"][step, inc] = rec
+    out["last"] = out_incs
     out["stick_end"] = max(s[4] for s in out["stick"])
     out["stick_end_loading"] = max(s[4] for s in out["stick"] if s[0] == 2)
     return out
+
+
+def save_states(path, f, incs, meta):
+    """Writes the slave rows (x, p, q) at the end of the pressing, at Q*
+    and back at Q = 0, with the fitted a, p0 and the figures, to a JSON
+    file (the converged reference of tests/stick_slip_reference.json)."""
+    import json
+    out = dict(meta, shear_press=f["shear_press"], shear_qstar=f["shear_qstar"], shear_back=f["shear_back"],
+               stick_end=f["stick_end"])
+    for name, key in (("press", (1, incs[0])), ("qstar", (2, incs[1])), ("back", (3, incs[2]))):
+        rec = f["incs"][key]
+        out[name] = dict(a=rec["a"], p0=rec["p0"], P=rec["P"], Q=rec["Q"], x=[round(v, 12) for v in rec["x"].tolist()],
+                         p=rec["p"].tolist(), q=rec["q"].tolist())
+    with open(path, "w") as fh:
+        json.dump(out, fh, indent=0)
+
+
+def write_reference(path, full, every_h=0.025, against=None):
+    """The converged reference of tests/test_stick_slip_accuracy.py from a
+    fine run saved by --save (full: its JSON): at the three checked
+    states the shear q and pressure p at the nodes of the default mesh's
+    slave spacing every_h (x a multiple of it, |x| < a), with the fitted
+    a and p0, the stick zone's ends where the traction has a kink (c at
+    Q*; c and c' back at Q = 0), the figures against the closed forms,
+    and, against: a coarser run's JSON (the fine mesh's own distance to
+    it, rms over |x| < 0.9 a in mu p0, at the same nodes)."""
+    import json
+    src = json.load(open(full))
+    out = {k: src[k] for k in ("hs", "hm", "incs", "elements", "shear_press", "shear_qstar", "shear_back")}
+    out["hs_run"], out["hs"] = src["hs"], every_h
+    out["about"] = ("converged reference of issue 33's stick/slip case (scripts/stick_slip_accuracy.py "
+                    "--reference): the same bodies on a finer mesh, pressing split automatically; q, p in MPa")
+    qs = src["qstar"]
+    c = qs["a"] * math.sqrt(max(0.0, 1.0 - qs["Q"] / (MU * qs["P"])))
+    bk = src["back"]
+    cb = bk["a"] * math.sqrt(max(0.0, 1.0 - (qs["Q"] - bk["Q"]) / (2 * MU * bk["P"])))
+    kinks = {"press": [], "qstar": [c], "back": [c, cb]}
+    for name in ("press", "qstar", "back"):
+        r = src[name]
+        x = np.array(r["x"])
+        keep = (np.abs(np.round(x / every_h) * every_h - x) < 1e-9) & (np.abs(x) < r["a"])
+        out[name] = dict(a=r["a"], p0=r["p0"], P=r["P"], Q=r["Q"], kinks=kinks[name],
+                         x=[round(v, 9) for v in x[keep].tolist()], q=[round(v, 6) for v in np.array(r["q"])[keep].tolist()],
+                         p=[round(v, 6) for v in np.array(r["p"])[keep].tolist()])
+        if against:
+            coarse = json.load(open(against))[name]
+            at = {round(v, 9): k for k, v in enumerate(coarse["x"])}
+            xs = np.array(out[name]["x"])
+            ks = np.array([at[round(v, 9)] for v in xs])
+            d = (np.array(coarse["q"])[ks] - np.array(out[name]["q"]))[np.abs(xs) < 0.9 * r["a"]]
+            out[name]["coarser_rms"] = float(np.sqrt(np.mean(d ** 2)) / (MU * r["p0"]))
+    with open(path, "w") as fh:
+        json.dump(out, fh, indent=1)
+
+
+#: The approach (the reference node's vertical displacement) at which the
+#: deck's bodies carry P (cfe2d, small deformation, EXACT): the CalculiX
+#: check is displacement-controlled (a cylinder held by contact alone is
+#: singular there).
+APPROACH = 0.05043057
+
+
+def write_calculix_frictionless(d, nlgeom=False):
+    """The frictionless check of tests/calculix/stick_slip_frictionless.csv
+    in directory d (mesh.inp beside it): the default mesh (the plate
+    PLATE_SIZE), CalculiX's own contact cards (SURFACE TO SURFACE, a
+    linear pressure-overclosure of 4e8 N/mm^3), the top pressed down by
+    APPROACH in 4 DIRECT increments; read unchanged by CalculiX and cfe2d.
+    nlgeom: the step with NLGEOM (CalculiX poses its contact on the
+    deformed configuration). Returns (deck path, xy, cylinder surface
+    nodes, plate top nodes with |x| < 2, each sorted by x)."""
+    os.makedirs(d, exist_ok=True)
+    xy, slave, top, nel = write_mesh(os.path.join(d, "mesh.inp"), plate_size=PLATE_SIZE)
+    ref = top[0]
+    eqs = "".join(f"2\n{n}, {k}, 1.0, {ref}, {k}, -1.0\n" for n in top[1:] for k in (1, 2))
+    deck = f"""*HEADING
+Stick and slip, issue 33: cylinder R = {R} on a plate, a/R = 0.05, frictionless, pressed by the approach of P
+*INCLUDE, INPUT=mesh.inp
+*NSET, NSET=REF
+{ref}
+*MATERIAL, NAME=STEEL
+*ELASTIC
+{E}, {NU}
+*SOLID SECTION, ELSET=PLATE, MATERIAL=STEEL
+1.
+*SOLID SECTION, ELSET=CYLINDER, MATERIAL=STEEL
+1.
+*SURFACE INTERACTION, NAME=SI
+*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR
+4.e8
+*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE
+CYL_ARC, PLATE_TOP
+*EQUATION
+{eqs}*BOUNDARY
+PLATE_BOTTOM, 1, 2
+*STEP, NLGEOM{'' if nlgeom else '=NO'}, INC=1000
+*STATIC, DIRECT
+0.25, 1.0
+*BOUNDARY
+REF, 1, 1, 0.0
+REF, 2, 2, {-APPROACH}
+*NODE PRINT, NSET=CYL_TOP, TOTALS=ONLY
+RF
+*NODE FILE
+U
+*END STEP
+"""
+    path = os.path.join(d, "frictionless.inp")
+    with open(path, "w") as f:
+        f.write(deck)
+    plate_top = sorted((n for n, (x, y) in xy.items() if n > 1000000 and y == 0.0 and abs(x) < 2.0),
+                       key=lambda n: xy[n][0])
+    return path, xy, slave, plate_top
+
+
+def surface_mismatch(frd, xy, slave, plate_top, a=A_TARGET):
+    """The relative tangential displacement of the two surfaces, delta(x) =
+    u_x(cylinder) - u_x(plate) at the cylinder's surface nodes with
+    |x| < a (the plate's u_x interpolated on its surface nodes), from the
+    last displacement block of a .frd file (CalculiX's or cfe2d's): (x,
+    delta, u_x of the cylinder). Two half-spaces of one material have
+    delta = 0 under a normal load (Dundurs' beta = 0)."""
+    disp, cur = None, None
+    with open(frd) as f:
+        for line in f:
+            if line.startswith(" -4"):
+                cur = {} if line.split()[1] == "DISP" else None
+                if cur is not None:
+                    disp = cur
+            elif line.startswith(" -1") and cur is not None:
+                cur[int(line[3:13])] = (float(line[13:25]), float(line[25:37]))
+            elif line.startswith(" -3"):
+                cur = None
+    x = np.array([xy[n][0] for n in slave])
+    ux = np.array([disp[n][0] for n in slave])
+    xp = np.array([xy[n][0] for n in plate_top])
+    delta = ux - np.interp(x, xp, np.array([disp[n][0] for n in plate_top]))
+    keep = np.abs(x) < a
+    return x[keep], delta[keep], ux[keep]
 
 
 CASES = {"nts": "NODE TO SURFACE", "sts": "SURFACE TO SURFACE"}
@@ -365,10 +530,16 @@ def main():
     ap.add_argument("--penalty", action="store_true", help="the penalty, not EXACT")
     ap.add_argument("--swap", action="store_true", help="the plate the slave, the cylinder the master")
     ap.add_argument("--load", type=float, default=1.0, help="P as a multiple of a/R = 0.05's (a grows as its root)")
+    ap.add_argument("--fixed-plate", action="store_true",
+                    help="the plate exactly the default mesh's, 38.88 x 20.01 mm, whatever --hm (refinement studies)")
     ap.add_argument("--extra", default="", help="more *CONTACT PAIR parameters, e.g. ', STICK SLOPE=1e9'")
     ap.add_argument("--cfe2d", default=os.path.join(ROOT, "bin", "cfe2d"))
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "stick_slip"))
     ap.add_argument("--detail", action="store_true", help="print every slave row at the three checked states")
+    ap.add_argument("--save", help="write the three checked states' slave rows (x, p, q) and figures to this JSON file")
+    ap.add_argument("--reference", help="with --save: also write the converged reference the tests read "
+                    "(write_reference) to this file")
+    ap.add_argument("--coarser", help="with --reference: a coarser run's --save file, its distance stated")
     args = ap.parse_args()
     incs = tuple(int(k) for k in args.incs.split(","))
     global P, QSTAR
@@ -376,19 +547,29 @@ def main():
     for case in args.cases.split(","):
         d = os.path.join(args.out, f"{case}_hs{args.hs:g}_hm{args.hm:g}")
         d += "_swap" if args.swap else ""
+        d += f"_i{'-'.join(map(str, incs))}_l{args.load:g}"
+        # the contact surfaces 2.5 a wide whatever the load (a grows as its root)
         path, xy, slave, nel = write_deck(d, CASES[case], incs=incs, exact=not args.penalty, extra=args.extra, swap=args.swap,
-                                          hs=args.hs, hm=args.hm, plate_half=args.plate)
+                                          hs=args.hs, hm=args.hm, plate_half=args.plate,
+                                          contact=2.5 * A_TARGET * math.sqrt(args.load),
+                                          plate_size=PLATE_SIZE if args.fixed_plate else None)
         wall = run(path, args.cfe2d)
         f = measure(path, xy, slave, incs)
+        incs = f["last"]
         fin = f["incs"][1, incs[0]]
         print(f"{case} hs {args.hs:g} hm {args.hm:g} ({nel} elements, {wall:.1f} s): a {fin['a']:.4f} "
               f"p0 {fin['p0']:.1f} P {fin['P']:.2f}; press shear {f['shear_press']:.2%} (max "
               f"{f['shear_press_max']:.2%}), Q* {f['shear_qstar']:.2%} (max {f['shear_qstar_max']:.2%}), back "
               f"{f['shear_back']:.2%} (max {f['shear_back_max']:.2%}) of mu p0; stick end {f['stick_end_loading']:.2f} "
-              f"slave spacings loading, {f['stick_end']:.2f} with unloading")
+              f"slave spacings loading, {f['stick_end']:.2f} with unloading; increments {incs}")
         for s in f["stick"]:
             ends = "none" if s[3] is None else f"[{s[3][0]:.4f}, {s[3][1]:.4f}]"
             print(f"   {s[0]}.{s[1]}: c/a {s[2]:.4f}, stick zone {ends} a, {s[4]:.2f} spacings")
+        if args.save:
+            save_states(args.save, f, incs, dict(hs=args.hs, hm=args.hm, incs=incs, load=args.load, plate=args.plate,
+                                                 case=case, elements=nel, wall=wall))
+            if args.reference:
+                write_reference(args.reference, args.save, against=args.coarser)
         if args.detail:
             for key in ((1, incs[0]), (2, incs[1]), (3, incs[2])):
                 rec = f["incs"][key]

@@ -1,53 +1,84 @@
 """Accuracy of stick and slip on a mesh of the kind users make (issue 33,
 item 4; scripts/stick_slip_accuracy.py builds the mesh and measures): a
-cylinder R = 10 mm (a cap |x| < 8 mm of the disk, its top flat and
-rigid) pressed on a plate (40 x 20 mm) to a/R = 0.05, both plane-strain
-steel, CPE4, the two meshes not matching (slave, the cylinder: 0.025 mm,
-40 spacings across the contact; master, the plate: 0.03 mm), each graded
-away from the contact with 3:1 transition rows; EXACT, mu = 0.3; pressed
-by P in 2 increments, pushed to Q* = mu P / 2 in 4 and back to 0 in 4
-(tests/test_friction.py states Cattaneo's and Mindlin-Deresiewicz's
-closed forms, for two half-spaces of one material). Each run about 1-2 s
-(the mesh 1 s in python).
+cylinder R = 10 mm (a cap |x| < 8.1 mm of the disk, its top flat and
+rigid) pressed on a plate (38.88 x 20.01 mm) to a/R = 0.05, both plane-
+strain steel, CPE4, the two meshes not matching (slave, the cylinder:
+0.025 mm, 40 spacings across the contact; master, the plate: 0.03 mm),
+each graded away from the contact with 3:1 transition rows; EXACT,
+mu = 0.3; pressed by P in 2 increments, pushed to Q* = mu P / 2 in 4
+and back to 0 in 4 (tests/test_friction.py states Cattaneo's and
+Mindlin-Deresiewicz's closed forms, for two half-spaces of one
+material). Each run 1-2 s on an idle machine (the mesh 1 s in python).
 
-What the issue asks and what holds (docs/contact.md, "Accuracy of stick
-and slip"):
-* the stick zone within one slave spacing of c and c' at every increment:
-  met by both couplings (checked);
-* the shear under the normal load alone below 0.5 % of mu p0 and the
-  Cattaneo-Mindlin shear within 1.5 % rms: not met. The converged answer
-  of these finite bodies is not the half-spaces' zero: with 16 or 32
-  pressing increments the pressing leaves 2.4 % rms on this mesh, the
-  matching mesh and the twice finer one alike, with either coupling; it
-  goes to 1.2-1.5 % at a/R = 0.025 and to 3.0 % with the plate twice as
-  large: the bodies' finite size (O(a/R)), not the discretisation. What
-  the discretisation adds is checked here: the non-matching meshes against
-  the matching one with segment-to-segment (the dual mortar) and the
-  increments' share."""
+What the issue's figures measure (docs/contact.md, "Accuracy of stick
+and slip"): the shear against the half-spaces' closed forms is the sum
+of the model's part (these finite bodies carry a shear under the normal
+load that two half-spaces do not: 2.3 % rms of mu p0 at a/R = 0.05,
+O(a/R)) and the discretisation's. The discretisation is measured here
+against the converged answer of the same bodies
+(tests/stick_slip_converged.json: the same geometry on a 4 times finer
+mesh, 0.00625 / 0.0075 mm, 60 256 elements, its pressing split
+automatically into 79 increments, 16 + 16 increments of Q; its own
+distance to the 2 times finer mesh, coarser_rms, 0.26 %, 0.93 % and
+2.26 % of mu p0 rms; the script's docstring says how it is made)."""
+import json
+import os
+
 import numpy as np
 
-from helpers import workdir
+from helpers import HERE, workdir
 import stick_slip_accuracy as ssa
 
 INCS = (2, 4, 4)
+REFERENCE = os.path.join(HERE, "stick_slip_converged.json")
+STATES = (("press", 1), ("qstar", 2), ("back", 3))
 
 
-def run_case(tag, coupling, hm=0.03, incs=INCS):
+def run_case(tag, coupling, hm=0.03, incs=INCS, load=1.0, hs=0.025, direct=False):
     """Writes, runs and measures one case (stick_slip_accuracy's
-    write_deck, run, measure); returns its figures."""
+    write_deck, run, measure) on the default plate; returns its figures.
+    load scales P (a as its root; the contact surfaces 2.5 a wide);
+    direct: fixed increments (*STATIC, DIRECT)."""
     d = workdir("stick_slip_" + tag)
-    path, xy, slave, _ = ssa.write_deck(d, coupling, incs=incs, hm=hm)
-    ssa.run(path)
-    return ssa.measure(path, xy, slave, incs)
+    saved = ssa.P, ssa.QSTAR
+    ssa.P, ssa.QSTAR = saved[0] * load, saved[1] * load
+    try:
+        path, xy, slave, _ = ssa.write_deck(d, coupling, incs=incs, hm=hm, hs=hs, plate_size=ssa.PLATE_SIZE,
+                                            contact=2.5 * ssa.A_TARGET * load ** 0.5)
+        if direct:
+            with open(path) as f:
+                text = f.read()
+            with open(path, "w") as f:
+                f.write(text.replace("*STATIC\n", "*STATIC, DIRECT\n"))
+        ssa.run(path)
+        return ssa.measure(path, xy, slave, incs)
+    finally:
+        ssa.P, ssa.QSTAR = saved
 
 
-def pointwise_rms(f, g, key):
-    """rms over |x| < 0.9 a of the difference of two runs' shear at
-    increment key (the same slave nodes), in mu p0."""
-    a, b = f["incs"][key], g["incs"][key]
-    assert np.array_equal(a["x"], b["x"])
-    inside = np.abs(a["x"]) < 0.9 * a["a"]
-    return float(np.sqrt(np.mean((a["q"] - b["q"])[inside] ** 2)) / (ssa.MU * a["p0"]))
+def reference():
+    with open(REFERENCE) as f:
+        return json.load(f)
+
+
+def against(f, ref, name, step, kinks=False):
+    """rms and largest difference over |x| < 0.9 a of run f's shear at the
+    end of step against the reference state name, at the reference's
+    nodes (every slave node of the default mesh), in mu p0 (the
+    reference's a and p0). kinks false: the nodes within one slave
+    spacing of the stick zone's ends c (at Q*; c and c' back at Q = 0),
+    where the traction's slope is infinite, left out."""
+    rec, r = f["incs"][step, f["last"][step - 1]], ref[name]
+    at = {round(x, 9): k for k, x in enumerate(rec["x"])}
+    k = np.array([at[round(x, 9)] for x in r["x"]])
+    x, q = np.array(r["x"]), np.array(r["q"])
+    inside = np.abs(x) < 0.9 * r["a"]
+    if not kinks:
+        for c in r.get("kinks", []):
+            inside &= np.abs(np.abs(x) - c) > ref["hs"] * 1.000001
+    d = (rec["q"][k] - q)[inside]
+    scale = ssa.MU * r["p0"]
+    return float(np.sqrt(np.mean(d ** 2)) / scale), float(np.max(np.abs(d)) / scale)
 
 
 def test_stick_zone_on_a_graded_nonmatching_mesh():
@@ -55,9 +86,9 @@ def test_stick_zone_on_a_graded_nonmatching_mesh():
     end the midpoint to the first SLIP row) within one slave spacing of
     Cattaneo's c = a sqrt(1 - Q / (mu P)) at each of the 4 loading
     increments and of Mindlin-Deresiewicz's c' at each of the 4 unloading
-    ones, with both couplings (measured: within 0.73 spacings node-to-
-    segment, 0.67 segment-to-segment); the contact force P to 1e-6 and
-    the fitted a within 1 % of Hertz's (measured -0.5 %, -0.9 %)."""
+    ones, with both couplings (measured: within 0.56 spacings node-to-
+    segment, 0.51 segment-to-segment); the contact force P to 1e-6 and
+    the fitted a within 1 % of Hertz's (measured -0.6 %, -0.9 %)."""
     report = []
     for case, coupling in ssa.CASES.items():
         f = run_case(case, coupling)
@@ -72,40 +103,130 @@ def test_stick_zone_on_a_graded_nonmatching_mesh():
         assert f["stick_end"] <= 1.0, "\n".join(report)
 
 
-def test_shear_tractions_and_where_their_error_comes_from():
-    """The shear against the closed forms, rms over |x| < 0.9 a in mu p0
-    (the fitted a and p0 of each increment), with the bounds of what is
-    measured (the issue's 0.5 % and 1.5 % are not met: module docstring):
-    pressing alone 3.07 % segment-to-segment (3.52 % node-to-segment),
-    at Q* 3.84 % (4.32 %), back at Q = 0 4.75 % (6.23 %); allowed 3.5 %,
-    4.5 % and 5.5 % (node-to-segment 4 %, 5 %, 7 %).
+def test_shear_against_the_converged_finite_bodies():
+    """The discretisation error: the shear of the default deck (segment-to-
+    segment, 2 + 4 + 4 increments) against the converged answer of the
+    same bodies (REFERENCE), rms over |x| < 0.9 a in mu p0. Measured:
+    pressing 0.28 %, at Q* 1.27 %, back at Q = 0 3.04 % (largest 0.48 %,
+    7.09 % and 12.05 %); away from the stick zone's ends (one slave
+    spacing either side of c, and of c' back at 0, left out) 0.28 %,
+    0.44 % and 1.22 %. The issue's bounds, 0.5 % under P and 1.5 % at Q*, hold for
+    the discretisation everywhere; back at Q = 0 only away from the
+    zone ends (the traction there has an infinite slope at c and c', a
+    node sitting on c at this load: 12 % of mu p0 at that node). Allowed:
+    0.5 % and 1.5 % (the issue's), back 3.5 % rms over every node and
+    1.5 % away from the ends."""
+    ref = reference()
+    f = run_case("sts", ssa.CASES["sts"])
+    got = {name: (against(f, ref, name, step, kinks=True), against(f, ref, name, step))
+           for name, step in STATES}
+    print("  against the converged finite bodies, % of mu p0 rms (largest); without the zone ends:\n  " +
+          "\n  ".join(f"{n}: {100 * a[0]:.2f} ({100 * a[1]:.2f}); {100 * b[0]:.2f} ({100 * b[1]:.2f})"
+                      for n, (a, b) in got.items()))
+    assert got["press"][0][0] < 0.005, got
+    assert got["qstar"][0][0] < 0.015, got
+    assert got["back"][0][0] < 0.035 and got["back"][1][0] < 0.015, got
 
-    Where it comes from, segment-to-segment:
-    * the non-matching meshes: the same run on the matching mesh (the
-      plate at 0.025 mm too) differs by 0.25 % rms pressing and 0.44 % at
-      Q* (allowed 0.75 %; node-to-segment differs by 1.55 % and 2.1 %:
-      the nodal coupling of non-matching meshes, not checked);
-    * the increments: pressing in 16 increments instead of 2 moves the
-      shear by 1.55 % rms (the points that close within an increment
-      take its relative motion before they touch as stick), and leaves
-      2.39 % rms against the closed form (checked: within 1.5-3.2 %, the
-      bodies' part that no coupling removes)."""
-    nts = run_case("nts", ssa.CASES["nts"])
+
+def test_shear_against_the_closed_forms_with_the_model_part_separated():
+    """The issue's figures: the shear against the half-spaces' closed forms,
+    rms over |x| < 0.9 a in mu p0 (the fitted a and p0 of each increment).
+    Segment-to-segment: pressing 2.35 %, Q* 2.64 %, back 3.85 % (node-to-
+    segment 2.72 %, 3.30 %, 5.55 %); the converged bodies' own figures
+    (REFERENCE, the model's part, no coupling removes it) 2.29 %, 2.78 %,
+    2.83 %. The issue's 0.5 % and 1.5 % are not met against the closed
+    forms, by the model's part alone. Checked: the run's figures within
+    0.5 % (pressing; Q*) and 1.5 % (back) of the reference's (the
+    discretisation above, which adds in quadrature to the model's part),
+    and below 2.6 %, 3.0 %, 4.3 % (node-to-segment 3 %, 3.7 %, 6 %)."""
+    ref = reference()
     sts = run_case("sts", ssa.CASES["sts"])
+    nts = run_case("nts", ssa.CASES["nts"])
     line = lambda c, f: (f"{c}: pressing {f['shear_press']:.2%}, Q* {f['shear_qstar']:.2%}, "
                          f"back {f['shear_back']:.2%} of mu p0 rms")
-    print("  " + line("nts", nts) + "\n  " + line("sts", sts))
-    assert sts["shear_press"] < 0.035 and sts["shear_qstar"] < 0.045 and sts["shear_back"] < 0.055, line("sts", sts)
-    assert nts["shear_press"] < 0.04 and nts["shear_qstar"] < 0.05 and nts["shear_back"] < 0.07, line("nts", nts)
-    matching = run_case("sts_matching", ssa.CASES["sts"], hm=0.025)
-    press = pointwise_rms(sts, matching, (1, INCS[0]))
-    qstar = pointwise_rms(sts, matching, (2, INCS[1]))
-    many = run_case("sts_16", ssa.CASES["sts"], incs=(16,) + INCS[1:])
-    a, b = sts["incs"][1, INCS[0]], many["incs"][1, 16]
+    print("  " + line("sts", sts) + "\n  " + line("nts", nts) + "\n  " + line("converged bodies", ref))
+    assert sts["shear_press"] < 0.026 and sts["shear_qstar"] < 0.03 and sts["shear_back"] < 0.043, line("sts", sts)
+    assert nts["shear_press"] < 0.03 and nts["shear_qstar"] < 0.037 and nts["shear_back"] < 0.06, line("nts", nts)
+    for key, tol in (("shear_press", 0.005), ("shear_qstar", 0.005), ("shear_back", 0.015)):
+        assert abs(sts[key] - ref[key]) < tol, (key, sts[key], ref[key])
+
+
+def test_split_increments_follow_the_touching_points():
+    """The increments: a point that closes within an increment sticks from
+    its anchor of the increment's start. The driver splits a frictional
+    increment in which more than two points of a pair close from an
+    open gap (docs/contact.md): the 2 pressing increments are solved in
+    20 sub-increments, the listing keeps 2. With fixed increments
+    (DIRECT), as CalculiX, the deck's 2 are solved as they are. Measured
+    at the end of the pressing, rms of the difference over |x| < 0.9 a in
+    mu p0: split against 64 pressing increments 0.11 % (the 2
+    increments unsplit: 1.59 %), DIRECT against the split 1.53 %; the
+    figures against the closed form 2.35 % split, 2.38 % with 64
+    increments, 3.07 % DIRECT. Checked: split
+    within 0.3 % of 64 increments, DIRECT at least 1 % from the split,
+    and the listing's increments as the deck's."""
+    split = run_case("sts", ssa.CASES["sts"])
+    many = run_case("sts_64", ssa.CASES["sts"], incs=(64, 1, 1))
+    direct = run_case("sts_direct", ssa.CASES["sts"], direct=True, incs=(2, 1, 1))
+    assert split["last"] == INCS and direct["last"] == (2, 1, 1) and many["last"] == (64, 1, 1)
+    a, b, c = split["incs"][1, 2], many["incs"][1, 64], direct["incs"][1, 2]
+    assert np.array_equal(a["x"], b["x"]) and np.array_equal(a["x"], c["x"])
     inside = np.abs(a["x"]) < 0.9 * a["a"]
-    steps = float(np.sqrt(np.mean((a["q"] - b["q"])[inside] ** 2)) / (ssa.MU * a["p0"]))
-    print(f"  sts non-matching - matching: pressing {press:.2%}, Q* {qstar:.2%}; 2 - 16 pressing increments "
-          f"{steps:.2%}; 16 increments against the closed form {many['shear_press']:.2%}")
-    assert press < 0.0075 and qstar < 0.0075, (press, qstar)
-    assert 0.015 < many["shear_press"] < 0.032, many["shear_press"]
-    assert steps < 0.025, steps
+    rms = lambda u, v: float(np.sqrt(np.mean((u["q"] - v["q"])[inside] ** 2)) / (ssa.MU * u["p0"]))
+    print(f"  pressing: split - 64 increments {rms(a, b):.2%}, DIRECT - split {rms(c, a):.2%}; against the closed "
+          f"form split {split['shear_press']:.2%}, 64 increments {many['shear_press']:.2%}, DIRECT "
+          f"{direct['shear_press']:.2%}")
+    assert rms(a, b) < 0.003, rms(a, b)
+    assert rms(c, a) > 0.01, rms(c, a)
+
+
+def test_finite_body_shear_vanishes_as_a_over_r():
+    """The model's part is O(a/R): pressed to a/R = 0.025 (P / 4) on the
+    mesh scaled with a (0.0125 / 0.015 mm, 29 456 elements, the same
+    bodies), the shear under P alone against the closed form's zero is
+    1.09 % of mu p0 against 2.35 % at a/R = 0.05 (a ratio of 2.15, order
+    1.11; at a/R = 0.0125, 0.59 %, not run here: docs/contact.md). Checked: the
+    ratio within 1.7-2.6 (order 0.8-1.4 in a/R)."""
+    big = run_case("sts", ssa.CASES["sts"], incs=(2, 1, 1))
+    small = run_case("sts_ar025", ssa.CASES["sts"], incs=(2, 1, 1), load=0.25, hs=0.0125, hm=0.015)
+    ratio = big["shear_press"] / small["shear_press"]
+    print(f"  shear under P alone: a/R 0.05 {big['shear_press']:.2%}, 0.025 {small['shear_press']:.2%} of mu p0; "
+          f"ratio {ratio:.2f}, order {np.log2(ratio):.2f}")
+    assert 1.7 < ratio < 2.6, ratio
+
+
+def test_frictionless_surface_mismatch_against_calculix():
+    """Where the finite bodies' shear comes from, checked against another
+    program: under the normal load alone, without friction, the two
+    surfaces do not move together tangentially (delta(x) = u_x of the
+    cylinder - u_x of the plate; zero for two half-spaces of one
+    material). CalculiX 2.20 ran the same deck once (stick_slip_accuracy's
+    write_calculix_frictionless: the deck's mesh, SURFACE TO SURFACE,
+    linear pressure-overclosure 4e8 N/mm^3, pressed by the approach of P
+    in 4 DIRECT increments; tests/calculix/stick_slip_frictionless.csv,
+    README there). CalculiX poses its contact on the deformed
+    configuration: cfe2d with NLGEOM gives its delta within 7.8e-6 mm rms
+    over |x| < 0.9 a (CalculiX's delta 2.5e-5 mm rms, cfe2d's 2.1e-5, the
+    same shape, changing sign at x = 0.3 mm); in small deformation (the
+    closed forms' model, and the stick/slip deck's) delta is 1.17e-4 mm
+    rms, one sign, 4.6 times larger: the normals' rotation takes most of
+    it back. Checked: NLGEOM within 1.2e-5 mm rms of CalculiX, the small-
+    deformation delta at least 3 times CalculiX's."""
+    import csv
+    rows = list(csv.DictReader(open(os.path.join(HERE, "calculix", "stick_slip_frictionless.csv"))))
+    ccx_x = np.array([float(r["x"]) for r in rows])
+    ccx_d = np.array([float(r["delta"]) for r in rows])
+    got = {}
+    for tag, nl in (("small", False), ("nlgeom", True)):
+        d = workdir("stick_slip_frictionless_" + tag)
+        path, xy, slave, plate_top = ssa.write_calculix_frictionless(d, nlgeom=nl)
+        ssa.run(path)
+        x, delta, _ = ssa.surface_mismatch(path[:-4] + ".frd", xy, slave, plate_top)
+        assert np.allclose(x, ccx_x, atol=1e-9)
+        got[tag] = delta
+    inside = np.abs(ccx_x) < 0.9 * ssa.A_TARGET
+    rms = lambda v: float(np.sqrt(np.mean(v[inside] ** 2)))
+    print(f"  delta rms (mm): CalculiX {rms(ccx_d):.3e}, cfe2d NLGEOM {rms(got['nlgeom']):.3e} (difference "
+          f"{rms(got['nlgeom'] - ccx_d):.2e}), small deformation {rms(got['small']):.3e}")
+    assert rms(got["nlgeom"] - ccx_d) < 1.2e-5, rms(got["nlgeom"] - ccx_d)
+    assert rms(got["small"]) > 3.0 * rms(ccx_d), (rms(got["small"]), rms(ccx_d))

@@ -49,11 +49,23 @@ module analysis
     type(run_timing_t) :: timing        ! where the run's time went
   end type run_state_t
 
-  !> An interval of step time still to be solved, and its bisection depth.
+  !> An interval of step time still to be solved, its bisection depth,
+  !> how many times a converged increment was split to make it, whether
+  !> it is a sub-increment (quiet: committed, not reported) and the step
+  !> time its reported increment starts from (start: t0 but for the last
+  !> part of a split increment).
   type :: interval_t
     real(dp) :: t0 = 0.0_dp, t1 = 0.0_dp
-    integer :: level = 0
+    integer :: level = 0, splits = 0
+    logical :: quiet = .false.
+    real(dp) :: start = 0.0_dp
   end type interval_t
+
+  !> A converged increment a field wants split (field_t's split_wanted: a
+  !> frictional contact zone that grew too far in it) is split at most
+  !> this many times (to 1/1024 of it), and never below the minimum
+  !> increment of a nonlinear step.
+  integer, parameter :: max_splits = 10
 
   !> Passes of a coupled increment with heat through the contact: at most
   !> max_passes, done when no temperature changes by more than
@@ -328,9 +340,14 @@ contains
   end subroutine restore_fields
 
   !> Purpose: takes the solution from step time t0 to t1, halving the
-  !> interval when the contact status does not settle. The intervals still
-  !> to do are kept on an explicit stack (at most max_cutbacks + 1 deep),
-  !> so no depth of bisection can overflow the call stack.
+  !> interval when the contact status does not settle (each half an
+  !> increment of the results), or when it converged but a field wants it
+  !> split (split_increment, at most max_splits times): the halves of a
+  !> split are sub-increments, committed but not reported, save the last,
+  !> which reports the whole interval (the deck's increments are the
+  !> ones written). The intervals still to do are kept on an explicit
+  !> stack (at most max_cutbacks + max_splits + 1 deep), so no depth of
+  !> bisection can overflow the call stack.
   subroutine advance(m, is, rs, obs, t0, t1)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is
@@ -341,35 +358,75 @@ contains
     type(interval_t) :: iv
     character(len=:), allocatable :: reason, changing
     logical :: ok
-    integer :: top, iters
+    integer :: top, iters, k
     real(dp) :: mid, cut
-    allocate(stack(m%max_cutbacks + 2))
+    allocate(stack(m%max_cutbacks + max_splits + 2))
     top = 1
-    stack(1) = interval_t(t0, t1, 0)
+    stack(1) = interval_t(t0, t1, 0, 0, .false., t0)
     do while (top > 0)
       iv = stack(top)
       top = top - 1
-      ! a bisected half of the step's first increment searches too
-      call solve_fields(m, is, rs, obs, iv%t0, iv%t1, rs%inc + iv%level > 0, ok, iters)
+      ! a bisected or split half of the step's first increment searches too
+      call solve_fields(m, is, rs, obs, iv%t0, iv%t1, rs%inc + iv%level + iv%splits > 0, ok, iters)
+      mid = 0.5_dp * (iv%t0 + iv%t1)
+      if (ok .and. iv%splits < max_splits .and. mid > iv%t0 .and. mid < iv%t1) then
+        if (split_increment(m, is, rs, obs)) then
+          ! the first half a sub-increment; the second ends as this did
+          stack(top + 1) = interval_t(mid, iv%t1, iv%level, iv%splits + 1, iv%quiet, iv%start)
+          stack(top + 2) = interval_t(iv%t0, mid, iv%level, iv%splits + 1, .true., iv%start)
+          top = top + 2
+          cycle
+        end if
+      end if
+      if (ok .and. iv%quiet) then
+        do k = 1, size(rs%fields)
+          if (rs%active(k)) call rs%fields(k)%f%commit()
+        end do
+        cycle
+      end if
       if (ok) then
-        call increment_done(m, is, rs, obs, iv%t1, iters, iv%t1 - iv%t0)
+        call increment_done(m, is, rs, obs, iv%t1, iters, iv%t1 - iv%start)
         cycle
       end if
       ! (a re-search of the halves pairs on the converged configuration)
       call restore_fields(m, rs, reason, cut, changing)
-      mid = 0.5_dp * (iv%t0 + iv%t1)
       if (iv%level >= m%max_cutbacks .or. mid <= iv%t0 .or. mid >= iv%t1) then
         call tell_note(obs, 'contact status did not settle; nodes still switching:' // changing)
         call fatal('contact status did not settle in step ' // itoa(is) // ' at time ' // rtoa(iv%t1, 6) // &
           ' after ' // itoa(iv%level) // ' bisections; nodes still switching:' // changing)
       end if
       call tell_note(obs, 'contact status did not settle: increment bisected')
-      ! the second half below the first, so that the first is solved first
-      stack(top + 1) = interval_t(mid, iv%t1, iv%level + 1)
-      stack(top + 2) = interval_t(iv%t0, mid, iv%level + 1)
+      ! the second half below the first, so that the first is solved first;
+      ! each an increment of the results unless within a split's first half
+      stack(top + 1) = interval_t(mid, iv%t1, iv%level + 1, iv%splits, iv%quiet, mid)
+      stack(top + 2) = interval_t(iv%t0, mid, iv%level + 1, iv%splits, iv%quiet, iv%start)
       top = top + 2
     end do
   end subroutine advance
+
+  !> Purpose: the increment just converged; should it be split in two
+  !> (a field's split_wanted)? If so every field is restored to the
+  !> state it started from and the observers are told why; the caller
+  !> solves the two halves.
+  logical function split_increment(m, is, rs, obs) result(split)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is
+    type(run_state_t), intent(inout) :: rs
+    type(observer_ref_t), intent(in) :: obs(:)
+    character(len=:), allocatable :: why
+    integer :: k
+    split = .false.
+    do k = 1, size(rs%fields)
+      if (.not. rs%active(k)) cycle
+      call rs%fields(k)%f%split_wanted(m, is, split, why)
+      if (split) exit
+    end do
+    if (.not. split) return
+    do k = 1, size(rs%fields)
+      if (rs%active(k)) call rs%fields(k)%f%restore(m)
+    end do
+    call tell_note(obs, why // ': increment split in two')
+  end function split_increment
 
   !> Purpose: a nonlinear step's increments (CalculiX's automatic
   !> incrementation, its manual "Convergence criteria"; the constants are
@@ -378,7 +435,9 @@ contains
   !> increment that fails (a field's failure: divergence, too slow, an
   !> inverted element, a contact status that does not settle) is cut back
   !> by its factor (0.25 or 0.5) and solved again from the last committed
-  !> state (cut_back). With DIRECT the increments are fixed. A search of
+  !> state (cut_back); one that converged but a field wants split
+  !> (split_increment) is solved again as its first half, the next sized
+  !> from that. With DIRECT the increments are fixed. A search of
   !> the contact on the current configuration is due from the second
   !> increment on (displacement_field's begin_increment).
   subroutine advance_automatic(m, is, rs, obs)
@@ -387,12 +446,13 @@ contains
     type(run_state_t), intent(inout) :: rs
     type(observer_ref_t), intent(in) :: obs(:)
     real(dp) :: t, dt, dt_try, dt_full, period
-    integer :: iters, fast
+    integer :: iters, fast, splits
     logical :: ok
     period = m%steps(is)%period
     dt = m%steps(is)%dt
     t = 0.0_dp
     fast = 0
+    splits = 0
     do while (t < period)
       dt_try = min(dt, period - t)
       ! a last sliver of the step joins this increment
@@ -407,6 +467,15 @@ contains
         call cut_back(m, is, rs, obs, t, dt_try, dt)
         cycle
       end if
+      ! a converged increment a field wants split: its first half next
+      if (splits < max_splits .and. 0.5_dp * dt_try >= minimum_increment(m, is)) then
+        if (split_increment(m, is, rs, obs)) then
+          splits = splits + 1
+          dt = 0.5_dp * dt_try
+          cycle
+        end if
+      end if
+      splits = 0
       t = t + dt_try
       if (period - t <= 1.0e-12_dp * period) t = period
       call increment_done(m, is, rs, obs, t, iters, dt_try)

@@ -43,6 +43,10 @@ module analysis_field
     !> (automatic increments); what is still changing (a linear step's
     !> bisection: the contact nodes still switching)
     procedure(field_failure), deferred :: failure
+    !> a converged increment that the field would rather have split in
+    !> two (a frictional contact zone that grew too far within it); the
+    !> default: never
+    procedure :: split_wanted => never_split
     !> a converged increment's results, to the observers
     procedure(field_report), deferred :: report
     !> the step is done: the field's part of its summary (and its notes)
@@ -145,4 +149,19 @@ module analysis_field
       type(run_timing_t), intent(inout) :: timing
     end subroutine field_finish
   end interface
+
+contains
+
+  !> Purpose: the default of split_wanted: a converged increment of a
+  !> field is never split (wanted false, reason empty).
+  !> Arguments: m the model; is the step.
+  subroutine never_split(f, m, is, wanted, reason)
+    class(field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is
+    logical, intent(out) :: wanted
+    character(len=:), allocatable, intent(out) :: reason
+    wanted = .false.
+    reason = ''
+  end subroutine never_split
 end module analysis_field

@@ -403,29 +403,40 @@ contains
   !> converged at u0 (from the history before its commit, body%hist_old):
   !> evaluated from the committed history at u0 itself, a point on the
   !> yield surface would be elastic or plastic by round-off, and the
-  !> builds would take different first iterations.
-  subroutine body_predictor_forces(m, body, u0, du, f, counts)
+  !> builds would take different first iterations. f0, if given, is
+  !> f_int(u0) of that last iteration (the caller's, without follower
+  !> pressures or thermal strain, which move with the increment): then only
+  !> the elements that du moves are evaluated, for K_T(u0) du.
+  subroutine body_predictor_forces(m, body, u0, du, f, counts, f0)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     real(dp), intent(in) :: u0(:, :), du(:, :)
     real(dp), intent(out) :: f(:, :)
     type(element_counts_t), intent(inout) :: counts
+    real(dp), intent(in), optional :: f0(:, :)
     integer :: e, e0, k, nt
     real(dp), allocatable :: fe(:, :)
-    allocate(fe(max_edof, block_size))
+    logical, allocatable :: moved(:)
+    logical :: moved_only
+    moved_only = present(f0) .and. .not. allocated(body%dtemp0)
+    if (allocated(body%fl_ptr)) moved_only = moved_only .and. body%fl_ptr(size(body%fl_ptr)) == body%fl_ptr(1)
+    allocate(fe(max_edof, block_size), moved(block_size))
     f = 0.0_dp
+    if (moved_only) f = f0
     nt = element_threads()
-    ! each element's f_int + K_T du on the team, a block at a time; the
-    ! sum into f in element order
+    ! each element's f_int + K_T du (K_T du alone with f0) on the team, a
+    ! block at a time; the sum into f in element order
     call team_open()
     do e0 = 1, m%ne, block_size
       !$omp parallel do num_threads(nt) if (nt > 1) schedule(dynamic, 16) default(shared) private(e)
       do e = e0, min(m%ne, e0 + block_size - 1)
-        if (carries_stiffness(m, e)) call predictor_force(m, body, u0, du, e, fe(:, e - e0 + 1))
+        moved(e - e0 + 1) = carries_stiffness(m, e)
+        if (moved_only .and. moved(e - e0 + 1)) moved(e - e0 + 1) = any(du(:, m%conn(1:elem_nodes(m, e), e)) /= 0.0_dp)
+        if (moved(e - e0 + 1)) call predictor_force(m, body, u0, du, e, moved_only, fe(:, e - e0 + 1))
       end do
       !$omp end parallel do
       do e = e0, min(m%ne, e0 + block_size - 1)
-        if (.not. carries_stiffness(m, e)) cycle
+        if (.not. moved(e - e0 + 1)) cycle
         counts%continuum_tangent = counts%continuum_tangent + 1
         do k = 1, elem_nodes(m, e)
           f(:, m%conn(k, e)) = f(:, m%conn(k, e)) + fe(2 * k - 1:2 * k, e - e0 + 1)
@@ -437,12 +448,14 @@ contains
 
   !> Purpose: one element's work of body_predictor_forces' team: fe =
   !> f_int(u0) + K_T(u0) du of body element e (with its follower
-  !> pressures), from the history before the last commit.
-  subroutine predictor_force(m, body, u0, du, e, fe)
+  !> pressures), from the history before the last commit; with
+  !> tangent_only, K_T(u0) du alone.
+  subroutine predictor_force(m, body, u0, du, e, tangent_only, fe)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     real(dp), intent(in) :: u0(:, :), du(:, :)
     integer, intent(in) :: e
+    logical, intent(in) :: tangent_only
     real(dp), intent(inout) :: fe(:)
     type(elem_in_t) :: ein
     type(elem_out_t) :: eout
@@ -459,6 +472,7 @@ contains
       call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .true.)
       call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .false.)
     end if
+    if (tangent_only) eout%fe(1:nd) = 0.0_dp
     fe(1:nd) = eout%fe(1:nd) + matmul(eout%ke(1:nd, 1:nd), due(1:nd))
   end subroutine predictor_force
 

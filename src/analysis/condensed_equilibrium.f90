@@ -31,7 +31,8 @@ module condensed_equilibrium
                                 set_aside_or_stop, factor_fits, factor_made
   use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
   use analysis_events, only: tell_note, wall_time
-  use newton_control, only: newton_give_up, not_finite, not_condensable
+  use newton_control, only: newton_give_up, converged_body_forces, converged_forces_at, not_finite, &
+                            not_condensable
   use contact_repairing, only: search_in_iteration, coupling_length
   implicit none
   private
@@ -352,7 +353,13 @@ contains
     path%ubase = st%u
     allocate(path%fbase(2, st%m%nn))
     if (st%predict) then
-      call body_predictor_forces(st%m, st%body, st%u_from, st%u - st%u_from, path%fbase, st%eq%counts)
+      if (converged_forces_at(st%eq%newton, st%u_from)) then
+        ! the bodies' forces of the converged state kept: only the moved elements evaluated
+        call body_predictor_forces(st%m, st%body, st%u_from, st%u - st%u_from, path%fbase, st%eq%counts, &
+                                   f0=st%eq%newton%fconv)
+      else
+        call body_predictor_forces(st%m, st%body, st%u_from, st%u - st%u_from, path%fbase, st%eq%counts)
+      end if
       path%tangent_at = st%u_from
       path%at_converged = .true.
     else
@@ -529,5 +536,7 @@ contains
     end if
     if (allocated(st%eq%u_last)) deallocate(st%eq%u_last)
     if (allocated(st%eq%fbody_last)) deallocate(st%eq%fbody_last)
+    ! the bodies' forces of the settled correction: the next predictor's
+    if (allocated(st%eq%fbody)) call converged_body_forces(st%eq%newton, st%u, st%eq%fbody)
   end subroutine newton_converged_increment
 end module condensed_equilibrium

@@ -9,6 +9,7 @@ module displacement_field
   use kinds, only: dp
   use model
   use contact, only: contact_set_t, cfe_t, contact_search, contact_research, contact_commit
+  use contact_status, only: touched_within, max_touched
   use assembly, only: body_t, element_counts_t, body_setup, commit_history, thermal_forces
   use dof_numbering, only: dofmap_t
   use condensed_contact, only: number_equations
@@ -61,6 +62,14 @@ module displacement_field
     !> and the reaction fluxes reported with the displacements.
     logical :: coupled = .false.
     real(dp), allocatable :: temp0(:), temp1(:), rfl(:)
+    !> An increment has been committed (the couplings' gaps are then the
+    !> last converged ones; before, the initial gaps: split_wanted).
+    logical :: evaluated = .false.
+    !> The couplings' slips (slip_inc) of the increments committed since
+    !> the last report: a split increment's sub-increments (the driver's
+    !> advance) report the slip of the whole increment (since the last
+    !> contact search: a search pairs the couplings anew).
+    real(dp), allocatable :: slip_since(:)
   contains
     procedure :: setup
     procedure :: begin_step => begin_mechanical_step
@@ -71,6 +80,7 @@ module displacement_field
     procedure :: commit
     procedure :: restore
     procedure :: failure
+    procedure :: split_wanted => split_touching
     procedure :: report
     procedure :: end_step
     procedure :: finish
@@ -175,6 +185,9 @@ contains
     real(dp), intent(in) :: t0, t1
     logical, intent(in) :: search_due
     type(run_timing_t), intent(inout) :: timing
+    ! (a new pairing: the slips carried since the last report are dropped)
+    if ((f%research_each .or. f%update_search) .and. search_due .and. allocated(f%slip_since)) &
+      deallocate(f%slip_since)
     if (f%research_each) then
       if (search_due) then
         call contact_research(m, m%x + f%u, f%cs)
@@ -266,7 +279,44 @@ contains
     class(displacement_field_t), intent(inout) :: f
     call contact_commit(f%cs)
     if (f%step_nonlinear) call commit_history(f%body)
+    f%evaluated = .true.
+    if (allocated(f%slip_since)) then
+      if (size(f%slip_since) == f%cs%n) then
+        f%slip_since = f%slip_since + f%cs%c(1:f%cs%n)%slip_inc
+        return
+      end if
+    end if
+    f%slip_since = f%cs%c(1:f%cs%n)%slip_inc
   end subroutine commit
+
+  !> Purpose: should the converged increment be split in two? Where more
+  !> than max_touched frictional couplings of a pair closed within it
+  !> from an open gap (contact_status's touched_within): such points
+  !> stick from their anchor of the increment's start, so the relative
+  !> tangential motion before they touched counts as stick; splitting
+  !> brings each touching instant within a slave spacing's growth of an
+  !> increment's start (docs/contact.md, "Accuracy of stick and slip").
+  !> Never with fixed increments (DIRECT): the deck's increments are
+  !> kept, as CalculiX keeps them.
+  !> Arguments: m the model; is the step; wanted, reason (for the note).
+  subroutine split_touching(f, m, is, wanted, reason)
+    class(displacement_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: is
+    logical, intent(out) :: wanted
+    character(len=:), allocatable, intent(out) :: reason
+    integer :: n
+    wanted = .false.
+    reason = ''
+    if (m%steps(is)%direct) return
+    if (f%research_each) then
+      n = touched_within(f%saved_cs%c(1:f%saved_cs%n), f%cs, f%evaluated)
+    else
+      n = touched_within(f%saved, f%cs, f%evaluated)
+    end if
+    wanted = n > max_touched
+    if (wanted) reason = 'frictional contact zone grew by ' // itoa(n) // ' points in the increment'
+  end subroutine split_touching
 
   !> Purpose: nothing of the failed attempt is kept: the statuses and
   !> displacements the increment started with (the friction history is
@@ -315,7 +365,8 @@ contains
   end subroutine research
 
   !> Purpose: the results of a converged increment at step time t,
-  !> computed once, to every observer.
+  !> computed once, to every observer; the couplings' increment slips
+  !> those of the whole increment (slip_since).
   subroutine report(f, m, is, inc, t, total_time, iters, dt, obs, timing)
     class(displacement_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
@@ -328,6 +379,11 @@ contains
     real(dp) :: t0, t1
     real(dp), allocatable :: dtemp(:)
     t0 = wall_time()
+    ! the slip of the whole increment (its sub-increments' too)
+    if (allocated(f%slip_since)) then
+      if (size(f%slip_since) == f%cs%n) f%cs%c(1:f%cs%n)%slip_inc = f%slip_since
+      deallocate(f%slip_since)
+    end if
     if (f%coupled) then
       dtemp = f%temp1 - f%ls%temp_init
       call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &

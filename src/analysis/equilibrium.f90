@@ -14,7 +14,7 @@ module equilibrium
   use kinds, only: dp
   use model, only: model_t
   use contact, only: contact_set_t, contact_forces
-  use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces
+  use assembly, only: body_t, assemble_stiffness, free_residual, body_predictor_forces, nonlinear_body_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
   use constraints, only: mpc_t
   use linear_solver, only: linear_system_t, sys_factor, sys_solve, sys_analyse, factor_singular, factor_fallback
@@ -23,6 +23,7 @@ module equilibrium
   use iteration_state, only: iteration_t, linear_path_t
   use equilibrium_loop, only: iterate
   use condensed_equilibrium, only: condensed_path_t, newton_condensed_path_t
+  use newton_control, only: converged_body_forces, converged_forces_at
   use contact_repairing, only: renumber_couplings, note_numbering, numbering_fits
   use analysis_events, only: observer_ref_t, run_timing_t, tell_note, wall_time
   use messages, only: warn
@@ -34,6 +35,11 @@ module equilibrium
   !> current displacements and status.
   type, extends(linear_path_t) :: full_path_t
     real(dp), allocatable :: fint(:, :)
+    !> A nonlinear step: the bodies' part of fint, when fbody_at_u (it is
+    !> that of the current u: the forces of a new status need only the
+    !> couplings' again).
+    real(dp), allocatable :: fbody(:, :)
+    logical :: fbody_at_u = .false.
   contains
     procedure :: begin => full_begin
     procedure :: factor => full_factor
@@ -112,15 +118,40 @@ contains
   subroutine full_begin(path, st)
     class(full_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
-    allocate(path%fint(2, st%m%nn))
+    allocate(path%fint(2, st%m%nn), path%fbody(2, st%m%nn))
+    path%fbody_at_u = .false.
     if (st%predict) then
-      call body_predictor_forces(st%m, st%body, st%u_from, st%u - st%u_from, path%fint, st%eq%counts)
+      if (converged_forces_at(st%eq%newton, st%u_from)) then
+        call body_predictor_forces(st%m, st%body, st%u_from, st%u - st%u_from, path%fint, st%eq%counts, &
+                                   f0=st%eq%newton%fconv)
+      else
+        call body_predictor_forces(st%m, st%body, st%u_from, st%u - st%u_from, path%fint, st%eq%counts)
+      end if
       call contact_forces(st%m, st%cs, st%u, path%fint, st%eq%counts%coupling)
       st%body%bad_elem = 0
     else
-      call internal_forces(st%m, st%body, st%cs, st%u, path%fint, st%eq%counts)
+      call path_forces(path, st)
     end if
   end subroutine full_begin
+
+  !> Purpose: f_int at u (internal_forces); in a nonlinear step its
+  !> bodies' part kept (path%fbody), and where it is that of u already,
+  !> only the couplings' forces made again. energy, if present, returns
+  !> the bodies' strain energy measure of internal_forces.
+  subroutine path_forces(path, st, energy)
+    class(full_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    real(dp), intent(out), optional :: energy
+    if (.not. st%body%nonlinear) then
+      call internal_forces(st%m, st%body, st%cs, st%u, path%fint, st%eq%counts, energy)
+      return
+    end if
+    if (.not. path%fbody_at_u) call nonlinear_body_forces(st%m, st%body, st%u, path%fbody, st%eq%counts)
+    path%fbody_at_u = .true.
+    if (present(energy)) energy = 0.5_dp * sum(st%u * path%fbody)
+    path%fint = path%fbody
+    call contact_forces(st%m, st%cs, st%u, path%fint, st%eq%counts%coupling)
+  end subroutine path_forces
 
   !> Purpose: the stiffness of the status factored unless the factor in
   !> hand is for it; in a Newton increment's first iteration the tangent
@@ -155,6 +186,7 @@ contains
       end do
     end do
     call expand_dependent(st%dm, st%u)
+    path%fbody_at_u = .false.
     if (.not. st%body%nonlinear) call check_finite(st%m, st%is, st%inc, st%u)
   end subroutine full_solve
 
@@ -164,7 +196,9 @@ contains
     class(full_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
     real(dp) :: energy
-    call internal_forces(st%m, st%body, st%cs, st%u, path%fint, st%eq%counts, energy)
+    ! (u moved since the solve: the search and the rigid bodies' turn follow it)
+    path%fbody_at_u = .false.
+    call path_forces(path, st, energy)
     st%energy = energy - sum(st%fext * st%u)
   end subroutine full_energy
 
@@ -173,7 +207,7 @@ contains
   subroutine full_residual(path, st)
     class(full_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
-    if (st%nchanged > 0) call internal_forces(st%m, st%body, st%cs, st%u, path%fint, st%eq%counts)
+    if (st%nchanged > 0) call path_forces(path, st)
     st%rf = path%fint - st%fext
     call reduce_dependent(st%dm, st%rf)
     st%eq%residual = relative_residual(st%dm, st%cs, st%fext, st%u, st%rf, st%eq%kmax, st%eq%force_history, st%scale)
@@ -184,13 +218,15 @@ contains
   subroutine full_forces(path, st)
     class(full_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
-    call internal_forces(st%m, st%body, st%cs, st%u, path%fint, st%eq%counts)
+    call path_forces(path, st)
   end subroutine full_forces
 
-  !> Purpose: nothing to keep: the next increment starts from u.
+  !> Purpose: the next increment starts from u; in a nonlinear step the
+  !> bodies' forces of its last iteration are kept for its predictor.
   subroutine full_converged(path, st)
     class(full_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
+    if (st%body%nonlinear .and. path%fbody_at_u) call converged_body_forces(st%eq%newton, st%u, path%fbody)
   end subroutine full_converged
 
   !> Assembles and factors the stiffness unless the factor in hand was made

@@ -21,7 +21,7 @@ module equilibrium_loop
   use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
   use dof_numbering, only: dofmap_t, expand_dependent, follow_rotations
   use equilibrium_common, only: report_iteration, contact_force_scale, take_back, next_stage
-  use newton_control, only: newton_begin, newton_test, newton_converged, newton_give_up, bad_element, &
+  use newton_control, only: newton_t, newton_begin, newton_test, newton_converged, newton_give_up, bad_element, &
                             tangent_overflow, singular_tangent, not_finite, status_cycle, not_settled
   use contact_repairing, only: search_in_iteration, coupling_length, numbering_fits
   use iteration_state, only: iteration_t, linear_path_t, go_on, again, give_up
@@ -130,9 +130,62 @@ contains
     type(iteration_t), intent(inout) :: st
     call path%solve(st)
     if (st%body%nonlinear) then
+      ! (the condensed Newton path's first solves move only the contact equations)
+      if (st%it == 1 .and. st%predict .and. path%newton_refactors) call extrapolate_predictor(st)
       if (.not. all(ieee_is_finite(st%u))) call give_up_increment(st, not_finite)
     end if
   end subroutine solve_and_update
+
+  !> Purpose: the first iteration's predictor step (u moved from the
+  !> converged state by the tangent's response to the prescribed motion)
+  !> extrapolated with the path's curvature: the predictor's error is the
+  !> second-order term of the path, (1/2) u'' dt^2, and each converged
+  !> increment measures it as what its later iterations added to its
+  !> predictor step, c, over the step's squared length s^2. Where the last
+  !> two increments measured the same curvature (c / s^2 of the one
+  !> before within a cosine of 0.9 and a factor of 2 of the last one's:
+  !> a smooth path, not the kink of a first yield or a contact change)
+  !> and this predictor step points the way of the last one (cosine above
+  !> 0.99: not at a reversal of the load), s^2 times the last curvature is
+  !> added to the free equations. A better first iterate, nothing else:
+  !> the residual and Newton's tests decide convergence as before (the
+  !> O-ring: 48 Newton iterations instead of 64, most increments
+  !> converging in two).
+  subroutine extrapolate_predictor(st)
+    type(iteration_t), intent(inout) :: st
+    real(dp), allocatable :: step(:, :)
+    real(dp) :: s2
+    step = st%u - st%u_start
+    st%u_pred = st%u
+    associate(nt => st%eq%newton)
+      s2 = sum(step**2)
+      if (smooth_path(nt, step)) then
+        where (st%dm%eq > 0) st%u = st%u + s2 * nt%curv
+        call expand_dependent(st%dm, st%u)
+        st%c_max = max(st%c_max, s2 * maxval(abs(nt%curv)))
+      end if
+      nt%pred = step
+    end associate
+  end subroutine extrapolate_predictor
+
+  !> Purpose: may this increment's predictor step, step, be extrapolated
+  !> with the curvature the last two increments measured
+  !> (extrapolate_predictor says when)?
+  pure logical function smooth_path(nt, step) result(ok)
+    type(newton_t), intent(in) :: nt
+    real(dp), intent(in) :: step(:, :)
+    real(dp) :: c1, c2, p
+    ok = .false.
+    if (nt%ncurv < 2 .or. .not. allocated(nt%pred)) return
+    if (any(shape(nt%pred) /= shape(step)) .or. any(shape(nt%curv) /= shape(step))) return
+    c1 = norm2(nt%curv)
+    c2 = norm2(nt%curv_before)
+    p = norm2(nt%pred) * norm2(step)
+    if (c1 <= 0.0_dp .or. c2 <= 0.0_dp .or. p <= 0.0_dp) return
+    if (sum(step * nt%pred) <= 0.99_dp * p) return
+    if (c1 > 2.0_dp * c2 .or. c2 > 2.0_dp * c1) return
+    ok = sum(nt%curv * nt%curv_before) > 0.9_dp * c1 * c2
+  end function smooth_path
 
   !> Step (NLGEOM with contact): the contact searched again on the updated
   !> configuration. The search follows an iterate whose correction is
@@ -231,7 +284,29 @@ contains
     call path%converged(st)
     st%eq%force_history = max(st%eq%force_history, st%scale)
     if (st%body%nonlinear) call newton_converged(st%eq%newton)
+    if (st%body%nonlinear) call measure_curvature(st)
   end subroutine increment_converged
+
+  !> The path's curvature the converged increment measured (what its
+  !> iterations added to its predictor step over the step's squared
+  !> length: extrapolate_predictor); an increment that changed a contact
+  !> status, or had no predictor step, measures none and starts the count
+  !> again.
+  subroutine measure_curvature(st)
+    type(iteration_t), intent(inout) :: st
+    real(dp) :: s2
+    associate(nt => st%eq%newton)
+      s2 = 0.0_dp
+      if (allocated(st%u_pred) .and. allocated(nt%pred)) s2 = sum(nt%pred**2)
+      if (nt%changes > 0 .or. s2 <= 0.0_dp) then
+        nt%ncurv = 0
+        return
+      end if
+      if (nt%ncurv > 0) nt%curv_before = nt%curv
+      nt%curv = (st%u - st%u_pred) / s2
+      nt%ncurv = min(nt%ncurv + 1, 2)
+    end associate
+  end subroutine measure_curvature
 
   ! ---- Newton's decisions (nonlinear steps) ----
 

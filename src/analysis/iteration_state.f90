@@ -73,6 +73,7 @@ module iteration_state
     logical :: inner = .false.
     integer :: ninner = 0               ! inner iterations of the increment
     real(dp), allocatable :: u_start(:, :)   ! a nonlinear step: u at the increment's start
+    real(dp), allocatable :: u_pred(:, :)    ! u after the first iteration's predictor step
     !> The cycle watch of a nonlinear step: the statuses and out-of-balance
     !> of the last two iterations that changed a status.
     logical, allocatable :: closed1(:), closed2(:)

@@ -10,7 +10,8 @@ module newton_control
   use model, only: controls_t
   implicit none
   private
-  public :: newton_t, newton_begin, newton_test, newton_converged, newton_new_step, newton_give_up
+  public :: newton_t, newton_begin, newton_test, newton_converged, newton_new_step, newton_give_up, &
+            converged_body_forces, converged_forces_at
 
   !> Why an increment is given up (newton_give_up): CalculiX's tests
   !> (diverged, no_convergence, too_slow) and the iteration's own stops.
@@ -41,6 +42,19 @@ module newton_control
     character(len=:), allocatable :: reason
     type(controls_t) :: ctl             ! the step's *CONTROLS
     logical :: singular = .false.       ! the last factorisation of the tangent was singular
+    !> The predictor's correction (equilibrium_loop's
+    !> extrapolate_predictor): the first iteration's step of the last
+    !> increment (pred), and what the later iterations added to it over
+    !> its squared length in the last two converged increments in turn
+    !> without a status change (curv, curv_before; ncurv of them hold).
+    real(dp), allocatable :: pred(:, :), curv(:, :), curv_before(:, :)
+    integer :: ncurv = 0
+    !> The bodies' internal forces fconv at the displacements uconv of the
+    !> last converged increment, of its last iteration (the next
+    !> predictor's f_int(u0) where u0 is uconv: assembly's
+    !> body_predictor_forces), when have_fconv.
+    real(dp), allocatable :: fconv(:, :), uconv(:, :)
+    logical :: have_fconv = .false.
   end type newton_t
 
 
@@ -133,12 +147,36 @@ contains
     nt%q_count = nt%q_count + 1
   end subroutine newton_converged
 
+  !> Purpose: the bodies' forces fbody of the last iteration of the
+  !> increment that converged at u, kept for the next increment's
+  !> predictor (newton_t's fconv).
+  subroutine converged_body_forces(nt, u, fbody)
+    type(newton_t), intent(inout) :: nt
+    real(dp), intent(in) :: u(:, :), fbody(:, :)
+    nt%uconv = u
+    nt%fconv = fbody
+    nt%have_fconv = .true.
+  end subroutine converged_body_forces
+
+  !> Purpose: does nt hold the bodies' forces of the converged state u0
+  !> (the last converged increment's, kept by converged_body_forces)?
+  logical function converged_forces_at(nt, u0) result(yes)
+    type(newton_t), intent(in) :: nt
+    real(dp), intent(in) :: u0(:, :)
+    yes = .false.
+    if (.not. (nt%have_fconv .and. allocated(nt%uconv))) return
+    if (any(shape(nt%uconv) /= shape(u0))) return
+    yes = all(nt%uconv == u0)
+  end function converged_forces_at
+
   !> Purpose: a new step starts from the time average of the steps
   !> before (one sample of it), CalculiX's q_0, with its *CONTROLS ctl.
   subroutine newton_new_step(nt, ctl)
     type(newton_t), intent(inout) :: nt
     type(controls_t), intent(in) :: ctl
     nt%ctl = ctl
+    nt%ncurv = 0
+    nt%have_fconv = .false.
     if (nt%q_count > 0) then
       nt%q_sum = nt%q_sum / nt%q_count
       nt%q_count = 1
@@ -161,6 +199,10 @@ contains
     character(len=:), allocatable :: d
     d = ''
     if (present(detail)) d = detail
+    ! the correction of an increment given up is not the path's, and its
+    ! iterations left the bodies' forces of another state
+    nt%ncurv = 0
+    nt%have_fconv = .false.
     nt%cut = nt%ctl%df
     select case (why)
     case (diverged)

@@ -71,7 +71,7 @@ module contact_status
   implicit none
   private
   public :: status_search_t, begin_status_search, contact_switch, reject_pivot, shifted_gap, contact_energy, &
-            augment_multipliers, max_augmentations
+            augment_multipliers, max_augmentations, touched_within, max_touched
 
   !> Relative round-off under which gap and force count as zero.
   real(dp), parameter :: round_off = 1.0e-10_dp
@@ -87,6 +87,10 @@ module contact_status
   !> A soft law's block pivot raises the pressure at most this many times
   !> (pivot_soft).
   real(dp), parameter :: max_rise = 10.0_dp
+  !> Frictional CFEs of one pair that may close from an open gap within
+  !> one increment (touched_within): about one slave spacing at each end
+  !> of a growing contact zone.
+  integer, parameter :: max_touched = 2
 
   !> The state of one increment's status search, and the pivots made
   !> since it was made: block (every violated CFE changes) and single (the
@@ -262,6 +266,45 @@ contains
       end associate
     end do
   end subroutine return_mapping
+
+  !> Purpose: the largest number, over the contact pairs, of frictional
+  !> CFEs that closed within the increment from an open gap: open at its
+  !> start (start, the CFEs as the increment began) with a gap above the
+  !> round-off, closed at its end (cs, converged). Such a point takes its
+  !> anchor from the increment's start (contact_commit), so the relative
+  !> tangential motion before it touched counts as elastic stick (docs/
+  !> contact.md, "Accuracy of stick and slip"): the driver splits an
+  !> increment in which more than max_touched close in one pair (the
+  !> points then touch within a slave spacing of the increment's start).
+  !> A point that touched where the increment began (its gap zero, flat
+  !> faces laid on each other) is not counted: its anchor is right.
+  !> Arguments: start the CFEs at the increment's start (the same set as
+  !> cs, else 0: a new search paired them anew); evaluated false where
+  !> no increment has evaluated the CFEs yet (their gap then the initial
+  !> one, n . [[U]]_0, eq. 8).
+  pure integer function touched_within(start, cs, evaluated) result(most)
+    type(cfe_t), intent(in) :: start(:)
+    type(contact_set_t), intent(in) :: cs
+    logical, intent(in) :: evaluated
+    integer, allocatable :: per_pair(:)
+    real(dp) :: g
+    integer :: j
+    most = 0
+    if (size(start) /= cs%n .or. cs%n == 0) return
+    if (.not. frictional_set(cs)) return
+    allocate(per_pair(maxval(cs%c(1:cs%n)%pair)))
+    per_pair = 0
+    do j = 1, cs%n
+      associate(c => cs%c(j), s => start(j))
+        if (c%mu <= 0.0_dp .or. .not. c%closed .or. s%closed .or. c%pair /= s%pair) cycle
+        g = s%gap
+        if (.not. evaluated) g = dot_product(s%normal, s%gap0)
+        if (g <= max(round_off * s%h, s%gap_round)) cycle
+        per_pair(c%pair) = per_pair(c%pair) + 1
+      end associate
+    end do
+    most = maxval(per_pair)
+  end function touched_within
 
   !> Purpose: takes back the last pivot, whose status cannot be factored
   !> (its stiffness is singular: a body it leaves held by open contact
