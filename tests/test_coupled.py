@@ -210,14 +210,18 @@ def ids_lines(ns):
 
 
 def blocks_deck(coupling, conductance, p0=10.0, k1=50.0, k2=50.0, alpha=0.0, top_held=False, nx=2, ny=2,
-                shape="Q4", et="CPE4T", t_bottom=100.0, t_top=0.0):
+                shape="Q4", et="CPE4T", t_bottom=100.0, t_top=0.0, gap=0.0, gc_params=None):
     """Two blocks of 1 x 1 (plane strain, unit thickness), A on 0 < y < 1 and
-    B on 1 < y < 2, B's bottom the slave on A's top; A's bottom held at
-    t_bottom and B's top at t_top (dof 11); both sides held in x (a 1D
-    state), A's bottom in y, B's top pressed by p0 (or held in y:
-    top_held); conductance the *GAP CONDUCTANCE data lines."""
+    B on 1 + gap < y < 2 + gap, B's bottom the slave on A's top; A's bottom
+    held at t_bottom and B's top at t_top (dof 11); both sides held in x (a
+    1D state), A's bottom in y, B's top pressed by p0 (or held in y:
+    top_held); conductance the *GAP CONDUCTANCE data lines, gc_params its
+    parameters (default PRESSURE for a table of several lines)."""
     a = Mesh(shape, nx, ny, lambda s, t: (s / nx, t / ny), straight=True)
-    b = Mesh(shape, nx, ny, lambda s, t: (s / nx, 1.0 + t / ny), straight=True, first_node=1001, first_elem=1001)
+    b = Mesh(shape, nx, ny, lambda s, t: (s / nx, 1.0 + gap + t / ny), straight=True, first_node=1001,
+             first_elem=1001)
+    if gc_params is None:
+        gc_params = ", PRESSURE" if conductance.count(chr(10)) > 1 else ""
     sides = sorted(a.side("left") + a.side("right") + b.side("left") + b.side("right"))
     top_faces = "".join(f"{e}, P{k}, {p0}\n" for e, k in b.faces("top"))
     load = f"*BOUNDARY\nTOP, 2, 2\n" if top_held else f"*DLOAD\n{top_faces}"
@@ -249,7 +253,7 @@ two blocks through a gap conductance
 1.
 *SURFACE INTERACTION, NAME=GAP
 *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD
-*GAP CONDUCTANCE{', PRESSURE' if conductance.count(chr(10)) > 1 else ''}
+*GAP CONDUCTANCE{gc_params}
 {conductance}*CONTACT PAIR, INTERACTION=GAP, TYPE={coupling}
 BSURF, ASURF
 *BOUNDARY
@@ -469,7 +473,14 @@ def test_coupled_errors():
     heat_only = base.replace("*COUPLED TEMPERATURE-DISPLACEMENT", "*HEAT TRANSFER").replace(
         "*DLOAD\n", "*DFLUX\n").replace(", P3, 10.0", ", S3, 10.0")
     cases = [
-        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE, USER\n"), "USER (a user routine gapcon)"),
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE, USER\n"),
+         "*GAP CONDUCTANCE, USER: cfe2d has no user routines (CalculiX calls gapcon, Abaqus GAPCON); give the "
+         "conductance as data lines instead"),
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE, PRESSURE, CLEARANCE\n25.\n"), "not both"),
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE, CLEARANCE\n25., -0.1\n"),
+         "a clearance of *GAP CONDUCTANCE must not be negative"),
+        (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE, CLEARANCE\n25., 0.1\n20., 0.1\n"),
+         "the clearances of a *GAP CONDUCTANCE table must increase"),
         (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE\n25., 0., 20.\n30., 10., 100.\n"),
          "temperature-dependent *GAP CONDUCTANCE"),
         (base.replace("*GAP CONDUCTANCE\n25.\n", "*GAP CONDUCTANCE, PRESSURE\n25., 10.\n30., 5.\n"),
@@ -669,3 +680,213 @@ def test_model_data_temperatures_in_a_coupled_deck():
     # q = 100 / (1/50 + 1/25 + 1/50) = 1250 through the blocks of k 50 and h 25: A's top at 100 - q/50
     nt = inc_b.block("NODE NT", set="ATOP")["NT11"]
     assert all(abs(t - 75.0) < 1e-9 * 75.0 for t in nt), nt
+
+
+def transient(text, dt=0.1, period=1.0):
+    """A blocks_deck made a transient coupled step of fixed increments
+    (DIRECT, period / dt of them), rho c = 100 in both blocks."""
+    text = text.replace("*COUPLED TEMPERATURE-DISPLACEMENT, STEADY STATE",
+                        f"*COUPLED TEMPERATURE-DISPLACEMENT, DIRECT\n{dt}, {period}")
+    return text.replace("*CONDUCTIVITY\n", "*DENSITY\n1.\n*SPECIFIC HEAT\n100.\n*CONDUCTIVITY\n")
+
+
+def per_field(run):
+    """The step summary's numeric factorisations per field: (temperature,
+    displacement), and the condensed factorisations."""
+    block = [b for b in run.listing.header if b.name == "STEP SUMMARY"][-1].as_dict()
+    words = dict(w.split("=") for w in block["numeric_factorisations_per_field"].split())
+    assert int(words["temperature"]) + int(words["displacement"]) == int(block["numeric_factorisations"]), block
+    return int(words["temperature"]), int(words["displacement"]), int(block["condensed_factorisations"])
+
+
+def test_coupled_step_factors_bodies_once():
+    """A coupled step keeps the condensed contact solve for the
+    displacements: the blocks through a gap conductance, a transient of 10
+    fixed increments (each of 2 or more passes of the two fields), with
+    CONTACT SOLVE=CONDENSED: the bodies are factored once for the whole
+    step (the listing's per-field line: displacement=1, one condensed
+    factorisation: the status holds), with segment-to-segment and with a
+    SMALL SLIDING node-to-segment pair (searched once); the temperature
+    matrix once too where the conductance is constant (h = 25: its
+    couplings' h A w w^T do not change), again at the passes where it
+    follows the pressure (h(p) = 10 + 0.18 p on blocks held at both ends:
+    more than once per increment, the same count with either solve). Every increment's temperatures, reaction
+    fluxes, displacements and contact force equal those of CONTACT
+    SOLVE=FULL (1e-9 of each block's largest value)."""
+    const = transient(blocks_deck("SURFACE TO SURFACE", "25.\n"))
+    two_way = transient(blocks_deck("SURFACE TO SURFACE", "10., 0.\n100., 500.\n", k1=50.0, k2=10.0,
+                                    alpha=1.2e-5, top_held=True, shape="Q8", et="CPE8T", nx=1, ny=2))
+    small = const.replace("TYPE=SURFACE TO SURFACE", "TYPE=NODE TO SURFACE, SMALL SLIDING")
+    for name, text, constant in (("const", const, True), ("two_way", two_way, False), ("small", small, True)):
+        text = text.replace("*NODE PRINT, NSET=ATOP", "*NODE PRINT, NSET=NALL\nU\n*NODE PRINT, NSET=ATOP")
+        runs = {}
+        for solve in ("CONDENSED", "FULL"):
+            deck = text.replace("*STEP\n", f"*SOLVER, CONTACT SOLVE={solve}\n*STEP\n", 1)
+            runs[solve] = run_deck(f"coupled_factors_{name}_{solve.lower()}", deck).ok()
+        cond, full = runs["CONDENSED"], runs["FULL"]
+        t_cond, d_cond, c_cond = per_field(cond)
+        t_full, d_full, _ = per_field(full)
+        with open(cond.listing_path) as f:
+            passes = [int(line.split("settled in ")[1].split()[0]) for line in f if "settled in" in line]
+        assert len(cond.listing.increments) == 10 and len(passes) == 10 and min(passes) >= 2, (name, passes)
+        assert d_cond == 1 and c_cond == 1, (name, d_cond, c_cond)
+        assert d_full == 1, (name, d_full)
+        if constant:
+            assert t_cond == 1 and t_full == 1, (name, t_cond, t_full)
+        else:
+            assert t_cond > len(passes) and t_cond == t_full, (name, t_cond, t_full, passes)
+        print(f"  {name}: factorisations temperature {t_cond}, displacement {d_cond} (condensed {c_cond}) "
+              f"in 10 increments of {sum(passes)} passes")
+        for a, b in zip(cond.listing.increments, full.listing.increments):
+            for block, kw, comps in (("NODE NT", {"set": "ATOP"}, ("NT11",)), ("NODE NT", {"set": "BBOTTOM"},
+                                     ("NT11",)), ("NODE RFL", {"set": "BOTTOM"}, ("RFL11",)),
+                                     ("NODE U", {"set": "NALL"}, ("U1", "U2")),
+                                     ("CONTACT SUMMARY", {}, ("total_force",))):
+                x, y = a.block(block, **kw), b.block(block, **kw)
+                scale = max(max(abs(v) for v in y[c]) for c in comps)
+                assert scale > 0.0, (name, block)
+                for c in comps:
+                    err = max(abs(p - q) for p, q in zip(x[c], y[c]))
+                    assert err <= 1e-9 * scale, (name, a.attrs, block, c, err, scale)
+
+
+
+def test_gap_conductance_clearance():
+    """Abaqus's clearance-dependent gap conductance (CLEARANCE, or an
+    Abaqus/CAE deck without PRESSURE): k(d) = 40 - 300 d (a table, 40 at
+    d = 0, 10 at d = 0.1, zero beyond). The blocks held apart at a
+    clearance d0 = 0.05 (B's top held, alpha 0: nothing moves) conduct
+    across the open gap: the jump is q/k(d0) = 50 with q = 100 / (2/50 +
+    1/25) = 1250 through each block (temperatures exact to 1e-9 of 100,
+    the reaction fluxes q and -q to 1e-9, the contact table's heat flux
+    -q at every open slave point to 1e-7); node-to-segment,
+    segment-to-segment and a two-pass pair (half each pass, at its own
+    clearance). At d0 = 0.15, beyond the table's last clearance, nothing
+    crosses (A at 100, B at 0, the reaction fluxes 1e-9 of q). B pushed
+    down 0.06 (closed, d = 0): k(0) = 40, jump q/40 with q = 100 / (2/50 +
+    1/40). The same table in an Abaqus/CAE deck (*PART, *ASSEMBLY) without
+    PRESSURE gives the CLEARANCE answer with a warning; in a flat deck it
+    is CalculiX's pressure table (the open gap conducts nothing), with a
+    warning naming both readings."""
+    k, table = 50.0, "40., 0.\n10., 0.1\n"
+
+    def check(run, q, jump, tag):
+        inc = run.listing.increments[-1]
+        ta = np.array(inc.block("NODE NT", set=run.sets + "ATOP")["NT11"])
+        tb = np.array(inc.block("NODE NT", set=run.sets + "BBOTTOM")["NT11"])
+        assert np.max(np.abs(ta - (100.0 - q / k))) < 1e-9 * 100.0, (tag, ta)
+        assert np.max(np.abs(tb - q / k)) < 1e-9 * 100.0, (tag, tb)
+        assert abs(np.mean(ta) - np.mean(tb) - jump) < 1e-9 * 100.0, (tag, ta, tb, jump)
+        rb = sum(inc.block("NODE RFL", set=run.sets + "BOTTOM")["RFL11"])
+        rt = sum(inc.block("NODE RFL", set=run.sets + "TOP")["RFL11"])
+        assert abs(rb - q) < 1e-9 * 1250.0 and abs(rt + q) < 1e-9 * 1250.0, (tag, rb, rt, q)
+
+    q_open, q_closed = 100.0 / (2.0 / k + 1.0 / 25.0), 100.0 / (2.0 / k + 1.0 / 40.0)
+    for coupling in ("SURFACE TO SURFACE", "NODE TO SURFACE", "NODE TO SURFACE, SYMMETRIC"):
+        tag = coupling[:4].lower() + ("_sym" if "SYMMETRIC" in coupling else "")
+        for name, gap, q, jump in (("open", 0.05, q_open, q_open / 25.0), ("far", 0.15, 0.0, 100.0)):
+            run = run_deck(f"coupled_clearance_{name}_{tag}", blocks_deck(coupling, table, top_held=True, gap=gap,
+                                                                        gc_params=", CLEARANCE")).ok()
+            run.sets = ""
+            assert "warning" not in run.stderr, run.stderr
+            check(run, q, jump, (coupling, name))
+            share = 0.5 if "SYMMETRIC" in coupling else 1.0
+            rows = [r for r in contact_rows(run) if r["side"] == "slave"]
+            assert rows and all(r["state"] == "OPEN" for r in rows), rows
+            assert max(abs(float(r["heat_flux"]) + share * q) for r in rows) <= 1e-7 * q_open, (coupling, name)
+        closing = blocks_deck(coupling, table, top_held=True, gap=0.05, gc_params=", CLEARANCE")
+        assert "*BOUNDARY\nTOP, 2, 2\n" in closing
+        run = run_deck(f"coupled_clearance_closed_{tag}", closing.replace("*BOUNDARY\nTOP, 2, 2\n",
+                                                                          "*BOUNDARY\nTOP, 2, 2, -0.06\n")).ok()
+        run.sets = ""
+        assert any(r["state"] != "OPEN" for r in contact_rows(run) if r["side"] == "slave")
+        check(run, q_closed, q_closed / 40.0, (coupling, "closed"))
+    flat = blocks_deck("SURFACE TO SURFACE", table, top_held=True, gap=0.05, gc_params="")
+    run = run_deck("coupled_clearance_cae", abaqus_cae(flat)).ok()
+    run.sets = "I."
+    assert "warning: *GAP CONDUCTANCE without PRESSURE in an Abaqus/CAE deck" in run.stderr, run.stderr
+    check(run, q_open, q_open / 25.0, "Abaqus/CAE")
+    run = run_deck("coupled_clearance_flat", flat).ok()
+    run.sets = ""
+    assert "read as the contact pressure, as CalculiX reads it" in run.stderr and "CLEARANCE" in run.stderr
+    check(run, 0.0, 100.0, "flat")
+
+
+def clearance_closed_form(d0, k1=50.0, k2=10.0, tb=100.0, e=210000.0, nu=0.3, alpha=1.2e-5):
+    """The blocks of test_clearance_two_way (held at both ends and on their
+    sides, heated from 0 with the bottom at tb and the top at 0, B's bottom
+    d0 above A's top) through k(d) = 40 - 7500 d (0 beyond d = 0.004):
+    each block lengthens by alpha (1 + nu)/(1 - nu) times the integral I of
+    its temperature (T linear in each block: I = tb + q/2 (1/k2 - 1/k1) for
+    the two), which closes the gap to d = d0 - alpha (1 + nu)/(1 - nu) I,
+    and q = tb / (1/k1 + 1/k(d) + 1/k2): the root d by bisection, and q;
+    where the expansion exceeds d0 the gap closes (k(0)) and the contact
+    pressure is M (alpha (1 + nu)/(1 - nu) I - d0) / 2, M the constrained
+    modulus, over the stack of 2. Returns d, q, p."""
+    c = alpha * (1.0 + nu) / (1.0 - nu)
+
+    def k_of(d):
+        return 0.0 if d > 0.004 else 40.0 - 7500.0 * d
+
+    def state(d):
+        q = tb / (1.0 / k1 + 1.0 / k_of(d) + 1.0 / k2)
+        return q, tb + 0.5 * q * (1.0 / k2 - 1.0 / k1)
+    q, i = state(0.0)
+    if c * i >= d0:
+        return 0.0, q, e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)) * (c * i - d0) / 2.0
+    lo, hi = 0.0, d0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if d0 - c * state(mid)[1] > mid:
+            lo = mid
+        else:
+            hi = mid
+    d = 0.5 * (lo + hi)
+    return d, state(d)[0], 0.0
+
+
+def test_clearance_two_way():
+    """The clearance closes as the blocks heat (CPE8T, k 50 below and 10
+    above, alpha 1.2e-5, held at both ends) through k(d) = 40 - 7500 d:
+    with d0 = 0.004 it stays open at d = 1.19e-3 (clearance_closed_form):
+    the passes settle (2 .. 20, the listing's note), the heat through the
+    stack (the bottom's reaction flux) within 1e-7 of the root's, the
+    contact table's gap d within 1e-7 of d0; no contact force. With d0 =
+    0.002 the expansion closes it: k(0) = 40, the heat within 1e-7 and the
+    contact force (the pressure on the unit face) within 1e-7 of the
+    closed form. Both couplings."""
+    for d0 in (0.004, 0.002):
+        d, q, p = clearance_closed_form(d0)
+        assert (p == 0.0) == (d0 == 0.004) and (d > 1e-3 if p == 0.0 else d == 0.0), (d0, d, p)
+        for coupling in ("SURFACE TO SURFACE", "NODE TO SURFACE"):
+            text = blocks_deck(coupling, "40., 0.\n10., 0.004\n", k1=50.0, k2=10.0, alpha=1.2e-5, top_held=True,
+                               shape="Q8", et="CPE8T", nx=1, ny=2, gap=d0, gc_params=", CLEARANCE")
+            run = run_deck(f"coupled_clearance_two_way_{d0}_{coupling[:4].lower()}", text).ok()
+            with open(run.listing_path) as f:
+                passes = [int(line.split("settled in ")[1].split()[0]) for line in f if "settled in" in line]
+            assert passes and 2 <= min(passes) and max(passes) <= 20, passes
+            inc = run.listing.increments[-1]
+            rb = sum(inc.block("NODE RFL", set="BOTTOM")["RFL11"])
+            force = inc.block("CONTACT SUMMARY")["total_force"][0]
+            assert abs(rb - q) < 1e-7 * q, (coupling, d0, rb, q)
+            assert abs(force - p) < 1e-7 * max(p, 100.0), (coupling, d0, force, p)
+            gaps = [float(r["gap"]) for r in contact_rows(run) if r["side"] == "slave"]
+            assert gaps and max(abs(g - d) for g in gaps) < 1e-7 * d0, (coupling, d0, gaps, d)
+            print(f"  {coupling}, d0 {d0}: {max(passes)} passes, heat {rb:.10g} (closed form {q:.10g}), "
+                  f"force {force:.10g} ({p:.10g}), gap {max(gaps):.6e} ({d:.6e})")
+
+def abaqus_cae(text):
+    """A blocks_deck (held at its top: no element loads) written as
+    Abaqus/CAE writes a deck: its mesh, sets, surfaces and sections in a
+    *PART, one *INSTANCE I of it in the *ASSEMBLY, the rest at the model
+    level naming the instance's sets I.NAME."""
+    import re
+    heading, rest = text.split("*NODE, NSET=NALL\n", 1)
+    mesh, rest = rest.split("*MATERIAL, NAME=M1\n", 1)
+    sections = "*SOLID SECTION, ELSET=A, MATERIAL=M1\n1.\n*SOLID SECTION, ELSET=B, MATERIAL=M2\n1.\n"
+    assert sections in rest and "*DLOAD" not in rest
+    rest = rest.replace(sections, "")
+    rest = re.sub(r"\b(BSURF|ASURF|SIDES|BOTTOM|TOP|ATOP|BBOTTOM)\b", r"I.\1", rest)
+    return (heading + "*PART, NAME=BLOCKS\n*NODE, NSET=NALL\n" + mesh + sections + "*END PART\n"
+            "*ASSEMBLY, NAME=ASSEMBLY\n*INSTANCE, NAME=I, PART=BLOCKS\n*END INSTANCE\n*END ASSEMBLY\n"
+            "*MATERIAL, NAME=M1\n" + rest)

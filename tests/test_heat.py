@@ -485,8 +485,13 @@ def test_heat_errors():
         (base.replace("*CONDUCTIVITY\n10.\n", "*ELASTIC\n1000., 0.3\n").replace(
             "*HEAT TRANSFER, STEADY STATE", "*STATIC").replace("*BOUNDARY\nLEFT, 11, 11, 100.0\n",
                                                               "*BOUNDARY\nLEFT, 1, 2\n"), "is a heat transfer element"),
-        # a region with neither a held temperature nor a film: no steady state
-        (base.replace("*BOUNDARY\nLEFT, 11, 11, 100.0\n", "*CFLUX\n1, 11, 1.\n"), "matrix is singular"),
+        # a region with neither a held temperature nor a film: no steady state;
+        # the error names its first node, whichever pivot the factorisation stops at
+        (base.replace("*BOUNDARY\nLEFT, 11, 11, 100.0\n", "*CFLUX\n1, 11, 1.\n"),
+         "matrix is singular: node 1 is in a region without a prescribed temperature"),
+        (base.replace("*MATERIAL", "*NODE\n901, 5., 0.\n902, 6., 0.\n903, 6., 1.\n904, 5., 1.\n"
+                      "*ELEMENT, TYPE=DC2D4, ELSET=EALL\n901, 901, 902, 903, 904\n*MATERIAL"),
+         "matrix is singular: node 901 is in a region without a prescribed temperature"),
     ]
     for i, (deck, msg) in enumerate(cases):
         run = run_deck("heat_error_%d" % i, deck)

@@ -28,6 +28,7 @@ module analysis_events
   type :: step_summary_t
     integer :: step = 0, increments = 0, factorisations = 0, iterations = 0
     integer :: condensed_factorisations = 0                  ! dense ones of the condensed contact solve
+    integer :: temperature_factorisations = -1               ! the temperature field's of them (-1: not in the step)
     integer :: block_pivots = 0, single_pivots = 0           ! of the contact status search (contact_status)
     integer(kind=8) :: continuum_tangent = 0, continuum_stresses = 0, coupling = 0   ! element routine calls
     real(dp) :: wall_seconds = 0.0_dp

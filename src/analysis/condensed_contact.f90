@@ -18,6 +18,12 @@
 !> factor's trailing order (sys_trailing_order).
 !> Measurements and the choice against the other ways in (a Schur
 !> complement by many right-hand sides, Woodbury): docs/benchmark.md.
+!> A linear step paired again at every increment (UPDATE SEARCH) numbers
+!> the contact equations for the zone its pairings reach, keeps the
+!> numbering and K0's factor across pairings (condensed_repair) and
+!> solves a status near a reference one in low-rank form: the
+!> reference's inverse, a capacitance matrix on the closed couplings'
+!> equations, a refinement against S (docs/fretting.md, "Cost").
 module condensed_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
@@ -37,7 +43,7 @@ module condensed_contact
   private
   public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
-            condensed_energy, direct_multipliers, condensed_multipliers
+            condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -87,6 +93,35 @@ module condensed_contact
     !> independent dofs are contact equations (or prescribed), so they
     !> follow the status iterations.
     integer, allocatable :: cdep(:)
+    !> A pairing history (UPDATE SEARCH in a linear step: the couplings
+    !> paired again at every increment): the contact equations are those
+    !> of zone(2, nn), every dof some pairing of the step has reached so
+    !> far (number_equations with grow), so that a new pairing whose dofs
+    !> lie in the zone keeps the numbering and the bodies' factor
+    !> (condensed_repair). S0 is then the bodies' Schur complement alone
+    !> (K0's open CFEs taken out of it and of diag22, ke0 zero), and S of
+    !> a status adds every CFE's whole tangent: the same matrix as
+    !> S0 + (tangent now - tangent in K0) of the pairing K0 was made with.
+    logical :: keep_pairing = .false.
+    logical, allocatable :: zone(:, :)
+    !> The low-rank status solve (keep_pairing; docs/fretting.md): finv
+    !> (m, m) the inverse of S_ref, the condensed matrix of a reference
+    !> status (ref_valid: the last one factored densely), and its closed
+    !> CFEs' positions and tangents (ref_pos, ref_k). A status differs
+    !> from it by dmat on the positions dset of its own and the
+    !> reference's closed CFEs, S = S_ref + E dmat E^T (the open CFEs'
+    !> share of the difference, 1e-12 of a closed one's, is left to the
+    !> refinement), solved through the capacitance matrix
+    !> cap = I + finv(D, D) dmat (LU, cap_piv) and refined against S
+    !> itself: S0 and the status's tangents kt_all (kt_ng rows each).
+    logical :: lowrank = .false., ref_valid = .false.
+    !> s0_full: S0 of the bodies alone as a whole (symmetric) matrix, for
+    !> the refinement's products (column by column); made with the first
+    !> reference of a factor of K0. The low-rank form keeps two more m x m
+    !> matrices (s0_full, finv) beside l22 and s.
+    real(dp), allocatable :: s0_full(:, :)
+    real(dp), allocatable :: finv(:, :), ref_k(:, :, :), kt_all(:, :, :), dmat(:, :), cap(:, :)
+    integer, allocatable :: ref_pos(:, :), kt_ng(:), dset(:), cap_piv(:)
   end type condensed_t
 
 contains
@@ -110,8 +145,12 @@ contains
   !> solve with UMFPACK (the tangent may be unsymmetric, F-bar and
   !> follower pressures, or indefinite). keep, if true (a renumbering
   !> inside an increment), keeps the solve cd had: the iteration's path
-  !> stays (condensed: where any contact equation is left).
-  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse, nonlinear, keep)
+  !> stays (condensed: where any contact equation is left). grow, if true
+  !> (a linear step that pairs again at every increment), makes the
+  !> contact equations those of every dof the couplings reached since
+  !> (cd%zone, still free) and of the couplings of cs, and sets
+  !> cd%keep_pairing: a later pairing within the zone keeps this numbering.
+  subroutine number_equations(m, cs, prescribed, mpc, dm, sys, cd, t_analyse, nonlinear, keep, grow)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: prescribed(:, :)
@@ -120,15 +159,18 @@ contains
     type(linear_system_t), intent(inout) :: sys
     type(condensed_t), intent(inout) :: cd
     real(dp), intent(out) :: t_analyse
-    logical, intent(in), optional :: nonlinear, keep
+    logical, intent(in), optional :: nonlinear, keep, grow
     logical, allocatable :: mask(:, :)
     integer :: mc, solver
     real(dp) :: flops
     integer(kind=8) :: c0, c1, rate
-    logical :: want_full, nl, stay, was_active
+    logical :: want_full, nl, stay, was_active, zone
     t_analyse = 0.0_dp
     stay = .false.
     if (present(keep)) stay = keep
+    zone = .false.
+    if (present(grow)) zone = grow
+    cd%keep_pairing = .false.
     was_active = cd%active
     cd%active = .false.
     cd%m = 0
@@ -138,6 +180,11 @@ contains
     if (stay) want_full = .not. was_active
     if (.not. want_full .and. (m%solver == solver_cholmod .or. m%solver == solver_mumps) .and. cs%n > 0) then
       call contact_dof_mask(m, cs, prescribed, mpc, mask)
+      if (zone) then
+        if (allocated(cd%zone)) then
+          if (all(shape(cd%zone) == shape(mask))) mask = mask .or. (cd%zone .and. .not. prescribed .and. mpc%dep == 0)
+        end if
+      end if
       mc = count(mask)
       if (mc > 0) then
         call number_dofs(m, cs, prescribed, m%solver, m%ordering, dm, sys, mask, mpc)
@@ -154,6 +201,8 @@ contains
         if (cd%active) then
           cd%n = dm%neq
           cd%m = mc
+          cd%keep_pairing = zone
+          if (zone) cd%zone = mask
           return
         end if
       end if
@@ -296,7 +345,79 @@ contains
       cd%l22(p + 1:mc, p) = cd%s(p + 1:mc, p)
     end do
     call map_cfes(cd, m, cs, dm, open_set, counts)
+    cd%ref_valid = .false.
+    if (cd%keep_pairing) call bodies_alone(cd, cs%n)
   end subroutine condensed_factor_k0
+
+  !> S0 and diag22 of the bodies alone: K0's open CFE tangents (ke0) taken
+  !> out of them, ke0 zero (keep_pairing: a later pairing's CFEs add
+  !> their whole tangents to this S0, condensed_status).
+  subroutine bodies_alone(cd, ncfe)
+    type(condensed_t), intent(inout) :: cd
+    integer, intent(in) :: ncfe
+    integer :: j, a, b, pa, pb
+    do j = 1, ncfe
+      do b = 1, size(cd%cfe_pos, 1)
+        pb = cd%cfe_pos(b, j)
+        if (pb == 0) cycle
+        do a = 1, size(cd%cfe_pos, 1)
+          pa = cd%cfe_pos(a, j)
+          if (pa == 0 .or. pa < pb) cycle
+          if (pa == pb) then
+            cd%s0_diag(pa) = cd%s0_diag(pa) - cd%ke0(a, b, j)
+            cd%diag22(pa) = cd%diag22(pa) - cd%ke0(a, b, j)
+          else
+            cd%l22(pa, pb) = cd%l22(pa, pb) - cd%ke0(a, b, j)
+          end if
+        end do
+      end do
+    end do
+    cd%ke0 = 0.0_dp
+    ! (the whole copy of S0 is made with the first reference, set_reference)
+    if (allocated(cd%s0_full)) deallocate(cd%s0_full)
+  end subroutine bodies_alone
+
+  !> s0_full: S0 of the bodies alone as a whole matrix (from its diagonal
+  !> and strict lower triangle).
+  subroutine whole_s0(cd)
+    type(condensed_t), intent(inout) :: cd
+    integer :: b
+    allocate(cd%s0_full(cd%m, cd%m))
+    do b = 1, cd%m
+      cd%s0_full(b, b) = cd%s0_diag(b)
+      cd%s0_full(b + 1:cd%m, b) = cd%l22(b + 1:cd%m, b)
+      cd%s0_full(b, b + 1:cd%m) = cd%l22(b + 1:cd%m, b)
+    end do
+  end subroutine whole_s0
+
+  !> Purpose: the couplings of cs were paired again (a linear step's
+  !> UPDATE SEARCH) and the equations were numbered for a zone
+  !> (keep_pairing): if every dof the new couplings reach is a contact
+  !> equation of the numbering, the numbering and the bodies' factor stay
+  !> and the CFEs are mapped to their trailing positions (fits true; S of
+  !> a status is then made from S0 of the bodies alone); otherwise fits
+  !> is false and nothing changed (the caller numbers again, the zone
+  !> grown by the new couplings' dofs).
+  !> Arguments: prescribed, mpc as number_equations; counts counts the
+  !> CFE routine calls.
+  subroutine condensed_repair(cd, m, cs, prescribed, mpc, dm, counts, fits)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    logical, intent(in) :: prescribed(:, :)
+    type(mpc_t), intent(in) :: mpc
+    type(dofmap_t), intent(in) :: dm
+    type(element_counts_t), intent(inout) :: counts
+    logical, intent(out) :: fits
+    logical, allocatable :: mask(:, :)
+    fits = .false.
+    if (.not. (cd%active .and. cd%keep_pairing) .or. .not. allocated(cd%ke0) .or. cs%n == 0) return
+    call contact_dof_mask(m, cs, prescribed, mpc, mask)
+    fits = .not. any(mask .and. .not. cd%zone)
+    if (.not. fits) return
+    call map_cfes(cd, m, cs, dm, cs, counts)
+    cd%ke0 = 0.0_dp
+  end subroutine condensed_repair
 
   !> Trailing positions of every CFE's rows (its dofs, or with
   !> constraints the equations its transformed tangent reaches), its
@@ -397,7 +518,10 @@ contains
 
   !> Purpose: factors S of the current contact status (cs: statuses and
   !> stabilisation): S0 plus every CFE's tangent minus its tangent in K0
-  !> (the lower triangles; LAPACK leaves the upper one alone).
+  !> (the lower triangles; LAPACK leaves the upper one alone). With
+  !> keep_pairing, a status close to the reference one (lowrank_status)
+  !> is not factored: its solves go through the reference's inverse
+  !> (cd%lowrank); a status factored densely becomes the reference.
   !> Arguments: kbody the bodies' largest element diagonal; status
   !> factor_ok or factor_singular (bad: the equation whose pivot vanished,
   !> judged as the sparse backends judge theirs: relative to the diagonal
@@ -410,23 +534,52 @@ contains
     real(dp), intent(in) :: kbody
     type(element_counts_t), intent(inout) :: counts
     integer, intent(out) :: status, bad
-    real(dp), allocatable :: kt(:, :)
-    integer, allocatable :: geq(:)
-    integer :: j, a, b, pa, pb, ng, info
-    real(dp) :: dk, ratio, kraw
     ! S0: its diagonal and strict lower triangle; the whole matrix when a
     ! sliding CFE's tangent is unsymmetric (never symmetrised)
     cd%lu = any(cs%c(1:cs%n)%closed .and. cs%c(1:cs%n)%sliding)
+    cd%lowrank = .false.
+    status = factor_ok
+    bad = 0
+    if (cd%keep_pairing) then
+      call status_tangents(cd, m, cs, dm, kbody, counts)
+      cd%lowrank = lowrank_status(cd, cs)
+      if (cd%lowrank) return
+    end if
+    call dense_status_matrix(cd, m, cs, dm, kbody, counts)
+    call factor_dense_status(cd, status, bad)
+    if (status == factor_ok .and. cd%keep_pairing) call set_reference(cd, cs)
+  end subroutine condensed_status
+
+  !> S of the status in cd%s (lower triangle, or whole for LU) and the
+  !> diagonal its pivots are judged against (kdiag); kmax the largest
+  !> element diagonal. The tangents are kt_all's with keep_pairing
+  !> (status_tangents), the element's otherwise.
+  subroutine dense_status_matrix(cd, m, cs, dm, kbody, counts)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: kbody
+    type(element_counts_t), intent(inout) :: counts
+    real(dp), allocatable :: kt(:, :)
+    integer, allocatable :: geq(:)
+    integer :: j, a, b, pa, pb, ng
+    real(dp) :: dk, kraw
     do b = 1, cd%m
       cd%s(b, b) = cd%s0_diag(b)
       cd%s(b + 1:cd%m, b) = cd%l22(b + 1:cd%m, b)
       if (cd%lu) cd%s(b, b + 1:cd%m) = cd%l22(b + 1:cd%m, b)
     end do
     cd%kdiag = cd%diag22
-    cd%kmax = kbody
+    if (.not. cd%keep_pairing) cd%kmax = kbody
     do j = 1, cs%n
-      call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
-      cd%kmax = max(cd%kmax, kraw)
+      if (cd%keep_pairing) then
+        ng = cd%kt_ng(j)
+        kt = cd%kt_all(1:ng, 1:ng, j)
+      else
+        call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
+        cd%kmax = max(cd%kmax, kraw)
+      end if
       do b = 1, ng
         pb = cd%cfe_pos(b, j)
         if (pb == 0) cycle
@@ -440,6 +593,15 @@ contains
         end do
       end do
     end do
+  end subroutine dense_status_matrix
+
+  !> Cholesky (LU where a CFE slides) of cd%s, its pivots judged against
+  !> kdiag: status factor_singular and bad the equation where one vanished.
+  subroutine factor_dense_status(cd, status, bad)
+    type(condensed_t), intent(inout) :: cd
+    integer, intent(out) :: status, bad
+    integer :: a, info
+    real(dp) :: ratio
     status = factor_ok
     bad = 0
     if (cd%lu) then
@@ -481,7 +643,195 @@ contains
         return
       end if
     end do
-  end subroutine condensed_status
+  end subroutine factor_dense_status
+
+  !> Every CFE's tangent of the status (stabilised as cs says) in
+  !> kt_all (kt_ng rows; on cfe_pos), kmax the largest element diagonal
+  !> (kbody's or a CFE's).
+  subroutine status_tangents(cd, m, cs, dm, kbody, counts)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: kbody
+    type(element_counts_t), intent(inout) :: counts
+    real(dp), allocatable :: kt(:, :)
+    integer, allocatable :: geq(:)
+    integer :: j, ng, maxng
+    real(dp) :: kraw
+    maxng = size(cd%cfe_pos, 1)
+    if (allocated(cd%kt_all)) then
+      if (size(cd%kt_all, 1) /= maxng .or. size(cd%kt_all, 3) /= cs%n) deallocate(cd%kt_all, cd%kt_ng)
+    end if
+    if (.not. allocated(cd%kt_all)) allocate(cd%kt_all(maxng, maxng, cs%n), cd%kt_ng(cs%n))
+    cd%kmax = kbody
+    do j = 1, cs%n
+      call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
+      cd%kmax = max(cd%kmax, kraw)
+      cd%kt_ng(j) = ng
+      cd%kt_all(1:ng, 1:ng, j) = kt
+    end do
+  end subroutine status_tangents
+
+  !> Purpose: may the status of cs be solved by the low-rank form about
+  !> the reference (true: dset, dmat and the capacitance's LU made)? Not
+  !> without a reference, with exact CFEs (their multipliers take the
+  !> dense factor) or the stabilisation (its open penalty is no longer
+  !> small), where the closed CFEs of the status and the reference touch
+  !> more than half of the contact equations (the capacitance's LU, k^3
+  !> 2/3, then costs at most a quarter of S's Cholesky), or where a pivot of
+  !> the capacitance matrix is below pivot_ratio_min of its column's
+  !> scale (S near singular: the dense factor judges it).
+  logical function lowrank_status(cd, cs) result(ok)
+    type(condensed_t), intent(inout) :: cd
+    type(contact_set_t), intent(in) :: cs
+    integer, allocatable :: at(:)
+    real(dp), allocatable :: colscale(:)
+    integer :: j, k, p, info
+    ok = .false.
+    if (.not. cd%ref_valid .or. cs%stabilised .or. any(cs%c(1:cs%n)%exact)) return
+    allocate(at(cd%m))
+    at = 0
+    k = 0
+    do j = 1, cs%n
+      if (cs%c(j)%closed) call add_positions(cd%cfe_pos(:, j), at, k)
+    end do
+    do j = 1, size(cd%ref_pos, 2)
+      call add_positions(cd%ref_pos(:, j), at, k)
+    end do
+    if (2 * k > cd%m) return
+    if (allocated(cd%dset)) deallocate(cd%dset, cd%dmat)
+    allocate(cd%dset(k), cd%dmat(k, k))
+    do p = 1, cd%m
+      if (at(p) > 0) cd%dset(at(p)) = p
+    end do
+    cd%dmat = 0.0_dp
+    do j = 1, cs%n
+      if (cs%c(j)%closed) call scatter_tangent(cd%kt_all(:, :, j), cd%cfe_pos(:, j), at, 1.0_dp, cd%dmat)
+    end do
+    do j = 1, size(cd%ref_pos, 2)
+      call scatter_tangent(cd%ref_k(:, :, j), cd%ref_pos(:, j), at, -1.0_dp, cd%dmat)
+    end do
+    call capacitance(cd, cs, at)
+    if (allocated(cd%cap_piv)) deallocate(cd%cap_piv)
+    allocate(cd%cap_piv(k))
+    ! (the scale of each column before the factorisation, as for S's LU)
+    colscale = [(maxval(abs(cd%cap(:, j))), j = 1, k)]
+    call lu_factor(cd%cap, cd%cap_piv, info)
+    if (info > 0) return
+    do j = 1, k
+      if (.not. abs(cd%cap(j, j)) >= pivot_ratio_min * colscale(j)) return
+    end do
+    ok = .true.
+  end function lowrank_status
+
+  !> cap = I + finv(D, D) dmat, dmat taken block by block (each closed
+  !> CFE's tangent, the reference's with sign -1: a few columns of
+  !> finv(D, D) each, not a k^3 product), its sums in a fixed order
+  !> (explicit loops, not matmul, whose inlining differs between the
+  !> optimised and the debug build: both builds give the same digits).
+  !> at(p) is the index in D of position p.
+  subroutine capacitance(cd, cs, at)
+    type(condensed_t), intent(inout) :: cd
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: at(:)
+    real(dp), allocatable :: fdd(:, :)
+    integer :: j, k
+    k = size(cd%dset)
+    fdd = cd%finv(cd%dset, cd%dset)
+    if (allocated(cd%cap)) deallocate(cd%cap)
+    allocate(cd%cap(k, k))
+    cd%cap = 0.0_dp
+    do j = 1, k
+      cd%cap(j, j) = 1.0_dp
+    end do
+    do j = 1, cs%n
+      if (cs%c(j)%closed) call add_block(cd%kt_all(:, :, j), cd%cfe_pos(:, j), 1.0_dp)
+    end do
+    do j = 1, size(cd%ref_pos, 2)
+      call add_block(cd%ref_k(:, :, j), cd%ref_pos(:, j), -1.0_dp)
+    end do
+  contains
+    !> cap(:, at(pb)) += sign kt(a, b) fdd(:, at(pa)) over the block.
+    subroutine add_block(kt, pos, sign)
+      real(dp), intent(in) :: kt(:, :), sign
+      integer, intent(in) :: pos(:)
+      integer :: a, b
+      do b = 1, size(pos)
+        if (pos(b) == 0) cycle
+        do a = 1, size(pos)
+          if (pos(a) == 0) cycle
+          cd%cap(:, at(pos(b))) = cd%cap(:, at(pos(b))) + (sign * kt(a, b)) * fdd(:, at(pos(a)))
+        end do
+      end do
+    end subroutine add_block
+  end subroutine capacitance
+
+  !> The positions pos (0: none) not yet in the set at (at(p) its index
+  !> there, k the set's size) added to it.
+  pure subroutine add_positions(pos, at, k)
+    integer, intent(in) :: pos(:)
+    integer, intent(inout) :: at(:), k
+    integer :: a
+    do a = 1, size(pos)
+      if (pos(a) == 0) cycle
+      if (at(pos(a)) > 0) cycle
+      k = k + 1
+      at(pos(a)) = k
+    end do
+  end subroutine add_positions
+
+  !> d(at(pa), at(pb)) += sign kt(a, b) for the positions pa, pb of pos.
+  pure subroutine scatter_tangent(kt, pos, at, sign, d)
+    real(dp), intent(in) :: kt(:, :), sign
+    integer, intent(in) :: pos(:), at(:)
+    real(dp), intent(inout) :: d(:, :)
+    integer :: a, b
+    do b = 1, size(pos)
+      if (pos(b) == 0) cycle
+      do a = 1, size(pos)
+        if (pos(a) == 0) cycle
+        d(at(pos(a)), at(pos(b))) = d(at(pos(a)), at(pos(b))) + sign * kt(a, b)
+      end do
+    end do
+  end subroutine scatter_tangent
+
+  !> The status just factored densely becomes the reference of the
+  !> low-rank solves where it may be one (no exact CFE, not stabilised)
+  !> and is likely to pay: its closed CFEs touch at most a quarter of the
+  !> contact equations (a later status, with the reference's and its own
+  !> closed CFEs, within lowrank_status's half). finv = S^-1 column by
+  !> column (about two dense factorisations' work), its closed CFEs'
+  !> positions and tangents.
+  subroutine set_reference(cd, cs)
+    type(condensed_t), intent(inout) :: cd
+    type(contact_set_t), intent(in) :: cs
+    integer, allocatable :: closed(:), at(:)
+    integer :: j, k
+    cd%ref_valid = .false.
+    if (cs%stabilised .or. any(cs%c(1:cs%n)%exact)) return
+    allocate(at(cd%m))
+    at = 0
+    k = 0
+    do j = 1, cs%n
+      if (cs%c(j)%closed) call add_positions(cd%cfe_pos(:, j), at, k)
+    end do
+    if (4 * k > cd%m) return
+    if (.not. allocated(cd%s0_full)) call whole_s0(cd)
+    if (allocated(cd%finv)) then
+      if (size(cd%finv, 1) /= cd%m) deallocate(cd%finv)
+    end if
+    if (.not. allocated(cd%finv)) allocate(cd%finv(cd%m, cd%m))
+    do j = 1, cd%m
+      cd%finv(:, j) = 0.0_dp
+      cd%finv(j, j) = 1.0_dp
+      call solve_s(cd, cd%finv(:, j))
+    end do
+    closed = pack([(j, j = 1, cs%n)], cs%c(1:cs%n)%closed)
+    cd%ref_pos = cd%cfe_pos(:, closed)
+    cd%ref_k = cd%kt_all(:, :, closed)
+    cd%ref_valid = .true.
+  end subroutine set_reference
 
   !> Purpose: condenses the right-hand side of an increment that starts
   !> from displacements u (prescribed values in place) under loads fext:
@@ -747,19 +1097,102 @@ contains
       sx = 0.5_dp * cd%s0_diag(q) * x(q) + dot_product(cd%l22(q + 1:cd%m, q), x(q + 1:cd%m))
       e = e + x(q) * sx - cd%q0(q) * x(q)
     end do
-    e = e - 0.5_dp * sum(cs%c(1:cs%n)%k_open * (cs%c(1:cs%n)%gap - cd%gap_start)**2)
+    ! (keep_pairing: S0 is the bodies' alone, no CFE's share in it)
+    if (.not. cd%keep_pairing) e = e - 0.5_dp * sum(cs%c(1:cs%n)%k_open * (cs%c(1:cs%n)%gap - cd%gap_start)**2)
   end function condensed_energy
 
-  !> x := S^-1 x with the factor of the current status.
+  !> x := S^-1 x with the factor of the current status (or its low-rank
+  !> form about the reference, lowrank_solve).
   subroutine solve_s(cd, x)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(inout) :: x(:)
-    if (cd%lu) then
+    if (cd%lowrank) then
+      call lowrank_solve(cd, x)
+    else if (cd%lu) then
       call lu_solve(cd%s, cd%ipiv, x)
     else
       call dense_solve(cd%s, x)
     end if
   end subroutine solve_s
+
+  !> x := S^-1 x for a status of the low-rank form: M = S_ref + E dmat E^T
+  !> solved by the capacitance matrix (Woodbury's identity: with
+  !> F = S_ref^-1 and y = F r, E^T x = cap^-1 E^T y and
+  !> x = y - F E dmat E^T x), then refined against S itself: r - S x
+  !> solved by M again and added. A correction c of x is about
+  !> rho |x| with rho = |M^-1 (S - M)| (the open CFEs' share of S - M,
+  !> 1e-12 of a closed one's, and Woodbury's round-off), and leaves an
+  !> error of about rho |c| = |c|^2 / |x|: the refinement stops once a
+  !> correction is below 1e-8 of x (the error left below 1e-16 of x, the
+  !> round-off of S's own solution), or no longer half the last one (the
+  !> round-off floor), at most max_refine times. Measured on McColl's
+  !> case: the first correction 3e-13 of x, so one refinement.
+  subroutine lowrank_solve(cd, x)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(inout) :: x(:)
+    integer, parameter :: max_refine = 3
+    real(dp) :: r(size(x)), dx(size(x)), last, now
+    integer :: it
+    r = x
+    call apply_reference(cd, x)
+    last = huge(1.0_dp)
+    do it = 1, max_refine
+      call status_times(cd, x, dx)
+      dx = r - dx
+      call apply_reference(cd, dx)
+      x = x + dx
+      now = maxval(abs(dx))
+      if (.not. (now > 1.0e-8_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)) exit
+      last = now
+    end do
+  end subroutine lowrank_solve
+
+  !> x := M^-1 x, M = S_ref + E dmat E^T (lowrank_solve).
+  subroutine apply_reference(cd, x)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(inout) :: x(:)
+    real(dp) :: y(size(x)), w(size(cd%dset)), v(size(cd%dset))
+    integer :: i, j
+    ! (explicit loops in a fixed order, as capacitance)
+    y = 0.0_dp
+    do j = 1, size(x)
+      y = y + x(j) * cd%finv(:, j)
+    end do
+    w = y(cd%dset)
+    call lu_solve(cd%cap, cd%cap_piv, w)
+    v = 0.0_dp
+    do j = 1, size(w)
+      v = v + w(j) * cd%dmat(:, j)
+    end do
+    do i = 1, size(v)
+      y = y - v(i) * cd%finv(:, cd%dset(i))
+    end do
+    x = y
+  end subroutine apply_reference
+
+  !> y = S x for the status whose tangents are kt_all: S0 (s0_full,
+  !> column by column) plus every CFE's tangent on its positions
+  !> (keep_pairing: ke0 is zero).
+  subroutine status_times(cd, x, y)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: y(:)
+    integer :: q, j, a, b, pa, pb
+    y = 0.0_dp
+    do q = 1, cd%m
+      y = y + cd%s0_full(:, q) * x(q)
+    end do
+    do j = 1, size(cd%kt_ng)
+      do b = 1, cd%kt_ng(j)
+        pb = cd%cfe_pos(b, j)
+        if (pb == 0) cycle
+        do a = 1, cd%kt_ng(j)
+          pa = cd%cfe_pos(a, j)
+          if (pa > 0) y(pa) = y(pa) + cd%kt_all(a, b, j) * x(pb)
+        end do
+      end do
+    end do
+  end subroutine status_times
 
   !> u(contact equations) = u0 + x2.
   subroutine add_contact_part(cd, dm, u)

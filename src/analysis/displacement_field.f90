@@ -12,7 +12,7 @@ module displacement_field
   use contact_status, only: touched_within, max_touched
   use assembly, only: body_t, element_counts_t, body_setup, commit_history, thermal_forces
   use dof_numbering, only: dofmap_t
-  use condensed_contact, only: number_equations
+  use condensed_contact, only: number_equations, condensed_repair
   use load_state, only: load_state_t, begin_step, values_at, temperature_change_at, check_loads_reached, &
                         follower_loads
   use constraints, only: mpc_t, resolve_equations, constraint_label
@@ -147,7 +147,8 @@ contains
     f%research_each = f%step_nonlinear .and. m%steps(is)%nlgeom .and. size(m%pairs) > 0
     call newton_new_step(f%eq%newton, m%steps(is)%controls)
     if (f%research_each .and. is > 1) call research(f, m, timing)
-    call number_equations(m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys, f%eq%cd, ta, f%step_nonlinear)
+    call number_equations(m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys, f%eq%cd, ta, f%step_nonlinear, &
+                          grow=keep_zone(f))
     call check_loads_reached(m, f%ls, f%dm%inactive)
     call begin_equilibrium(f%eq, f%dm%neq, f%cs%n, .true.)
     call note_numbering(f%eq, m, f%cs)
@@ -349,20 +350,42 @@ contains
   end subroutine failure
 
   !> Purpose: UPDATE SEARCH: the contact layer pairs again on the deformed
-  !> configuration; the equations are renumbered for the new couplings.
+  !> configuration. In a linear step with the condensed solve the
+  !> equations were numbered for a zone of the surfaces (keep_zone): where
+  !> the new couplings stay in it, the numbering and the bodies' factor
+  !> stay (condensed_repair: only the condensed matrix of the next status
+  !> is made again); otherwise the equations are renumbered for the new
+  !> couplings (the zone grown by them).
   subroutine research(f, m, timing)
     class(displacement_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
     type(run_timing_t), intent(inout) :: timing
     real(dp) :: t0, ta
+    logical :: fits
     t0 = wall_time()
+    ta = 0.0_dp
     call contact_research(m, m%x + f%u, f%cs)
-    call number_equations(m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys, f%eq%cd, ta, f%step_nonlinear)
+    ! (the bodies' factor must be in hand: a K0 assembled now would need
+    ! the sparse structure of the new couplings)
+    fits = .false.
+    if (f%eq%k0_valid) call condensed_repair(f%eq%cd, m, f%cs, f%ls%presc, f%mpc, f%dm, f%eq%counts, fits)
+    if (.not. fits) call number_equations(m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys, f%eq%cd, ta, &
+                                          f%step_nonlinear, grow=keep_zone(f))
     call begin_equilibrium(f%eq, f%dm%neq, f%cs%n, .false.)
+    ! the bodies' factor of the kept numbering stays valid
+    if (fits) f%eq%k0_valid = .true.
     call note_numbering(f%eq, m, f%cs)
     timing%setup = timing%setup + (wall_time() - t0 - ta)
     timing%analyse = timing%analyse + ta
   end subroutine research
+
+  !> Purpose: are the contact equations numbered for a zone of the
+  !> surfaces that later pairings keep (number_equations' grow)? In a
+  !> linear step that pairs again at every increment (UPDATE SEARCH).
+  logical function keep_zone(f)
+    class(displacement_field_t), intent(in) :: f
+    keep_zone = f%update_search .and. .not. f%step_nonlinear
+  end function keep_zone
 
   !> Purpose: the results of a converged increment at step time t,
   !> computed once, to every observer; the couplings' increment slips

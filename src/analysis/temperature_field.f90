@@ -28,7 +28,8 @@ module temperature_field
   use increment_results, only: increment_results_t
   use analysis_events, only: observer_ref_t, step_info_t, step_summary_t, run_timing_t, wall_time
   use analysis_field, only: field_t
-  use contact_heat, only: contact_heat_t, contact_heat_matrix, contact_heat_residual, same_couplings
+  use contact_heat, only: contact_heat_t, contact_heat_matrix, contact_heat_residual, same_couplings, &
+                          same_matrices
   use messages, only: fatal
   implicit none
   private
@@ -575,7 +576,8 @@ contains
     logical, intent(out) :: ok
     real(dp) :: ae(max_nodes, max_nodes), t0
     real(dp), allocatable :: ac(:, :)
-    integer :: k, n, status, bad
+    character(len=:), allocatable :: at
+    integer :: k, n, status, bad, a
     t0 = wall_time()
     call sys_zero(f%sys)
     do k = 1, size(f%elems)
@@ -589,13 +591,80 @@ contains
     end do
     call sys_factor(f%sys, status, bad)
     ok = status == factor_ok .or. status == factor_fallback
-    if (.not. ok) call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // ': the heat conduction ' // &
-      'matrix is singular at equation ' // itoa(bad) // ': a region without a prescribed temperature or a film ' // &
-      '(or radiating at absolute zero)')
+    if (.not. ok) then
+      ! a region that nothing holds, named by its first node (the node of
+      ! the zero pivot is round-off's pick); without one the matrix is
+      ! singular to round-off only, which no node explains
+      a = floating_node(f, m)
+      at = ' to round-off: conductances (*CONDUCTIVITY, *FILM, *GAP CONDUCTANCE) of too different magnitudes'
+      if (a > 0) at = ': node ' // node_label(m, a) // ' is in a region without a prescribed temperature ' // &
+                      'or a film (or radiating at absolute zero)'
+      call fatal('step ' // itoa(is) // ', increment ' // itoa(inc) // ': the heat conduction matrix is ' // &
+        'singular' // at)
+    end if
     f%factored_dt = merge(0.0_dp, f%dt, f%steady)
     f%factorisations = f%factorisations + 1
     f%t_factor = f%t_factor + (wall_time() - t0)
   end subroutine factor
+
+  !> The first node (in the model's order) of a region of conducting
+  !> elements, joined through their nodes and the contact's conducting
+  !> heat couplings, that has no prescribed temperature, film or
+  !> radiation, where a steady conduction matrix is singular; 0 if there
+  !> is none. It names the region in the error whatever the pivot order
+  !> (the node the factorisation stops at depends on round-off).
+  integer function floating_node(f, m) result(first)
+    class(temperature_field_t), intent(in) :: f
+    type(model_t), intent(in) :: m
+    integer, allocatable :: root(:)
+    logical, allocatable :: held(:)
+    integer :: k, e, n, j, a
+    allocate(root(m%nn), held(m%nn))
+    root = [(a, a = 1, m%nn)]
+    held = f%presc
+    do k = 1, size(f%elems)
+      e = f%elems(k)
+      n = elem_nodes(m, e)
+      do j = 2, n
+        call join(m%conn(1, e), m%conn(j, e))
+      end do
+      if (f%xfilm(k + 1) > f%xfilm(k) .or. f%xrad(k + 1) > f%xrad(k)) held(m%conn(1, e)) = .true.
+    end do
+    do k = 1, f%ch%n
+      if (f%ch%ha(k) <= 0.0_dp) cycle
+      do j = f%ch%xnode(k) + 1, f%ch%xnode(k + 1) - 1
+        call join(f%ch%node(f%ch%xnode(k)), f%ch%node(j))
+      end do
+    end do
+    do a = 1, m%nn
+      if (held(a)) held(top(a)) = .true.
+    end do
+    first = 0
+    do a = 1, m%nn
+      if (f%eqn(a) > 0 .and. .not. held(top(a))) then
+        first = a
+        return
+      end if
+    end do
+  contains
+    !> The root of node i's region (its smallest node once joined).
+    integer function top(i)
+      integer, intent(in) :: i
+      top = i
+      do while (root(top) /= top)
+        root(top) = root(root(top))      ! (path halving: short chains)
+        top = root(top)
+      end do
+    end function top
+    !> Nodes i and j2 in one region.
+    subroutine join(i, j2)
+      integer, intent(in) :: i, j2
+      integer :: ri, rj
+      ri = top(i)
+      rj = top(j2)
+      if (ri /= rj) root(max(ri, rj)) = min(ri, rj)
+    end subroutine join
+  end function floating_node
 
   !> The residual r(nn) = F - A T of every node at the current
   !> temperatures T (F with the radiation at T), and rhs(neq) its free
@@ -807,13 +876,15 @@ contains
     end do
   end subroutine heat_fluxes
 
-  !> Purpose: the step's factorisations and iterations (the solves of its
-  !> increments and their tries: one each where the step is linear).
+  !> Purpose: the step's factorisations (also apart: the listing's per
+  !> field line) and iterations (the solves of its increments and their
+  !> tries: one each where the step is linear).
   subroutine end_step(f, obs, summary)
     class(temperature_field_t), intent(inout) :: f
     type(observer_ref_t), intent(in) :: obs(:)
     type(step_summary_t), intent(inout) :: summary
     summary%factorisations = summary%factorisations + f%factorisations
+    summary%temperature_factorisations = f%factorisations
     summary%newton_iterations = summary%newton_iterations + f%iterations
     f%run_factorisations = f%run_factorisations + f%factorisations
     f%factorisations = 0
@@ -821,18 +892,25 @@ contains
   end subroutine end_step
 
   !> Purpose: the heat couplings of the contact (contact_heat) for the
-  !> next solve, from a coupled run's driver: the matrix is factorised
-  !> again, and its structure made again where the couplings join other
-  !> nodes.
+  !> next solve, from a coupled run's driver: the structure made again
+  !> where the couplings join other nodes; the matrix factorised again
+  !> only where a coupling's h A w w^T changed (a pressure-dependent
+  !> conductance, a point that opened or closed, a re-search), so that a
+  !> constant conductance keeps the factor across the passes and
+  !> increments as the conduction alone does (the frictional heat is on
+  !> the right-hand side only).
   subroutine take_contact_heat(f, m, ch)
     class(temperature_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
     type(contact_heat_t), intent(in) :: ch
-    logical :: same
+    logical :: same, same_matrix
     same = same_couplings(f%ch, ch)
+    same_matrix = .false.
+    ! (the same structure: both were built, their arrays allocated)
+    if (same) same_matrix = same_matrices(f%ch, ch)
     f%ch = ch
     if (.not. same .and. allocated(f%eqn)) call number_temperatures(f, m)
-    f%factored_dt = -1.0_dp
+    if (.not. same_matrix) f%factored_dt = -1.0_dp
   end subroutine take_contact_heat
 
   !> Purpose: the temperature field's factorisations (their count too)

@@ -751,6 +751,7 @@ contains
     type(contact_set_t) :: old
     integer, allocatable :: head(:), next(:)
     logical, allocatable :: matched(:)
+    real(dp), allocatable :: u(:, :)
     integer :: j, q, nchg
     logical :: stabilised, reevaluate
     reevaluate = .false.
@@ -765,6 +766,8 @@ contains
     cs%stabilised = stabilised
     cs%stages = old%stages
     allocate(head(m%nn), next(old%n), matched(old%n))
+    ! the displacements of x, once (not a temporary per coupling)
+    u = x - m%x
     head = 0
     matched = .false.
     do q = old%n, 1, -1
@@ -784,7 +787,7 @@ contains
         cycle
       end if
       matched(q) = .true.
-      call carry_history(m, x, old%c(q), reevaluate, cs%c(j))
+      call carry_history(m, x, u, old%c(q), reevaluate, cs%c(j))
     end do
     call keep_lost_couplings(old, matched, reevaluate, cs, nchg)
     ! the worn depths so far, read by the new couplings
@@ -799,11 +802,11 @@ contains
   !> coupling of the same slave point (contact_research): its status,
   !> multiplier and friction history, or, within an increment's iterations
   !> (reevaluate), the old coupling whole where it is closed and stays.
-  !> Arguments: x the configuration searched; oc the old coupling; c the
-  !> new one, completed.
-  subroutine carry_history(m, x, oc, reevaluate, c)
+  !> Arguments: x the configuration searched, u = x - m%x; oc the old
+  !> coupling; c the new one, completed.
+  subroutine carry_history(m, x, u, oc, reevaluate, c)
     type(model_t), intent(in) :: m
-    real(dp), intent(in) :: x(:, :)
+    real(dp), intent(in) :: x(:, :), u(:, :)
     type(cfe_t), intent(in) :: oc
     logical, intent(in) :: reevaluate
     type(cfe_t), intent(inout) :: c
@@ -838,8 +841,8 @@ contains
     c%slip_total = oc%slip_total
     if (c%mu > 0.0_dp) then
       old_slide = oc%slide
-      if (reevaluate) old_slide = current_slide(m, oc, x - m%x)
-      c%anchor = current_slide(m, c, x - m%x) - (old_slide - oc%anchor)
+      if (reevaluate) old_slide = current_slide(m, oc, u)
+      c%anchor = current_slide(m, c, u) - (old_slide - oc%anchor)
     end if
   end subroutine carry_history
 

@@ -19,6 +19,7 @@
 !> evaluation of the contact set (contact_forces): its pressures and the
 !> slip of its sliding points since their anchors.
 module contact_heat
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kinds, only: dp
   use model, only: model_t, gap_heat_t, elem_nodes
   use element_catalogue, only: catalogue, max_nodes
@@ -27,7 +28,7 @@ module contact_heat
   implicit none
   private
   public :: contact_heat_t, contact_heat_build, contact_heat_matrix, contact_heat_residual, same_couplings, &
-            contact_heat_flux, has_contact_heat
+            same_matrices, contact_heat_flux, has_contact_heat
 
   !> The heat couplings of a contact set: n of them, coupling k of CFE
   !> cfe(k) joining nodes node(xnode(k):xnode(k+1)-1) with the jump
@@ -39,6 +40,11 @@ module contact_heat
     integer, allocatable :: cfe(:), xnode(:), node(:), nslave(:)
     real(dp), allocatable :: w(:), ha(:), qs(:), qm(:), area(:)
   end type contact_heat_t
+
+  !> Couplings whose h A and weights differ by at most this fraction of
+  !> the largest are the same matrix (same_matrices): far below what the
+  !> passes settle to (1e-9), far above round-off.
+  real(dp), parameter :: same_tolerance = 1.0e-12_dp
 
 contains
 
@@ -116,11 +122,12 @@ contains
   !> Purpose: CFE c's conductance times area ha and frictional heat per
   !> unit time into its slave (qs) and master (qm) side, from its pair's
   !> gap heat entry: a closed point at pressure p = -force / area conducts
-  !> h(p) A; sliding, it makes eta mu p A v of heat (v the given velocity
-  !> or the slip since its anchor over dt), the fraction f to the slave.
-  !> A pass of a two-pass pair takes half of each, at the interface's
-  !> pressure (twice the pass's own); f is the deck's slave surface's
-  !> share in both passes.
+  !> h(p) A, an open one nothing; with Abaqus's clearance table every
+  !> point conducts h(d) A (clearance_of: d = 0 closed). Sliding, a point
+  !> makes eta mu p A v of heat (v the given velocity or the slip since
+  !> its anchor over dt), the fraction f to the slave. A pass of a
+  !> two-pass pair takes half of each, at the interface's pressure (twice
+  !> the pass's own); f is the deck's slave surface's share in both passes.
   subroutine point_heat(m, c, dt, ha, qs, qm)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
@@ -130,12 +137,14 @@ contains
     ha = 0.0_dp
     qs = 0.0_dp
     qm = 0.0_dp
-    if (.not. c%closed .or. c%area <= 0.0_dp) return
+    if (c%area <= 0.0_dp) return
     share = merge(0.5_dp, 1.0_dp, m%pairs(c%pair)%twin /= 0)
     associate(g => m%gap_heats(m%pairs(c%pair)%gap_heat))
+      if (allocated(g%gc_h) .and. g%clearance) ha = share * clearance_conductance(g, clearance_of(c)) * c%area
+      if (.not. c%closed) return
       ! (a pass of a two-pass pair carries half of the interface's pressure)
       p = max(0.0_dp, -c%force / c%area) / share
-      if (allocated(g%gc_h)) ha = share * conductance_at(g, p) * c%area
+      if (allocated(g%gc_h) .and. .not. g%clearance) ha = share * conductance_at(g, p) * c%area
       if (.not. g%generation .or. c%mu <= 0.0_dp) return
       power = 0.0_dp
       if (g%velocity > 0.0_dp) then
@@ -155,14 +164,53 @@ contains
     end associate
   end subroutine point_heat
 
+  !> Purpose: the clearance of CFE c across the gap: 0 where it is
+  !> closed, else its gap along the master normal at the last evaluation
+  !> of the contact set (contact_forces). A coupling never evaluated (its
+  !> gap and force still 0: a heat transfer step before any mechanical
+  !> step of the run, or the first pass of a run's first increment) has
+  !> the gap of the initial search, the normal part of its initial
+  !> relative position gap0 (the gap at zero displacement, where it is
+  !> evaluated as well).
+  pure real(dp) function clearance_of(c) result(d)
+    type(cfe_t), intent(in) :: c
+    d = 0.0_dp
+    if (c%closed) return
+    d = c%gap
+    if (c%gap == 0.0_dp .and. c%force == 0.0_dp) d = dot_product(c%normal, c%gap0)
+    d = max(0.0_dp, d)
+  end function clearance_of
+
+  !> Purpose: Abaqus's conductance per unit area of gap heat entry g at
+  !> clearance d (its table's second column the clearances, increasing):
+  !> linear between the table's points, the first value below the first
+  !> clearance, zero beyond the last (Abaqus's keyword reference of *GAP
+  !> CONDUCTANCE: the conductance "drops to zero immediately after the
+  !> last data point").
+  pure real(dp) function clearance_conductance(g, d) result(h)
+    type(gap_heat_t), intent(in) :: g
+    real(dp), intent(in) :: d
+    integer :: n
+    n = size(g%gc_h)
+    h = 0.0_dp
+    if (d > g%gc_p(n)) return
+    h = conductance_at(g, d)
+  end function clearance_conductance
+
   !> Purpose: the conductance per unit area of gap heat entry g at contact
-  !> pressure p: linear in p between the table's points, constant beyond.
+  !> pressure p (or clearance): linear in p between the table's points,
+  !> constant beyond.
   pure real(dp) function conductance_at(g, p) result(h)
     type(gap_heat_t), intent(in) :: g
     real(dp), intent(in) :: p
     integer :: k, n
     n = size(g%gc_h)
-    if (n == 1 .or. p <= g%gc_p(1)) then
+    if (ieee_is_nan(p)) then
+      ! (a pressure or clearance that is not a number, magnitudes of the
+      ! deck that overflow: so is the conductance, and the temperatures
+      ! stop the run naming a node, temperature_field)
+      h = p
+    else if (n == 1 .or. p <= g%gc_p(1)) then
       h = g%gc_h(1)
     else if (p >= g%gc_p(n)) then
       h = g%gc_h(n)
@@ -238,6 +286,31 @@ contains
     if (size(a%node) /= size(b%node)) return
     same_couplings = all(a%xnode == b%xnode) .and. all(a%node == b%node)
   end function same_couplings
+
+  !> Purpose: do a and b, which couple the same nodes (same_couplings),
+  !> add the same matrices h A w w^T to the temperature equations, to
+  !> round-off (same_tolerance of the largest h A, and of the largest
+  !> weight)? A coupling that conducts nothing in both adds nothing
+  !> whatever its weights (they move by round-off where the contact is
+  !> searched again). Round-off must not decide: the two builds, and the
+  !> BLAS kernels, then keep or renew the factor alike.
+  pure logical function same_matrices(a, b)
+    type(contact_heat_t), intent(in) :: a, b
+    real(dp) :: hmax, wmax
+    integer :: k
+    same_matrices = .true.
+    if (a%n == 0) return
+    hmax = max(maxval(abs(a%ha)), maxval(abs(b%ha)))
+    wmax = max(maxval(abs(a%w)), maxval(abs(b%w)))
+    same_matrices = all(abs(a%ha - b%ha) <= same_tolerance * hmax)
+    if (.not. same_matrices) return
+    do k = 1, a%n
+      if (a%ha(k) == 0.0_dp .and. b%ha(k) == 0.0_dp) cycle
+      same_matrices = all(abs(a%w(a%xnode(k):a%xnode(k + 1) - 1) - b%w(b%xnode(k):b%xnode(k + 1) - 1)) <= &
+                          same_tolerance * wmax)
+      if (.not. same_matrices) return
+    end do
+  end function same_matrices
 
   !> Purpose: the heat flux across each CFE of the contact set (ncfe of
   !> them) at temperatures temp: per unit area, from the slave side to the

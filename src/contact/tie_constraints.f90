@@ -94,6 +94,8 @@ contains
     blocked = .false.
     dependent = .false.
     do j = 1, size(m%model_bcs)
+      ! (a coupled deck's model-data temperatures, dof 11, tie nothing)
+      if (m%model_bcs(j)%dof > size(blocked, 1)) cycle
       blocked(m%model_bcs(j)%dof, m%model_bcs(j)%node) = .true.
     end do
     if (size(m%steps) > 0) then

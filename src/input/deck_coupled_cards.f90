@@ -7,7 +7,7 @@
 module deck_coupled_cards
   use kinds, only: dp
   use strings, only: split_fields, field_t
-  use deck_input, only: keyword_t, has_param, deck_warning
+  use deck_input, only: keyword_t, has_param, deck_warning, is_keyword, parse_keyword
   use deck_cursor, only: parser_t, err, allow_params, get_real, line_text, next_data, require_data
   use model, only: model_t, gap_heat_t
   use deck_heat_cards, only: read_thermal_procedure, check_fixed_increments
@@ -107,59 +107,116 @@ contains
     k = size(m%gap_heats)
   end function current_gap_heat
 
-  !> Purpose: *GAP CONDUCTANCE[, PRESSURE] in a *SURFACE INTERACTION block:
-  !> data lines `conductance, contact pressure[, temperature]`, the
-  !> conductance per unit area of a closed contact as a function of its
-  !> pressure (CalculiX's layout, and Abaqus's with PRESSURE), pressures
-  !> increasing, linear between and constant beyond; one line without a
-  !> pressure: constant. Abaqus without PRESSURE reads the second column
-  !> as a clearance: several lines without it are warned about (read as
-  !> pressures); a temperature dependence (different temperatures) and
-  !> USER stop.
+  !> Purpose: *GAP CONDUCTANCE[, PRESSURE | CLEARANCE] in a *SURFACE
+  !> INTERACTION block: data lines `conductance, x[, temperature]`, x
+  !> increasing, linear between the lines. x is the contact pressure
+  !> (CalculiX's reading, and Abaqus's with PRESSURE: h(p) of a closed
+  !> point, constant beyond the table; one line without x: constant) or
+  !> the clearance d (Abaqus's reading without PRESSURE; CLEARANCE, cfe2d's
+  !> parameter, asks for it in any deck): h(d) of every coupled point,
+  !> closed ones at d = 0, zero beyond the last clearance (the Abaqus
+  !> keyword reference: "the value of the conductance drops to zero
+  !> immediately after the last data point"). Without either parameter an
+  !> Abaqus/CAE deck (*PART, *ASSEMBLY) reads clearances, any other deck
+  !> pressures, with a warning where the two readings differ. A
+  !> temperature dependence (different temperatures) and USER stop.
   !> Arguments: p the parser at the card, m the model, kw the card.
   subroutine read_gap_conductance(p, m, kw)
     type(parser_t), intent(inout) :: p
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
-    type(field_t), allocatable :: f(:)
-    real(dp), allocatable :: hp(:, :)
-    real(dp) :: t1, t
-    integer :: k, n, line0
-    call allow_params(p, kw, 'PRESSURE,USER')
-    if (has_param(kw, 'USER')) call err(p, '*GAP CONDUCTANCE, USER (a user routine gapcon) is not implemented')
+    real(dp), allocatable :: hx(:, :)
+    integer :: k, line0
+    logical :: clearance
+    call allow_params(p, kw, 'PRESSURE,CLEARANCE,USER')
+    if (has_param(kw, 'USER')) call err(p, '*GAP CONDUCTANCE, USER: cfe2d has no user routines (CalculiX ' // &
+      'calls gapcon, Abaqus GAPCON); give the conductance as data lines instead: `conductance, contact ' // &
+      'pressure` with PRESSURE (or `conductance, clearance` with CLEARANCE), several lines for a table ' // &
+      '(docs/heat.md)')
+    if (has_param(kw, 'PRESSURE') .and. has_param(kw, 'CLEARANCE')) call err(p, '*GAP CONDUCTANCE: ' // &
+      'PRESSURE or CLEARANCE, not both (the table''s second column is one of them)')
     k = current_gap_heat(p, m, 'GAP CONDUCTANCE')
     line0 = p%i
+    clearance = has_param(kw, 'CLEARANCE') .or. (.not. has_param(kw, 'PRESSURE') .and. has_parts(p))
+    call read_conductance_table(p, clearance, hx)
+    ! the two readings differ unless the table is one line at x = 0
+    if (.not. (has_param(kw, 'PRESSURE') .or. has_param(kw, 'CLEARANCE')) .and. &
+        (size(hx, 2) > 1 .or. any(hx(2, :) /= 0.0_dp))) then
+      if (clearance) then
+        call deck_warning(p%deck, line0, '*GAP CONDUCTANCE without PRESSURE in an Abaqus/CAE deck (*PART, ' // &
+          '*ASSEMBLY): its second column is read as the clearance, as Abaqus reads it (CalculiX would read ' // &
+          'a contact pressure: add PRESSURE for that)')
+      else
+        call deck_warning(p%deck, line0, '*GAP CONDUCTANCE table without PRESSURE: its second column is ' // &
+          'read as the contact pressure, as CalculiX reads it (Abaqus would read a clearance: add CLEARANCE ' // &
+          'for that, or PRESSURE to say it is a pressure)')
+      end if
+    end if
+    m%gap_heats(k)%gc_h = hx(1, :)
+    m%gap_heats(k)%gc_p = hx(2, :)
+    m%gap_heats(k)%clearance = clearance
+  end subroutine read_gap_conductance
+
+  !> Purpose: the data lines of *GAP CONDUCTANCE: hx(1, :) the
+  !> conductances, hx(2, :) the pressures or (clearance) the clearances,
+  !> increasing (an empty one 0), each line's temperature the first's.
+  !> Arguments: p the parser at the card, clearance the second column is
+  !> a clearance (for the messages), hx the table read.
+  subroutine read_conductance_table(p, clearance, hx)
+    type(parser_t), intent(inout) :: p
+    logical, intent(in) :: clearance
+    real(dp), allocatable, intent(out) :: hx(:, :)
+    type(field_t), allocatable :: f(:)
+    character(len=:), allocatable :: what
+    real(dp) :: t1, t
+    integer :: n
+    what = merge('clearance       ', 'contact pressure', clearance)
+    what = trim(what)
     call require_data(p, 'conductance')
-    allocate(hp(2, 0))
+    allocate(hx(2, 0))
     t1 = 0.0_dp
     do
       call split_fields(line_text(p), f, n)
-      if (n < 1 .or. n > 3) call err(p, '*GAP CONDUCTANCE data line needs: conductance[, contact pressure' // &
+      if (n < 1 .or. n > 3) call err(p, '*GAP CONDUCTANCE data line needs: conductance[, ' // what // &
                                      '[, temperature]]')
-      hp = reshape([hp, get_real(p, f(1), 'conductance'), 0.0_dp], [2, size(hp, 2) + 1])
+      hx = reshape([hx, get_real(p, f(1), 'conductance'), 0.0_dp], [2, size(hx, 2) + 1])
       if (n >= 2) then
-        if (len(f(2)%s) > 0) hp(2, size(hp, 2)) = get_real(p, f(2), 'contact pressure')
+        if (len(f(2)%s) > 0) hx(2, size(hx, 2)) = get_real(p, f(2), what)
       end if
       t = t1
       if (n == 3) then
         if (len(f(3)%s) > 0) t = get_real(p, f(3), 'temperature')
       end if
-      if (size(hp, 2) == 1) t1 = t
+      if (size(hx, 2) == 1) t1 = t
       if (t /= t1) call err(p, 'a temperature-dependent *GAP CONDUCTANCE is not implemented (one temperature ' // &
                            'per table)')
-      if (hp(1, size(hp, 2)) < 0.0_dp) call err(p, 'the gap conductance must not be negative')
-      if (size(hp, 2) > 1) then
-        if (hp(2, size(hp, 2)) <= hp(2, size(hp, 2) - 1)) call err(p, 'the pressures of a *GAP CONDUCTANCE ' // &
-                                                                  'table must increase')
+      if (hx(1, size(hx, 2)) < 0.0_dp) call err(p, 'the gap conductance must not be negative')
+      if (clearance .and. hx(2, size(hx, 2)) < 0.0_dp) call err(p, 'a clearance of *GAP CONDUCTANCE must ' // &
+                                                                'not be negative')
+      if (size(hx, 2) > 1) then
+        if (hx(2, size(hx, 2)) <= hx(2, size(hx, 2) - 1)) call err(p, 'the ' // what // 's of a *GAP ' // &
+                                                                  'CONDUCTANCE table must increase')
       end if
       if (.not. next_data(p)) exit
     end do
-    if (size(hp, 2) > 1 .and. .not. has_param(kw, 'PRESSURE')) call deck_warning(p%deck, line0, &
-        '*GAP CONDUCTANCE table without PRESSURE: its second column is read as the contact pressure, as ' // &
-        'CalculiX reads it (Abaqus would read a clearance); cfe2d has no clearance dependence')
-    m%gap_heats(k)%gc_h = hp(1, :)
-    m%gap_heats(k)%gc_p = hp(2, :)
-  end subroutine read_gap_conductance
+  end subroutine read_conductance_table
+
+  !> Purpose: is the deck an Abaqus/CAE one (a *PART or an *ASSEMBLY
+  !> anywhere in it, before or after the card asking), whose cards mean
+  !> what Abaqus reads?
+  !> Arguments: p the parser (its deck's lines).
+  logical function has_parts(p)
+    type(parser_t), intent(in) :: p
+    type(keyword_t) :: kw
+    integer :: i
+    has_parts = .false.
+    do i = 1, p%deck%n
+      if (.not. is_keyword(p%deck%lines(i)%text)) cycle
+      call parse_keyword(p%deck%lines(i)%text, kw)
+      has_parts = kw%name == 'PART' .or. kw%name == 'ASSEMBLY'
+      if (has_parts) return
+    end do
+  end function has_parts
 
   !> Purpose: *GAP HEAT GENERATION in a *SURFACE INTERACTION block: data
   !> line `eta, f[, velocity]` (defaults 1, 0.5): the fraction eta of the

@@ -402,7 +402,9 @@ module model
   !> area h(p) of a closed contact point, linear in the contact pressure
   !> between the table's points (pressure gc_p(i), conductance gc_h(i),
   !> pressures increasing) and constant beyond (one point: constant); an
-  !> open point conducts nothing. Frictional heat: the fraction eta of the
+  !> open point conducts nothing. clearance: Abaqus's h(d) instead, gc_p
+  !> the clearances d (closed points at d = 0, open ones at their gap;
+  !> zero beyond the last). Frictional heat: the fraction eta of the
   !> frictional power mu p |slip rate| (per unit area) is heat, the
   !> fraction f of it goes to the slave surface and 1 - f to the master;
   !> velocity > 0 is CalculiX's given slip rate (2D and axisymmetric models
@@ -410,6 +412,7 @@ module model
   type :: gap_heat_t
     character(len=name_len) :: name = ''
     real(dp), allocatable :: gc_p(:), gc_h(:)
+    logical :: clearance = .false.
     logical :: generation = .false.
     real(dp) :: eta = 1.0_dp, f = 0.5_dp, velocity = 0.0_dp
   end type gap_heat_t

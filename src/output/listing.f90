@@ -325,6 +325,9 @@ contains
     write(u, '(a,i0)') 'increments ', summary%increments
     write(u, '(a,i0)') 'numeric_factorisations ', summary%factorisations
     write(u, '(a,i0)') 'condensed_factorisations ', summary%condensed_factorisations
+    if (summary%temperature_factorisations >= 0) write(u, '(a,i0,a,i0)') &
+      'numeric_factorisations_per_field temperature=', summary%temperature_factorisations, &
+      ' displacement=', summary%factorisations - summary%temperature_factorisations
     write(u, '(a,i0)') 'contact_iterations ', summary%iterations
     write(u, '(a,i0)') 'contact_block_pivots ', summary%block_pivots
     write(u, '(a,i0)') 'contact_single_pivots ', summary%single_pivots
