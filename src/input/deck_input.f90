@@ -174,18 +174,25 @@ contains
     end do
   end subroutine clean
 
+  !> A comment line: "**" at its first non-blank character. (The first
+  !> non-blank is found in place: an adjusted copy of every line, taken
+  !> for each test in each of the parser's passes, cost more than the test.)
   logical function is_comment(s)
     character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    t = adjustl(s)
-    is_comment = t(1:min(2, len(t))) == '**'
+    integer :: k
+    k = verify(s, ' ')
+    is_comment = .false.
+    if (k > 0 .and. k < len(s)) is_comment = s(k:k + 1) == '**'
   end function is_comment
 
+  !> A keyword line: "*" at its first non-blank character, not a comment.
   logical function is_keyword(s)
     character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    t = adjustl(s)
-    is_keyword = t(1:1) == '*' .and. .not. is_comment(s)
+    integer :: k
+    k = verify(s, ' ')
+    is_keyword = .false.
+    if (k > 0) is_keyword = s(k:k) == '*'
+    if (is_keyword .and. k < len(s)) is_keyword = s(k + 1:k + 1) /= '*'
   end function is_keyword
 
   subroutine add_file(deck, path, ifile)
@@ -209,9 +216,16 @@ contains
     character(len=*), intent(in) :: text
     integer, intent(in) :: ifile, lineno
     type(deck_line_t), allocatable :: tmp(:)
+    integer :: i
     if (deck%n == size(deck%lines)) then
       allocate(tmp(new_capacity(deck%n, deck%n + 1)))
-      tmp(1:deck%n) = deck%lines(1:deck%n)
+      ! each line's text moved, not copied: an assignment of the array
+      ! would allocate and copy every line again at every growth
+      do i = 1, deck%n
+        call move_alloc(deck%lines(i)%text, tmp(i)%text)
+        tmp(i)%file = deck%lines(i)%file
+        tmp(i)%line = deck%lines(i)%line
+      end do
       call move_alloc(tmp, deck%lines)
     end if
     deck%n = deck%n + 1

@@ -44,6 +44,9 @@ module results_frd
     logical :: nt = .false.   ! heat transfer: the temperatures (NDTEMP)
   end type frd_wants_t
 
+  !> Characters of a batch of records written at once (nodes, elements).
+  integer, parameter :: record_batch = 65536
+
 contains
 
   !> Purpose: open <job>.frd and write the header, the nodes and the
@@ -110,13 +113,43 @@ contains
     integer, intent(in) :: u
     type(model_t), intent(in) :: m
     logical, intent(in) :: kept(:)
-    integer :: a
+    integer :: a, pos
+    character(len=record_batch) :: buf
     write(u, '(a, i30, i38)') '    2C', count(kept), 1
+    pos = 0
     do a = 1, m%nn
-      if (kept(a)) write(u, '(a)') ' -1' // int_field(m%node_id(a), 10) // e12_5(m%x(1, a)) // e12_5(m%x(2, a)) // e12_5(0.0_dp)
+      if (kept(a)) call put_record(u, buf, pos, ' -1' // int_field(m%node_id(a), 10) // e12_5(m%x(1, a)) // &
+                                   e12_5(m%x(2, a)) // e12_5(0.0_dp))
     end do
-    write(u, '(a)') ' -3'
+    call put_record(u, buf, pos, ' -3')
+    call flush_records(u, buf, pos)
   end subroutine write_nodes
+
+  !> Purpose: appends one record to buf (records joined by newlines),
+  !> writing buf out first when the record would not fit: a write
+  !> statement per record cost more than composing it (the flagship's
+  !> 29 000 nodes and elements: 31 ms of the run's 1.1 s CPU, perf).
+  !> Arguments: u the file; buf the batch, pos its characters in use.
+  subroutine put_record(u, buf, pos, text)
+    integer, intent(in) :: u
+    character(len=*), intent(inout) :: buf
+    integer, intent(inout) :: pos
+    character(len=*), intent(in) :: text
+    if (pos + len(text) + 1 > len(buf)) call flush_records(u, buf, pos)
+    buf(pos + 1:pos + len(text)) = text
+    buf(pos + len(text) + 1:pos + len(text) + 1) = new_line('a')
+    pos = pos + len(text) + 1
+  end subroutine put_record
+
+  !> Purpose: writes the records batched in buf(1:pos) (the last newline
+  !> is the write's own) and empties the batch.
+  subroutine flush_records(u, buf, pos)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: buf
+    integer, intent(inout) :: pos
+    if (pos > 0) write(u, '(a)') buf(1:pos - 1)
+    pos = 0
+  end subroutine flush_records
 
   !> Purpose: CalculiX's frd element type of catalogue entry et as it
   !> writes 2D elements with OUTPUT=2D (0: not written: springs, masses).
@@ -135,27 +168,38 @@ contains
 
   !> The element block 3C: the elements with stiffness that have an frd
   !> type, each with its material number (0 without one).
+  !> (records as the formats (a, i10, 3i5) and (a, *(i10)) write them,
+  !> composed with int_field and batched)
   subroutine write_elements(u, m)
     integer, intent(in) :: u
     type(model_t), intent(in) :: m
-    integer :: e, n, mat, order(8), k, count
+    integer :: e, n, mat, order(8), k, count, pos
+    character(len=record_batch) :: buf
+    character(len=3 + 10 * 8) :: nodes
     count = 0
     do e = 1, m%ne
       if (written(m, e)) count = count + 1
     end do
     write(u, '(a, i30, i38)') '    3C', count, 1
+    pos = 0
     do e = 1, m%ne
       if (.not. written(m, e)) cycle
       mat = 0
       if (allocated(m%elem_section)) then
         if (m%elem_section(e) > 0) mat = m%sections(m%elem_section(e))%material
       end if
-      write(u, '(a, i10, 3i5)') ' -1', m%elem_id(e), frd_type(m%etype(e)), 0, mat
+      call put_record(u, buf, pos, ' -1' // int_field(m%elem_id(e), 10) // int_field(frd_type(m%etype(e)), 5) // &
+                      int_field(0, 5) // int_field(mat, 5))
       n = elem_nodes(m, e)
       order = file_node_order(m%etype(e))
-      write(u, '(a, *(i10))') ' -2', (m%node_id(m%conn(order(k), e)), k = 1, n)
+      nodes(1:3) = ' -2'
+      do k = 1, n
+        nodes(4 + 10 * (k - 1):3 + 10 * k) = int_field(m%node_id(m%conn(order(k), e)), 10)
+      end do
+      call put_record(u, buf, pos, nodes(1:3 + 10 * n))
     end do
-    write(u, '(a)') ' -3'
+    call put_record(u, buf, pos, ' -3')
+    call flush_records(u, buf, pos)
   end subroutine write_elements
 
   !> An element of the element block: one that carries stiffness and has

@@ -27,14 +27,13 @@ module cholmod_backend
 
   type, extends(solver_backend_t) :: cholmod_backend_t
     type(csc_t) :: a                                 ! upper triangle
-    integer(c_int), allocatable :: ap0(:), ai0(:)    ! 0-based copies for C
     type(c_ptr) :: handle = c_null_ptr               ! workspace and factor
     logical :: analysed = .false.
     real(dp) :: pivot_ratio = 1.0_dp                 ! smallest, last factorisation
   contains
     procedure :: setup, zero, add, analyse, factor, solve, matvec, describe, stored_entries, free
     procedure :: condensed_factor, forward, backward, trailing_order
-    procedure, private :: factor_judging
+    procedure, private :: factor_judging, c_indices
   end type cholmod_backend_t
 
 contains
@@ -44,15 +43,26 @@ contains
     integer, intent(in) :: n, ordering, xeq(:), eqs(:)
     call self%free()
     call self%keep_structure(n, ordering, xeq, eqs)
-    ! with a trailing block the matrix is assembled once (condensed solve)
-    call csc_build(self%a, n, xeq, eqs, upper=.true., with_map=self%nlast == 0)
-    self%ap0 = int(self%a%colptr - 1, c_int)
-    self%ai0 = int(self%a%rowind - 1, c_int)
+    ! with a trailing block the matrix is assembled once (condensed solve);
+    ! without one, the value map is made once the matrix is assembled again
+    call csc_build(self%a, n, xeq, eqs, upper=.true., with_map=self%nlast == 0, map_later=.true.)
   end subroutine setup
+
+  !> Purpose: the pattern's indices in CHOLMOD's convention (0-based,
+  !> by = -1) for the length of one call into the shim, and back
+  !> (1-based, by = +1) right after it: CHOLMOD reads the backend's own
+  !> arrays, so no 0-based copy is kept beside them (nnz + n + 1 integers:
+  !> 2.2 MB on the flagship, 42 MB at 1e6 equations).
+  subroutine c_indices(self, by)
+    class(cholmod_backend_t), intent(inout) :: self
+    integer, intent(in) :: by
+    self%a%colptr = self%a%colptr + by
+    self%a%rowind = self%a%rowind + by
+  end subroutine c_indices
 
   subroutine zero(self)
     class(cholmod_backend_t), intent(inout) :: self
-    call csc_zero(self%a)
+    call csc_zero(self%a, self%xeq, self%eqs)
   end subroutine zero
 
   subroutine add(self, e, ke)
@@ -88,12 +98,14 @@ contains
       given = c_loc(perm)
     end if
     flops = 0.0_dp
+    call self%c_indices(-1)
     if (self%nlast > 0) then
-      st = cfe_cholmod_analyse_last(self%handle, int(self%n, c_int), self%ap0, self%ai0, self%a%val, &
+      st = cfe_cholmod_analyse_last(self%handle, int(self%n, c_int), self%a%colptr, self%a%rowind, self%a%val, &
                                     int(self%nlast, c_int), given, lnz, flops)
     else
-      st = cfe_cholmod_analyse(self%handle, int(self%n, c_int), self%ap0, self%ai0, self%a%val, given, lnz)
+      st = cfe_cholmod_analyse(self%handle, int(self%n, c_int), self%a%colptr, self%a%rowind, self%a%val, given, lnz)
     end if
+    call self%c_indices(+1)
     if (st /= cholmod_shim_ok) call fatal('CHOLMOD analysis failed, status ' // itoa(int(st)))
     self%factor_entries = lnz
     self%factor_flops = flops
@@ -117,8 +129,10 @@ contains
     call self%analyse()
     self%pivot_ratio = 1.0_dp
     if (self%n == 0) return
-    st = cfe_cholmod_factor(self%handle, int(self%n, c_int), self%ap0, self%ai0, self%a%val, int(nskip, c_int), &
-                            ratio, col)
+    call self%c_indices(-1)
+    st = cfe_cholmod_factor(self%handle, int(self%n, c_int), self%a%colptr, self%a%rowind, self%a%val, &
+                            int(nskip, c_int), ratio, col)
+    call self%c_indices(+1)
     if (st == cholmod_shim_not_posdef) then
       status = factor_not_posdef
       bad = int(col) + 1

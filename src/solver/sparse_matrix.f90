@@ -20,6 +20,10 @@ module sparse_matrix
     ! without the map (a matrix assembled once) positions are searched
     integer(8), allocatable :: eptr(:)
     integer, allocatable :: emap(:)
+    ! map_later: the map is made by csc_zero once values have been added
+    ! (added), that is for a matrix assembled a second time; until then
+    ! positions are searched in the map's order (the same sums)
+    logical :: map_later = .false., added = .false.
   end type csc_t
 
 contains
@@ -29,11 +33,15 @@ contains
   !> with_map (default true): also the value position of every element
   !> entry, which makes repeated assembly a plain scatter; a matrix
   !> assembled once does without it (one integer per entry less).
-  subroutine csc_build(a, n, xeq, eqs, upper, with_map)
+  !> map_later (default false): the map is made only when the matrix is
+  !> assembled a second time (csc_zero given the element lists), so that a
+  !> matrix assembled once, which cannot know it beforehand, neither makes
+  !> nor keeps it (at 1e6 equations: 72 MB and a pass of searches).
+  subroutine csc_build(a, n, xeq, eqs, upper, with_map, map_later)
     type(csc_t), intent(out) :: a
     integer, intent(in) :: n, xeq(:), eqs(:)
     logical, intent(in) :: upper
-    logical, intent(in), optional :: with_map
+    logical, intent(in), optional :: with_map, map_later
     integer, allocatable :: xel(:), el(:)
     a%n = n
     a%upper = upper
@@ -44,6 +52,8 @@ contains
     if (present(with_map)) then
       if (.not. with_map) return
     end if
+    if (present(map_later)) a%map_later = map_later
+    if (a%map_later) return
     call element_entry_map(a, xeq, eqs, upper)
   end subroutine csc_build
 
@@ -195,8 +205,16 @@ contains
     end do
   end subroutine sort_int
 
-  subroutine csc_zero(a)
+  !> Purpose: clears the values, keeping the pattern; a matrix built with
+  !> map_later makes its value map here once values were added before (the
+  !> matrix is being assembled again).
+  !> Arguments: xeq, eqs the element lists the matrix was built from
+  !> (without them no map is made: positions stay searched).
+  subroutine csc_zero(a, xeq, eqs)
     type(csc_t), intent(inout) :: a
+    integer, intent(in), optional :: xeq(:), eqs(:)
+    if (a%map_later .and. a%added .and. .not. allocated(a%emap) .and. present(xeq) .and. present(eqs)) &
+      call element_entry_map(a, xeq, eqs, a%upper)
     a%val = 0.0_dp
   end subroutine csc_zero
 
@@ -209,7 +227,12 @@ contains
     integer :: i, j
     integer(8) :: k
     if (.not. allocated(a%emap)) then
-      call add_searching(a, eqs, ke)
+      if (a%map_later) then
+        call add_in_map_order(a, eqs, ke)
+        a%added = .true.
+      else
+        call add_searching(a, eqs, ke)
+      end if
       return
     end if
     k = a%eptr(e)
@@ -223,6 +246,30 @@ contains
       end do
     end do
   end subroutine csc_add_element
+
+  !> Purpose: csc_add_element before its map is made (map_later): each
+  !> position searched, the entries visited and taken from ke as the map's
+  !> scatter does (row by row of the equation list, ke(i, j) with j >= i
+  !> for the upper triangle), so that the sums are the same to the bit.
+  pure subroutine add_in_map_order(a, eqs, ke)
+    type(csc_t), intent(inout) :: a
+    integer, intent(in) :: eqs(:)
+    real(dp), intent(in) :: ke(:, :)
+    integer :: i, j, k
+    do i = 1, size(eqs)
+      if (eqs(i) <= 0) cycle
+      do j = 1, size(eqs)
+        if (eqs(j) <= 0) cycle
+        if (a%upper) then
+          if (j < i) cycle
+          k = csc_position(a, min(eqs(i), eqs(j)), max(eqs(i), eqs(j)))
+        else
+          k = csc_position(a, eqs(i), eqs(j))
+        end if
+        a%val(k) = a%val(k) + ke(i, j)
+      end do
+    end do
+  end subroutine add_in_map_order
 
   !> csc_add_element without the value map: each position searched.
   pure subroutine add_searching(a, eqs, ke)

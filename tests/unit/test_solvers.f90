@@ -10,6 +10,7 @@ program test_solvers
   use test_report, only: report, failures
   use linear_solver
   use cholmod_binding, only: cfe_cholmod_version, cfe_cholmod_header_version
+  use sparse_matrix, only: csc_t, csc_build, csc_zero, csc_add_element
   implicit none
   integer, parameter :: nkinds = 5
   integer, parameter :: kinds_(nkinds) = [solver_skyline, solver_cholmod, solver_cholmod, solver_umfpack, &
@@ -18,6 +19,7 @@ program test_solvers
   call version_check()
   call spd_case()
   call refactor_case()
+  call map_later_case()
   call indefinite_case()
   call singular_exact_case()
   call singular_tiny_pivot_case()
@@ -186,6 +188,49 @@ contains
       call sys_free(s)
     end do
   end subroutine refactor_case
+
+  !> A matrix whose value map is made at its second assembly (map_later)
+  !> against one built with the map: the same values to the bit at each of
+  !> three assemblies, upper triangle and full pattern, with element
+  !> matrices that are not symmetric (so that taking ke(j, i) for ke(i, j)
+  !> would show); no map before the second assembly, one after it.
+  subroutine map_later_case()
+    integer, parameter :: n = 90
+    integer, allocatable :: xeq(:), eqs(:)
+    type(csc_t) :: now, later
+    real(dp) :: ke(4, 4)
+    integer :: pass, e, i, j, up
+    logical :: same, map_first, map_second
+    character(len=120) :: msg
+    call make_elements(n, xeq, eqs)
+    do up = 0, 1
+      call csc_build(now, n, xeq, eqs, upper=up == 1)
+      call csc_build(later, n, xeq, eqs, upper=up == 1, map_later=.true.)
+      same = .true.
+      map_first = .false.
+      map_second = .false.
+      do pass = 1, 3
+        call csc_zero(now, xeq, eqs)
+        call csc_zero(later, xeq, eqs)
+        if (pass == 1) map_first = allocated(later%emap)
+        if (pass == 2) map_second = allocated(later%emap)
+        do e = 1, size(xeq) - 1
+          do j = 1, 4
+            do i = 1, 4
+              ke(i, j) = sin(0.37_dp * (e + pass) + 1.3_dp * i + 0.11_dp * j * j) / 3.0_dp
+            end do
+          end do
+          call csc_add_element(now, e, eqs(xeq(e):xeq(e + 1) - 1), ke)
+          call csc_add_element(later, e, eqs(xeq(e):xeq(e + 1) - 1), ke)
+        end do
+        same = same .and. all(now%val == later%val)
+      end do
+      write(msg, '(a,l1,a,l1,a,l1)') 'same values ', same, ', map at first assembly ', map_first, &
+        ', at second ', map_second
+      call report('map_later (upper ' // merge('T', 'F', up == 1) // ') assembles as the map, makes it once reassembled', &
+                  same .and. .not. map_first .and. map_second, msg)
+    end do
+  end subroutine map_later_case
 
   subroutine indefinite_case()
     integer, parameter :: n = 120, nrhs = 2
