@@ -8,7 +8,10 @@ BUILD    ?= build
 OPTFLAGS ?= -O2 -march=x86-64 -mtune=generic
 DBGFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -fcheck=all,no-array-temps \
             -g -fbacktrace -O0
-FFLAGS   ?= $(OPTFLAGS)
+# OpenMP: the element loops run on OMP_NUM_THREADS threads (one if it is
+# not set; src/solver/thread_shim.c); libgomp is the runtime CHOLMOD links too.
+OMPFLAGS ?= -fopenmp
+FFLAGS   ?= $(OPTFLAGS) $(OMPFLAGS)
 LIBS     ?= -lcholmod -lumfpack -lamd -lcolamd -lsuitesparseconfig -lmetis -larpack -llapack -lopenblas
 PYTHON   ?= python3
 
@@ -48,6 +51,7 @@ all: bin/cfe2d
 help:
 	@echo "make            build bin/cfe2d (optimised)"
 	@echo "make debug      build build-debug/cfe2d with -std=f2008 -Wall -fcheck=all -g -fbacktrace"
+	@echo "                (every build has -fopenmp: OMP_NUM_THREADS=N runs the element loops on N threads)"
 	@echo "make sanitize   build build-asan/cfe2d with -fsanitize=address,undefined"
 	@echo "make nompi      build build-nompi/cfe2d without MPI and MUMPS (MUMPS=no), as where they are absent"
 	@echo "make run        install what is missing, then run the main example"
@@ -67,7 +71,7 @@ bin/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o | bin
 
 # The debug build keeps its objects and executable apart: build-debug/cfe2d.
 debug:
-	$(MAKE) BUILD=build-debug FFLAGS="$(DBGFLAGS)" build-debug/cfe2d
+	$(MAKE) BUILD=build-debug FFLAGS="$(DBGFLAGS) $(OMPFLAGS)" build-debug/cfe2d
 
 build-debug/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
@@ -82,7 +86,7 @@ build-nompi/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
 # The sanitizer build: address and undefined-behaviour checks, apart in build-asan/.
 SANFLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined
 sanitize:
-	$(MAKE) BUILD=build-asan FFLAGS="$(SANFLAGS)" CFLAGS="$(SANFLAGS)" build-asan/cfe2d
+	$(MAKE) BUILD=build-asan FFLAGS="$(SANFLAGS) $(OMPFLAGS)" CFLAGS="$(SANFLAGS)" build-asan/cfe2d
 
 build-asan/cfe2d: $(OBJS) $(OBJDIR)/cfe2d.o
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)

@@ -38,7 +38,14 @@
 7. *FREQUENCY (scripts/bench_frequency.py): the 10 lowest modes of a
    CPS8 plate of about 1e5 dofs, and CalculiX on the same deck in the
    same run when ccx is on PATH.
-8. With --solvers: the solvers on a structured plane-stress square (Q4) at
+8. Threads (issue 32, item 2): the flagship (default mesh) and the NLGEOM
+   Hertz of scripts/bench_calculix.py on 1 and 2 element threads
+   (OMP_NUM_THREADS): wall times, their ratio, and the listing's timed
+   parts that hold the element loops (setup: stored stiffness; assembly:
+   nonlinear tangents and the matrix sums; recovery: internal forces;
+   results: stresses and contact results) with their share of the run.
+   The answers are the same bits on any count (tests/test_kernels.py).
+9. With --solvers: the solvers on a structured plane-stress square (Q4) at
    about 1e4, 1e5 and 1e6 dofs (tests/bench/bench.f90, one process per
    case): dofs, stored nonzeros, factor size, wall times of structure,
    assembly, ordering+symbolic analysis, numeric factorisation and solve,
@@ -241,6 +248,42 @@ def nonlinear_table(repeats):
     print(" ".join(f"{c:>12}" for c in row), flush=True)
 
 
+def thread_table(repeats):
+    """Wall time on 1 and 2 element threads (OMP_NUM_THREADS) of the
+    flagship's default mesh and the NLGEOM Hertz on it; loops: the timed
+    parts that hold the element loops (setup + assembly + recovery +
+    results of the TIMING block, which also hold the matrix sums and the
+    contact results), share: their part of the listing's total."""
+    import bench_calculix
+    print("\nthreads: element loops on 1 and 2 threads (OMP_NUM_THREADS; the same bits on either)")
+    cols = ["deck", "wall_1t_s", "wall_2t_s", "ratio", "loops_1t_s", "loops_2t_s", "share_1t", "CPU_2t_s"]
+    print(" ".join(f"{c:>12}" for c in cols), flush=True)
+    cases = [("hertz_default", hertz_decks("default")[0]),
+             ("nlgeom_hertz", bench_calculix.decks(["nlgeom_hertz"])["nlgeom_hertz"])]
+    saved = os.environ.get("OMP_NUM_THREADS")
+    try:
+        for name, deck in cases:
+            got = {}
+            # the two counts alternate, so that both see the same load of a
+            # shared machine; the best wall time of each counts
+            for _ in range(repeats):
+                for n in (1, 2):
+                    os.environ["OMP_NUM_THREADS"] = str(n)
+                    wall, user, syst, t, _ = best_of(deck, 1)
+                    if n not in got or wall < got[n][0]:
+                        got[n] = (wall, t["setup"] + t["assembly"] + t["recovery"] + t["results"], t["total"],
+                                  user + syst)
+            (w1, l1, t1, _), (w2, l2, _, c2) = got[1], got[2]
+            row = [name, f"{w1:.2f}", f"{w2:.2f}", f"{w1 / w2:.2f}", f"{l1:.2f}", f"{l2:.2f}", f"{l1 / t1:.2f}",
+                   f"{c2:.2f}"]
+            print(" ".join(f"{c:>12}" for c in row), flush=True)
+    finally:
+        if saved is None:
+            os.environ.pop("OMP_NUM_THREADS", None)
+        else:
+            os.environ["OMP_NUM_THREADS"] = saved
+
+
 def square_deck(nx=SQUARE_NX):
     """The unit square of nx * nx CPS4 with rollers on two sides and a load
     on every node, as a deck (about 43 MB at nx = 706, 1e6 dofs)."""
@@ -430,9 +473,13 @@ def main(argv=None):
     ap.add_argument("--surfaces", default="", help="contact points of the surface table, e.g. 1000,2000,4000")
     ap.add_argument("--condensed-max", type=int, default=4000, help="largest surface run on the condensed path")
     ap.add_argument("--only-nonlinear", action="store_true", help="only the nonlinear table")
+    ap.add_argument("--only-threads", action="store_true", help="only the thread table")
     args = ap.parse_args(argv)
     if args.only_nonlinear:
         nonlinear_table(args.repeats)
+        return 0
+    if args.only_threads:
+        thread_table(args.repeats)
         return 0
     if shutil.which("gmsh") is None:
         print("gmsh is not installed: no flagship meshes (scripts/install-deps.sh installs it)")
@@ -446,6 +493,8 @@ def main(argv=None):
         print("\ncouplings: node-to-segment (nts) against segment-to-segment with exact enforcement (sts)")
         contact_accuracy.table(["default", "q8", "ccx"], os.path.join(WORK, "accuracy"), args.repeats, penalties=True)
     nonlinear_table(args.repeats)
+    if meshes:
+        thread_table(args.repeats)
     __import__("bench_calculix").table(["nlgeom_hertz", "cattaneo_mindlin", "oring"], args.repeats)
     __import__("bench_heat").table(repeats=args.repeats)   # heat: a linear transient against CalculiX (bench_heat.py)
     __import__("bench_coupled").table(repeats=args.repeats)   # coupled: two blocks through h(p) against CalculiX

@@ -17,7 +17,9 @@ Each deck runs once per binary (`-q -d 16 --vtu -o <dir>`, the same deck
 path), and compared are: the exit code, stdout and stderr (the output folder
 named as <OUT>), the set of files written and every one byte for byte: the
 listing with its wall times masked (the `wall_seconds` line and the timing
-section's seconds), the contact CSV, the gmsh and VTU files. The iteration
+section's seconds) and its `blas` line (kernel and threads: with
+OMP_NUM_THREADS=2 a threaded binary names its element team there), the
+contact CSV, the gmsh and VTU files. The iteration
 and factorisation counts (the listing's step summaries and increment
 headers) are compared on their own too and summed in the last line.
 Exit status 1 if any deck differs.
@@ -189,13 +191,16 @@ def gather(args):
 
 
 def mask_listing(text):
-    """The listing without its wall times."""
+    """The listing without its wall times and its blas line (the BLAS
+    kernel and the thread counts of the run's environment)."""
     out, timing = [], False
     for line in text.splitlines(keepends=True):
         if line.startswith("---"):
             timing = line.startswith("--- TIMING")
         if line.startswith("wall_seconds "):
             line = "wall_seconds <masked>\n"
+        elif line.startswith("blas "):
+            line = "blas <masked>\n"
         elif timing and re.match(r"^\S+ [-+0-9.Ee]*\.[-+0-9.Ee]*\s*$", line):
             line = line.split()[0] + " <masked>\n"
         out.append(line)

@@ -40,6 +40,16 @@ The same comparison runs build-debug/cfe2d (-O0 -fcheck=all) on Prescott
 against bin/cfe2d on Prescott ("debug build <deck>"); without the debug
 build those tests skip (make check builds it first).
 
+Threads (issue 32, item 2): the element loops run on OMP_NUM_THREADS
+threads, and their results must not depend on the count at all. Each deck
+also runs bin/cfe2d on the reference kernel with OMP_NUM_THREADS=1, 2 and 3
+(those the reference run does not already have: it, the kernels and the
+debug build inherit the environment's OMP_NUM_THREADS, so that
+`OMP_NUM_THREADS=2 make kernels` compares them all on two threads), and
+"threads <deck>" requires the same bits: exit status and messages, every
+file written byte for byte, the listing with only its wall times and its
+`blas` line (which names the team) masked.
+
 By hand: python3 tests/run_tests.py -k test_kernels (one deck:
 -k "kernels hertz_point_cax4"); the runs stay in tests/work/kernels_<deck>/
 (one folder per variant, the deck in deck/).
@@ -71,14 +81,40 @@ UMF = re.compile(r"(factor entries )\S+")
 # ----------------------------------------------------------------- variants
 
 class Variant:
-    def __init__(self, label, exe, core):
-        self.label, self.exe, self.core = label, exe, core
+    """A run's program, OpenBLAS kernel (None: the one it detects) and
+    element threads (None: the environment's OMP_NUM_THREADS)."""
+    def __init__(self, label, exe, core, threads=None):
+        self.label, self.exe, self.core, self.threads = label, exe, core, threads
 
     def env(self):
         env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_CORETYPE", "OPENBLAS_VERBOSE")}
         if self.core:
             env["OPENBLAS_CORETYPE"] = self.core
+        if self.threads:
+            env["OMP_NUM_THREADS"] = str(self.threads)
         return env
+
+
+# element thread counts compared bit for bit
+THREADS = (1, 2, 3)
+
+
+def inherited_threads():
+    """The element threads of a run that inherits the environment: the
+    first value of OMP_NUM_THREADS, 1 if it is not set (thread_shim.c)."""
+    m = re.match(r"\s*(\d+)", os.environ.get("OMP_NUM_THREADS", ""))
+    return max(1, int(m.group(1))) if m else 1
+
+
+def thread_variants():
+    """bin/cfe2d on the reference's kernel with each count of THREADS the
+    reference run does not already have."""
+    ref, _ = reference_and_debug()
+    return [Variant(threads_label(n), CFE2D, ref.core, n) for n in THREADS if n != inherited_threads()]
+
+
+def threads_label(n):
+    return f"{n} thread" + ("s" if n > 1 else "")
 
 
 def cpu_flags():
@@ -318,6 +354,38 @@ def plastic_cylinder():
                             "*STATIC\n0.1, 1.\n")
 
 
+def plastic_nlgeom():
+    """The perfectly plastic cylinder under NLGEOM on a mesh of 2160 CPE8R
+    (more than one block of the element loops, assembly.f90's
+    block_size): the nonlinear tangents, forces and stresses with
+    plasticity and large deformation."""
+    import math
+    import test_nonlinear_closed_forms as tn
+    pc = 2.0 / math.sqrt(3.0) * 200.0 * math.log(2.0)
+    m = tn.annulus(1.0, 2.0, 24, 90, shape="Q8")
+    return tn.cylinder_deck(m, "CPE8R", "*ELASTIC\n200000., 0.3\n*PLASTIC\n200., 0.\n", 0.9 * pc,
+                            "*STATIC\n0.1, 1.\n", extra=", NLGEOM")
+
+
+def hertz_friction(d):
+    """The flagship's coarse mesh (8 933 elements) pressed, then pushed
+    sideways until it slides with mu = 0.3 (make bench's friction
+    history, scripts/bench.py)."""
+    needs_gmsh()
+    import bench
+    import run_hertz
+    with open(run_hertz.write_case(d, mesh="coarse")) as f:
+        text = f.read()
+    model = text[:text.index("*STEP")]
+    model = re.sub(r"\*AMPLITUDE.*\n.*\n", "", model).replace("CYL_TOP, 1, 1\n", "")
+    pair = "*CONTACT PAIR, SEARCH DISTANCE=1.0"
+    assert pair + "\n" in model
+    path = os.path.join(d, "push_friction.inp")
+    with open(path, "w") as f:
+        f.write(model.replace(pair, pair + ", FRICTION=0.3") + bench.FRICTION_STEPS)
+    return path
+
+
 # name, what it covers, builder(dir) -> deck path
 DECKS = [
     ("hertz_point_cax4", "sphere on a flat, CAX4, h = 0.03 (tests/test_hertz_point.py): axisymmetric "
@@ -363,6 +431,10 @@ DECKS = [
      "again every increment, Newton with automatic increments", copy_of("input/examples/oring.inp")),
     ("plastic_cylinder", "a perfectly plastic cylinder to 0.9 of collapse (no contact): Newton iteration counts "
      "and the increment sizes they set", from_text(plastic_cylinder, "plastic_cylinder")),
+    ("plastic_nlgeom", "the plastic cylinder under NLGEOM, 2160 CPE8R: more than one block of element loops",
+     from_text(plastic_nlgeom, "plastic_nlgeom")),
+    ("hertz_friction", "the flagship's coarse mesh pressed and pushed until it slides, mu = 0.3: stick and slip",
+     hertz_friction),
 ]
 
 # Families not compared as numbers: the unsettled deck completes only its
@@ -378,6 +450,7 @@ LOOSE = {"blocks_unsettled": ("force", "stress")}
 class Result:
     def __init__(self, variant, proc, outdir, deck, deckdir):
         self.variant = variant
+        self.outdir = outdir
         self.rc = proc.returncode
         job = os.path.splitext(os.path.basename(deck))[0]
         self.listing_path = os.path.join(outdir, job + ".out")
@@ -419,6 +492,7 @@ def runs(name):
         todo = [ref] + [v for v in kernels if v.label != ref.label]
         if os.path.exists(DEBUG):
             todo.append(debug)
+        todo += thread_variants()
         with ThreadPoolExecutor(max_workers=max(1, min(2, os.cpu_count() or 1))) as pool:
             results = list(pool.map(lambda v: run_variant(v, deck, deckdir, root), todo))
         _RUNS[name] = {r.variant.label: r for r in results}
@@ -658,7 +732,79 @@ def test_coretype_selects_the_kernel():
     print(f"  kernels compared: {', '.join(seen)} (reference {REFERENCE_CORE})")
 
 
+def masked_listing(text):
+    """The listing with what may differ between thread counts masked: the
+    wall times (step summaries' wall_seconds, the TIMING block's seconds)
+    and the blas line (which names the element team)."""
+    out, timing = [], False
+    for line in text.splitlines():
+        word = line.split()[0] if line.split() else ""
+        if line.startswith("--- "):
+            timing = line.startswith("--- TIMING")
+        if word == "blas" or word == "wall_seconds" or (timing and "." in line and word != "item"):
+            line = word + " <masked>"
+        out.append(line)
+    return out
+
+
+# a .frd's header records of the run's date and time (1UDATE, 1UTIME)
+FRD_CLOCK = re.compile(rb"(?m)^    1U(?:DATE|TIME) .*$")
+
+
+def bit_difference(ref, other):
+    """The first difference between two runs that must give the same bits,
+    or None: exit status, messages, the files written and each one byte
+    for byte (the listing through masked_listing, a .frd without the
+    date and time of its run)."""
+    if ref.rc != other.rc:
+        return f"exit status {other.rc} against {ref.rc}"
+    if ref.stderr != other.stderr:
+        return f"messages differ: {other.stderr.strip()[:300]!r} against {ref.stderr.strip()[:300]!r}"
+    fa, fb = sorted(os.listdir(ref.outdir)), sorted(os.listdir(other.outdir))
+    if fa != fb:
+        return f"files {fb} against {fa}"
+    for name in fa:
+        with open(os.path.join(ref.outdir, name), "rb") as f:
+            a = f.read()
+        with open(os.path.join(other.outdir, name), "rb") as f:
+            b = f.read()
+        if name == os.path.basename(ref.listing_path):
+            la, lb = masked_listing(a.decode()), masked_listing(b.decode())
+            if la != lb:
+                k = next((k for k, (x, y) in enumerate(zip(la, lb)) if x != y), min(len(la), len(lb)))
+                return (f"{name} line {k + 1}: {lb[k] if k < len(lb) else '(end)'!r} against "
+                        f"{la[k] if k < len(la) else '(end)'!r}")
+        elif name.endswith(".frd") and FRD_CLOCK.sub(b"", a) == FRD_CLOCK.sub(b"", b):
+            continue
+        elif a != b:
+            k = next((k for k, (x, y) in enumerate(zip(a, b)) if x != y), min(len(a), len(b)))
+            line = a[:k].count(b"\n") + 1
+            return f"{name} differs from byte {k} (line {line})"
+    return None
+
+
+def check_threads(name):
+    """The deck on 1, 2 and 3 element threads: the same bits."""
+    ref, _ = reference_and_debug()
+    rs = runs(name)
+    base = rs[ref.label]
+    failures = []
+    for v in thread_variants():
+        run = rs[v.label]
+        if v.threads > 1 and not re.search(rf"element loops on {v.threads} threads$", run.blas()):
+            failures.append(f"{v.label}: the listing's blas line does not name the team: '{run.blas()}'")
+            continue
+        diff = bit_difference(base, run)
+        if diff:
+            failures.append(f"{v.label} against {ref.label} ({threads_label(inherited_threads())}): {diff}")
+    print(f"  {name}: {', '.join(v.label for v in thread_variants())} against {ref.label} "
+          f"({threads_label(inherited_threads())}): " + ("differ" if failures else "the same bits"))
+    if failures:
+        raise AssertionError(f"{name}: " + " | ".join(failures))
+
+
 def cases():
     for name, _, _ in DECKS:
         yield f"kernels {name}", (lambda n=name: check_kernels(n))
         yield f"debug build {name}", (lambda n=name: check_debug(n))
+        yield f"threads {name}", (lambda n=name: check_threads(n))

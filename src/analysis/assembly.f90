@@ -17,6 +17,17 @@
 !> change. So does an initial stress (*INITIAL CONDITIONS, TYPE=STRESS,
 !> linear steps only): sig = D eps + sig0, its load -integral B^T sig0 dV
 !> (`initial_stress_forces`) and sig0 added to the recovered stresses.
+!>
+!> Threads (OpenMP, blas_info's element_threads: OMP_NUM_THREADS, else
+!> one): the element loops of the stored stiffness, the internal forces
+!> (linear and nonlinear), the nonlinear tangents and the stresses compute
+!> each element's arrays on the team into storage of their own, a block
+!> of block_size elements at a time; the sums into the global vector and
+!> matrix, the counts and the largest entries are then made by one thread
+!> in element order, as without threads: the results are the same bits
+!> for any thread count. Nothing inside a parallel region writes anything
+!> but its own element's storage (an element that cannot be evaluated is
+!> flagged there and reported after the loop).
 module assembly
   use kinds, only: dp
   use strings, only: itoa
@@ -25,7 +36,7 @@ module assembly
   use element_catalogue, only: catalogue
   use contact, only: contact_set_t, cfe_input
   use element_interface, only: elem_in_t, elem_out_t, cfe_in_t, cfe_out_t, max_en, act_tangent, act_stresses, act_thermal, &
-                               act_residual, max_hist
+                               act_residual, max_hist, max_edof
   use element_catalogue, only: max_ip, max_nodes, state_plane_stress, shape_quad4, state_axisymmetric
   use materials, only: elastic_matrix
   use distributed_loads, only: follower_pressure_load
@@ -35,6 +46,7 @@ module assembly
   use cfe_element, only: cfe
   use body_elements, only: body_input, body_alpha
   use linear_solver, only: linear_system_t, sys_zero, sys_add
+  use blas_info, only: element_threads, team_open, team_close
   use dof_numbering, only: dofmap_t, has_dependent, group_transform, reduce_dependent
   implicit none
   private
@@ -95,6 +107,10 @@ module assembly
     logical :: ready = .false.
     real(dp) :: n(max_nodes, max_ip), dn(2, max_nodes, max_ip), ex(max_nodes, max_ip)
   end type point_table_t
+
+  !> Elements whose arrays the team computes before one thread sums them
+  !> (the storage of a block of tangents: 4 MB).
+  integer, parameter :: block_size = 2048
 
   !> How often element routines ran, by purpose.
   type :: element_counts_t
@@ -170,14 +186,16 @@ contains
   end subroutine initial_stress_forces
 
   !> Purpose: computes and keeps the stiffness of every body element
-  !> (continuum elements, trusses, springs).
+  !> (continuum elements, trusses, springs), on the element team: each
+  !> element's matrix into its own slice of body%ke; the count, the
+  !> largest diagonal entry and the first element with a bad Jacobian
+  !> found after, in element order.
   subroutine body_setup(m, body, counts)
     type(model_t), intent(in) :: m
     type(body_t), intent(out) :: body
     type(element_counts_t), intent(inout) :: counts
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: e, nd, j, nodes(max_en)
+    integer :: e, nd, j, nt, bad
+    integer(kind=8) :: k
     real(dp), allocatable :: u0(:, :)
     allocate(body%kptr(m%ne + 1), u0(2, m%nn))
     u0 = 0.0_dp
@@ -188,19 +206,29 @@ contains
       body%kptr(e + 1) = body%kptr(e) + int(nd, 8) * (nd + 1) / 2
     end do
     allocate(body%ke(body%kptr(m%ne + 1) - 1))
+    bad = huge(bad)
+    nt = element_threads()
+    call team_open()
+    !$omp parallel do num_threads(nt) if (nt > 1) schedule(dynamic, 64) default(shared) private(e) &
+    !$omp reduction(min: bad)
     do e = 1, m%ne
       if (.not. carries_stiffness(m, e)) cycle
-      call body_input(m, e, u0, ein, nodes)
-      call element_routine(act_tangent, ein, eout)
+      if (.not. stored_stiffness(m, e, u0, body%ke(body%kptr(e):body%kptr(e + 1) - 1))) bad = min(bad, e)
+    end do
+    !$omp end parallel do
+    call team_close()
+    if (bad < huge(bad)) call fatal('element ' // elem_label(m, bad) // ' (' // &
+      trim(catalogue(m%etype(bad))%name) // ') has a zero or negative Jacobian at an integration point: ' // &
+      'a mid-side node far from the middle of its edge, an axisymmetric element reaching x < 0, or a ' // &
+      'NODAL THICKNESS that the element interpolates to zero or less')
+    do e = 1, m%ne
+      if (.not. carries_stiffness(m, e)) cycle
       counts%continuum_tangent = counts%continuum_tangent + 1
-      if (.not. eout%detj_min > 0.0_dp) call fatal('element ' // elem_label(m, e) // ' (' // &
-        trim(catalogue(m%etype(e))%name) // ') has a zero or negative Jacobian at an integration point: ' // &
-        'a mid-side node far from the middle of its edge, an axisymmetric element reaching x < 0, or a ' // &
-        'NODAL THICKNESS that the element interpolates to zero or less')
-      nd = eout%ndof
-      call pack_upper(eout%ke(1:nd, 1:nd), body%ke(body%kptr(e):body%kptr(e + 1) - 1))
+      nd = 2 * elem_nodes(m, e)
+      ! the diagonal of the packed upper triangle: entry j(j+1)/2 of column j
       do j = 1, nd
-        body%kmax = max(body%kmax, abs(eout%ke(j, j)))
+        k = body%kptr(e) - 1 + int(j, 8) * (j + 1) / 2
+        body%kmax = max(body%kmax, abs(body%ke(k)))
       end do
     end do
     if (nonlinear_model(m)) then
@@ -212,6 +240,26 @@ contains
       body%peeq_trial = body%peeq
     end if
   end subroutine body_setup
+
+  !> Purpose: the stiffness of body element e at u0 (zero), packed (upper
+  !> triangle by columns) into kp; false if its Jacobian is not positive
+  !> at some integration point (kp then undefined). One element's work of
+  !> body_setup's team: it writes kp only.
+  logical function stored_stiffness(m, e, u0, kp)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    real(dp), intent(in) :: u0(:, :)
+    real(dp), intent(out) :: kp(:)
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: nodes(max_en), nd
+    call body_input(m, e, u0, ein, nodes)
+    call element_routine(act_tangent, ein, eout)
+    stored_stiffness = eout%detj_min > 0.0_dp
+    if (.not. stored_stiffness) return
+    nd = eout%ndof
+    call pack_upper(eout%ke(1:nd, 1:nd), kp)
+  end function stored_stiffness
 
   !> Purpose: whether some step of model m is nonlinear: NLGEOM, or a
   !> hyperelastic or plastic material in a section.
@@ -236,43 +284,86 @@ contains
   !> body element's routine at u with its committed history (act_residual);
   !> their trial history and plastic strain are kept (body%hist_trial),
   !> the average force q-bar too. An element that cannot be evaluated at u
-  !> (det F <= 0 or a force that is not finite) sets body%bad_elem.
+  !> (det F <= 0 or a force that is not finite) sets body%bad_elem (the
+  !> first such in element order). The elements on the team a block at a
+  !> time (element_force); their forces summed into fint, and q-bar's sums
+  !> made, by one thread in element order.
   subroutine nonlinear_body_forces(m, body, u, fint, counts)
     type(model_t), intent(in) :: m
     type(body_t), intent(inout) :: body
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(out) :: fint(:, :)
     type(element_counts_t), intent(inout) :: counts
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: e, k, nd, nodes(max_en), ndof_total
-    real(dp) :: fsum, ke_dummy(1, 1)
+    integer :: e, e0, k, nt, ndof_total
+    integer, allocatable :: st(:), nd(:)
+    real(dp), allocatable :: fe(:, :), fabs(:)
+    real(dp) :: fsum
+    allocate(fe(max_edof, block_size), fabs(block_size), st(block_size), nd(block_size))
     fint = 0.0_dp
     body%bad_elem = 0
     fsum = 0.0_dp
     ndof_total = 0
-    do e = 1, m%ne
-      if (.not. carries_stiffness(m, e)) cycle
-      ! (an unallocated body%dtemp is an absent argument: no thermal strain)
-      call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
-      call element_routine(act_residual, ein, eout)
-      counts%continuum_tangent = counts%continuum_tangent + 1
-      nd = eout%ndof
-      if (.not. (eout%detj_min > 0.0_dp .and. all(abs(eout%fe(1:nd)) <= huge(1.0_dp)))) then
-        if (body%bad_elem == 0) body%bad_elem = e
-        cycle
-      end if
-      body%hist_trial(:, :, e) = eout%hist
-      body%peeq_trial(:, e) = eout%peeq_ip
-      fsum = fsum + sum(abs(eout%fe(1:nd)))
-      ndof_total = ndof_total + nd
-      if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, ein, eout%fe, ke_dummy, .false.)
-      do k = 1, ein%nen
-        fint(:, nodes(k)) = fint(:, nodes(k)) + eout%fe(2 * k - 1:2 * k)
+    nt = element_threads()
+    call team_open()
+    do e0 = 1, m%ne, block_size
+      !$omp parallel do num_threads(nt) if (nt > 1) schedule(dynamic, 16) default(shared) private(e)
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        call element_force(m, body, u, e, fe(:, e - e0 + 1), fabs(e - e0 + 1), st(e - e0 + 1), nd(e - e0 + 1))
+      end do
+      !$omp end parallel do
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        if (st(e - e0 + 1) == 0) cycle
+        counts%continuum_tangent = counts%continuum_tangent + 1
+        if (st(e - e0 + 1) == 2) then
+          if (body%bad_elem == 0) body%bad_elem = e
+          cycle
+        end if
+        fsum = fsum + fabs(e - e0 + 1)
+        ndof_total = ndof_total + nd(e - e0 + 1)
+        do k = 1, elem_nodes(m, e)
+          fint(:, m%conn(k, e)) = fint(:, m%conn(k, e)) + fe(2 * k - 1:2 * k, e - e0 + 1)
+        end do
       end do
     end do
+    call team_close()
     body%average_force = fsum / max(ndof_total, 1)
   end subroutine nonlinear_body_forces
+
+  !> Purpose: one element's work of nonlinear_body_forces' team: the
+  !> internal force fe of body element e at u (with its follower
+  !> pressures), fabs the sum of |f| over its dofs before them (q-bar's
+  !> share), its trial history into body%hist_trial(:, :, e) and
+  !> peeq_trial(:, e) (the element's own slices: nothing else of body is
+  !> written). st: 0 not a body element, 1 evaluated, 2 cannot be
+  !> evaluated at u (fe, fabs and the trial history then untouched); nd
+  !> the element's dofs.
+  subroutine element_force(m, body, u, e, fe, fabs, st, nd)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(inout) :: body
+    real(dp), intent(in) :: u(:, :)
+    integer, intent(in) :: e
+    real(dp), intent(inout) :: fe(:), fabs
+    integer, intent(out) :: st, nd
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: nodes(max_en)
+    real(dp) :: ke_dummy(1, 1)
+    st = 0
+    nd = 0
+    if (.not. carries_stiffness(m, e)) return
+    ! (an unallocated body%dtemp is an absent argument: no thermal strain)
+    call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+    call element_routine(act_residual, ein, eout)
+    nd = eout%ndof
+    st = 2
+    if (.not. (eout%detj_min > 0.0_dp .and. all(abs(eout%fe(1:nd)) <= huge(1.0_dp)))) return
+    st = 1
+    body%hist_trial(:, :, e) = eout%hist
+    body%peeq_trial(:, e) = eout%peeq_ip
+    fabs = sum(abs(eout%fe(1:nd)))
+    if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, ein, eout%fe, ke_dummy, .false.)
+    fe(1:nd) = eout%fe(1:nd)
+  end subroutine element_force
 
   !> The upper triangle of a symmetric matrix, column by column.
   pure subroutine pack_upper(a, p)
@@ -323,39 +414,67 @@ contains
     real(dp), intent(out) :: f(:, :)
     type(element_counts_t), intent(inout) :: counts
     real(dp), intent(in), optional :: f0(:, :)
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
-    integer :: e, k, nd, nodes(max_en)
-    real(dp) :: due(2 * max_en), fe(2 * max_en)
+    integer :: e, e0, k, nt
+    real(dp), allocatable :: fe(:, :)
+    logical, allocatable :: moved(:)
     logical :: moved_only
     moved_only = present(f0) .and. .not. allocated(body%dtemp0)
     if (allocated(body%fl_ptr)) moved_only = moved_only .and. body%fl_ptr(size(body%fl_ptr)) == body%fl_ptr(1)
+    allocate(fe(max_edof, block_size), moved(block_size))
     f = 0.0_dp
     if (moved_only) f = f0
-    do e = 1, m%ne
-      if (.not. carries_stiffness(m, e)) cycle
-      if (moved_only) then
-        if (all(du(:, m%conn(1:elem_nodes(m, e), e)) == 0.0_dp)) cycle
-      end if
-      ! (an unallocated body%dtemp0 is an absent argument: no thermal strain)
-      call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
-      call element_routine(ior(act_tangent, act_residual), ein, eout)
-      counts%continuum_tangent = counts%continuum_tangent + 1
-      nd = eout%ndof
-      do k = 1, ein%nen
-        due(2 * k - 1:2 * k) = du(:, nodes(k))
+    nt = element_threads()
+    ! each element's f_int + K_T du (K_T du alone with f0) on the team, a
+    ! block at a time; the sum into f in element order
+    call team_open()
+    do e0 = 1, m%ne, block_size
+      !$omp parallel do num_threads(nt) if (nt > 1) schedule(dynamic, 16) default(shared) private(e)
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        moved(e - e0 + 1) = carries_stiffness(m, e)
+        if (moved_only .and. moved(e - e0 + 1)) moved(e - e0 + 1) = any(du(:, m%conn(1:elem_nodes(m, e), e)) /= 0.0_dp)
+        if (moved(e - e0 + 1)) call predictor_force(m, body, u0, du, e, moved_only, fe(:, e - e0 + 1))
       end do
-      if (allocated(body%fl_ptr)) then
-        call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .true.)
-        call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .false.)
-      end if
-      if (moved_only) eout%fe(1:nd) = 0.0_dp
-      fe(1:nd) = eout%fe(1:nd) + matmul(eout%ke(1:nd, 1:nd), due(1:nd))
-      do k = 1, ein%nen
-        f(:, nodes(k)) = f(:, nodes(k)) + fe(2 * k - 1:2 * k)
+      !$omp end parallel do
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        if (.not. moved(e - e0 + 1)) cycle
+        counts%continuum_tangent = counts%continuum_tangent + 1
+        do k = 1, elem_nodes(m, e)
+          f(:, m%conn(k, e)) = f(:, m%conn(k, e)) + fe(2 * k - 1:2 * k, e - e0 + 1)
+        end do
       end do
     end do
+    call team_close()
   end subroutine body_predictor_forces
+
+  !> Purpose: one element's work of body_predictor_forces' team: fe =
+  !> f_int(u0) + K_T(u0) du of body element e (with its follower
+  !> pressures), from the history before the last commit; with
+  !> tangent_only, K_T(u0) du alone.
+  subroutine predictor_force(m, body, u0, du, e, tangent_only, fe)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    real(dp), intent(in) :: u0(:, :), du(:, :)
+    integer, intent(in) :: e
+    logical, intent(in) :: tangent_only
+    real(dp), intent(inout) :: fe(:)
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: k, nd, nodes(max_en)
+    real(dp) :: due(2 * max_en)
+    ! (an unallocated body%dtemp0 is an absent argument: no thermal strain)
+    call body_input(m, e, u0, ein, nodes, body%dtemp0, nlgeom=body%nlgeom, hist=body%hist_old(:, :, e))
+    call element_routine(ior(act_tangent, act_residual), ein, eout)
+    nd = eout%ndof
+    do k = 1, ein%nen
+      due(2 * k - 1:2 * k) = du(:, nodes(k))
+    end do
+    if (allocated(body%fl_ptr)) then
+      call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .true.)
+      call follower_part(m, body, e, u0, ein, eout%fe, eout%ke, .false.)
+    end if
+    if (tangent_only) eout%fe(1:nd) = 0.0_dp
+    fe(1:nd) = eout%fe(1:nd) + matmul(eout%ke(1:nd, 1:nd), due(1:nd))
+  end subroutine predictor_force
 
   !> Purpose: the follower pressures on element e at u (body%fl_*): with
   !> tangent, ke = ke - sum p dfp/du (the load stiffness); otherwise fe =
@@ -435,39 +554,26 @@ contains
     type(element_counts_t), intent(inout) :: counts
     type(dofmap_t), intent(in) :: dm
     logical, intent(in), optional :: converged
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
     type(cfe_in_t) :: cin
     type(cfe_out_t) :: cout
-    integer :: e, j, nd, nodes(max_en)
+    integer :: e, j, nd
     integer, allocatable :: cnodes(:)
-    real(dp) :: ke(2 * max_en, 2 * max_en), fe_dummy(2 * max_en)
+    real(dp) :: ke(2 * max_en, 2 * max_en)
     logical :: at_converged
     at_converged = .false.
     if (present(converged)) at_converged = converged
     call sys_zero(sys)
     kmax = body%kmax
-    do e = 1, m%ne
-      if (.not. carries_stiffness(m, e)) cycle
-      nd = 2 * elem_nodes(m, e)
-      if (body%nonlinear) then
-        ! the consistent tangent at u with the committed history
-        ! (an unallocated body%dtemp is an absent argument: no thermal strain)
-        call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
-        ! at the converged state the increment starts from: its last iteration's tangent
-        if (at_converged) ein%hist = body%hist_old(:, :, e)
-        call element_routine(act_tangent, ein, eout)
-        counts%continuum_tangent = counts%continuum_tangent + 1
-        ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd)
-        if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, ein, fe_dummy, ke, .true.)
-        ! every entry (a tangent that overflows is caught by the iteration)
-        kmax = max(kmax, maxval(abs(ke(1:nd, 1:nd))))
-        if (.not. kmax <= huge(1.0_dp)) kmax = huge(1.0_dp)
-      else
+    if (body%nonlinear) then
+      call nonlinear_tangents(m, body, u, sys, kmax, counts, dm, at_converged)
+    else
+      do e = 1, m%ne
+        if (.not. carries_stiffness(m, e)) cycle
+        nd = 2 * elem_nodes(m, e)
         call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
-      end if
-      call add_group(sys, dm, e, m%conn(1:nd / 2, e), ke(1:nd, 1:nd))
-    end do
+        call add_group(sys, dm, e, m%conn(1:nd / 2, e), ke(1:nd, 1:nd))
+      end do
+    end if
     do e = 1, cs%n
       call cfe_input(m, cs%c(e), u, cs%stabilised, cin, cnodes)
       call cfe(act_tangent, cin, cout)
@@ -478,6 +584,71 @@ contains
       end do
     end do
   end subroutine assemble_stiffness
+
+  !> Purpose: assemble_stiffness's body elements in a nonlinear step: the
+  !> consistent tangent of every body element at u with the committed
+  !> history (at_converged: the history before the last commit, the
+  !> tangent of the last iteration at the converged state), with its
+  !> follower pressures' load stiffness; the tangents of a block of
+  !> elements on the team (element_tangent), then added to sys, and
+  !> kmax raised to their largest entry (huge if one is not finite), by
+  !> one thread in element order.
+  subroutine nonlinear_tangents(m, body, u, sys, kmax, counts, dm, at_converged)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    real(dp), intent(in) :: u(:, :)
+    type(linear_system_t), intent(inout) :: sys
+    real(dp), intent(inout) :: kmax
+    type(element_counts_t), intent(inout) :: counts
+    type(dofmap_t), intent(in) :: dm
+    logical, intent(in) :: at_converged
+    real(dp), allocatable :: ke(:, :, :)
+    integer :: e, e0, nd, nt
+    allocate(ke(max_edof, max_edof, block_size))
+    nt = element_threads()
+    call team_open()
+    do e0 = 1, m%ne, block_size
+      !$omp parallel do num_threads(nt) if (nt > 1) schedule(dynamic, 16) default(shared) private(e)
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        if (carries_stiffness(m, e)) call element_tangent(m, body, u, e, at_converged, ke(:, :, e - e0 + 1))
+      end do
+      !$omp end parallel do
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        if (.not. carries_stiffness(m, e)) cycle
+        counts%continuum_tangent = counts%continuum_tangent + 1
+        nd = 2 * elem_nodes(m, e)
+        ! every entry (a tangent that overflows is caught by the iteration)
+        kmax = max(kmax, maxval(abs(ke(1:nd, 1:nd, e - e0 + 1))))
+        if (.not. kmax <= huge(1.0_dp)) kmax = huge(1.0_dp)
+        call add_group(sys, dm, e, m%conn(1:nd / 2, e), ke(1:nd, 1:nd, e - e0 + 1))
+      end do
+    end do
+    call team_close()
+  end subroutine nonlinear_tangents
+
+  !> Purpose: one element's work of nonlinear_tangents' team: the tangent
+  !> ke of body element e at u with the committed history (at_converged:
+  !> the history before the last commit) and its follower pressures.
+  subroutine element_tangent(m, body, u, e, at_converged, ke)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    real(dp), intent(in) :: u(:, :)
+    integer, intent(in) :: e
+    logical, intent(in) :: at_converged
+    real(dp), intent(inout) :: ke(:, :)
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: nd, nodes(max_en)
+    real(dp) :: fe_dummy(2 * max_en)
+    nd = 2 * elem_nodes(m, e)
+    ! (an unallocated body%dtemp is an absent argument: no thermal strain)
+    call body_input(m, e, u, ein, nodes, body%dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+    ! at the converged state the increment starts from: its last iteration's tangent
+    if (at_converged) ein%hist = body%hist_old(:, :, e)
+    call element_routine(act_tangent, ein, eout)
+    ke(1:nd, 1:nd) = eout%ke(1:nd, 1:nd)
+    if (allocated(body%fl_ptr)) call follower_part(m, body, e, u, ein, fe_dummy, ke, .true.)
+  end subroutine element_tangent
 
   !> The matrix k of assembly group g on nodes into sys: as it is, or
   !> transformed by the constraints (t^T k t) where a dof is dependent.
@@ -497,29 +668,52 @@ contains
   end subroutine add_group
 
   !> Purpose: internal forces of the bodies, sum of ke * ue, into fint
-  !> (2, nn), which is overwritten.
+  !> (2, nn), which is overwritten: each element's ke * ue on the team a
+  !> block at a time, the sum in element order.
   subroutine body_forces(m, body, u, fint)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(out) :: fint(:, :)
-    real(dp) :: ue(2 * max_en), fe(2 * max_en), ke(2 * max_en, 2 * max_en)
-    integer :: e, k, nen, nd
+    real(dp), allocatable :: fe(:, :)
+    integer :: e, e0, k, nt
+    allocate(fe(max_edof, block_size))
     fint = 0.0_dp
-    do e = 1, m%ne
-      if (.not. carries_stiffness(m, e)) cycle
-      nen = elem_nodes(m, e)
-      nd = 2 * nen
-      do k = 1, nen
-        ue(2 * k - 1:2 * k) = u(:, m%conn(k, e))
+    nt = element_threads()
+    call team_open()
+    do e0 = 1, m%ne, block_size
+      !$omp parallel do num_threads(nt) if (nt > 1) schedule(static) default(shared) private(e)
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        if (carries_stiffness(m, e)) call stored_force(m, body, u, e, fe(:, e - e0 + 1))
       end do
-      call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
-      fe(1:nd) = matmul(ke(1:nd, 1:nd), ue(1:nd))
-      do k = 1, nen
-        fint(:, m%conn(k, e)) = fint(:, m%conn(k, e)) + fe(2 * k - 1:2 * k)
+      !$omp end parallel do
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        if (.not. carries_stiffness(m, e)) cycle
+        do k = 1, elem_nodes(m, e)
+          fint(:, m%conn(k, e)) = fint(:, m%conn(k, e)) + fe(2 * k - 1:2 * k, e - e0 + 1)
+        end do
       end do
     end do
+    call team_close()
   end subroutine body_forces
+
+  !> Purpose: fe = ke ue of body element e from its stored stiffness.
+  subroutine stored_force(m, body, u, e, fe)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    real(dp), intent(in) :: u(:, :)
+    integer, intent(in) :: e
+    real(dp), intent(inout) :: fe(:)
+    real(dp) :: ue(2 * max_en), ke(2 * max_en, 2 * max_en)
+    integer :: k, nen, nd
+    nen = elem_nodes(m, e)
+    nd = 2 * nen
+    do k = 1, nen
+      ue(2 * k - 1:2 * k) = u(:, m%conn(k, e))
+    end do
+    call unpack_upper(body%ke(body%kptr(e):body%kptr(e + 1) - 1), ke(1:nd, 1:nd))
+    fe(1:nd) = matmul(ke(1:nd, 1:nd), ue(1:nd))
+  end subroutine stored_force
 
   !> Purpose: the out-of-balance force f_ext - f_int on the free
   !> equations, the right-hand side of K du = rhs (T^T (f_ext - f_int)
@@ -561,7 +755,9 @@ contains
   !> body, in a nonlinear step, gives NLGEOM and the committed history
   !> (the stresses are then Cauchy stresses); peeq_ip(max_ip, ne) returns
   !> the equivalent plastic strain. counts%continuum_stresses counts the
-  !> stress evaluations of either kind.
+  !> stress evaluations of either kind. The elements on the team a block at
+  !> a time (element_stresses, each writing its own columns), the nodal
+  !> sums in element order.
   subroutine stress_recovery(m, u, nip, sig_ip, eps_ip, sig_node, counts, dtemp, body, peeq_ip)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: u(:, :)
@@ -571,55 +767,92 @@ contains
     integer, intent(out) :: nip(:)
     real(dp), intent(out) :: sig_ip(:, :, :), eps_ip(:, :, :), sig_node(:, :)
     type(element_counts_t), intent(inout) :: counts
-    type(elem_in_t) :: ein
-    type(elem_out_t) :: eout
     type(point_table_t), allocatable :: tab(:)
-    real(dp) :: sn(4, max_nodes)
-    integer :: e, i, nen, nodes(max_en)
+    real(dp), allocatable :: sn(:, :, :)
+    logical, allocatable :: nodal(:)
+    integer :: e, e0, i, nt
     integer, allocatable :: cnt(:)
-    allocate(cnt(m%nn), tab(size(catalogue)))
+    allocate(cnt(m%nn), tab(size(catalogue)), sn(4, max_nodes, block_size), nodal(block_size))
     cnt = 0
     nip = 0
     sig_ip = 0.0_dp
     eps_ip = 0.0_dp
     sig_node = 0.0_dp
+    ! the shape tables of the linear_path types, made before the team reads them
     do e = 1, m%ne
-      if (.not. carries_stiffness(m, e)) cycle
-      counts%continuum_stresses = counts%continuum_stresses + 1
-      if (.not. present(body) .and. linear_path(m, e)) then
-        nen = elem_nodes(m, e)
-        nodes(1:nen) = m%conn(1:nen, e)
-        nip(e) = catalogue(m%etype(e))%nip
-        if (.not. tab(m%etype(e))%ready) call point_table(m%etype(e), tab(m%etype(e)))
-        call linear_stresses(m, e, u, tab(m%etype(e)), sig_ip(:, 1:nip(e), e), eps_ip(:, 1:nip(e), e), &
-                             sn(:, 1:nen), dtemp)
-        call add_initial_stress(m, e, catalogue(m%etype(e))%shape, nen, nip(e), sig_ip(:, 1:nip(e), e), &
-                                sn(:, 1:nen))
-      else
-        if (present(body)) then
-          call body_input(m, e, u, ein, nodes, dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
-        else
-          call body_input(m, e, u, ein, nodes, dtemp)
-        end if
-        call element_routine(act_stresses, ein, eout)
-        nen = ein%nen
-        call add_initial_stress(m, e, ein%kind, nen, eout%nip, eout%sig_ip(:, 1:eout%nip), eout%sig_node(:, 1:nen))
-        if (present(peeq_ip)) peeq_ip(:, e) = eout%peeq_ip
-        nip(e) = eout%nip
-        sig_ip(:, 1:eout%nip, e) = eout%sig_ip(:, 1:eout%nip)
-        eps_ip(:, 1:eout%nip, e) = eout%eps_ip(:, 1:eout%nip)
-        if (.not. is_continuum(m, e)) cycle
-        sn(:, 1:nen) = eout%sig_node(:, 1:nen)
-      end if
-      do i = 1, nen
-        sig_node(:, nodes(i)) = sig_node(:, nodes(i)) + sn(:, i)
-        cnt(nodes(i)) = cnt(nodes(i)) + 1
+      if (present(body) .or. .not. carries_stiffness(m, e)) cycle
+      if (tab(m%etype(e))%ready) cycle
+      if (linear_path(m, e)) call point_table(m%etype(e), tab(m%etype(e)))
+    end do
+    nt = element_threads()
+    call team_open()
+    do e0 = 1, m%ne, block_size
+      !$omp parallel do num_threads(nt) if (nt > 1) schedule(dynamic, 32) default(shared) private(e)
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        if (carries_stiffness(m, e)) call element_stresses(m, e, u, tab, nip, sig_ip, eps_ip, sn(:, :, e - e0 + 1), &
+                                                           nodal(e - e0 + 1), dtemp, body, peeq_ip)
+      end do
+      !$omp end parallel do
+      do e = e0, min(m%ne, e0 + block_size - 1)
+        if (.not. carries_stiffness(m, e)) cycle
+        counts%continuum_stresses = counts%continuum_stresses + 1
+        if (.not. nodal(e - e0 + 1)) cycle
+        do i = 1, elem_nodes(m, e)
+          sig_node(:, m%conn(i, e)) = sig_node(:, m%conn(i, e)) + sn(:, i, e - e0 + 1)
+          cnt(m%conn(i, e)) = cnt(m%conn(i, e)) + 1
+        end do
       end do
     end do
+    call team_close()
     do i = 1, m%nn
       if (cnt(i) > 0) sig_node(:, i) = sig_node(:, i) / cnt(i)
     end do
   end subroutine stress_recovery
+
+  !> Purpose: one element's work of stress_recovery's team: the stresses
+  !> and strains of body element e at its integration points into nip(e),
+  !> sig_ip(:, :, e), eps_ip(:, :, e) (and peeq_ip(:, e)), its nodal
+  !> stresses into sn(4, nen); nodal says whether they join the nodal
+  !> average (a continuum element). By linear_stresses where linear_path
+  !> holds in a linear step (tab: the types' shape tables, made), by the
+  !> element routine otherwise. Writes only element e's columns and sn.
+  subroutine element_stresses(m, e, u, tab, nip, sig_ip, eps_ip, sn, nodal, dtemp, body, peeq_ip)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: e
+    real(dp), intent(in) :: u(:, :)
+    type(point_table_t), intent(in) :: tab(:)
+    integer, intent(inout) :: nip(:)
+    real(dp), intent(inout) :: sig_ip(:, :, :), eps_ip(:, :, :), sn(:, :)
+    logical, intent(out) :: nodal
+    real(dp), intent(in), optional :: dtemp(:)
+    type(body_t), intent(in), optional :: body
+    real(dp), intent(inout), optional :: peeq_ip(:, :)
+    type(elem_in_t) :: ein
+    type(elem_out_t) :: eout
+    integer :: nen, nodes(max_en)
+    nodal = .true.
+    nen = elem_nodes(m, e)
+    if (.not. present(body) .and. linear_path(m, e)) then
+      nip(e) = catalogue(m%etype(e))%nip
+      call linear_stresses(m, e, u, tab(m%etype(e)), sig_ip(:, 1:nip(e), e), eps_ip(:, 1:nip(e), e), &
+                           sn(:, 1:nen), dtemp)
+      call add_initial_stress(m, e, catalogue(m%etype(e))%shape, nen, nip(e), sig_ip(:, 1:nip(e), e), sn(:, 1:nen))
+      return
+    end if
+    if (present(body)) then
+      call body_input(m, e, u, ein, nodes, dtemp, nlgeom=body%nlgeom, hist=body%hist(:, :, e))
+    else
+      call body_input(m, e, u, ein, nodes, dtemp)
+    end if
+    call element_routine(act_stresses, ein, eout)
+    call add_initial_stress(m, e, ein%kind, nen, eout%nip, eout%sig_ip(:, 1:eout%nip), eout%sig_node(:, 1:nen))
+    if (present(peeq_ip)) peeq_ip(:, e) = eout%peeq_ip
+    nip(e) = eout%nip
+    sig_ip(:, 1:eout%nip, e) = eout%sig_ip(:, 1:eout%nip)
+    eps_ip(:, 1:eout%nip, e) = eout%eps_ip(:, 1:eout%nip)
+    nodal = is_continuum(m, e)
+    if (nodal) sn(:, 1:nen) = eout%sig_node(:, 1:nen)
+  end subroutine element_stresses
 
   !> Purpose: does body element e take linear_stresses in a linear step?
   !> A continuum element of an isotropic linear elastic material without
