@@ -18,15 +18,12 @@
  * An element loop opens one level for its team (cfe_team_open) and closes
  * it when done (cfe_team_close).
  *
- * Waiting threads sleep: libgomp's default is to spin for a while at
- * every barrier, and on two shared cores (load 6) a thread spinning while
- * the other one it waits for is descheduled made a 2-thread run of the
- * default flagship 7 times slower than a 1-thread one (16.7 s against
- * 2.3 s; OMP_WAIT_POLICY=PASSIVE: 2.3 s). libgomp reads its environment
- * before main, so when OMP_NUM_THREADS asks for a team and neither
- * OMP_WAIT_POLICY nor GOMP_SPINCOUNT is set, the program starts itself
- * again (execv of /proc/self/exe, same arguments and process) with
- * OMP_WAIT_POLICY=PASSIVE; if that fails it runs on as it is.
+ * libgomp's waiting threads spin at every barrier before they sleep: on
+ * two cores shared with other work (load 6) a 2-thread run of the default
+ * flagship took 16.7 s against 2.3 s on one thread, and 2.3 s with
+ * OMP_WAIT_POLICY=PASSIVE. libgomp reads that variable before main, so it
+ * is the user's to set (README, docs/benchmark.md); the program does not
+ * change its own environment.
  *
  * The entry points are looked up at run time: libgomp comes in with
  * -fopenmp and as CHOLMOD's dependency, and another BLAS may lack
@@ -34,7 +31,6 @@
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <stdlib.h>
-#include <unistd.h>
 
 typedef void (*set_int_fn)(int);
 typedef int (*get_int_fn)(void);
@@ -64,20 +60,6 @@ static int any_set(const char *const *names)
         if (v != NULL && *v != '\0') return 1;
     }
     return 0;
-}
-
-/* OMP_WAIT_POLICY=PASSIVE for a team of more than one thread (above).
- * glibc passes argc, argv and envp to the constructors of a program. */
-__attribute__((constructor)) static void wait_passively(int argc, char **argv, char **envp)
-{
-    static const char *const chosen[] = {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT", NULL};
-    const char *n = getenv("OMP_NUM_THREADS");
-    (void) argc;
-    (void) envp;
-    if (n == NULL || strtol(n, NULL, 10) <= 1 || any_set(chosen) || argv == NULL) return;
-    if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
-    execv("/proc/self/exe", argv);   /* returns only if it failed */
-    unsetenv("OMP_WAIT_POLICY");
 }
 
 /* Applies the policy once per process. */
