@@ -92,6 +92,10 @@ class Variant:
             env["OPENBLAS_CORETYPE"] = self.core
         if self.threads:
             env["OMP_NUM_THREADS"] = str(self.threads)
+        # threads that wait sleep: make check runs tests side by side, and a
+        # spinning thread waiting for a descheduled one made a 2-thread run
+        # 7 times slower (docs/benchmark.md, Threads)
+        env.setdefault("OMP_WAIT_POLICY", "PASSIVE")
         return env
 
 
