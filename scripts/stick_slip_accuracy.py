@@ -211,11 +211,14 @@ def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=
     return xy, slave, top, len(cylinder.elems) + len(plate.elems)
 
 
-def write_deck(d, coupling, incs=(2, 4, 4), exact=True, extra="", swap=False, **mesh):
+def write_deck(d, coupling, incs=(2, 4, 4), exact=True, extra="", swap=False, split=True, **mesh):
     """The deck in directory d (mesh.inp beside it): press P (n1
     increments, the top's x held), then Q to Q* (n2), then back to 0 (n3).
     coupling: NODE TO SURFACE or SURFACE TO SURFACE; swap: the plate the
-    slave. Returns (deck path, xy, slave nodes, number of elements)."""
+    slave; split: the steps' *STATIC with SPLIT TOUCHING (increments
+    split where frictional points close within them). Returns (deck path,
+    xy, slave nodes, number of elements)."""
+    static = "*STATIC, SPLIT TOUCHING" if split else "*STATIC"
     os.makedirs(d, exist_ok=True)
     xy, slave, top, nel = write_mesh(os.path.join(d, "mesh.inp"), swap=swap, **mesh)
     ref = top[0]
@@ -237,7 +240,7 @@ Stick and slip: cylinder R = {R} on a plate, a/R = 0.05, P = {P:.6f}, Q* = mu P 
 {eqs}*BOUNDARY
 PLATE_BOTTOM, 1, 2
 *STEP, NAME=PRESS
-*STATIC
+{static}
 {1.0 / n1}, 1.0
 *BOUNDARY
 REF, 1, 1, 0.0
@@ -245,7 +248,7 @@ REF, 1, 1, 0.0
 REF, 2, {-P:.9f}
 *END STEP
 *STEP, NAME=LOAD Q
-*STATIC
+{static}
 {1.0 / n2}, 1.0
 *BOUNDARY, OP=NEW
 PLATE_BOTTOM, 1, 2
@@ -253,7 +256,7 @@ PLATE_BOTTOM, 1, 2
 REF, 1, {QSTAR:.9f}
 *END STEP
 *STEP, NAME=UNLOAD Q
-*STATIC
+{static}
 {1.0 / n3}, 1.0
 *CLOAD
 REF, 1, 0.0
@@ -528,6 +531,7 @@ def main():
     ap.add_argument("--incs", default="2,4,4")
     ap.add_argument("--plate", type=float, default=2.0 * R, help="the plate's half width and depth")
     ap.add_argument("--penalty", action="store_true", help="the penalty, not EXACT")
+    ap.add_argument("--no-split", action="store_true", help="the steps without SPLIT TOUCHING")
     ap.add_argument("--swap", action="store_true", help="the plate the slave, the cylinder the master")
     ap.add_argument("--load", type=float, default=1.0, help="P as a multiple of a/R = 0.05's (a grows as its root)")
     ap.add_argument("--fixed-plate", action="store_true",
@@ -550,6 +554,7 @@ def main():
         d += f"_i{'-'.join(map(str, incs))}_l{args.load:g}"
         # the contact surfaces 2.5 a wide whatever the load (a grows as its root)
         path, xy, slave, nel = write_deck(d, CASES[case], incs=incs, exact=not args.penalty, extra=args.extra, swap=args.swap,
+                                          split=not args.no_split,
                                           hs=args.hs, hm=args.hm, plate_half=args.plate,
                                           contact=2.5 * A_TARGET * math.sqrt(args.load),
                                           plate_size=PLATE_SIZE if args.fixed_plate else None)

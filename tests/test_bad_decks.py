@@ -104,6 +104,8 @@ CASES = [
     ("time increment below period * 1e-12", replace("*STATIC\n", "*STATIC\n1e-13, 1\n"), "1e-13, 1",
      "at most 100000"),
     ("huge time period", replace("*STATIC\n", "*STATIC\n1, 1e308\n"), "1, 1e308", "at most 100000"),
+    ("SPLIT TOUCHING with DIRECT", replace("*STATIC\n", "*STATIC, DIRECT, SPLIT TOUCHING\n"),
+     "*STATIC, DIRECT, SPLIT TOUCHING", "give one of the two"),
     ("increments beyond 2^32", replace("*STATIC\n", "*STATIC\n1, 4294967299\n"), "1, 4294967299",
      "4.29E+09 increments"),
     ("increments just above the cap", replace("*STATIC\n", "*STATIC\n1, 100000.6\n"), "1, 100000.6",

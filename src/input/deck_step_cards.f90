@@ -476,10 +476,13 @@ contains
     type(model_t), intent(inout) :: m
     type(keyword_t), intent(in) :: kw
     real(dp) :: ratio
-    call allow_params(p, kw, 'DIRECT,SOLVER')
+    call allow_params(p, kw, 'DIRECT,SOLVER,SPLIT TOUCHING')
     associate(s => m%steps(p%step))
       if (s%period > 0.0_dp .or. s%frequency) call err(p, 'second procedure in one step')
       s%direct = has_param(kw, 'DIRECT')
+      s%split_touching = has_param(kw, 'SPLIT TOUCHING')
+      if (s%direct .and. s%split_touching) call err(p, 'SPLIT TOUCHING splits increments, DIRECT fixes them: ' // &
+                                                  'give one of the two')
       call read_time_line(p, '*STATIC', s)
       ! (automatic increments of an NLGEOM step grow from the initial
       ! one: their count is checked as they are made)

@@ -295,6 +295,11 @@ module model
     !> CalculiX), *STATIC's DIRECT (fixed increments) and its minimum and
     !> maximum increments (0: CalculiX's defaults).
     logical :: nlgeom = .false., direct = .false.
+    !> *STATIC's SPLIT TOUCHING (cfe2d's own): a converged increment in
+    !> which frictional points closed from an open gap is split
+    !> (displacement_field's split_wanted; docs/contact.md, "Accuracy of
+    !> stick and slip"). Off by default: it costs sub-increments.
+    logical :: split_touching = .false.
     real(dp) :: dt_min = 0.0_dp, dt_max = 0.0_dp
     !> *CONTROLS in force in the step (kept by the later steps until
     !> *CONTROLS, RESET, as CalculiX)
