@@ -871,16 +871,34 @@ contains
     type(dofmap_t), intent(in) :: dm
     type(linear_system_t), intent(inout) :: sys
     real(dp), intent(in) :: fext(:, :), u(:, :), fbody(:, :)
+    call start_from(cd, m, dm, u)
+    if (allocated(cd%z)) then
+      if (size(cd%z) /= cd%n) deallocate(cd%z)
+    end if
+    if (.not. allocated(cd%z)) allocate(cd%z(cd%n))
+    call free_residual(dm, fext, fbody, cd%z)
+    call sys_forward(sys, cd%z)
+    cd%q0 = cd%z(cd%n - cd%m + 1:cd%n)
+    call upper_times(cd%l22, cd%q0, .true.)
+    cd%z_valid = .true.
+  end subroutine condensed_begin
+
+  !> Purpose: what both starts of an increment keep: u as the start (u0),
+  !> the work forces allocated, and the largest displacement off the
+  !> contact equations (umax_rest, the recovery's scale).
+  !> Arguments: cd the condensed solve; m the model; dm the numbering; u
+  !> the displacements the increment starts from.
+  subroutine start_from(cd, m, dm, u)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: u(:, :)
     integer :: a, d, e
     cd%u0 = u
     if (.not. allocated(cd%fw)) then
       allocate(cd%fw(2, m%nn))
       cd%fw = 0.0_dp
     end if
-    if (allocated(cd%z)) then
-      if (size(cd%z) /= cd%n) deallocate(cd%z)
-    end if
-    if (.not. allocated(cd%z)) allocate(cd%z(cd%n))
     cd%umax_rest = 0.0_dp
     do a = 1, m%nn
       do d = 1, 2
@@ -891,12 +909,7 @@ contains
         cd%umax_rest = max(cd%umax_rest, abs(u(d, a)))
       end do
     end do
-    call free_residual(dm, fext, fbody, cd%z)
-    call sys_forward(sys, cd%z)
-    cd%q0 = cd%z(cd%n - cd%m + 1:cd%n)
-    call upper_times(cd%l22, cd%q0, .true.)
-    cd%z_valid = .true.
-  end subroutine condensed_begin
+  end subroutine start_from
 
   !> Purpose: the start of an increment on the contact equations alone
   !> (keep_pairing, qnext_valid): u (prescribed values in place, free
@@ -908,22 +921,7 @@ contains
     type(model_t), intent(in) :: m
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: u(:, :), dq(:)
-    integer :: a, d, e
-    cd%u0 = u
-    if (.not. allocated(cd%fw)) then
-      allocate(cd%fw(2, m%nn))
-      cd%fw = 0.0_dp
-    end if
-    cd%umax_rest = 0.0_dp
-    do a = 1, m%nn
-      do d = 1, 2
-        e = dm%eq(d, a)
-        if (e > 0) then
-          if (cd%pos(e) > 0) cycle
-        end if
-        cd%umax_rest = max(cd%umax_rest, abs(u(d, a)))
-      end do
-    end do
+    call start_from(cd, m, dm, u)
     cd%q0 = cd%qnext + dq
     cd%z_valid = .false.
   end subroutine condensed_begin_lazy
