@@ -267,9 +267,15 @@ contains
     integer :: nev, nask, info, k, keep
     logical :: dense
     if (n == 0) call fatal('*FREQUENCY in step ' // itoa(is) // ': no free dof (every dof is held)')
+    ! an overflowing section or material value (a truss area of 1e308)
+    ! makes K infinite: the solvers then return no mode without a code
+    if (.not. (all(ieee_is_finite(gr%kv)) .and. all(ieee_is_finite(gr%mv)))) call fatal('*FREQUENCY in step ' // &
+      itoa(is) // ': the stiffness or mass matrix is not finite (a section, material or mass value overflows)')
     associate(s => m%steps(is))
       nev = min(s%nev, n)
       sigma = shift(s, gr)
+      if (.not. ieee_is_finite(sigma)) call fatal('*FREQUENCY in step ' // itoa(is) // ': the shift ' // &
+        '(1e-6 of the ratio of K to M) is not finite: the stiffness and mass are of too different magnitudes')
       dense = n <= dense_switch .or. 2 * nev >= n
       ! with a lower frequency the shift lies inside the spectrum: the
       ! eigenvalues nearest it lie on both sides; the nev lowest at or
