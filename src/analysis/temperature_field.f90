@@ -106,7 +106,7 @@ contains
     type(model_t), intent(in) :: m
     type(run_timing_t), intent(inout) :: timing
     integer :: e, k, n, nel
-    real(dp) :: t0, cap
+    real(dp) :: t0, cap, dv_min
     t0 = wall_time()
     allocate(f%temp(m%nn), f%rfl(m%nn), f%presc(m%nn), f%t_start(m%nn), f%t_end(m%nn), f%t_amp(m%nn))
     f%temp = 0.0_dp
@@ -124,7 +124,11 @@ contains
       associate(mat => m%materials(m%sections(m%elem_section(e))%material))
         cap = mat%density * mat%specific_heat
         call heat_volume_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), mat%conductivity, &
-                                cap, f%ke(:, :, k), f%ce(:, :, k), f%fb(:, k))
+                                cap, f%ke(:, :, k), f%ce(:, :, k), f%fb(:, k), dv_min)
+        if (.not. dv_min > 0.0_dp) call fatal('element ' // elem_label(m, e) // ' (' // &
+          trim(catalogue(m%etype(e))%name) // ') has a zero or negative Jacobian at an integration point of ' // &
+          'its conduction: a mid-side node far from the middle of its edge, an axisymmetric element reaching ' // &
+          'x < 0, or a NODAL THICKNESS that the element interpolates to zero or less')
       end associate
     end do
     f%tabled = .false.
@@ -509,7 +513,7 @@ contains
   subroutine refresh_conduction(f, m)
     class(temperature_field_t), intent(inout) :: f
     type(model_t), intent(in) :: m
-    real(dp) :: fb(max_nodes)
+    real(dp) :: fb(max_nodes), dv_min
     integer :: k, e, n
     do k = 1, size(f%elems)
       e = f%elems(k)
@@ -517,7 +521,7 @@ contains
       associate(mat => m%materials(m%sections(m%elem_section(e))%material))
         if (mat%nk <= 1 .and. mat%nc <= 1) cycle
         call heat_volume_arrays(m%etype(e), m%x(:, m%conn(1:n, e)), elem_thickness(m, e), mat%conductivity, &
-                                mat%density * mat%specific_heat, f%ke(:, :, k), f%ce(:, :, k), fb, &
+                                mat%density * mat%specific_heat, f%ke(:, :, k), f%ce(:, :, k), fb, dv_min, &
                                 f%temp(m%conn(1:n, e)), mat%ktab(:, 1:max(mat%nk, 1)), mat%ctab(:, 1:max(mat%nc, 1)))
       end associate
     end do

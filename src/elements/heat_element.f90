@@ -33,11 +33,15 @@ contains
   !> the tables are evaluated at each point (table_at): ktab(3, nk) with
   !> nk > 1 the conductivities in place of cond, ctab(2, nc) with nc > 1
   !> the specific heat c, the capacity rho c with rho = cap / ctab(2, 1).
-  pure subroutine heat_volume_arrays(et, xy, thick, cond, cap, ke, ce, fe, temp, ktab, ctab)
+  pure subroutine heat_volume_arrays(et, xy, thick, cond, cap, ke, ce, fe, dv_min, temp, ktab, ctab)
     integer, intent(in) :: et
     real(dp), intent(in) :: xy(:, :), thick(:), cond(2), cap
     real(dp), intent(in), optional :: temp(:), ktab(:, :), ctab(:, :)
     real(dp), intent(out) :: ke(max_nodes, max_nodes), ce(max_nodes, max_nodes), fe(max_nodes)
+    ! the smallest volume of an integration point over its weight: not
+    ! positive where the Jacobian (or r, or the thickness) is not, and the
+    ! caller stops (the point's gradients are then not computed)
+    real(dp), intent(out) :: dv_min
     real(dp) :: xi(2, max_ip), w(max_ip), n(max_nodes), dx(2, max_nodes), kdx(2, max_nodes), detj, dv, k(2), &
                 c(1), t
     integer :: ip, nen, nip, i
@@ -54,10 +58,16 @@ contains
     fe = 0.0_dp
     nip = heat_points(et)
     call gauss_rule(catalogue(et)%shape, nip, xi, w)
+    dv_min = huge(1.0_dp)
     do ip = 1, nip
       call physical_gradients(et, xy, xi(:, ip), n, dx, detj)
-      dv = w(ip) * volume_factor(catalogue(et)%state, detj, dot_product(n(1:nen), xy(1, 1:nen)), &
-                                 dot_product(n(1:nen), thick(1:nen)))
+      dv = volume_factor(catalogue(et)%state, detj, dot_product(n(1:nen), xy(1, 1:nen)), &
+                         dot_product(n(1:nen), thick(1:nen)))
+      if (.not. (detj > 0.0_dp .and. dv > 0.0_dp)) then
+        dv_min = min(dv_min, dv, detj)
+        cycle
+      end if
+      dv = w(ip) * dv
       if (ktabled .or. ctabled) t = dot_product(n(1:nen), temp(1:nen))
       if (ktabled) k = table_at(ktab, t)
       if (ctabled) c = cap / ctab(2, 1) * table_at(ctab, t)
