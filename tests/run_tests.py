@@ -25,6 +25,18 @@ UNIT_PROGRAMS = ["test_elements", "test_skyline", "test_cfe", "test_solvers", "t
                  "test_strings", "test_contact_status", "test_nonlinear"]
 
 
+def where_failed(e, limit):
+    """A failure's exception and the test line that raised it first (a CI
+    log may keep only a failure's first lines), then the traceback."""
+    frames = traceback.extract_tb(e.__traceback__)
+    test_frames = [f for f in frames if os.path.basename(f.filename).startswith("test_")]
+    at = test_frames[-1] if test_frames else (frames[-1] if frames else None)
+    head = f"{type(e).__name__}: {e}" if str(e) else type(e).__name__
+    if at is not None:
+        head += f" (at {os.path.basename(at.filename)}:{at.lineno}: {(at.line or '').strip()})"
+    return head + "\n" + traceback.format_exc(limit=limit)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
@@ -81,9 +93,9 @@ def main():
             except Skip as e:
                 record(name, "SKIP", str(e))
             except AssertionError as e:
-                record(name, "FAIL", str(e) or traceback.format_exc(limit=2))
-            except Exception:
-                record(name, "FAIL", traceback.format_exc(limit=3))
+                record(name, "FAIL", str(e) or where_failed(e, 2))
+            except Exception as e:
+                record(name, "FAIL", where_failed(e, 3))
             else:
                 record(name, "PASS", f"{time.time() - t0:.1f}s" if time.time() - t0 > 5 else "")
 
