@@ -37,10 +37,41 @@ def where_failed(e, limit):
     return head + "\n" + traceback.format_exc(limit=limit)
 
 
+# Result files the tests write beside their listings: the gmsh and
+# CalculiX result files of every increment (the flagship's are 166 MB a
+# run) and the ParaView ones. A whole run wrote 6 GB into tests/work, 5.6
+# of it these, and filled the disk of a CI machine (an ENOSPC in the middle
+# of the run fails every test after it).
+BULKY = (".frd", ".msh", ".vtu")
+
+
+def drop_bulky_results(since):
+    """Deletes the bulky result files written into tests/work since the
+    time `since` (a test file's start). Called after a test file whose
+    tests all passed: its files were read by then; a failed file keeps
+    them to be looked at."""
+    work = os.path.join(HERE, "work")
+    freed = 0
+    for top, _, files in os.walk(work):
+        for f in files:
+            if f.endswith(BULKY):
+                path = os.path.join(top, f)
+                try:
+                    st = os.stat(path)
+                    if st.st_mtime >= since:
+                        os.remove(path)
+                        freed += st.st_size
+                except OSError:
+                    pass
+    return freed
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
     ap.add_argument("-k", default="", help="run only tests whose name contains this")
+    ap.add_argument("--keep-results", action="store_true",
+                    help="keep the .frd, .msh and .vtu files of test files that passed (deleted by default)")
     args = ap.parse_args()
     passed = failed = skipped = 0
 
@@ -84,6 +115,8 @@ def main():
                    if hasattr(t[1], "__code__") else 0)
         if hasattr(mod, "cases"):
             tests += [(f"{fname[:-3]}: {n}", f) for n, f in mod.cases()]
+        failed_before = failed
+        module_start = time.time() - 1.0   # mtimes may be coarser than time()
         for name, fn in tests:
             if args.k and args.k not in name:
                 continue
@@ -98,6 +131,8 @@ def main():
                 record(name, "FAIL", where_failed(e, 3))
             else:
                 record(name, "PASS", f"{time.time() - t0:.1f}s" if time.time() - t0 > 5 else "")
+        if failed == failed_before and not args.keep_results:
+            drop_bulky_results(module_start)
 
     line = f"{passed} passed, {failed} failed"
     if skipped:
