@@ -53,6 +53,8 @@ A_TARGET = 0.05 * R                          # a/R = 0.05
 ESTAR = E / (2.0 * (1.0 - NU ** 2))          # plane strain, one material
 P = math.pi * ESTAR * A_TARGET ** 2 / (4.0 * R)     # Hertz: a^2 = 4 P R / (pi E*)
 QSTAR = 0.5 * MU * P
+#: The deck's slave (cylinder) and master (plate) spacings at the contact.
+HS, HM = 0.025, 0.03
 #: The default mesh's plate (hm = 0.03, W = 20): 38.88 mm wide, 20.01 deep;
 #: the refinement study keeps it (write_mesh's plate_size).
 PLATE_SIZE = (19.44, 20.01)
@@ -149,8 +151,8 @@ def columns(width, w, levels):
     return max(1, round(width / w / unit)) * unit
 
 
-def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=2.0 * R, contact=2.5 * A_TARGET,
-               swap=False, plate_size=None):
+def write_mesh(path, hs=HS, hm=HM, levels=4, rows=(4, 3, 3, 3), plate_half=2.0 * R, contact=2.5 * A_TARGET,
+               swap=False, plate_size=None, shift=0.0):
     """Writes the *NODE/*ELEMENT/sets of the cylinder (slave, element ids
     from 1) and the plate (from 100001) to path; returns (xy of every
     node, the cylinder's slave nodes sorted by x, the top's node ids, the
@@ -158,7 +160,10 @@ def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=
     plate the slave). plate_size: (half width, depth) the plate gets
     exactly, whatever hm (the rows stretched to the depth; the width a
     whole number of the coarsest columns), so that a mesh refinement
-    study keeps the bodies (PLATE_SIZE: the default mesh's)."""
+    study keeps the bodies (PLATE_SIZE: the default mesh's). shift: the
+    cylinder's mesh moved along x by this much (its nodes then sit
+    elsewhere against the stick zone's ends; the body the same but for its
+    cap's ends, 8.1 mm away)."""
     cap = 0.8 * R
     nc = columns(2 * cap, hs, levels)
     cap = 0.5 * nc * hs
@@ -171,7 +176,7 @@ def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=
     cylinder = Body(nc, hs, levels, rows, R, cyl, 1, 1)
     # stretch the depth so that the parameter's depth ends at R (the top)
     scale = R / cylinder.depth
-    cylinder.mapxy = lambda s, d: cyl(s, d * scale)
+    cylinder.mapxy = lambda s, d: cyl(s + shift, d * scale)
     cylinder.finish()
     npl = columns(2 * plate_half, hm, levels)
     if plate_size is not None:
@@ -423,6 +428,11 @@ def write_reference(path, full, every_h=0.025, against=None):
         out[name] = dict(a=r["a"], p0=r["p0"], P=r["P"], Q=r["Q"], kinks=kinks[name],
                          x=[round(v, 9) for v in x[keep].tolist()], q=[round(v, 6) for v in np.array(r["q"])[keep].tolist()],
                          p=[round(v, 6) for v in np.array(r["p"])[keep].tolist()])
+        # every node of the fine run within the contact: the reference at
+        # any node of a coarser or shifted mesh (reference_shear)
+        whole = np.abs(x) < r["a"]
+        out[name]["x_all"] = [round(v, 9) for v in x[whole].tolist()]
+        out[name]["q_all"] = [round(v, 6) for v in np.array(r["q"])[whole].tolist()]
         if against:
             coarse = json.load(open(against))[name]
             at = {round(v, 9): k for k, v in enumerate(coarse["x"])}
@@ -432,6 +442,51 @@ def write_reference(path, full, every_h=0.025, against=None):
             out[name]["coarser_rms"] = float(np.sqrt(np.mean(d ** 2)) / (MU * r["p0"]))
     with open(path, "w") as fh:
         json.dump(out, fh, indent=1)
+
+
+def reference_shear(r, x, h=None):
+    """The converged reference's shear (r: a state of write_reference's
+    file, with x_all, q_all: every node of the fine run) at the points x of
+    a run's slave nodes. h None: pointwise, the fine run's nodal values
+    interpolated linearly (at the fine nodes themselves, their values).
+    h a slave spacing: the reference averaged as a node of spacing h
+    averages it, int q N da / int N da with N the hat of width 2 h about
+    the point: a slave node's multiplier of the dual mortar is that mean of
+    the traction over its support (Phi_j dual to N_j: lambda_j D_j =
+    int q_h N_j da; docs/contact.md). The fine field q_h = sum_i q_i Phi_i
+    gives it exactly as sum_i q_i d_i N(x_i) / sum_i d_i N(x_i), d_i the
+    fine nodes' int N_i da on the cylinder's arc, since N is linear on the
+    fine faces (nested meshes; 4 times finer)."""
+    xf, qf = np.array(r["x_all"]), np.array(r["q_all"])
+    x = np.asarray(x, dtype=float)
+    if h is None:
+        return np.interp(x, xf, qf)
+    yf = R - np.sqrt(R * R - xf * xf)
+    face = np.hypot(np.diff(xf), np.diff(yf))
+    d = np.zeros_like(xf)
+    d[:-1] += 0.5 * face
+    d[1:] += 0.5 * face
+    w = d[None, :] * np.clip(1.0 - np.abs(xf[None, :] - x[:, None]) / h, 0.0, None)
+    return (w @ qf) / np.sum(w, axis=1)
+
+
+def shear_against(rec, ref, name, h=None, kinks=True):
+    """rms and largest difference over |x| < 0.9 a of a run's shear (rec: an
+    increment of measure's "incs") against the reference state name (ref:
+    write_reference's file) in mu p0 (the reference's a and p0): pointwise
+    (h None) or averaged over a slave spacing h (reference_shear). kinks
+    false: the nodes within one slave spacing of the stick zone's ends c (at
+    Q*; c and c' back at Q = 0), where the traction's slope is infinite,
+    left out (the spacing the reference's, ref["hs"])."""
+    r = ref[name]
+    x, q = rec["x"], rec["q"]
+    inside = np.abs(x) < 0.9 * r["a"]
+    if not kinks:
+        for c in r.get("kinks", []):
+            inside &= np.abs(np.abs(x) - c) > ref["hs"] * 1.000001
+    d = q[inside] - reference_shear(r, x[inside], h)
+    scale = MU * r["p0"]
+    return float(np.sqrt(np.mean(d ** 2)) / scale), float(np.max(np.abs(d)) / scale)
 
 
 #: The approach (the reference node's vertical displacement) at which the
