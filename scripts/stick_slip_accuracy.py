@@ -6,6 +6,9 @@ contact with 3:1 transition rows; then pushed sideways to Q* = mu P / 2 and
 back to Q = 0 (Cattaneo-Mindlin, Mindlin-Deresiewicz).
 
     python3 scripts/stick_slip_accuracy.py [--cases nts,sts] [--hs 0.025 --hm 0.03] [--out DIR]
+    # against the converged bodies, the cylinder's nodes moved by 0.4 spacings:
+    python3 scripts/stick_slip_accuracy.py --cases sts --fixed-plate --shift 0.4 \
+        --against tests/stick_slip_converged.json
     # the converged reference of tests/test_stick_slip_accuracy.py (about 10 minutes):
     python3 scripts/stick_slip_accuracy.py --cases sts --fixed-plate --incs 2,16,16 --hs 0.00625 --hm 0.0075 \
         --save fine.json --reference tests/stick_slip_converged.json --coarser h2.json
@@ -591,6 +594,10 @@ def main():
     ap.add_argument("--load", type=float, default=1.0, help="P as a multiple of a/R = 0.05's (a grows as its root)")
     ap.add_argument("--fixed-plate", action="store_true",
                     help="the plate exactly the default mesh's, 38.88 x 20.01 mm, whatever --hm (refinement studies)")
+    ap.add_argument("--shift", type=float, default=0.0,
+                    help="the cylinder's mesh moved along x by this fraction of --hs (where its nodes sit against c, c')")
+    ap.add_argument("--against", help="also the shear against this converged reference (write_reference's file), "
+                    "pointwise and averaged over each node's support")
     ap.add_argument("--extra", default="", help="more *CONTACT PAIR parameters, e.g. ', STICK SLOPE=1e9'")
     ap.add_argument("--cfe2d", default=os.path.join(ROOT, "bin", "cfe2d"))
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "stick_slip"))
@@ -612,7 +619,8 @@ def main():
                                           split=not args.no_split,
                                           hs=args.hs, hm=args.hm, plate_half=args.plate,
                                           contact=2.5 * A_TARGET * math.sqrt(args.load),
-                                          plate_size=PLATE_SIZE if args.fixed_plate else None)
+                                          plate_size=PLATE_SIZE if args.fixed_plate else None,
+                                          shift=args.shift * args.hs)
         wall = run(path, args.cfe2d)
         f = measure(path, xy, slave, incs)
         incs = f["last"]
@@ -625,6 +633,17 @@ def main():
         for s in f["stick"]:
             ends = "none" if s[3] is None else f"[{s[3][0]:.4f}, {s[3][1]:.4f}]"
             print(f"   {s[0]}.{s[1]}: c/a {s[2]:.4f}, stick zone {ends} a, {s[4]:.2f} spacings")
+        if args.against:
+            import json
+            with open(args.against) as fh:
+                ref = json.load(fh)
+            for title, h in (("pointwise", None), ("averaged over each node's support", args.hs)):
+                figs = []
+                for name, key in (("press", (1, incs[0])), ("qstar", (2, incs[1])), ("back", (3, incs[2]))):
+                    every = shear_against(f["incs"][key], ref, name, h=h)
+                    away = shear_against(f["incs"][key], ref, name, h=h, kinks=False)
+                    figs.append(f"{name} {every[0]:.2%} ({every[1]:.2%}; away from c, c' {away[0]:.2%})")
+                print(f"   against the converged bodies, {title}: " + ", ".join(figs))
         if args.save:
             save_states(args.save, f, incs, dict(hs=args.hs, hm=args.hm, incs=incs, load=args.load, plate=args.plate,
                                                  case=case, elements=nel, wall=wall))
