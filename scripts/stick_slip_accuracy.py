@@ -410,8 +410,9 @@ def write_reference(path, full, every_h=0.025, against=None):
     states the shear q and pressure p at the nodes of the default mesh's
     slave spacing every_h (x a multiple of it, |x| < a), with the fitted
     a and p0, the stick zone's ends where the traction has a kink (c at
-    Q*; c and c' back at Q = 0), the figures against the closed forms,
-    and, against: a coarser run's JSON (the fine mesh's own distance to
+    Q*; c and c' back at Q = 0), every node of the fine run within the
+    contact (x_all, q_all: reference_shear), the figures against the
+    closed forms, and, against: a coarser run's JSON (the fine mesh's own distance to
     it, rms over |x| < 0.9 a in mu p0, at the same nodes)."""
     import json
     src = json.load(open(full))
