@@ -6,6 +6,9 @@ contact with 3:1 transition rows; then pushed sideways to Q* = mu P / 2 and
 back to Q = 0 (Cattaneo-Mindlin, Mindlin-Deresiewicz).
 
     python3 scripts/stick_slip_accuracy.py [--cases nts,sts] [--hs 0.025 --hm 0.03] [--out DIR]
+    # against the converged bodies, the cylinder's nodes moved by 0.4 spacings:
+    python3 scripts/stick_slip_accuracy.py --cases sts --fixed-plate --shift 0.4 \
+        --against tests/stick_slip_converged.json
     # the converged reference of tests/test_stick_slip_accuracy.py (about 10 minutes):
     python3 scripts/stick_slip_accuracy.py --cases sts --fixed-plate --incs 2,16,16 --hs 0.00625 --hm 0.0075 \
         --save fine.json --reference tests/stick_slip_converged.json --coarser h2.json
@@ -53,6 +56,8 @@ A_TARGET = 0.05 * R                          # a/R = 0.05
 ESTAR = E / (2.0 * (1.0 - NU ** 2))          # plane strain, one material
 P = math.pi * ESTAR * A_TARGET ** 2 / (4.0 * R)     # Hertz: a^2 = 4 P R / (pi E*)
 QSTAR = 0.5 * MU * P
+#: The deck's slave (cylinder) and master (plate) spacings at the contact.
+HS, HM = 0.025, 0.03
 #: The default mesh's plate (hm = 0.03, W = 20): 38.88 mm wide, 20.01 deep;
 #: the refinement study keeps it (write_mesh's plate_size).
 PLATE_SIZE = (19.44, 20.01)
@@ -149,8 +154,8 @@ def columns(width, w, levels):
     return max(1, round(width / w / unit)) * unit
 
 
-def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=2.0 * R, contact=2.5 * A_TARGET,
-               swap=False, plate_size=None):
+def write_mesh(path, hs=HS, hm=HM, levels=4, rows=(4, 3, 3, 3), plate_half=2.0 * R, contact=2.5 * A_TARGET,
+               swap=False, plate_size=None, shift=0.0):
     """Writes the *NODE/*ELEMENT/sets of the cylinder (slave, element ids
     from 1) and the plate (from 100001) to path; returns (xy of every
     node, the cylinder's slave nodes sorted by x, the top's node ids, the
@@ -158,7 +163,10 @@ def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=
     plate the slave). plate_size: (half width, depth) the plate gets
     exactly, whatever hm (the rows stretched to the depth; the width a
     whole number of the coarsest columns), so that a mesh refinement
-    study keeps the bodies (PLATE_SIZE: the default mesh's)."""
+    study keeps the bodies (PLATE_SIZE: the default mesh's). shift: the
+    cylinder's mesh moved along x by this much (its nodes then sit
+    elsewhere against the stick zone's ends; the body the same but for its
+    cap's ends, 8.1 mm away)."""
     cap = 0.8 * R
     nc = columns(2 * cap, hs, levels)
     cap = 0.5 * nc * hs
@@ -171,7 +179,7 @@ def write_mesh(path, hs=0.025, hm=0.03, levels=4, rows=(4, 3, 3, 3), plate_half=
     cylinder = Body(nc, hs, levels, rows, R, cyl, 1, 1)
     # stretch the depth so that the parameter's depth ends at R (the top)
     scale = R / cylinder.depth
-    cylinder.mapxy = lambda s, d: cyl(s, d * scale)
+    cylinder.mapxy = lambda s, d: cyl(s + shift, d * scale)
     cylinder.finish()
     npl = columns(2 * plate_half, hm, levels)
     if plate_size is not None:
@@ -402,8 +410,9 @@ def write_reference(path, full, every_h=0.025, against=None):
     states the shear q and pressure p at the nodes of the default mesh's
     slave spacing every_h (x a multiple of it, |x| < a), with the fitted
     a and p0, the stick zone's ends where the traction has a kink (c at
-    Q*; c and c' back at Q = 0), the figures against the closed forms,
-    and, against: a coarser run's JSON (the fine mesh's own distance to
+    Q*; c and c' back at Q = 0), every node of the fine run within the
+    contact (x_all, q_all: reference_shear), the figures against the
+    closed forms, and, against: a coarser run's JSON (the fine mesh's own distance to
     it, rms over |x| < 0.9 a in mu p0, at the same nodes)."""
     import json
     src = json.load(open(full))
@@ -423,6 +432,11 @@ def write_reference(path, full, every_h=0.025, against=None):
         out[name] = dict(a=r["a"], p0=r["p0"], P=r["P"], Q=r["Q"], kinks=kinks[name],
                          x=[round(v, 9) for v in x[keep].tolist()], q=[round(v, 6) for v in np.array(r["q"])[keep].tolist()],
                          p=[round(v, 6) for v in np.array(r["p"])[keep].tolist()])
+        # every node of the fine run within the contact: the reference at
+        # any node of a coarser or shifted mesh (reference_shear)
+        whole = np.abs(x) < r["a"]
+        out[name]["x_all"] = [round(v, 9) for v in x[whole].tolist()]
+        out[name]["q_all"] = [round(v, 6) for v in np.array(r["q"])[whole].tolist()]
         if against:
             coarse = json.load(open(against))[name]
             at = {round(v, 9): k for k, v in enumerate(coarse["x"])}
@@ -432,6 +446,51 @@ def write_reference(path, full, every_h=0.025, against=None):
             out[name]["coarser_rms"] = float(np.sqrt(np.mean(d ** 2)) / (MU * r["p0"]))
     with open(path, "w") as fh:
         json.dump(out, fh, indent=1)
+
+
+def reference_shear(r, x, h=None):
+    """The converged reference's shear (r: a state of write_reference's
+    file, with x_all, q_all: every node of the fine run) at the points x of
+    a run's slave nodes. h None: pointwise, the fine run's nodal values
+    interpolated linearly (at the fine nodes themselves, their values).
+    h a slave spacing: the reference averaged as a node of spacing h
+    averages it, int q N da / int N da with N the hat of width 2 h about
+    the point: a slave node's multiplier of the dual mortar is that mean of
+    the traction over its support (Phi_j dual to N_j: lambda_j D_j =
+    int q_h N_j da; docs/contact.md). The fine field q_h = sum_i q_i Phi_i
+    gives it exactly as sum_i q_i d_i N(x_i) / sum_i d_i N(x_i), d_i the
+    fine nodes' int N_i da on the cylinder's arc, since N is linear on the
+    fine faces (nested meshes; 4 times finer)."""
+    xf, qf = np.array(r["x_all"]), np.array(r["q_all"])
+    x = np.asarray(x, dtype=float)
+    if h is None:
+        return np.interp(x, xf, qf)
+    yf = R - np.sqrt(R * R - xf * xf)
+    face = np.hypot(np.diff(xf), np.diff(yf))
+    d = np.zeros_like(xf)
+    d[:-1] += 0.5 * face
+    d[1:] += 0.5 * face
+    w = d[None, :] * np.clip(1.0 - np.abs(xf[None, :] - x[:, None]) / h, 0.0, None)
+    return (w @ qf) / np.sum(w, axis=1)
+
+
+def shear_against(rec, ref, name, h=None, kinks=True):
+    """rms and largest difference over |x| < 0.9 a of a run's shear (rec: an
+    increment of measure's "incs") against the reference state name (ref:
+    write_reference's file) in mu p0 (the reference's a and p0): pointwise
+    (h None) or averaged over a slave spacing h (reference_shear). kinks
+    false: the nodes within one slave spacing of the stick zone's ends c (at
+    Q*; c and c' back at Q = 0), where the traction's slope is infinite,
+    left out (the spacing the reference's, ref["hs"])."""
+    r = ref[name]
+    x, q = rec["x"], rec["q"]
+    inside = np.abs(x) < 0.9 * r["a"]
+    if not kinks:
+        for c in r.get("kinks", []):
+            inside &= np.abs(np.abs(x) - c) > ref["hs"] * 1.000001
+    d = q[inside] - reference_shear(r, x[inside], h)
+    scale = MU * r["p0"]
+    return float(np.sqrt(np.mean(d ** 2)) / scale), float(np.max(np.abs(d)) / scale)
 
 
 #: The approach (the reference node's vertical displacement) at which the
@@ -536,6 +595,10 @@ def main():
     ap.add_argument("--load", type=float, default=1.0, help="P as a multiple of a/R = 0.05's (a grows as its root)")
     ap.add_argument("--fixed-plate", action="store_true",
                     help="the plate exactly the default mesh's, 38.88 x 20.01 mm, whatever --hm (refinement studies)")
+    ap.add_argument("--shift", type=float, default=0.0,
+                    help="the cylinder's mesh moved along x by this fraction of --hs (where its nodes sit against c, c')")
+    ap.add_argument("--against", help="also the shear against this converged reference (write_reference's file), "
+                    "pointwise and averaged over each node's support")
     ap.add_argument("--extra", default="", help="more *CONTACT PAIR parameters, e.g. ', STICK SLOPE=1e9'")
     ap.add_argument("--cfe2d", default=os.path.join(ROOT, "bin", "cfe2d"))
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "stick_slip"))
@@ -557,7 +620,8 @@ def main():
                                           split=not args.no_split,
                                           hs=args.hs, hm=args.hm, plate_half=args.plate,
                                           contact=2.5 * A_TARGET * math.sqrt(args.load),
-                                          plate_size=PLATE_SIZE if args.fixed_plate else None)
+                                          plate_size=PLATE_SIZE if args.fixed_plate else None,
+                                          shift=args.shift * args.hs)
         wall = run(path, args.cfe2d)
         f = measure(path, xy, slave, incs)
         incs = f["last"]
@@ -570,6 +634,17 @@ def main():
         for s in f["stick"]:
             ends = "none" if s[3] is None else f"[{s[3][0]:.4f}, {s[3][1]:.4f}]"
             print(f"   {s[0]}.{s[1]}: c/a {s[2]:.4f}, stick zone {ends} a, {s[4]:.2f} spacings")
+        if args.against:
+            import json
+            with open(args.against) as fh:
+                ref = json.load(fh)
+            for title, h in (("pointwise", None), ("averaged over each node's support", args.hs)):
+                figs = []
+                for name, key in (("press", (1, incs[0])), ("qstar", (2, incs[1])), ("back", (3, incs[2]))):
+                    every = shear_against(f["incs"][key], ref, name, h=h)
+                    away = shear_against(f["incs"][key], ref, name, h=h, kinks=False)
+                    figs.append(f"{name} {every[0]:.2%} ({every[1]:.2%}; away from c, c' {away[0]:.2%})")
+                print(f"   against the converged bodies, {title}: " + ", ".join(figs))
         if args.save:
             save_states(args.save, f, incs, dict(hs=args.hs, hm=args.hm, incs=incs, load=args.load, plate=args.plate,
                                                  case=case, elements=nel, wall=wall))

@@ -34,18 +34,19 @@ REFERENCE = os.path.join(HERE, "stick_slip_converged.json")
 STATES = (("press", 1), ("qstar", 2), ("back", 3))
 
 
-def run_case(tag, coupling, hm=0.03, incs=INCS, load=1.0, hs=0.025, direct=False, split=True):
+def run_case(tag, coupling, hm=0.03, incs=INCS, load=1.0, hs=0.025, direct=False, split=True, shift=0.0):
     """Writes, runs and measures one case (stick_slip_accuracy's
     write_deck, run, measure) on the default plate; returns its figures.
     load scales P (a as its root; the contact surfaces 2.5 a wide);
     direct: fixed increments (*STATIC, DIRECT); split: *STATIC, SPLIT
-    TOUCHING (the script's default; not cfe2d's)."""
+    TOUCHING (the script's default; not cfe2d's); shift: the cylinder's
+    mesh moved along x by this much."""
     d = workdir("stick_slip_" + tag)
     saved = ssa.P, ssa.QSTAR
     ssa.P, ssa.QSTAR = saved[0] * load, saved[1] * load
     try:
         path, xy, slave, _ = ssa.write_deck(d, coupling, incs=incs, hm=hm, hs=hs, plate_size=ssa.PLATE_SIZE, split=split,
-                                            contact=2.5 * ssa.A_TARGET * load ** 0.5)
+                                            contact=2.5 * ssa.A_TARGET * load ** 0.5, shift=shift)
         if direct:
             with open(path) as f:
                 text = f.read()
@@ -62,24 +63,15 @@ def reference():
         return json.load(f)
 
 
-def against(f, ref, name, step, kinks=False):
+def against(f, ref, name, step, kinks=False, h=None):
     """rms and largest difference over |x| < 0.9 a of run f's shear at the
-    end of step against the reference state name, at the reference's
-    nodes (every slave node of the default mesh), in mu p0 (the
-    reference's a and p0). kinks false: the nodes within one slave
-    spacing of the stick zone's ends c (at Q*; c and c' back at Q = 0),
-    where the traction's slope is infinite, left out."""
-    rec, r = f["incs"][step, f["last"][step - 1]], ref[name]
-    at = {round(x, 9): k for k, x in enumerate(rec["x"])}
-    k = np.array([at[round(x, 9)] for x in r["x"]])
-    x, q = np.array(r["x"]), np.array(r["q"])
-    inside = np.abs(x) < 0.9 * r["a"]
-    if not kinks:
-        for c in r.get("kinks", []):
-            inside &= np.abs(np.abs(x) - c) > ref["hs"] * 1.000001
-    d = (rec["q"][k] - q)[inside]
-    scale = ssa.MU * r["p0"]
-    return float(np.sqrt(np.mean(d ** 2)) / scale), float(np.max(np.abs(d)) / scale)
+    end of step against the reference state name, in mu p0 (the
+    reference's a and p0; stick_slip_accuracy's shear_against): pointwise
+    (h None) or the reference averaged over a node's support of spacing h.
+    kinks false: the nodes within one slave spacing of the stick zone's
+    ends c (at Q*; c and c' back at Q = 0), where the traction's slope is
+    infinite, left out."""
+    return ssa.shear_against(f["incs"][step, f["last"][step - 1]], ref, name, h=h, kinks=kinks)
 
 
 def test_stick_zone_on_a_graded_nonmatching_mesh():
@@ -107,26 +99,100 @@ def test_stick_zone_on_a_graded_nonmatching_mesh():
 def test_shear_against_the_converged_finite_bodies():
     """The discretisation error: the shear of the default deck (segment-to-
     segment, 2 + 4 + 4 increments) against the converged answer of the
-    same bodies (REFERENCE), rms over |x| < 0.9 a in mu p0. Measured:
-    pressing 0.28 %, at Q* 1.27 %, back at Q = 0 3.04 % (largest 0.48 %,
-    7.09 % and 12.05 %); away from the stick zone's ends (one slave
-    spacing either side of c, and of c' back at 0, left out) 0.28 %,
-    0.44 % and 1.22 %. The issue's bounds, 0.5 % under P and 1.5 % at Q*, hold for
-    the discretisation everywhere; back at Q = 0 only away from the
-    zone ends (the traction there has an infinite slope at c and c', a
-    node sitting on c at this load: 12 % of mu p0 at that node). Allowed:
-    0.5 % and 1.5 % (the issue's), back 3.5 % rms over every node and
-    1.5 % away from the ends."""
+    same bodies (REFERENCE), rms over |x| < 0.9 a in mu p0. Measured
+    pointwise (the issue's figure): pressing 0.28 %, at Q* 1.27 %, back at
+    Q = 0 3.04 % (largest 0.48 %, 7.09 % and 12.05 %); away from the stick
+    zone's ends (one slave spacing either side of c, and of c' back at 0,
+    left out) 0.28 %, 0.44 % and 1.22 %. Against the reference averaged
+    over each node's support (what a dual mortar multiplier is:
+    stick_slip_accuracy's reference_shear) 0.24 %, 0.86 %, 2.75 % (largest
+    0.45, 3.13, 9.68; away from the ends 0.24, 0.48, 1.47 %): the mean
+    takes half the error at c at Q* (the node at -0.35 mm, 0.009 mm inside
+    the reference's stick zone: 7.09 % pointwise, 3.13 % averaged) and
+    none of it at c' (the nodes at +-0.425 mm, 0.17 spacings inside c': 12.05
+    and 8.76 % pointwise, 9.12 and 9.68 % averaged). The issue's bounds,
+    0.5 % under P and 1.5 % at Q*, hold for the discretisation
+    everywhere; back at Q = 0 only away from the zone ends. Allowed: 0.5 %
+    and 1.5 % (the issue's), back 3.5 % rms over every node and 1.5 %
+    away from the ends; averaged 0.5 %, 1.5 %, 3.2 % (2 % away)."""
     ref = reference()
     f = run_case("sts", ssa.CASES["sts"])
     got = {name: (against(f, ref, name, step, kinks=True), against(f, ref, name, step))
            for name, step in STATES}
-    print("  against the converged finite bodies, % of mu p0 rms (largest); without the zone ends:\n  " +
-          "\n  ".join(f"{n}: {100 * a[0]:.2f} ({100 * a[1]:.2f}); {100 * b[0]:.2f} ({100 * b[1]:.2f})"
-                      for n, (a, b) in got.items()))
+    mean = {name: (against(f, ref, name, step, kinks=True, h=ssa.HS), against(f, ref, name, step, h=ssa.HS))
+            for name, step in STATES}
+    for title, figures in (("pointwise", got), ("averaged over each node's support", mean)):
+        print(f"  against the converged finite bodies, {title}, % of mu p0 rms (largest); without the zone ends:\n  " +
+              "\n  ".join(f"{n}: {100 * a[0]:.2f} ({100 * a[1]:.2f}); {100 * b[0]:.2f} ({100 * b[1]:.2f})"
+                          for n, (a, b) in figures.items()))
     assert got["press"][0][0] < 0.005, got
     assert got["qstar"][0][0] < 0.015, got
     assert got["back"][0][0] < 0.035 and got["back"][1][0] < 0.015, got
+    assert mean["press"][0][0] < 0.005 and mean["qstar"][0][0] < 0.015, mean
+    assert mean["back"][0][0] < 0.032 and mean["back"][1][0] < 0.02, mean
+
+
+def test_unloading_does_not_depend_on_its_increments():
+    """What the error back at Q = 0 is not: the increments. The deck pushed
+    to Q* and back in 1 + 1, 4 + 4 (the deck's) and 4 + 16 increments ends
+    in the same state: every slave row's status the same and its shear
+    within 1e-6 of mu p0 at Q* and back at Q = 0 (measured: 1e-7 MPa, the
+    contact table's last digit). With one unloading increment every
+    sliding point reverses within it (the return mapping from the anchor
+    of Q*, docs/contact.md "Friction"), with 16 the slip zone regrows
+    gradually: the same answer, so neither the unloading's increments nor
+    the return mapping on a reversal is where the 3 % back at Q = 0 comes
+    from; it is the mesh (test_shear_back_where_the_nodes_sit)."""
+    runs = {incs: run_case("sts_" + "_".join(map(str, incs)), ssa.CASES["sts"], incs=incs)
+            for incs in ((2, 1, 1), INCS, (2, 4, 16))}
+    base = runs[INCS]
+    for incs, f in runs.items():
+        for step in (2, 3):
+            a, b = base["incs"][step, INCS[step - 1]], f["incs"][step, incs[step - 1]]
+            assert np.array_equal(a["x"], b["x"]) and np.array_equal(a["state"], b["state"]), (incs, step)
+            dq = float(np.max(np.abs(a["q"] - b["q"]))) / (ssa.MU * a["p0"])
+            print(f"  {incs}: step {step} largest shear difference from {INCS}: {dq:.1e} of mu p0")
+            assert dq < 1e-6, (incs, step, dq)
+
+
+#: Where the slave nodes sit against the stick zone's ends: the cylinder's
+#: mesh moved along x by these fractions of its spacing.
+SHIFTS = (0.0, 0.2, 0.4, 0.6, 0.8)
+
+
+def test_shear_back_where_the_nodes_sit():
+    """What the error back at Q = 0 is: the resolution of the stick zone's
+    ends by one stick/slip status per slave node. Mindlin-Deresiewicz's
+    locked-in traction has infinite slopes at c (the end of Q*'s stick
+    zone) and at c' (the unloading's, where the change of traction, twice
+    Cattaneo's, -2 q'(c'), has its square-root kink); a node whose support
+    straddles an end sticks or slides as a whole. So the figure depends on
+    where the nodes sit against c and c' (on the deck, -0.35 mm 0.0005 mm
+    from c and +-0.425 mm 0.17 spacings inside c': the worst of the
+    offsets measured), as on a user's mesh. The deck with the cylinder's
+    mesh moved by 0, 0.2, 0.4, 0.6, 0.8 slave spacings, back at Q = 0
+    against the converged bodies, rms over |x| < 0.9 a in mu p0: pointwise
+    3.04, 2.53, 1.33, 1.20, 2.10 % (mean 2.04 %; ten offsets 0.1 apart:
+    1.20-3.04 %, mean 2.03 %); against the reference averaged over each
+    node's support 2.75, 3.36, 1.90, 2.09, 3.19 % (mean 2.66 %): the nodal
+    values at the ends are nearer the traction at the node than its mean
+    over the support, so the pointwise figure (the issue's) is the one
+    that measures them. The twice finer mesh (0.0125 / 0.015 mm) at offsets
+    0 and 0.2: 1.77 and 1.35 % pointwise. Checked: every offset below 3.5 %
+    pointwise, the mean below 2.4 %, the best below 1.5 %, the averaged
+    comparison's mean not below the pointwise one's."""
+    ref = reference()
+    point, mean = [], []
+    for k, shift in enumerate(SHIFTS):
+        f = run_case(f"sts_shift{k}", ssa.CASES["sts"], shift=shift * ssa.HS)
+        point.append(against(f, ref, "back", 3, kinks=True)[0])
+        mean.append(against(f, ref, "back", 3, kinks=True, h=ssa.HS)[0])
+        print(f"  mesh moved by {shift:.1f} spacings: back at Q = 0 {point[-1]:.2%} pointwise, {mean[-1]:.2%} averaged "
+              f"(of mu p0 rms); stick zone within {f['stick_end']:.2f} spacings")
+        assert f["stick_end"] <= 1.0, (shift, f["stick_end"])
+    print(f"  mean over the offsets: {np.mean(point):.2%} pointwise, {np.mean(mean):.2%} averaged")
+    assert max(point) < 0.035 and np.mean(point) < 0.024 and min(point) < 0.015, point
+    assert np.mean(mean) >= np.mean(point), (point, mean)
 
 
 def test_shear_against_the_closed_forms_with_the_model_part_separated():
