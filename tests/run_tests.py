@@ -40,8 +40,8 @@ def where_failed(e, limit):
 # Result files the tests write beside their listings: the gmsh and
 # CalculiX result files of every increment (the flagship's are 166 MB a
 # run) and the ParaView ones. A whole run wrote 6 GB into tests/work, 5.6
-# of it these, and filled the disk of a CI machine (an ENOSPC in the middle
-# of the run fails every test after it).
+# of it these: enough to fill a machine's disk in the middle of the run
+# (an ENOSPC fails every test after it; seen here on a shared machine).
 BULKY = (".frd", ".msh", ".vtu")
 
 
