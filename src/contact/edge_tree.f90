@@ -27,7 +27,8 @@ module edge_tree
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_length
   implicit none
   private
-  public :: edge_tree_t, surface_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates
+  public :: edge_tree_t, surface_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates, &
+            sort_ints
 
   !> A projection this far outside [0, 1] along an edge still counts: it
   !> catches slave nodes exactly above a master vertex.
