@@ -20,7 +20,7 @@
 module condensed_equilibrium
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
-  use contact, only: contact_forces
+  use contact, only: contact_forces, frictional_set
   use model, only: model_t
   use assembly, only: body_t, body_forces, free_residual, nonlinear_body_forces, body_predictor_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
@@ -132,11 +132,21 @@ contains
   end subroutine condensed_solve_status
 
   !> Purpose: the CFE forces on the contact equations before the switch,
-  !> and the bodies' part of the potential energy of the solution.
+  !> and the bodies' part of the potential energy of the solution. Not
+  !> the energy of a frictional set paired at every increment
+  !> (keep_pairing): Coulomb friction has no potential, the status search
+  !> reads no energy of a frictional set (contact_switch's block pivots),
+  !> and such a set stays frictional through the increment (a linear
+  !> step pairs only at its start); the energy, an m x m product with S0,
+  !> was a twelfth of a fretting increment.
   subroutine condensed_solution_energy(path, st)
     class(condensed_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
     call contact_part_forces(st%eq%cd, st%m, st%cs, st%dm, st%u, path%fold, st%eq%counts%coupling)
+    if (st%eq%cd%keep_pairing .and. .not. st%body%nonlinear .and. frictional_set(st%cs)) then
+      st%energy = 0.0_dp
+      return
+    end if
     st%energy = condensed_energy(st%eq%cd, st%dm, st%cs, st%u)
   end subroutine condensed_solution_energy
 
