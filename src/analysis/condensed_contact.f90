@@ -119,6 +119,13 @@ module condensed_contact
     !> The low-rank form keeps one more m x m matrix (finv) beside l22
     !> and s; the products with finv and S0 read their lower triangles.
     real(dp), allocatable :: finv(:, :), ref_k(:, :, :), kt_all(:, :, :), dmat(:, :), cap(:, :)
+    !> The last product with finv (fb_y = finv fb_x; fb_valid, fb_chain:
+    !> how many were made from it by the columns of the entries that
+    !> changed, reference_product): the right-hand sides of an
+    !> increment's statuses differ only at the couplings that changed.
+    real(dp), allocatable :: fb_x(:), fb_y(:)
+    logical :: fb_valid = .false.
+    integer :: fb_chain = 0
     integer, allocatable :: ref_pos(:, :), kt_ng(:), dset(:), cap_piv(:)
     !> Increments solved on the contact equations alone (keep_pairing;
     !> docs/fretting.md, "Cost"). The condensed right-hand side of an
@@ -424,31 +431,47 @@ contains
     call contact_dof_mask(m, cs, prescribed, mpc, mask)
     fits = .not. any(mask .and. .not. cd%zone)
     if (.not. fits) return
-    call map_cfes(cd, m, cs, dm, cs, counts)
-    cd%ke0 = 0.0_dp
+    call map_cfes(cd, m, cs, dm, cs, counts, tangents=.false.)
   end subroutine condensed_repair
 
   !> Trailing positions of every CFE's rows (its dofs, or with
   !> constraints the equations its transformed tangent reaches), its
-  !> tangent as in K0, and the dependent dofs at CFE nodes.
-  subroutine map_cfes(cd, m, cs, dm, open_set, counts)
+  !> tangent as in K0 (of open_set's status; with tangents false none:
+  !> ke0 zero, no CFE routine called), and the dependent dofs at CFE nodes.
+  subroutine map_cfes(cd, m, cs, dm, open_set, counts, tangents)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs, open_set
     type(dofmap_t), intent(in) :: dm
     type(element_counts_t), intent(inout) :: counts
-    real(dp), allocatable :: kt(:, :)
-    integer, allocatable :: geq(:)
-    integer :: j, p, ng, maxng
+    logical, intent(in), optional :: tangents
+    real(dp), allocatable :: kt(:, :), t(:, :)
+    integer, allocatable :: geq(:), nodes(:)
+    integer :: j, p, ng, maxng, nen
     real(dp) :: kraw
+    logical :: with_tangents
+    with_tangents = .true.
+    if (present(tangents)) with_tangents = tangents
     call dependents_at_cfes(cd, m, cs, dm, maxng)
     if (allocated(cd%ke0)) deallocate(cd%ke0, cd%cfe_pos)
     allocate(cd%ke0(maxng, maxng, cs%n), cd%cfe_pos(maxng, cs%n))
     cd%cfe_pos = 0
     cd%ke0 = 0.0_dp
     do j = 1, cs%n
-      call cfe_tangent(m, open_set%c(j), .false., dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
-      cd%ke0(1:ng, 1:ng, j) = kt
+      if (with_tangents) then
+        call cfe_tangent(m, open_set%c(j), .false., dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
+        cd%ke0(1:ng, 1:ng, j) = kt
+      else
+        ! the positions alone, as cfe_tangent numbers them (a pairing
+        ! repaired in the zone: ke0 stays zero, condensed_repair)
+        call cfe_nodes(m, open_set%c(j), nodes, nen)
+        if (has_dependent(dm, nodes(1:nen))) then
+          call group_transform(dm, nodes(1:nen), geq, t)
+        else
+          geq = reshape(dm%eq(:, nodes(1:nen)), [2 * nen])
+        end if
+        ng = size(geq)
+      end if
       do p = 1, ng
         if (geq(p) > 0) cd%cfe_pos(p, j) = cd%pos(geq(p))
       end do
@@ -844,6 +867,7 @@ contains
     cd%ref_pos = cd%cfe_pos(:, closed)
     cd%ref_k = cd%kt_all(:, :, closed)
     cd%ref_valid = .true.
+    cd%fb_valid = .false.
   end subroutine set_reference
 
   !> Purpose: condenses the right-hand side of an increment that starts
@@ -1050,13 +1074,18 @@ contains
     real(dp), intent(inout) :: u(:, :)
     logical, intent(out) :: finite
     integer(kind=8), intent(inout) :: ncalls
-    real(dp) :: fc(cd%m)
+    real(dp) :: fc(cd%m), fx(cd%m)
     ! the CFE forces are affine in u: at the start, they are the constant part
     call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
     cd%gap_start = cs%c(1:cs%n)%gap
     cd%x2 = cd%q0 - fc
     cd%qnext_fresh = .false.
-    call solve_s(cd, cd%x2)
+    if (cd%lowrank) then
+      call reference_product(cd, cd%x2, fx)
+      call lowrank_solve(cd, cd%x2, fx)
+    else
+      call solve_s(cd, cd%x2)
+    end if
     finite = all(ieee_is_finite(cd%x2))
     call add_contact_part(cd, dm, u)
     if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
@@ -1219,14 +1248,16 @@ contains
   !> round-off of S's own solution), or no longer half the last one (the
   !> round-off floor), at most max_refine times. Measured on McColl's
   !> case: the first correction 3e-13 of x, so one refinement.
-  subroutine lowrank_solve(cd, x)
+  !> Arguments: fx, if present, S_ref^-1 x (reference_product).
+  subroutine lowrank_solve(cd, x, fx)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(inout) :: x(:)
+    real(dp), intent(in), optional :: fx(:)
     integer, parameter :: max_refine = 3
     real(dp) :: r(size(x)), dx(size(x)), last, now
     integer :: it
     r = x
-    call apply_reference(cd, x)
+    call apply_reference(cd, x, fx)
     last = huge(1.0_dp)
     do it = 1, max_refine
       call status_times(cd, x, dx)
@@ -1239,14 +1270,20 @@ contains
     end do
   end subroutine lowrank_solve
 
-  !> x := M^-1 x, M = S_ref + E dmat E^T (lowrank_solve).
-  subroutine apply_reference(cd, x)
+  !> x := M^-1 x, M = S_ref + E dmat E^T (lowrank_solve); fx, if present,
+  !> is S_ref^-1 x.
+  subroutine apply_reference(cd, x, fx)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(inout) :: x(:)
+    real(dp), intent(in), optional :: fx(:)
     real(dp) :: y(size(x)), w(size(cd%dset)), v(size(cd%dset))
     integer :: i, j
     ! (explicit loops in a fixed order, as capacitance)
-    call sym_times(cd%finv, x, y)
+    if (present(fx)) then
+      y = fx
+    else
+      call sym_times(cd%finv, x, y)
+    end if
     w = y(cd%dset)
     call lu_solve(cd%cap, cd%cap_piv, w)
     v = 0.0_dp
@@ -1258,6 +1295,40 @@ contains
     end do
     x = y
   end subroutine apply_reference
+
+  !> Purpose: y = S_ref^-1 b (finv b). Where the last product's b differs
+  !> from this one in at most an eighth of its entries (the statuses of
+  !> an increment: the couplings that changed), from that product and
+  !> the columns of the entries that changed, at most max_chain times in
+  !> a row; otherwise whole (sym_times). Its round-off is the
+  !> refinement's to take out (lowrank_solve).
+  subroutine reference_product(cd, b, y)
+    type(condensed_t), intent(inout) :: cd
+    real(dp), intent(in) :: b(:)
+    real(dp), intent(out) :: y(:)
+    integer, parameter :: max_chain = 8
+    integer :: j, nd
+    integer, allocatable :: changed(:)
+    if (cd%fb_valid .and. cd%fb_chain < max_chain .and. size(cd%fb_x) == size(b)) then
+      changed = pack([(j, j = 1, size(b))], b /= cd%fb_x)
+      nd = size(changed)
+      if (8 * nd <= size(b)) then
+        y = cd%fb_y
+        do j = 1, nd
+          y = y + (b(changed(j)) - cd%fb_x(changed(j))) * cd%finv(:, changed(j))
+        end do
+        cd%fb_x = b
+        cd%fb_y = y
+        cd%fb_chain = cd%fb_chain + 1
+        return
+      end if
+    end if
+    call sym_times(cd%finv, b, y)
+    cd%fb_x = b
+    cd%fb_y = y
+    cd%fb_valid = .true.
+    cd%fb_chain = 0
+  end subroutine reference_product
 
   !> y = S x for the status whose tangents are kt_all: S0 (s0_times)
   !> plus every CFE's tangent on its positions (keep_pairing: ke0 is zero).
