@@ -44,7 +44,7 @@ module condensed_contact
   public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
             condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair, &
-            condense_change, condensed_begin_lazy, s0_times
+            condense_change, condensed_begin_lazy, s0_times, moving_elements
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -145,6 +145,14 @@ module condensed_contact
     !> increment was not recovered (u's other equations are those of an
     !> earlier increment); qnext_fresh: qnext was made from the last x2.
     logical :: z_valid = .false., lazy = .false., qnext_valid = .false., qnext_fresh = .false.
+    !> The elements with a node that has a dof off the equations
+    !> (prescribed, dependent or inactive: dm%eq 0), in ascending order, for
+    !> the numbering moving_eq (a copy of dm%eq): between two increments
+    !> only those dofs move (moving_elements, add_body_forces).
+    integer, allocatable :: moving_elems(:), moving_eq(:, :)
+    !> (2, nn) the dofs that are not contact equations (start_from's
+    !> umax_rest), made once per factor of K0 (the numbering's positions)
+    logical, allocatable :: off_contact(:, :)
     real(dp), allocatable :: qnext(:), fext_last(:, :), basis(:, :), basis_q(:, :)
     integer :: nb = 0
   end type condensed_t
@@ -362,6 +370,7 @@ contains
     cd%eq_at = cd%n - mc + tperm
     cd%pos = [(0, p = 1, cd%n)]
     cd%pos(cd%eq_at) = [(p, p = 1, mc)]
+    if (allocated(cd%off_contact)) deallocate(cd%off_contact)
     ! the factor was of K0 with its trailing diagonal doubled
     call lower_gram(cd%l22, cd%s)
     do p = 1, mc
@@ -909,16 +918,20 @@ contains
       allocate(cd%fw(2, m%nn))
       cd%fw = 0.0_dp
     end if
-    cd%umax_rest = 0.0_dp
-    do a = 1, m%nn
-      do d = 1, 2
-        e = dm%eq(d, a)
-        if (e > 0) then
-          if (cd%pos(e) > 0) cycle
-        end if
-        cd%umax_rest = max(cd%umax_rest, abs(u(d, a)))
+    if (allocated(cd%off_contact)) then
+      if (any(shape(cd%off_contact) /= shape(u))) deallocate(cd%off_contact)
+    end if
+    if (.not. allocated(cd%off_contact)) then
+      allocate(cd%off_contact(2, m%nn))
+      do a = 1, m%nn
+        do d = 1, 2
+          e = dm%eq(d, a)
+          cd%off_contact(d, a) = .true.
+          if (e > 0) cd%off_contact(d, a) = cd%pos(e) == 0
+        end do
       end do
-    end do
+    end if
+    cd%umax_rest = max(0.0_dp, maxval(abs(u), mask=cd%off_contact))
   end subroutine start_from
 
   !> Purpose: the start of an increment on the contact equations alone
@@ -1020,18 +1033,26 @@ contains
 
   !> Purpose: f += K_body du, element by element, skipping the elements
   !> where du is zero (between increments only prescribed values move).
-  subroutine add_body_forces(m, body, du, f)
+  !> Arguments: elems, if present, the elements to look at, ascending
+  !> (every element with a node where du is not zero among them:
+  !> moving_elements); otherwise all.
+  subroutine add_body_forces(m, body, du, f, elems)
     type(model_t), intent(in) :: m
     type(body_t), intent(in) :: body
     real(dp), intent(in) :: du(:, :)
     real(dp), intent(inout) :: f(:, :)
+    integer, intent(in), optional :: elems(:)
     real(dp) :: ue(2 * max_en), fe(2 * max_en), a
     logical :: moved(size(du, 2)), any_moved
-    integer :: e, i, j, k, nen, nd
+    integer :: e, i, j, k, nen, nd, ie, ne
     integer(kind=8) :: q
     moved = du(1, :) /= 0.0_dp .or. du(2, :) /= 0.0_dp
     if (.not. any(moved)) return
-    do e = 1, m%ne
+    ne = m%ne
+    if (present(elems)) ne = size(elems)
+    do ie = 1, ne
+      e = ie
+      if (present(elems)) e = elems(ie)
       if (.not. carries_stiffness(m, e)) cycle
       nen = elem_nodes(m, e)
       any_moved = .false.
@@ -1406,6 +1427,37 @@ contains
       y(c) = y(c) + dot_product(a(c + 1:mc, c), x(c + 1:mc))
     end do
   end subroutine sym_times
+
+  !> Purpose: cd%moving_elems for the numbering dm (made again where
+  !> dm%eq is not the one it was made for): the elements with a node one
+  !> of whose dofs is not an equation. Where an increment starts from the
+  !> last one's solution on every equation, only their nodes move, and
+  !> add_body_forces with this list gives its whole loop's sums in its
+  !> order (a twelfth of a fretting increment was that loop over every
+  !> element).
+  subroutine moving_elements(cd, m, dm)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(dofmap_t), intent(in) :: dm
+    logical :: fixed(size(dm%eq, 2))
+    integer :: e, n
+    if (allocated(cd%moving_eq)) then
+      if (all(shape(cd%moving_eq) == shape(dm%eq))) then
+        if (all(cd%moving_eq == dm%eq)) return
+      end if
+    end if
+    cd%moving_eq = dm%eq
+    fixed = dm%eq(1, :) <= 0 .or. dm%eq(2, :) <= 0
+    if (allocated(cd%moving_elems)) deallocate(cd%moving_elems)
+    allocate(cd%moving_elems(m%ne))
+    n = 0
+    do e = 1, m%ne
+      if (.not. any(fixed(m%conn(1:elem_nodes(m, e), e)))) cycle
+      n = n + 1
+      cd%moving_elems(n) = e
+    end do
+    cd%moving_elems = cd%moving_elems(1:n)
+  end subroutine moving_elements
 
   !> u(contact equations) = u0 + x2.
   subroutine add_contact_part(cd, dm, u)

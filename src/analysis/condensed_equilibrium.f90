@@ -28,7 +28,7 @@ module condensed_equilibrium
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy, direct_multipliers, condensed_multipliers, condense_change, &
-                               condensed_begin_lazy, s0_times
+                               condensed_begin_lazy, s0_times, moving_elements
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, stabilise_open, &
                                 set_aside_or_stop, factor_fits, factor_made
   use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
@@ -271,7 +271,9 @@ contains
     associate(eq => st%eq, cd => st%eq%cd, m => st%m, dm => st%dm, u => st%u)
       allocate(df(2, m%nn), r(cd%n), dq(cd%m))
       df = 0.0_dp
-      call add_body_forces(m, st%body, u - eq%u_last, df)
+      ! (u is u_last on every equation: the elements of the other dofs)
+      call moving_elements(cd, m, dm)
+      call add_body_forces(m, st%body, u - eq%u_last, df, cd%moving_elems)
       call free_residual(dm, st%fext - cd%fext_last, df, r)
       call condense_change(cd, st%sys, r, dq)
       call condensed_begin_lazy(cd, m, dm, u, dq)

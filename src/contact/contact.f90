@@ -321,11 +321,13 @@ contains
   !> which their orthogonal projection falls, searching on the
   !> configuration x (the initial one, or the deformed one with UPDATE
   !> SEARCH); the status starts closed where the point is on or behind the
-  !> master edge.
-  subroutine contact_search(m, x, cs)
+  !> master edge. wear_later, if present and true (contact_research, which
+  !> brings the worn depths so far), leaves the wear links to the caller.
+  subroutine contact_search(m, x, cs, wear_later)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
     type(contact_set_t), intent(out) :: cs
+    logical, intent(in), optional :: wear_later
     integer, allocatable :: unc(:), uncp(:)
     integer :: ip, nunc, nunc_p
     real(dp) :: dmax
@@ -348,6 +350,9 @@ contains
     if (.not. allocated(cs%notes)) allocate(cs%notes(0))
     cs%uncoupled = unc(1:nunc)
     cs%uncoupled_pair = uncp(1:nunc_p)
+    if (present(wear_later)) then
+      if (wear_later) return
+    end if
     call attach_wear(m, cs)
   end subroutine contact_search
 
@@ -807,7 +812,9 @@ contains
     old%n = cs%n
     old%stages = cs%stages
     if (allocated(cs%wear%pairs)) call move_alloc(cs%wear%pairs, old%wear%pairs)
-    call contact_search(m, x, cs)
+    ! (the wear links once, below, with the depths so far: not a fresh wear
+    ! state to throw away, every surface's areas made again)
+    call contact_search(m, x, cs, wear_later=allocated(old%wear%pairs))
     cs%stabilised = stabilised
     cs%stages = old%stages
     allocate(head(m%nn), next(old%n), matched(old%n))
