@@ -29,7 +29,8 @@ module condensed_contact
   use kinds, only: dp
   use model, only: model_t, carries_stiffness, elem_nodes, nonlinear_material, step_dloads, dload_p
   use solver_codes, only: solver_cholmod, solver_umfpack, solver_mumps, contact_solve_full, contact_solve_condensed
-  use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set
+  use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set, closed_stiffness, &
+                     open_penalty
   use element_interface, only: cfe_in_t, cfe_out_t, max_en, act_tangent
   use cfe_element, only: cfe, cfe_b_matrix
   use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
@@ -127,6 +128,13 @@ module condensed_contact
     logical :: fb_valid = .false.
     integer :: fb_chain = 0
     integer, allocatable :: ref_pos(:, :), kt_ng(:), dset(:), cap_piv(:)
+    !> What each CFE's tangent in kt_all was made for (status_tangents):
+    !> the CFE mapping (map_gen, counted up by map_cfes: the couplings'
+    !> geometry and positions), and per CFE its status, slip sign and
+    !> penalty (kt_key: closed, sliding as 0/1, slip_sign, the penalty in
+    !> force), and kt_kraw its largest diagonal entry.
+    integer :: map_gen = 0, kt_gen = -1
+    real(dp), allocatable :: kt_key(:, :), kt_kraw(:)
     !> Increments solved on the contact equations alone (keep_pairing;
     !> docs/fretting.md, "Cost"). The condensed right-hand side of an
     !> increment that starts from u (free dofs those of the last converged
@@ -462,6 +470,7 @@ contains
     with_tangents = .true.
     if (present(tangents)) with_tangents = tangents
     call dependents_at_cfes(cd, m, cs, dm, maxng)
+    cd%map_gen = cd%map_gen + 1
     if (allocated(cd%ke0)) deallocate(cd%ke0, cd%cfe_pos)
     allocate(cd%ke0(maxng, maxng, cs%n), cd%cfe_pos(maxng, cs%n))
     cd%cfe_pos = 0
@@ -688,7 +697,12 @@ contains
 
   !> Every CFE's tangent of the status (stabilised as cs says) in
   !> kt_all (kt_ng rows; on cfe_pos), kmax the largest element diagonal
-  !> (kbody's or a CFE's).
+  !> (kbody's or a CFE's). A CFE's tangent, B_e^T C B_e (eq. 10), depends on
+  !> its geometry and positions (fixed between two mappings, map_cfes)
+  !> and on its status, slip sign and penalty (cfe_key): one whose key is
+  !> the one its tangent in kt_all was made for keeps it (the statuses of
+  !> an increment differ at a few couplings; before, every CFE was
+  !> evaluated at every status).
   subroutine status_tangents(cd, m, cs, dm, kbody, counts)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
@@ -699,20 +713,47 @@ contains
     real(dp), allocatable :: kt(:, :)
     integer, allocatable :: geq(:)
     integer :: j, ng, maxng
-    real(dp) :: kraw
+    real(dp) :: kraw, key(4)
+    logical :: fresh
     maxng = size(cd%cfe_pos, 1)
     if (allocated(cd%kt_all)) then
       if (size(cd%kt_all, 1) /= maxng .or. size(cd%kt_all, 3) /= cs%n) deallocate(cd%kt_all, cd%kt_ng)
     end if
+    fresh = .not. allocated(cd%kt_all) .or. cd%kt_gen /= cd%map_gen
     if (.not. allocated(cd%kt_all)) allocate(cd%kt_all(maxng, maxng, cs%n), cd%kt_ng(cs%n))
+    if (fresh) then
+      if (allocated(cd%kt_key)) deallocate(cd%kt_key, cd%kt_kraw)
+      allocate(cd%kt_key(4, cs%n), cd%kt_kraw(cs%n))
+      cd%kt_gen = cd%map_gen
+    end if
     cd%kmax = kbody
     do j = 1, cs%n
-      call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
-      cd%kmax = max(cd%kmax, kraw)
-      cd%kt_ng(j) = ng
-      cd%kt_all(1:ng, 1:ng, j) = kt
+      key = cfe_key(cs%c(j), cs%stabilised)
+      if (fresh .or. any(key /= cd%kt_key(:, j))) then
+        call cfe_tangent(m, cs%c(j), cs%stabilised, dm, cd%u0, kt, geq, ng, kraw, counts%coupling)
+        cd%kt_ng(j) = ng
+        cd%kt_all(1:ng, 1:ng, j) = kt
+        cd%kt_key(:, j) = key
+        cd%kt_kraw(j) = kraw
+      end if
+      cd%kmax = max(cd%kmax, cd%kt_kraw(j))
     end do
   end subroutine status_tangents
+
+  !> Purpose: what a CFE's tangent depends on beside its geometry (cfe's
+  !> eq. 10): closed or open, sticking or sliding and the slip sign, and
+  !> the penalty of its state (closed_stiffness, open_penalty).
+  pure function cfe_key(c, stabilised) result(key)
+    type(cfe_t), intent(in) :: c
+    logical, intent(in) :: stabilised
+    real(dp) :: key(4)
+    key = [merge(1.0_dp, 0.0_dp, c%closed), merge(1.0_dp, 0.0_dp, c%sliding), c%slip_sign, 0.0_dp]
+    if (c%closed) then
+      key(4) = closed_stiffness(c)
+    else
+      key(4) = open_penalty(c, stabilised)
+    end if
+  end function cfe_key
 
   !> Purpose: may the status of cs be solved by the low-rank form about
   !> the reference (true: dset, dmat and the capacitance's LU made)? Not
