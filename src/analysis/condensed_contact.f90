@@ -154,10 +154,10 @@ module condensed_contact
     !> earlier increment); qnext_fresh: qnext was made from the last x2.
     logical :: z_valid = .false., lazy = .false., qnext_valid = .false., qnext_fresh = .false.
     !> The elements with a node that has a dof off the equations
-    !> (prescribed, dependent or inactive: dm%eq 0), in ascending order, for
-    !> the numbering moving_eq (a copy of dm%eq): between two increments
+    !> (prescribed, dependent or inactive: dm%eq 0), in ascending order,
+    !> made once per factor of K0 (its numbering): between two increments
     !> only those dofs move (moving_elements, add_body_forces).
-    integer, allocatable :: moving_elems(:), moving_eq(:, :)
+    integer, allocatable :: moving_elems(:)
     !> (2, nn) the dofs that are not contact equations (start_from's
     !> umax_rest), made once per factor of K0 (the numbering's positions)
     logical, allocatable :: off_contact(:, :)
@@ -291,20 +291,20 @@ contains
     type(cfe_in_t) :: ein
     type(cfe_out_t) :: eout
     type(cfe_t) :: c
-    real(dp), allocatable :: u(:, :)
     real(dp) :: kmax
     integer :: j, k, d, i, q
     integer, allocatable :: nodes(:)
-    allocate(mask(2, m%nn), u(2, m%nn))
+    allocate(mask(2, m%nn))
     mask = .false.
-    u = 0.0_dp
     do j = 1, cs%n
       c = cs%c(j)
       ! closed and (with friction) sticking: every dof its B_e^T n or
       ! B_e^T t reaches
       c%closed = .true.
       c%sliding = .false.
-      call cfe_input(m, c, u, .false., ein, nodes)
+      ! (the tangent does not read the displacements: any array of the
+      ! nodes' shape serves, here the coordinates, not a zero copy)
+      call cfe_input(m, c, m%x, .false., ein, nodes)
       call cfe(act_tangent, ein, eout)
       kmax = 0.0_dp
       do k = 1, 2 * ein%nen
@@ -379,6 +379,7 @@ contains
     cd%pos = [(0, p = 1, cd%n)]
     cd%pos(cd%eq_at) = [(p, p = 1, mc)]
     if (allocated(cd%off_contact)) deallocate(cd%off_contact)
+    if (allocated(cd%moving_elems)) deallocate(cd%moving_elems)
     ! the factor was of K0 with its trailing diagonal doubled
     call lower_gram(cd%l22, cd%s)
     do p = 1, mc
@@ -995,16 +996,16 @@ contains
   end subroutine condensed_begin_lazy
 
   !> Purpose: the Euclidean norm of r as the square root of its dot product
-  !> where its largest entry is between 1e-100 and 1e100 (no square
-  !> overflows, none that counts underflows), norm2's scaled sum
-  !> otherwise (a third of an increment's start was norm2 over the
-  !> equations).
+  !> where that sum of squares is between 1e-200 and 1e200 (no square
+  !> overflowed, and those that underflowed count for nothing against
+  !> it), norm2's scaled sum otherwise (a third of an increment's start
+  !> was norm2 over the equations).
   pure real(dp) function plain_norm(r) result(nrm)
     real(dp), intent(in) :: r(:)
-    real(dp) :: big
-    big = maxval(abs(r))
-    if (big > 1.0e-100_dp .and. big < 1.0e100_dp) then
-      nrm = sqrt(dot_product(r, r))
+    real(dp) :: ss
+    ss = dot_product(r, r)
+    if (ss > 1.0e-200_dp .and. ss < 1.0e200_dp) then
+      nrm = sqrt(ss)
     else
       nrm = norm2(r)
     end if
@@ -1496,8 +1497,8 @@ contains
     end do
   end subroutine sym_times
 
-  !> Purpose: cd%moving_elems for the numbering dm (made again where
-  !> dm%eq is not the one it was made for): the elements with a node one
+  !> Purpose: cd%moving_elems for the numbering dm (made once per factor
+  !> of K0, which every numbering has before an increment starts): the elements with a node one
   !> of whose dofs is not an equation. Where an increment starts from the
   !> last one's solution on every equation, only their nodes move, and
   !> add_body_forces with this list gives its whole loop's sums in its
@@ -1509,14 +1510,8 @@ contains
     type(dofmap_t), intent(in) :: dm
     logical :: fixed(size(dm%eq, 2))
     integer :: e, n
-    if (allocated(cd%moving_eq)) then
-      if (all(shape(cd%moving_eq) == shape(dm%eq))) then
-        if (all(cd%moving_eq == dm%eq)) return
-      end if
-    end if
-    cd%moving_eq = dm%eq
+    if (allocated(cd%moving_elems)) return
     fixed = dm%eq(1, :) <= 0 .or. dm%eq(2, :) <= 0
-    if (allocated(cd%moving_elems)) deallocate(cd%moving_elems)
     allocate(cd%moving_elems(m%ne))
     n = 0
     do e = 1, m%ne
