@@ -1399,19 +1399,22 @@ contains
     integer, parameter :: max_chain = 8
     integer :: j, nd
     integer, allocatable :: changed(:)
-    if (cd%fb_valid .and. cd%fb_chain < max_chain .and. size(cd%fb_x) == size(b)) then
-      changed = pack([(j, j = 1, size(b))], b /= cd%fb_x)
-      nd = size(changed)
-      if (8 * nd <= size(b)) then
-        y = cd%fb_y
-        do j = 1, nd
-          y = y + (b(changed(j)) - cd%fb_x(changed(j))) * cd%finv(:, changed(j))
-        end do
-        cd%fb_x = b
-        cd%fb_y = y
-        cd%fb_chain = cd%fb_chain + 1
-        return
+    nd = size(b) + 1
+    if (cd%fb_valid .and. cd%fb_chain < max_chain) then
+      if (size(cd%fb_x) == size(b)) then
+        changed = pack([(j, j = 1, size(b))], b /= cd%fb_x)
+        nd = size(changed)
       end if
+    end if
+    if (8 * nd <= size(b)) then
+      y = cd%fb_y
+      do j = 1, nd
+        y = y + (b(changed(j)) - cd%fb_x(changed(j))) * cd%finv(:, changed(j))
+      end do
+      cd%fb_x = b
+      cd%fb_y = y
+      cd%fb_chain = cd%fb_chain + 1
+      return
     end if
     call sym_times(cd%finv, b, y)
     cd%fb_x = b
