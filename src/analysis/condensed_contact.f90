@@ -446,11 +446,47 @@ contains
     logical, allocatable :: mask(:, :)
     fits = .false.
     if (.not. (cd%active .and. cd%keep_pairing) .or. .not. allocated(cd%ke0) .or. cs%n == 0) return
-    call contact_dof_mask(m, cs, prescribed, mpc, mask)
-    fits = .not. any(mask .and. .not. cd%zone)
+    ! every free dof of the couplings' nodes in the zone: so are those their
+    ! tangents reach (contact_dof_mask's, without its CFE calls)
+    fits = nodes_in_zone(m, cs, prescribed, mpc, cd%zone)
+    if (.not. fits) then
+      call contact_dof_mask(m, cs, prescribed, mpc, mask)
+      fits = .not. any(mask .and. .not. cd%zone)
+    end if
     if (.not. fits) return
     call map_cfes(cd, m, cs, dm, cs, counts, tangents=.false.)
   end subroutine condensed_repair
+
+  !> Purpose: does zone hold every dof of the CFEs' nodes that is not
+  !> prescribed (a dependent dof: the independent dofs of its
+  !> constraint)? A superset of the dofs contact_dof_mask marks (it
+  !> leaves out those a CFE's tangent does not reach), so true here means
+  !> the mask lies in the zone too.
+  logical function nodes_in_zone(m, cs, prescribed, mpc, zone) result(inside)
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    logical, intent(in) :: prescribed(:, :), zone(:, :)
+    type(mpc_t), intent(in) :: mpc
+    integer :: j, k, d, i, q, nen
+    integer, allocatable :: nodes(:)
+    inside = .false.
+    do j = 1, cs%n
+      call cfe_nodes(m, cs%c(j), nodes, nen)
+      do k = 1, nen
+        do d = 1, 2
+          i = mpc%dep(d, nodes(k))
+          if (i == 0) then
+            if (.not. (prescribed(d, nodes(k)) .or. zone(d, nodes(k)))) return
+            cycle
+          end if
+          do q = mpc%xt(i), mpc%xt(i + 1) - 1
+            if (.not. (prescribed(mpc%tdof(q), mpc%tnode(q)) .or. zone(mpc%tdof(q), mpc%tnode(q)))) return
+          end do
+        end do
+      end do
+    end do
+    inside = .true.
+  end function nodes_in_zone
 
   !> Trailing positions of every CFE's rows (its dofs, or with
   !> constraints the equations its transformed tangent reaches), its
