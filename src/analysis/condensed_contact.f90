@@ -871,21 +871,17 @@ contains
       call add_block(cd%ref_k(:, :, j), cd%ref_pos(:, j), -1.0_dp)
     end do
   contains
-    !> cap(:, at(pb)) += sign kt(a, b) fdd(:, at(pa)) over the block (the
-    !> block's column summed first, then added: one pass over cap's column).
+    !> cap(:, at(pb)) += sign kt(a, b) fdd(:, at(pa)) over the block.
     subroutine add_block(kt, pos, sign)
       real(dp), intent(in) :: kt(:, :), sign
       integer, intent(in) :: pos(:)
-      real(dp) :: col(k)
       integer :: a, b
       do b = 1, size(pos)
         if (pos(b) == 0) cycle
-        col = 0.0_dp
         do a = 1, size(pos)
           if (pos(a) == 0) cycle
-          col = col + (sign * kt(a, b)) * fdd(:, at(pos(a)))
+          cd%cap(:, at(pos(b))) = cd%cap(:, at(pos(b))) + (sign * kt(a, b)) * fdd(:, at(pos(a)))
         end do
-        cd%cap(:, at(pos(b))) = cd%cap(:, at(pos(b))) + col
       end do
     end subroutine add_block
   end subroutine capacitance
