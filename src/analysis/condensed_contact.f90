@@ -128,6 +128,11 @@ module condensed_contact
     logical :: fb_valid = .false.
     integer :: fb_chain = 0
     integer, allocatable :: ref_pos(:, :), kt_ng(:), dset(:), cap_piv(:)
+    !> The reference's share of every capacitance matrix, made once per
+    !> reference: ref_cols(:, c) = -(F E_ref K_ref)(:, c), the column of
+    !> reference position ref_cpos(c) (reference_columns).
+    real(dp), allocatable :: ref_cols(:, :)
+    integer, allocatable :: ref_cpos(:)
     !> What each CFE's tangent in kt_all was made for (status_tangents):
     !> the CFE mapping (map_gen, counted up by map_cfes: the couplings'
     !> geometry and positions), and per CFE its status, slip sign and
@@ -867,8 +872,10 @@ contains
     do j = 1, cs%n
       if (cs%c(j)%closed) call add_block(cd%kt_all(:, :, j), cd%cfe_pos(:, j), 1.0_dp)
     end do
-    do j = 1, size(cd%ref_pos, 2)
-      call add_block(cd%ref_k(:, :, j), cd%ref_pos(:, j), -1.0_dp)
+    ! the reference's blocks: their columns of F K_ref, at this status's
+    ! positions (rows dset)
+    do j = 1, size(cd%ref_cpos)
+      cd%cap(:, at(cd%ref_cpos(j))) = cd%cap(:, at(cd%ref_cpos(j))) + cd%ref_cols(cd%dset, j)
     end do
   contains
     !> cap(:, at(pb)) += sign kt(a, b) fdd(:, at(pa)) over the block.
@@ -953,9 +960,42 @@ contains
     closed = pack([(j, j = 1, cs%n)], cs%c(1:cs%n)%closed)
     cd%ref_pos = cd%cfe_pos(:, closed)
     cd%ref_k = cd%kt_all(:, :, closed)
+    call reference_columns(cd)
     cd%ref_valid = .true.
     cd%fb_valid = .false.
   end subroutine set_reference
+
+  !> Purpose: the reference's share of the capacitance matrix (capacitance:
+  !> cap = I + F_DD dmat, dmat holding minus each reference block): for
+  !> each position p its reference blocks reach, ref_cols(:, c) = -sum
+  !> over the blocks of kt(a, b) F(:, pa) with pb = p, over every contact
+  !> equation; a status takes the rows of its positions. Made once per
+  !> reference, not the reference's axpys at every status.
+  subroutine reference_columns(cd)
+    type(condensed_t), intent(inout) :: cd
+    integer, allocatable :: col(:)
+    integer :: j, a, b, nc
+    allocate(col(cd%m))
+    col = 0
+    nc = 0
+    call add_positions(reshape(cd%ref_pos, [size(cd%ref_pos)]), col, nc)
+    if (allocated(cd%ref_cols)) deallocate(cd%ref_cols, cd%ref_cpos)
+    allocate(cd%ref_cols(cd%m, nc), cd%ref_cpos(nc))
+    do a = 1, cd%m
+      if (col(a) > 0) cd%ref_cpos(col(a)) = a
+    end do
+    cd%ref_cols = 0.0_dp
+    do j = 1, size(cd%ref_pos, 2)
+      do b = 1, size(cd%ref_pos, 1)
+        if (cd%ref_pos(b, j) == 0) cycle
+        do a = 1, size(cd%ref_pos, 1)
+          if (cd%ref_pos(a, j) == 0) cycle
+          cd%ref_cols(:, col(cd%ref_pos(b, j))) = cd%ref_cols(:, col(cd%ref_pos(b, j))) - &
+                                                  cd%ref_k(a, b, j) * cd%finv(:, cd%ref_pos(a, j))
+        end do
+      end do
+    end do
+  end subroutine reference_columns
 
   !> Purpose: condenses the right-hand side of an increment that starts
   !> from displacements u (prescribed values in place) under loads fext:
