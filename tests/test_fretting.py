@@ -28,10 +28,15 @@ What is checked, on the last increment of each run's contact table:
 * the increments that are not written are solved on the contact
   equations alone, and a written one recovers the bodies exactly: the
   flat's element stresses at every 4th increment are the full solve's
-  (measured 1.6e-12 of the largest; tolerance 1e-9).
+  (measured 1.6e-12 of the largest; tolerance 1e-9);
+* the debug build (`make debug`: -fcheck=all) runs the low-rank status
+  solves and gives the optimised build's worn depths (measured 9.5e-14
+  and 1.3e-13 of the deepest on the flat and the cylinder; tolerance
+  1e-11).
 """
 import os
 import shutil
+import subprocess
 import sys
 
 import numpy as np
@@ -171,3 +176,25 @@ def test_fretting_unwritten_increments_recover_the_bodies_exactly():
         scale = np.max(np.abs(full[k]))
         assert scale > 0 and cond[k].shape == full[k].shape
         assert np.max(np.abs(cond[k] - full[k])) <= 1e-9 * scale, (k, np.max(np.abs(cond[k] - full[k])) / scale)
+
+
+def test_fretting_debug_build_gives_the_worn_depths():
+    """Two cycles without a jump (16 increments, each paired again, its
+    statuses solved in low-rank form): the debug build runs them (its
+    run-time checks on every array and allocation) and its worn depths
+    of both surfaces are the optimised build's to 1e-11 of the deepest."""
+    debug = os.path.join(ROOT, "build-debug", "cfe2d")
+    if not os.path.exists(debug):
+        raise Skip("build-debug/cfe2d not built (make debug)")
+    text = fretting.deck(_mesh(), 2, 1, INC, INC)
+    opt = run_deck("fretting_builds_opt", text).ok()
+    assert _step_summary(opt.listing_path, 2)["condensed_lowrank_statuses"] > 0
+    d = workdir("fretting_builds_debug")
+    path = os.path.join(d, "fretting_builds_debug.inp")
+    with open(path, "w") as f:
+        f.write(text)
+    proc = subprocess.run([debug, "-q", "-d", "16", "-o", d, path], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    for a, b in zip(_worn(os.path.join(d, "fretting_builds_debug.out")), _worn(opt.listing_path)):
+        assert a.shape == b.shape and np.max(b) > 0
+        assert np.max(np.abs(a - b)) <= 1e-11 * np.max(np.abs(b)), np.max(np.abs(a - b)) / np.max(np.abs(b))

@@ -20,7 +20,7 @@
 module condensed_equilibrium
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
-  use contact, only: contact_forces
+  use contact, only: contact_forces, frictional_set
   use model, only: model_t
   use assembly, only: body_t, body_forces, free_residual, nonlinear_body_forces, body_predictor_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
@@ -28,7 +28,7 @@ module condensed_equilibrium
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy, direct_multipliers, condensed_multipliers, condense_change, &
-                               condensed_begin_lazy, s0_times
+                               condensed_begin_lazy, s0_times, moving_elements
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, stabilise_open, &
                                 set_aside_or_stop, factor_fits, factor_made
   use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
@@ -132,11 +132,21 @@ contains
   end subroutine condensed_solve_status
 
   !> Purpose: the CFE forces on the contact equations before the switch,
-  !> and the bodies' part of the potential energy of the solution.
+  !> and the bodies' part of the potential energy of the solution. Not
+  !> the energy of a frictional set paired at every increment
+  !> (keep_pairing): Coulomb friction has no potential, the status search
+  !> reads no energy of a frictional set (contact_switch's block pivots),
+  !> and such a set stays frictional through the increment (a linear
+  !> step pairs only at its start); the energy, an m x m product with S0,
+  !> was a twelfth of a fretting increment.
   subroutine condensed_solution_energy(path, st)
     class(condensed_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
     call contact_part_forces(st%eq%cd, st%m, st%cs, st%dm, st%u, path%fold, st%eq%counts%coupling)
+    if (st%eq%cd%keep_pairing .and. .not. st%body%nonlinear .and. frictional_set(st%cs)) then
+      st%energy = 0.0_dp
+      return
+    end if
     st%energy = condensed_energy(st%eq%cd, st%dm, st%cs, st%u)
   end subroutine condensed_solution_energy
 
@@ -261,7 +271,9 @@ contains
     associate(eq => st%eq, cd => st%eq%cd, m => st%m, dm => st%dm, u => st%u)
       allocate(df(2, m%nn), r(cd%n), dq(cd%m))
       df = 0.0_dp
-      call add_body_forces(m, st%body, u - eq%u_last, df)
+      ! (u is u_last on every equation: the elements of the other dofs)
+      call moving_elements(cd, m, dm)
+      call add_body_forces(m, st%body, u - eq%u_last, df, cd%moving_elems)
       call free_residual(dm, st%fext - cd%fext_last, df, r)
       call condense_change(cd, st%sys, r, dq)
       call condensed_begin_lazy(cd, m, dm, u, dq)

@@ -21,13 +21,13 @@ module contact
   use messages, only: fatal
   use model
   use growable, only: append
-  use element_catalogue, only: catalogue, max_nodes
+  use element_catalogue, only: catalogue, max_nodes, max_edges
   use mesh_topology, only: is_boundary_edge
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, piece_point, edge_areas, edge_natural, &
                               edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line, shape_at
   use contact_mortar, only: face_cuts, edge_tol, mortar_t, mortar_integrals
-  use edge_tree, only: edge_tree_t, surface_tree, nearest_edge
+  use edge_tree, only: edge_tree_t, surface_tree, nearest_edge, sort_ints
   use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted, coarse_straight_slave
   use element_interface, only: cfe_in_t, cfe_out_t, max_slave, act_residual
   use cfe_element, only: cfe
@@ -240,8 +240,8 @@ contains
     type(model_t), intent(in) :: m
     integer, intent(in) :: nodes(:)
     real(dp), intent(out) :: area(:), h(:), emod(:)
-    integer, allocatable :: pos(:)
-    integer :: e, k, j, q
+    integer, allocatable :: pos(:), ek(:, :)
+    integer :: e, k, j, q, i, nek
     real(dp) :: a(3), len
     type(edge_t) :: ed
     allocate(pos(m%nn))
@@ -249,38 +249,85 @@ contains
     do k = 1, size(nodes)
       pos(nodes(k)) = k
     end do
+    call list_edges(m, nodes, pos, ek, nek)
     area = 0.0_dp
     h = huge(1.0_dp)
     emod = 0.0_dp
-    do e = 1, m%ne
-      if (.not. is_continuum(m, e)) cycle
-      do k = 1, catalogue(m%etype(e))%nedges
-        ed = get_edge(m, m%x, e, k)
-        if (pos(ed%node(1)) == 0 .or. pos(ed%node(2)) == 0) cycle
-        if (.not. is_boundary_edge(m%topo, e, k)) cycle
-        a = edge_areas(ed)
-        len = edge_length(ed) / (ed%nn - 1)
-        do j = 1, ed%nn
-          q = pos(ed%node(j))
-          if (q == 0) cycle
-          area(q) = area(q) + a(j)
-          h(q) = min(h(q), len)
-          emod(q) = max(emod(q), section_e(m, e))
-        end do
+    do i = 1, nek
+      e = ek(1, i)
+      k = ek(2, i)
+      ed = get_edge(m, m%x, e, k)
+      if (pos(ed%node(1)) == 0 .or. pos(ed%node(2)) == 0) cycle
+      if (.not. is_boundary_edge(m%topo, e, k)) cycle
+      a = edge_areas(ed)
+      len = edge_length(ed) / (ed%nn - 1)
+      do j = 1, ed%nn
+        q = pos(ed%node(j))
+        if (q == 0) cycle
+        area(q) = area(q) + a(j)
+        h(q) = min(h(q), len)
+        emod(q) = max(emod(q), section_e(m, e))
       end do
     end do
   end subroutine tributary_lengths
+
+  !> Purpose: the continuum element edges (e, k) whose corners may both be
+  !> list nodes, in ascending order of e and then k (the order of a loop
+  !> over every element's edges, so that the areas summed over them round
+  !> as that loop's did). From the topology's edges of each list node as
+  !> lower corner (an edge with both corners in the list is in the bucket
+  !> of one of them), or every element's edges where the topology is not
+  !> of this mesh. The UPDATE SEARCH path searches every increment, and the
+  !> loop over the whole mesh was a fifth of a fretting increment.
+  !> Arguments: pos(node) the node's place in nodes (0 outside); ek(1:2,
+  !> 1:nek) returns the edges (element, local edge).
+  subroutine list_edges(m, nodes, pos, ek, nek)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: nodes(:), pos(:)
+    integer, allocatable, intent(out) :: ek(:, :)
+    integer, intent(out) :: nek
+    integer, allocatable :: key(:)
+    integer :: e, k, a, j
+    nek = 0
+    if (m%topo%ne /= m%ne .or. .not. allocated(m%topo%first)) then
+      allocate(ek(2, m%ne * max_edges))
+      do e = 1, m%ne
+        if (.not. is_continuum(m, e)) cycle
+        do k = 1, catalogue(m%etype(e))%nedges
+          nek = nek + 1
+          ek(:, nek) = [e, k]
+        end do
+      end do
+      return
+    end if
+    allocate(key(16))
+    do k = 1, size(nodes)
+      a = nodes(k)
+      if (pos(a) /= k .or. a + 1 > size(m%topo%first)) cycle   ! a repeated node: once
+      do j = m%topo%first(a), m%topo%first(a + 1) - 1
+        if (pos(m%topo%edge_upper(j)) == 0) cycle
+        call append(key, nek, max_edges * (m%topo%edge_elem(j) - 1) + m%topo%edge_local(j) - 1)
+      end do
+    end do
+    key = key(1:nek)
+    call sort_ints(key)
+    allocate(ek(2, nek))
+    ek(1, :) = key / max_edges + 1
+    ek(2, :) = mod(key, max_edges) + 1
+  end subroutine list_edges
 
   !> Purpose: couples the slave points of every pair (slave nodes, or
   !> Gauss points of 3-node slave faces) to the nearest master edge on
   !> which their orthogonal projection falls, searching on the
   !> configuration x (the initial one, or the deformed one with UPDATE
   !> SEARCH); the status starts closed where the point is on or behind the
-  !> master edge.
-  subroutine contact_search(m, x, cs)
+  !> master edge. wear_later, if present and true (contact_research, which
+  !> brings the worn depths so far), leaves the wear links to the caller.
+  subroutine contact_search(m, x, cs, wear_later)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
     type(contact_set_t), intent(out) :: cs
+    logical, intent(in), optional :: wear_later
     integer, allocatable :: unc(:), uncp(:)
     integer :: ip, nunc, nunc_p
     real(dp) :: dmax
@@ -303,6 +350,9 @@ contains
     if (.not. allocated(cs%notes)) allocate(cs%notes(0))
     cs%uncoupled = unc(1:nunc)
     cs%uncoupled_pair = uncp(1:nunc_p)
+    if (present(wear_later)) then
+      if (wear_later) return
+    end if
     call attach_wear(m, cs)
   end subroutine contact_search
 
@@ -762,7 +812,9 @@ contains
     old%n = cs%n
     old%stages = cs%stages
     if (allocated(cs%wear%pairs)) call move_alloc(cs%wear%pairs, old%wear%pairs)
-    call contact_search(m, x, cs)
+    ! (the wear links once, below, with the depths so far: not a fresh wear
+    ! state to throw away, every surface's areas made again)
+    call contact_search(m, x, cs, wear_later=allocated(old%wear%pairs))
     cs%stabilised = stabilised
     cs%stages = old%stages
     allocate(head(m%nn), next(old%n), matched(old%n))

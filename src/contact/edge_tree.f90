@@ -27,7 +27,8 @@ module edge_tree
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_length
   implicit none
   private
-  public :: edge_tree_t, surface_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates
+  public :: edge_tree_t, surface_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates, &
+            sort_ints
 
   !> A projection this far outside [0, 1] along an edge still counts: it
   !> catches slave nodes exactly above a master vertex.
@@ -44,6 +45,14 @@ module edge_tree
     integer, allocatable :: left(:)        ! its first child (the second is left + 1), 0 at a leaf
     integer, allocatable :: perm(:)        ! edge indices, grouped by node
     real(dp) :: step = 0.0_dp              ! mean box size: the first radius and its growth
+    !> the edges themselves (surface_tree; not for boxes_tree's items), so
+    !> that a search judges them without making each again (get_edge)
+    type(edge_t), allocatable :: ed(:)
+    !> every edge straight (2 nodes), and the longest chord: an edge that
+    !> takes a point at |d| then has the foot within |d| of it, and |d| is
+    !> at most the larger of the search distance and half the chord (judge)
+    logical :: straight = .false.
+    real(dp) :: longest = 0.0_dp
     !> every coordinate finite: else the searches look at every edge (a
     !> projection onto an edge with a NaN is judged there as before)
     logical :: finite = .true.
@@ -62,10 +71,14 @@ contains
     real(dp) :: p(2), d0(2), d1(2), c(2), pts(2, 3), grow, scale
     integer :: j, np
     tree%n = size(ms%elem)
-    allocate(tree%ebox(4, tree%n))
+    allocate(tree%ebox(4, tree%n), tree%ed(tree%n))
     scale = 0.0_dp
+    tree%straight = .true.
     do j = 1, tree%n
       ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+      tree%ed(j) = ed
+      tree%straight = tree%straight .and. ed%nn == 2
+      tree%longest = max(tree%longest, edge_length(ed))
       pts(:, 1:2) = ed%x(:, 1:2)
       np = 2
       if (ed%nn == 3) then
@@ -333,7 +346,7 @@ contains
     type(edge_tree_t), intent(in), optional :: tree
     integer, allocatable :: cand(:)
     integer :: j, ncand
-    real(dp) :: dbest, r, rall
+    real(dp) :: dbest, r, rall, rlim
     best = 0
     tbest = 0.0_dp
     dbest = huge(1.0_dp)
@@ -348,22 +361,28 @@ contains
       end do
       return
     end if
+    ! no edge takes the point at |d| > rlim (judge): a point farther than
+    ! that from every edge (a slave node beyond the search distance) is
+    ! answered without judging all of them
+    rlim = huge(1.0_dp)
+    if (tree%straight) rlim = max(dmax, 0.5_dp * tree%longest)
     r = box_distance(tree%box(:, 1), xs) + tree%step
     do while (r < rall)
       call tree_candidates(tree, xs, r, cand, ncand)
       do j = 1, ncand
-        call judge(m, x, ms, cand(j), xs, skip_node, skip_elem, dmax, best, tbest, dbest)
+        call judge(m, x, ms, cand(j), xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
       end do
       ! every edge with |d| <= r was judged
       if (best > 0 .and. dbest <= r) return
       best = 0
       tbest = 0.0_dp
       dbest = huge(1.0_dp)
+      if (r >= rlim) return
       r = 2.0_dp * r + tree%step
     end do
     ! a radius that takes in every edge (or one that is not finite)
     do j = 1, size(ms%elem)
-      call judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest)
+      call judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
     end do
   end subroutine nearest_edge
 
@@ -383,17 +402,27 @@ contains
   !> projection falls on it (within edge_tol), xs is not behind it by more
   !> than half its length (the far side of the master body) nor farther
   !> than dmax in front. Edges of skip_elem and through skip_node are not.
-  subroutine judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest)
+  !> tree, if present, holds the edge made on x (surface_tree).
+  subroutine judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), xs(2), dmax
     type(surface_t), intent(in) :: ms
     integer, intent(in) :: j, skip_node, skip_elem
     integer, intent(inout) :: best
     real(dp), intent(inout) :: tbest, dbest
+    type(edge_tree_t), intent(in), optional :: tree
     type(edge_t) :: ed
     real(dp) :: nvec(2), t, d
     if (ms%elem(j) == skip_elem) return
-    ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+    if (present(tree)) then
+      if (allocated(tree%ed)) then
+        ed = tree%ed(j)
+      else
+        ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+      end if
+    else
+      ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+    end if
     if (any(ed%node(1:ed%nn) == skip_node)) return
     call project_to_edge(ed, xs, t, nvec, d)
     if (t < -edge_tol .or. t > 1.0_dp + edge_tol) return
