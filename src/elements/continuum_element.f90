@@ -34,7 +34,7 @@ module continuum_element
   use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, &
                                act_thermal, wants
-  use shape_functions, only: shape_at, gauss_rule, extrapolation, quad4_shape
+  use shape_functions, only: shape_at, gauss_rule, extrapolation, quad4_shape, jacobian_det
   use materials, only: elastic_matrix, rotate_stiffness, state_matrix, orientation_axes
   implicit none
   private
@@ -57,7 +57,7 @@ contains
     real(dp) :: jac(2, 2), jinv(2, 2), dx(2, nen)
     integer :: k
     jac = matmul(dn, transpose(xy))
-    detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    detj = jacobian_det(jac, dn, xy)
     jinv(1, 1) = jac(2, 2) / detj
     jinv(2, 2) = jac(1, 1) / detj
     jinv(1, 2) = -jac(1, 2) / detj

@@ -16,7 +16,7 @@
 module heat_element
   use kinds, only: dp
   use element_catalogue, only: catalogue, max_nodes, max_ip, is_triangle, edge_node_count, shape_tri6, shape_quad8
-  use shape_functions, only: shape_at, line_shape, gauss_line, gauss_rule
+  use shape_functions, only: shape_at, line_shape, gauss_line, gauss_rule, jacobian_det
   use continuum_element, only: volume_factor
   implicit none
   private
@@ -248,7 +248,7 @@ contains
     nen = catalogue(et)%nodes
     call shape_at(catalogue(et)%shape, xi, n, dn)
     jac = matmul(dn(:, 1:nen), transpose(xy(:, 1:nen)))
-    detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    detj = jacobian_det(jac, dn(:, 1:nen), xy(:, 1:nen))
     dx = 0.0_dp
     if (detj <= 0.0_dp) return
     jinv(1, 1) = jac(2, 2) / detj

@@ -70,7 +70,7 @@ module nonlinear_continuum
   use element_catalogue, only: max_nodes, max_ip, state_axisymmetric, state_plane_stress, shape_quad4, &
                                state_plane_strain
   use element_interface, only: elem_in_t, elem_out_t, act_tangent, act_residual, act_stresses, wants, max_hist
-  use shape_functions, only: shape_at, gauss_rule, extrapolation
+  use shape_functions, only: shape_at, gauss_rule, extrapolation, jacobian_det
   use continuum_element, only: volume_factor, strain_matrix, is_one_point_quad, uniform_strain, hourglass_modes, &
                                material_matrix
   use material_laws, only: material_response, hist_peeq, fc_i, fc_j, is_hyperelastic
@@ -354,7 +354,7 @@ contains
     nen = ein%nen
     call shape_at(ein%kind, xi, n, dn)
     jac = matmul(dn(:, 1:nen), transpose(ein%xy(:, 1:nen)))
-    detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    detj = jacobian_det(jac, dn(:, 1:nen), ein%xy(:, 1:nen))
     jinv = reshape([jac(2, 2), -jac(2, 1), -jac(1, 2), jac(1, 1)], [2, 2]) / detj
     dndx = 0.0_dp
     dndx(:, 1:nen) = matmul(jinv, dn(:, 1:nen))

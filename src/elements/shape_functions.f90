@@ -12,7 +12,7 @@ module shape_functions
   implicit none
   private
   public :: shape_at, quad4_shape, tri3_shape, line_shape, truss_shape, gauss_rule, gauss_line, load_rule, &
-            extrapolation
+            extrapolation, jacobian_det
 
   real(dp), parameter :: xi_node(8) = [-1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, -1.0_dp]
   real(dp), parameter :: eta_node(8) = [-1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 0.0_dp, 1.0_dp, 0.0_dp]
@@ -308,4 +308,30 @@ contains
       end if
     end do
   end subroutine extrapolation
+  !> Purpose: det J = det(dN X^T), and exactly zero where it is below
+  !> 1e-10 of the size the element's nodes give it (the sums of |dN/dxi|
+  !> and |dN/deta| times the nodes' distances from their centroid): there
+  !> its sign is round-off (a degenerate element: a mid-side node moved
+  !> onto a corner makes dx/dxi vanish at an integration point, computed
+  !> as 1e-17 of either sign), which the optimised and the debug builds
+  !> decided differently (fuzz seed 23 mutant 736: one build refused the
+  !> element, the other ran on to a singular stiffness). Zero is what
+  !> the element checks refuse.
+  !> Arguments: jac the Jacobian dN X^T; dn(2, nen) the natural
+  !> derivatives and xy(2, nen) the nodes it was made from.
+  pure real(dp) function jacobian_det(jac, dn, xy) result(detj)
+    real(dp), intent(in) :: jac(2, 2), dn(:, :), xy(:, :)
+    real(dp) :: c(2), a, b, d
+    integer :: k
+    detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    c = sum(xy, dim=2) / size(xy, 2)
+    a = 0.0_dp
+    b = 0.0_dp
+    do k = 1, size(xy, 2)
+      d = norm2(xy(:, k) - c)
+      a = a + abs(dn(1, k)) * d
+      b = b + abs(dn(2, k)) * d
+    end do
+    if (abs(detj) <= 1.0e-10_dp * a * b) detj = 0.0_dp
+  end function jacobian_det
 end module shape_functions
