@@ -45,7 +45,7 @@ module condensed_contact
   public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
             condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair, &
-            condense_change, condensed_begin_lazy, s0_times, moving_elements
+            condense_change, condensed_begin_lazy, s0_times, moving_elements, forward_rhs
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -1009,16 +1009,30 @@ contains
     type(linear_system_t), intent(inout) :: sys
     real(dp), intent(in) :: fext(:, :), u(:, :), fbody(:, :)
     call start_from(cd, m, dm, u)
+    call forward_rhs(cd, dm, sys, fext, fbody)
+    cd%q0 = cd%z(cd%n - cd%m + 1:cd%n)
+    call upper_times(cd%l22, cd%q0, .true.)
+  end subroutine condensed_begin
+
+  !> Purpose: the forward-solved right-hand side of the increment's start,
+  !> cd%z = L^-1 P r with r = fext - fbody on the free equations (both
+  !> starts: condensed_begin, and a lazy start's when its interior is
+  !> wanted).
+  !> Arguments: cd the condensed solve; dm the numbering; sys the bodies'
+  !> factor; fext the loads, fbody the bodies' forces at the start.
+  subroutine forward_rhs(cd, dm, sys, fext, fbody)
+    type(condensed_t), intent(inout) :: cd
+    type(dofmap_t), intent(in) :: dm
+    type(linear_system_t), intent(inout) :: sys
+    real(dp), intent(in) :: fext(:, :), fbody(:, :)
     if (allocated(cd%z)) then
       if (size(cd%z) /= cd%n) deallocate(cd%z)
     end if
     if (.not. allocated(cd%z)) allocate(cd%z(cd%n))
     call free_residual(dm, fext, fbody, cd%z)
     call sys_forward(sys, cd%z)
-    cd%q0 = cd%z(cd%n - cd%m + 1:cd%n)
-    call upper_times(cd%l22, cd%q0, .true.)
     cd%z_valid = .true.
-  end subroutine condensed_begin
+  end subroutine forward_rhs
 
   !> Purpose: what both starts of an increment keep: u as the start (u0),
   !> the work forces allocated, and the largest displacement off the

@@ -24,11 +24,11 @@ module condensed_equilibrium
   use model, only: model_t
   use assembly, only: body_t, body_forces, free_residual, nonlinear_body_forces, body_predictor_forces
   use dof_numbering, only: dofmap_t, expand_dependent, reduce_dependent
-  use linear_solver, only: linear_system_t, sys_analyse, sys_forward, factor_singular
+  use linear_solver, only: linear_system_t, sys_analyse, factor_singular
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy, direct_multipliers, condensed_multipliers, condense_change, &
-                               condensed_begin_lazy, s0_times, moving_elements
+                               condensed_begin_lazy, s0_times, moving_elements, forward_rhs
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, stabilise_open, &
                                 set_aside_or_stop, factor_fits, factor_made
   use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
@@ -368,13 +368,7 @@ contains
       if (cd%z_valid) return
       allocate(fb(2, m%nn))
       call body_forces(m, body, cd%u0, fb)
-      if (allocated(cd%z)) then
-        if (size(cd%z) /= cd%n) deallocate(cd%z)
-      end if
-      if (.not. allocated(cd%z)) allocate(cd%z(cd%n))
-      call free_residual(dm, fext, fb, cd%z)
-      call sys_forward(sys, cd%z)
-      cd%z_valid = .true.
+      call forward_rhs(cd, dm, sys, fext, fb)
     end associate
   end subroutine forward_start
 
