@@ -433,7 +433,7 @@ contains
                                      f%eq%counts, dtemp, f%body, dt)
     else
       call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &
-                                     f%eq%counts, body=f%body, dt=dt)
+                                     f%eq%counts, body=f%body, dt=dt, lean=f%eq%cd%lazy)
     end if
     t1 = wall_time()
     do k = 1, size(obs)

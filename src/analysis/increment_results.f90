@@ -61,9 +61,15 @@ contains
   !> where prescribed) and the contact set.
   !> Arguments: set_ids node sets whose reactions are summed; counts
   !> counts the element routine calls of the stress recovery; dtemp(nn)
-  !> the nodal temperature changes at t, given when there is thermal strain.
+  !> the nodal temperature changes at t, given when there is thermal strain;
+  !> dt the increment's length (the displacement field's increments:
+  !> stresses and contact rows only where written); lean, an increment
+  !> solved on the contact equations alone (condensed_equilibrium: its
+  !> solve checked them finite, and the other equations are the last
+  !> written increment's): where it is not written and no reaction sums
+  !> are printed, u and rf are not copied (no writer reads them).
   subroutine compute_increment_results(m, is, inc, t, total_time, iters, u, rf, cs, set_ids, res, counts, dtemp, &
-                                       body, dt)
+                                       body, dt, lean)
     type(model_t), intent(in) :: m
     integer, intent(in) :: is, inc, iters
     real(dp), intent(in) :: t, total_time
@@ -75,6 +81,7 @@ contains
     real(dp), intent(in), optional :: dtemp(:)
     type(body_t), intent(in), optional :: body
     real(dp), intent(in), optional :: dt
+    logical, intent(in), optional :: lean
     integer :: s, q, a
     logical :: written
     res%step = is
@@ -84,13 +91,22 @@ contains
     res%iterations = iters
     res%time = t
     res%total_time = total_time
-    res%u = u
-    res%rf = rf
+    written = .true.
+    if (present(dt)) written = written_here(m, is, inc, t, total_time, dt)
+    if (written .or. size(set_ids) > 0 .or. .not. present(lean)) then
+      res%u = u
+      res%rf = rf
+    else if (lean) then
+      allocate(res%u(2, 0), res%rf(2, 0))
+    else
+      res%u = u
+      res%rf = rf
+    end if
     ! A node with *TRANSFORM whose dofs cards named depends on the node
     ! carrying its local displacements, where its supports act: its own
     ! reaction is theirs, turned to global axes (the sums of the prescribed
     ! sets, which hold the node, are global, as CalculiX prints them).
-    if (allocated(m%local_node)) then
+    if (allocated(m%local_node) .and. size(res%rf, 2) > 0) then
       do a = 1, size(m%local_node)
         if (m%local_node(a) > 0) res%rf(:, a) = matmul(node_axes(m, a), rf(:, m%local_node(a)))
       end do
@@ -109,8 +125,6 @@ contains
     ! carry empty stress arrays.
     res%has_stresses = any(m%steps(is)%requests%s) .or. any(m%steps(is)%requests%e) .or. &
                        any(m%steps(is)%requests%peeq)
-    written = .true.
-    if (present(dt)) written = written_here(m, is, inc, t, total_time, dt)
     res%has_stresses = res%has_stresses .and. written
     res%has_peeq = res%has_stresses .and. any(m%steps(is)%requests%peeq)
     if (res%has_stresses) then
@@ -238,7 +252,7 @@ contains
     ! (a whole-array test first, a compare a value: every increment of a
     ! long history passes it; the loop names the node)
     if (.not. (all(abs(res%u) <= huge(1.0_dp)) .and. all(abs(res%rf) <= huge(1.0_dp)))) then
-      do a = 1, m%nn
+      do a = 1, size(res%u, 2)
         if (.not. all(ieee_is_finite(res%u(:, a)))) call stop_at('displacement', 'node', node_label(m, a))
         if (.not. all(ieee_is_finite(res%rf(:, a)))) call stop_at('reaction/internal force', 'node', node_label(m, a))
       end do
