@@ -83,7 +83,7 @@ contains
     real(dp), intent(in), optional :: dt
     logical, intent(in), optional :: lean
     integer :: s, q, a
-    logical :: written
+    logical :: written, copy
     res%step = is
     if (present(body)) res%nonlinear = body%nonlinear
     if (present(dt)) res%dt = dt
@@ -93,14 +93,13 @@ contains
     res%total_time = total_time
     written = .true.
     if (present(dt)) written = written_here(m, is, inc, t, total_time, dt)
-    if (written .or. size(set_ids) > 0 .or. .not. present(lean)) then
+    copy = .true.
+    if (present(lean)) copy = .not. lean .or. written .or. size(set_ids) > 0
+    if (copy) then
       res%u = u
       res%rf = rf
-    else if (lean) then
-      allocate(res%u(2, 0), res%rf(2, 0))
     else
-      res%u = u
-      res%rf = rf
+      allocate(res%u(2, 0), res%rf(2, 0))
     end if
     ! A node with *TRANSFORM whose dofs cards named depends on the node
     ! carrying its local displacements, where its supports act: its own

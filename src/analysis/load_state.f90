@@ -162,9 +162,9 @@ contains
   end subroutine begin_step
 
   !> Purpose: ls%active, the dofs values_at computes (the others are zero
-  !> there: no prescribed value, and a load ramping from 0 to 0): a
-  !> fretting history's increments are a millionth of the model's size
-  !> apart, and a loop over every dof at each was a twentieth of one.
+  !> there: no prescribed value, and a load ramping from 0 to 0). A
+  !> fretting history prescribes one dof at each of its 720 000
+  !> increments; the loop over every dof was 4 % of an increment.
   subroutine active_dofs(ls)
     type(load_state_t), intent(inout) :: ls
     integer :: a, d, n
