@@ -4,12 +4,15 @@ scripts/fretting.py sets it up (docs/fretting.md), 18 000 cycles,
 
 * with a cycle jump of 100 (180 computed cycles, 7 200 increments):
   a whole run, target under 10 s;
-* without a jump (18 000 computed cycles, 720 000 increments; target
-  under 10 minutes on 2 cores): a run of the first `--cycles` cycles
-  (default 50) without a jump, its wall time per increment times the
-  720 000 increments (printed as an extrapolation: the increments of a
-  cycle cost the same throughout, the jump run's per-increment cost says
-  by how much they drift).
+* without a jump (18 000 computed cycles, 720 000 increments, in steps
+  of 2 500 cycles; target under 10 minutes on 2 cores): a whole run,
+  writing the contact table every 100 cycles (the jump run's 180 tables;
+  every cycle's would be 2.5 GB of listing and table). With `--cycles N`
+  below 18 000, a run of the first N cycles (each written) and its wall
+  time per increment times the 720 000 increments, printed as an
+  extrapolation (a quick look while developing: the extrapolation of
+  50 cycles hid that the history stopped at its fourth step, found by
+  the whole run).
 
 Printed per row: wall time, CPU time (user + system of cfe2d), the load
 average of the machine before the run (it is shared), increments, wall
@@ -18,7 +21,7 @@ per increment: setup, i.e. the contact search and the numbering, analyse,
 factor, condensed iterations, recovery, output), the numeric
 factorisations of the bodies, the flat's depth and width.
 
-    python3 scripts/bench_fretting.py [--cycles 50] [--skip-jump] [--cfe2d path]
+    python3 scripts/bench_fretting.py [--cycles 18000] [--skip-jump] [--cfe2d path]
 """
 import argparse
 import os
@@ -55,16 +58,17 @@ def timing(listing):
     return out
 
 
-def run(cycles, jump, tag):
-    """A run of `cycles` cycles with the jump in WORK/tag: (wall, increments,
-    timing, depth um, width mm)."""
+def run(cycles, jump, tag, every=40):
+    """A run of `cycles` cycles with the jump in WORK/tag, the contact table
+    written every `every` increments: (wall, increments, timing, depth um,
+    width mm)."""
     out = os.path.join(WORK, tag)
     os.makedirs(out, exist_ok=True)
     computed = cycles // jump
     name = fretting.mesh(out, 0.01)
     deck = os.path.join(out, "mccoll.inp")
     with open(deck, "w") as f:
-        f.write(fretting.deck(name, computed, jump, 40, 40))
+        f.write(fretting.deck(name, computed, jump, 40, every))
     load = os.getloadavg()[0]
     r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
@@ -94,12 +98,16 @@ def row(label, wall, n, t, d, w, note=""):
           f"{int(t.get('condensed_lowrank_statuses', 0))}")
 
 
-def table(cycles=50, skip_jump=False):
+def table(cycles=18000, skip_jump=False):
     """The fretting rows of make bench."""
     print("\n=== Fretting: McColl's test, 18 000 cycles (scripts/bench_fretting.py, docs/fretting.md)")
     if not skip_jump:
         wall, n, t, d, w = run(18000, 100, "jump100")
         row("jump 100 (target < 10 s)", wall, n, t, d, w, "  MET" if wall < 10 else "  not met")
+    if cycles >= 18000:
+        wall, n, t, d, w = run(18000, 1, "jump1", every=4000)
+        row("no jump, 18 000 cycles (< 600 s)", wall, n, t, d, w, "  MET" if wall < 600 else "  not met")
+        return
     wall, n, t, d, w = run(cycles, 1, f"jump1_{cycles}")
     full = wall / n * 720000
     row(f"no jump, first {cycles} cycles", wall, n, t, d, w)
@@ -110,7 +118,8 @@ def table(cycles=50, skip_jump=False):
 def main():
     global CFE2D
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--cycles", type=int, default=50, help="cycles of the run without a jump")
+    ap.add_argument("--cycles", type=int, default=18000,
+                    help="cycles of the run without a jump (below 18 000: extrapolated)")
     ap.add_argument("--skip-jump", action="store_true", help="leave out the jump-100 run")
     ap.add_argument("--cfe2d", default=CFE2D, help="the binary to measure (default bin/cfe2d)")
     args = ap.parse_args()

@@ -136,6 +136,38 @@ U
         assert abs(got - want) < 1e-10 * tension_u(6.0), (u, expect)
 
 
+def test_amplitude_table_at_and_between_its_points():
+    """A 9-point table with unequal intervals, read at 20 increments of a
+    step: at its points, between them, before the first and after the
+    last (constant there). Each value against the table's linear
+    interpolation in Python; the lookup is a bisection (a cyclic
+    history's table grows with its cycles), which must pick the same
+    interval as a scan."""
+    tab = [(0.1, 0.0), (0.15, 1.0), (0.3, -0.5), (0.35, 0.25), (0.5, 2.0),
+           (0.55, 2.0), (0.6, -1.0), (0.8, 0.5), (0.9, 1.5)]
+    text = ", ".join(f"{t}, {a}" for t, a in tab[:4]) + "\n" + \
+        ", ".join(f"{t}, {a}" for t, a in tab[4:8]) + "\n" + f"{tab[8][0]}, {tab[8][1]}"
+    step = f"""*AMPLITUDE, NAME=ZIG
+{text}
+*STEP
+*STATIC
+0.05, 1.0
+*CLOAD, AMPLITUDE=ZIG
+RIGHT, 1, 3.0
+*NODE PRINT, NSET=RIGHT
+U
+*END STEP
+"""
+    run = run_block("amplitude_table", step).ok()
+    u = [i.block("NODE U", set="RIGHT")["U1"][0] for i in run.listing.increments]
+    ts, amps = [t for t, _ in tab], [a for _, a in tab]
+    times = [0.05 * (k + 1) for k in range(20)]
+    expect = [tension_u(6.0 * float(np.interp(t, ts, amps))) for t in times]
+    assert len(u) == 20, len(u)
+    for t, got, want in zip(times, u, expect):
+        assert abs(got - want) < 1e-10 * tension_u(6.0), (t, got, want)
+
+
 def test_faces_of_quads_and_triangles():
     """Each face Sk of a quad and of a triangle, used as a contact master
     surface, has the outward normal of its edge: a node 0.1 outside each

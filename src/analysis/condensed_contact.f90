@@ -613,7 +613,7 @@ contains
   !> (the lower triangles; LAPACK leaves the upper one alone). With
   !> keep_pairing, a status close to the reference one (lowrank_status)
   !> is not factored: its solves go through the reference's inverse
-  !> (cd%lowrank); a status factored densely becomes the reference.
+  !> (cd%lowrank); a symmetric status factored densely (no sliding CFE) becomes the reference.
   !> Arguments: kbody the bodies' largest element diagonal; status
   !> factor_ok or factor_singular (bad: the equation whose pivot vanished,
   !> judged as the sparse backends judge theirs: relative to the diagonal
@@ -639,7 +639,10 @@ contains
     end if
     call dense_status_matrix(cd, m, cs, dm, kbody, counts)
     call factor_dense_status(cd, status, bad)
-    if (status == factor_ok .and. cd%keep_pairing) call set_reference(cd, cs)
+    ! (a reference's inverse is symmetric, its products read one triangle
+    ! (sym_times): a status with a sliding CFE, unsymmetric, is never one;
+    ! the last symmetric reference stays)
+    if (status == factor_ok .and. cd%keep_pairing .and. .not. cd%lu) call set_reference(cd, cs)
   end subroutine condensed_status
 
   !> S of the status in cd%s (lower triangle, or whole for LU) and the

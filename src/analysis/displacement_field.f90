@@ -130,7 +130,7 @@ contains
   !> Purpose: a step of the displacements: its load state, whether it is
   !> nonlinear (NLGEOM, or a hyperelastic or plastic material), its
   !> equations (after a search on the deformed configuration where NLGEOM
-  !> with contact follows another step), the Newton controls; the
+  !> with contact, or UPDATE SEARCH, follows another step), the Newton controls; the
   !> equations and couplings in info.
   subroutine begin_mechanical_step(f, m, is, total_time, info, timing)
     class(displacement_field_t), intent(inout) :: f
@@ -147,7 +147,10 @@ contains
     f%body%nlgeom = m%steps(is)%nlgeom
     f%research_each = f%step_nonlinear .and. m%steps(is)%nlgeom .and. size(m%pairs) > 0
     call newton_new_step(f%eq%newton, m%steps(is)%controls)
-    if (f%research_each .and. is > 1) call research(f, m, timing)
+    ! (a step's first increment searches no more: the pairing of the last
+    ! increment's start would miss that increment's slide, with UPDATE
+    ! SEARCH as under NLGEOM)
+    if ((f%research_each .or. f%update_search) .and. is > 1) call research(f, m, timing)
     call number_equations(m, f%cs, f%ls%presc, f%mpc, f%dm, f%sys, f%eq%cd, ta, f%step_nonlinear, &
                           grow=keep_zone(f))
     call check_loads_reached(m, f%ls, f%dm%inactive)
@@ -433,7 +436,7 @@ contains
                                      f%eq%counts, dtemp, f%body, dt)
     else
       call compute_increment_results(m, is, inc, t, total_time, iters, f%u, f%rf, f%cs, f%ls%set_ids, res, &
-                                     f%eq%counts, body=f%body, dt=dt)
+                                     f%eq%counts, body=f%body, dt=dt, lean=f%eq%cd%lazy)
     end if
     t1 = wall_time()
     do k = 1, size(obs)
