@@ -27,7 +27,7 @@
 module condensed_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
-  use model, only: model_t, carries_stiffness, elem_nodes, nonlinear_material, step_dloads, dload_p
+  use model, only: model_t, carries_stiffness, elem_nodes, nonlinear_material, step_dloads, dload_p, edge_nodes
   use solver_codes, only: solver_cholmod, solver_umfpack, solver_mumps, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set, closed_stiffness, &
                      open_penalty
@@ -45,7 +45,7 @@ module condensed_contact
   public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
             condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair, &
-            condense_change, condensed_begin_lazy, s0_times, moving_elements, forward_rhs
+            condense_change, condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -86,6 +86,10 @@ module condensed_contact
     real(dp), allocatable :: kdiag(:)   ! the diagonal of the current status (LU: each column's scale)
     real(dp), allocatable :: z(:)       ! (n) forward-solved right-hand side of the increment
     real(dp), allocatable :: q0(:), x2(:)       ! (m) condensed right-hand side, solution
+    !> A low-rank status solved without its refinement (condensed_solve's
+    !> defer): refined false, rhs its right-hand side, for condensed_refine.
+    logical :: refined = .true.
+    real(dp), allocatable :: rhs(:)
     real(dp), allocatable :: gap_start(:)       ! (ncfe) every CFE's gap at the increment's start
     real(dp), allocatable :: u0(:, :)   ! displacements at the start of the increment
     real(dp) :: umax_rest = 0.0_dp      ! largest |u0| off the contact equations
@@ -293,46 +297,86 @@ contains
     logical, intent(in) :: prescribed(:, :)
     type(mpc_t), intent(in) :: mpc
     logical, allocatable, intent(out) :: mask(:, :)
+    integer, allocatable :: rdof(:), rnode(:)
+    integer :: j, nr, r
+    allocate(mask(2, m%nn))
+    mask = .false.
+    do j = 1, cs%n
+      call cfe_reach(m, cs%c(j), prescribed, mpc, rdof, rnode, nr)
+      do r = 1, nr
+        mask(rdof(r), rnode(r)) = .true.
+      end do
+    end do
+  end subroutine contact_dof_mask
+
+  !> Purpose: the free dofs CFE c makes contact equations of
+  !> (contact_dof_mask): those on the diagonal of its closed tangent, for
+  !> a dependent dof there the free independent dofs it stands for.
+  !> Arguments: prescribed, mpc as contact_dof_mask; rdof(1:nr),
+  !> rnode(1:nr) return the dofs (a dof may repeat).
+  subroutine cfe_reach(m, cin, prescribed, mpc, rdof, rnode, nr)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(in) :: cin
+    logical, intent(in) :: prescribed(:, :)
+    type(mpc_t), intent(in) :: mpc
+    integer, allocatable, intent(inout) :: rdof(:), rnode(:)
+    integer, intent(out) :: nr
     type(cfe_in_t) :: ein
     type(cfe_out_t) :: eout
     type(cfe_t) :: c
     real(dp) :: kmax
-    integer :: j, k, d, i, q
+    integer :: k, d, i, q, nmax
     integer, allocatable :: nodes(:)
-    allocate(mask(2, m%nn))
-    mask = .false.
-    do j = 1, cs%n
-      c = cs%c(j)
-      ! closed and (with friction) sticking: every dof its B_e^T n or
-      ! B_e^T t reaches
-      c%closed = .true.
-      c%sliding = .false.
-      ! (the tangent does not read the displacements: any array of the
-      ! nodes' shape serves, here the coordinates, not a zero copy)
-      call cfe_input(m, c, m%x, .false., ein, nodes)
-      call cfe(act_tangent, ein, eout)
-      kmax = 0.0_dp
-      do k = 1, 2 * ein%nen
-        kmax = max(kmax, abs(eout%ke(k, k)))
+    c = cin
+    ! closed and (with friction) sticking: every dof its B_e^T n or
+    ! B_e^T t reaches
+    c%closed = .true.
+    c%sliding = .false.
+    ! (the tangent does not read the displacements: any array of the
+    ! nodes' shape serves, here the coordinates, not a zero copy)
+    call cfe_input(m, c, m%x, .false., ein, nodes)
+    call cfe(act_tangent, ein, eout)
+    kmax = 0.0_dp
+    do k = 1, 2 * ein%nen
+      kmax = max(kmax, abs(eout%ke(k, k)))
+    end do
+    nmax = 2 * ein%nen
+    do k = 1, ein%nen
+      do d = 1, 2
+        i = mpc%dep(d, nodes(k))
+        if (i > 0) nmax = nmax + mpc%xt(i + 1) - mpc%xt(i)
       end do
-      do k = 1, ein%nen
-        do d = 1, 2
-          ! A normal component below 1e-12 is round-off of an axis-aligned
-          ! normal (a straight 3-node face gives (-1, +-3.6e-15) or (-1, 0)
-          ! depending on the build): it makes no contact equation.
-          if (abs(eout%ke(2 * k - 2 + d, 2 * k - 2 + d)) <= 1.0e-24_dp * kmax) cycle
-          i = mpc%dep(d, nodes(k))
-          if (i == 0) then
-            if (.not. prescribed(d, nodes(k))) mask(d, nodes(k)) = .true.
-            cycle
-          end if
-          do q = mpc%xt(i), mpc%xt(i + 1) - 1
-            if (.not. prescribed(mpc%tdof(q), mpc%tnode(q))) mask(mpc%tdof(q), mpc%tnode(q)) = .true.
-          end do
+    end do
+    if (allocated(rdof)) then
+      if (size(rdof) < nmax) deallocate(rdof, rnode)
+    end if
+    if (.not. allocated(rdof)) allocate(rdof(nmax), rnode(nmax))
+    nr = 0
+    do k = 1, ein%nen
+      do d = 1, 2
+        ! A normal component below 1e-12 is round-off of an axis-aligned
+        ! normal (a straight 3-node face gives (-1, +-3.6e-15) or (-1, 0)
+        ! depending on the build): it makes no contact equation.
+        if (abs(eout%ke(2 * k - 2 + d, 2 * k - 2 + d)) <= 1.0e-24_dp * kmax) cycle
+        i = mpc%dep(d, nodes(k))
+        if (i == 0) then
+          if (.not. prescribed(d, nodes(k))) call add(d, nodes(k))
+          cycle
+        end if
+        do q = mpc%xt(i), mpc%xt(i + 1) - 1
+          if (.not. prescribed(mpc%tdof(q), mpc%tnode(q))) call add(mpc%tdof(q), mpc%tnode(q))
         end do
       end do
     end do
-  end subroutine contact_dof_mask
+  contains
+    !> One more dof reached.
+    subroutine add(dof, node)
+      integer, intent(in) :: dof, node
+      nr = nr + 1
+      rdof(nr) = dof
+      rnode(nr) = node
+    end subroutine add
+  end subroutine cfe_reach
 
   !> Purpose: assembles K0 (the bodies and every CFE open, nominal
   !> penalty), factors it with the contact block last and forms S0; maps
@@ -448,45 +492,58 @@ contains
     type(dofmap_t), intent(in) :: dm
     type(element_counts_t), intent(inout) :: counts
     logical, intent(out) :: fits
-    logical, allocatable :: mask(:, :)
+    integer, allocatable :: rdof(:), rnode(:)
+    integer :: j, nr, r
     fits = .false.
     if (.not. (cd%active .and. cd%keep_pairing) .or. .not. allocated(cd%ke0) .or. cs%n == 0) return
-    ! every free dof of the couplings' nodes in the zone: so are those their
-    ! tangents reach (contact_dof_mask's, without its CFE calls)
-    fits = nodes_in_zone(m, cs, prescribed, mpc, cd%zone)
-    if (.not. fits) then
-      call contact_dof_mask(m, cs, prescribed, mpc, mask)
-      fits = .not. any(mask .and. .not. cd%zone)
-    end if
-    if (.not. fits) return
+    ! per coupling: every free dof of its nodes in the zone, so are those
+    ! its tangent reaches (no CFE call); otherwise the dofs it reaches
+    ! (contact_dof_mask's) judged, its tangent evaluated (before, every
+    ! coupling's where one had a node's dof outside: an open coupling at
+    ! the surface's end, in McColl's case at every increment)
+    do j = 1, cs%n
+      if (nodes_in_zone(m, cs%c(j), prescribed, mpc, cd%zone)) cycle
+      call cfe_reach(m, cs%c(j), prescribed, mpc, rdof, rnode, nr)
+      do r = 1, nr
+        if (.not. cd%zone(rdof(r), rnode(r))) return
+      end do
+    end do
+    fits = .true.
     call map_cfes(cd, m, cs, dm, cs, counts, tangents=.false.)
   end subroutine condensed_repair
 
-  !> Purpose: does zone hold every dof of the CFEs' nodes that is not
+  !> Purpose: does zone hold every dof of CFE c's nodes that is not
   !> prescribed (a dependent dof: the independent dofs of its
-  !> constraint)? A superset of the dofs contact_dof_mask marks (it
-  !> leaves out those a CFE's tangent does not reach), so true here means
-  !> the mask lies in the zone too.
-  logical function nodes_in_zone(m, cs, prescribed, mpc, zone) result(inside)
+  !> constraint)? Of a master element (node-to-segment) only the nodes
+  !> of its edge count: the shape functions of the others vanish on it
+  !> (to round-off, far below cfe_reach's 1e-24 of the largest diagonal),
+  !> so B_e^T n and B_e^T t do not reach them (the module's header). A
+  !> superset of the dofs cfe_reach gives, so true here means they lie
+  !> in the zone too.
+  logical function nodes_in_zone(m, c, prescribed, mpc, zone) result(inside)
     type(model_t), intent(in) :: m
-    type(contact_set_t), intent(in) :: cs
+    type(cfe_t), intent(in) :: c
     logical, intent(in) :: prescribed(:, :), zone(:, :)
     type(mpc_t), intent(in) :: mpc
-    integer :: j, k, d, i, q, nen
+    integer :: k, d, i, q, nen
     integer, allocatable :: nodes(:)
     inside = .false.
-    do j = 1, cs%n
-      call cfe_nodes(m, cs%c(j), nodes, nen)
-      do k = 1, nen
-        do d = 1, 2
-          i = mpc%dep(d, nodes(k))
-          if (i == 0) then
-            if (.not. (prescribed(d, nodes(k)) .or. zone(d, nodes(k)))) return
-            cycle
-          end if
-          do q = mpc%xt(i), mpc%xt(i + 1) - 1
-            if (.not. (prescribed(mpc%tdof(q), mpc%tnode(q)) .or. zone(mpc%tdof(q), mpc%tnode(q)))) return
-          end do
+    call cfe_nodes(m, c, nodes, nen)
+    if (c%nm == 0 .and. c%elem > 0 .and. c%edge > 0) then
+      ! the slave nodes, then the master edge's corners and mid-side node
+      call edge_nodes(m, c%elem, c%edge, nodes(c%ns + 1), nodes(c%ns + 2), nodes(c%ns + 3))
+      nen = c%ns + 2
+      if (nodes(nen + 1) > 0) nen = nen + 1
+    end if
+    do k = 1, nen
+      do d = 1, 2
+        i = mpc%dep(d, nodes(k))
+        if (i == 0) then
+          if (.not. (prescribed(d, nodes(k)) .or. zone(d, nodes(k)))) return
+          cycle
+        end if
+        do q = mpc%xt(i), mpc%xt(i + 1) - 1
+          if (.not. (prescribed(mpc%tdof(q), mpc%tnode(q)) .or. zone(mpc%tdof(q), mpc%tnode(q)))) return
         end do
       end do
     end do
@@ -1234,8 +1291,12 @@ contains
   !> u(contact equations) returns the start of the increment plus x2,
   !> enough for every gap (with the dependent dofs at CFE nodes); the
   !> caller keeps the other equations at the start until
-  !> condensed_recover. finite says whether x2 is.
-  subroutine condensed_solve(cd, m, cs, dm, u, finite, ncalls)
+  !> condensed_recover. finite says whether x2 is. defer, if true, leaves
+  !> a low-rank solution unrefined (cd%refined false; Woodbury's answer,
+  !> about 3e-13 of x from the dense factor's in McColl's case): enough to
+  !> decide the next status; the status that settles is refined
+  !> (condensed_refine) before anything is kept of it.
+  subroutine condensed_solve(cd, m, cs, dm, u, finite, ncalls, defer)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(inout) :: cs
@@ -1243,15 +1304,26 @@ contains
     real(dp), intent(inout) :: u(:, :)
     logical, intent(out) :: finite
     integer(kind=8), intent(inout) :: ncalls
+    logical, intent(in), optional :: defer
     real(dp) :: fc(cd%m), fx(cd%m)
+    logical :: later
+    later = .false.
+    if (present(defer)) later = defer
     ! the CFE forces are affine in u: at the start, they are the constant part
     call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
     cd%gap_start = cs%c(1:cs%n)%gap
     cd%x2 = cd%q0 - fc
     cd%qnext_fresh = .false.
+    cd%refined = .true.
     if (cd%lowrank) then
       call reference_product(cd, cd%x2, fx)
-      call lowrank_solve(cd, cd%x2, fx)
+      if (later) then
+        cd%rhs = cd%x2
+        call apply_reference(cd, cd%x2, fx)
+        cd%refined = .false.
+      else
+        call lowrank_solve(cd, cd%x2, fx)
+      end if
     else
       call solve_s(cd, cd%x2)
     end if
@@ -1259,6 +1331,24 @@ contains
     call add_contact_part(cd, dm, u)
     if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
   end subroutine condensed_solve
+
+  !> Purpose: the refinement condensed_solve deferred (defer): x2
+  !> refined against S as lowrank_solve refines (the same steps on the
+  !> same numbers: the settled status's answer is the one an undeferred
+  !> solve gives), u's contact equations (and the dependent dofs at CFE
+  !> nodes) moved to it. Nothing where x2 is refined already.
+  !> Arguments: cd the condensed solve; dm the numbering; u the
+  !> displacements of the last condensed_solve.
+  subroutine condensed_refine(cd, dm, u)
+    type(condensed_t), intent(inout) :: cd
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(inout) :: u(:, :)
+    if (cd%refined) return
+    call refine_lowrank(cd, cd%rhs, cd%x2)
+    cd%refined = .true.
+    call add_contact_part(cd, dm, u)
+    if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
+  end subroutine condensed_refine
 
   !> Purpose: does exact enforcement take its multipliers directly
   !> (condensed_multipliers) in this contact set: some CFE is exact and
@@ -1422,11 +1512,21 @@ contains
     type(condensed_t), intent(in) :: cd
     real(dp), intent(inout) :: x(:)
     real(dp), intent(in), optional :: fx(:)
-    integer, parameter :: max_refine = 3
-    real(dp) :: r(size(x)), dx(size(x)), last, now
-    integer :: it
+    real(dp) :: r(size(x))
     r = x
     call apply_reference(cd, x, fx)
+    call refine_lowrank(cd, r, x)
+  end subroutine lowrank_solve
+
+  !> x, M^-1 r for a status of the low-rank form (apply_reference),
+  !> refined against S itself (lowrank_solve says how far).
+  subroutine refine_lowrank(cd, r, x)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(in) :: r(:)
+    real(dp), intent(inout) :: x(:)
+    integer, parameter :: max_refine = 3
+    real(dp) :: dx(size(x)), last, now
+    integer :: it
     last = huge(1.0_dp)
     do it = 1, max_refine
       call status_times(cd, x, dx)
@@ -1437,7 +1537,7 @@ contains
       if (.not. (now > 1.0e-8_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)) exit
       last = now
     end do
-  end subroutine lowrank_solve
+  end subroutine refine_lowrank
 
   !> x := M^-1 x, M = S_ref + E dmat E^T (lowrank_solve); fx, if present,
   !> is S_ref^-1 x.

@@ -28,9 +28,10 @@ module condensed_equilibrium
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy, direct_multipliers, condensed_multipliers, condense_change, &
-                               condensed_begin_lazy, s0_times, moving_elements, forward_rhs
+                               condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine
+  use contact_status, only: status_search_t, contact_switch, contact_energy
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, stabilise_open, &
-                                set_aside_or_stop, factor_fits, factor_made
+                                set_aside_or_stop, factor_fits, factor_made, contact_force_scale
   use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
   use analysis_events, only: tell_note, wall_time
   use newton_control, only: newton_give_up, converged_body_forces, converged_forces_at, not_finite, &
@@ -121,7 +122,10 @@ contains
       call check_finite(st%m, st%is, st%inc, st%u)
       return
     end if
-    call condensed_solve(st%eq%cd, st%m, st%cs, st%dm, st%u, finite, st%eq%counts%coupling)
+    ! (a status whose energy the search does not read is decided on the
+    ! unrefined low-rank solution: the one that settles is refined,
+    ! settle_refined)
+    call condensed_solve(st%eq%cd, st%m, st%cs, st%dm, st%u, finite, st%eq%counts%coupling, defer=energy_free(st))
     if (.not. finite) call check_finite(st%m, st%is, st%inc, st%u)
     if (path%augmented) return
     call condensed_multipliers(st%eq%cd, st%m, st%cs, st%dm, st%u, nactive, solved)
@@ -143,12 +147,21 @@ contains
     class(condensed_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
     call contact_part_forces(st%eq%cd, st%m, st%cs, st%dm, st%u, path%fold, st%eq%counts%coupling)
-    if (st%eq%cd%keep_pairing .and. .not. st%body%nonlinear .and. frictional_set(st%cs)) then
+    if (energy_free(st)) then
       st%energy = 0.0_dp
       return
     end if
     st%energy = condensed_energy(st%eq%cd, st%dm, st%cs, st%u)
   end subroutine condensed_solution_energy
+
+  !> Purpose: does the status search of this increment read no energy of
+  !> the bodies' part (a frictional set paired at every increment of a
+  !> linear step: condensed_solution_energy)? Its statuses may then be
+  !> decided on unrefined low-rank solutions (settle_refined).
+  logical function energy_free(st)
+    type(iteration_t), intent(in) :: st
+    energy_free = st%eq%cd%keep_pairing .and. .not. st%body%nonlinear .and. frictional_set(st%cs)
+  end function energy_free
 
   !> Purpose: the out-of-balance after the switch: of the change of the
   !> CFE forces where a status changed (the next solve starts from the
@@ -156,6 +169,10 @@ contains
   subroutine condensed_residual(path, st)
     class(condensed_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
+    if (st%nchanged == 0 .and. .not. path%whole .and. .not. st%eq%cd%refined) then
+      call settle_refined(path, st)
+      return
+    end if
     if (st%nchanged > 0) then
       if (path%whole) st%u = st%eq%cd%u0
       path%whole = .false.
@@ -164,6 +181,35 @@ contains
       call settled_residual(st, path%whole)
     end if
   end subroutine condensed_residual
+
+  !> Purpose: the status settled on an unrefined low-rank solution
+  !> (condensed_solve's defer): the solution refined, the CFEs evaluated
+  !> there and the statuses judged again (one more pivot of the search);
+  !> a status the refinement changes (a coupling within 1e-12 of its
+  !> limit) goes on as a change, with the out-of-balance of the change;
+  !> otherwise the search is as the first pivot left it and the settled
+  !> status's out-of-balance is made (settled_residual, from these CFE
+  !> forces).
+  subroutine settle_refined(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    type(status_search_t) :: kept
+    real(dp) :: fc(st%eq%cd%m), t0
+    call condensed_refine(st%eq%cd, st%dm, st%u)
+    t0 = wall_time()
+    call contact_at_u(st, fc)
+    st%eq%timing%recovery = st%eq%timing%recovery + (wall_time() - t0)
+    st%energy = contact_energy(st%cs)
+    kept = st%eq%search
+    call contact_switch(st%m, st%cs, st%eq%search, contact_force_scale(st%eq, st%cs, st%fext_norm), st%energy, &
+                        st%nchanged, st%eq%changed)
+    if (st%nchanged > 0) then
+      st%eq%residual = change_residual(st, fc)
+      return
+    end if
+    st%eq%search = kept
+    call settled_residual(st, path%whole, fc)
+  end subroutine settle_refined
 
   !> Purpose: a status changed outside the switch: nothing to do, the
   !> next solve makes its forces.
@@ -288,18 +334,18 @@ contains
   !> bodies' part is added where the increment is recovered,
   !> condensed_complete). ok false where it is not below the tolerance:
   !> the caller recovers the whole solution as the full path does.
-  subroutine settled_on_contact_equations(st, ok)
+  !> Arguments: fc the CFE forces at u on the contact equations, rf
+  !> holding them on every dof (contact_at_u).
+  subroutine settled_on_contact_equations(st, fc, ok)
     type(iteration_t), intent(inout) :: st
+    real(dp), intent(in) :: fc(:)
     logical, intent(out) :: ok
-    real(dp) :: fc(st%eq%cd%m), ref, umax, r
+    real(dp) :: ref, umax, r
     integer :: p, e
     associate(eq => st%eq, cd => st%eq%cd, cs => st%cs, dm => st%dm, u => st%u, rf => st%rf)
-      rf = 0.0_dp
-      call contact_forces(st%m, cs, u, rf, eq%counts%coupling)
       umax = cd%umax_rest
       do p = 1, cd%m
         e = cd%eq_at(p)
-        fc(p) = rf(dm%dof_of_eq(e), dm%node_of_eq(e))
         umax = max(umax, abs(u(dm%dof_of_eq(e), dm%node_of_eq(e))))
       end do
       rf = rf - st%fext
@@ -375,16 +421,24 @@ contains
   !> The status has settled: the other equations (unless u already holds
   !> them: whole), then forces, reactions and the out-of-balance as the
   !> full path has them; on the contact equations alone where the
-  !> increment may be (lazy_path) and is in balance there.
-  subroutine settled_residual(st, whole)
+  !> increment may be (lazy_path) and is in balance there. fc, if
+  !> present, the CFE forces at u on the contact equations, rf holding
+  !> them on every dof (contact_at_u; otherwise evaluated here).
+  subroutine settled_residual(st, whole, fc)
     type(iteration_t), intent(inout) :: st
     logical, intent(inout) :: whole
-    real(dp) :: t0
+    real(dp), intent(in), optional :: fc(:)
+    real(dp) :: t0, fcu(st%eq%cd%m)
     logical :: ok
     t0 = wall_time()
     st%eq%cd%lazy = .false.
     if (.not. whole .and. lazy_path(st)) then
-      call settled_on_contact_equations(st, ok)
+      if (present(fc)) then
+        fcu = fc
+      else
+        call contact_at_u(st, fcu)
+      end if
+      call settled_on_contact_equations(st, fcu, ok)
       st%eq%timing%recovery = st%eq%timing%recovery + (wall_time() - t0)
       if (ok) return
       st%eq%cd%lazy = .false.
@@ -406,6 +460,22 @@ contains
       eq%timing%recovery = eq%timing%recovery + (wall_time() - t0)
     end associate
   end subroutine settled_residual
+
+  !> The CFE forces at u: st%rf on every dof (zero elsewhere; the contact
+  !> layer keeps each CFE's gap and force), fc on the contact equations.
+  subroutine contact_at_u(st, fc)
+    type(iteration_t), intent(inout) :: st
+    real(dp), intent(out) :: fc(:)
+    integer :: p, e
+    associate(cd => st%eq%cd, dm => st%dm)
+      st%rf = 0.0_dp
+      call contact_forces(st%m, st%cs, st%u, st%rf, st%eq%counts%coupling)
+      do p = 1, cd%m
+        e = cd%eq_at(p)
+        fc(p) = st%rf(dm%dof_of_eq(e), dm%node_of_eq(e))
+      end do
+    end associate
+  end subroutine contact_at_u
 
   !> u += K^-1 (f_ext - f_int(u)) on the free equations, f_int - f_ext
   !> being st%rf of the u given.
