@@ -45,7 +45,8 @@ module condensed_contact
   public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
             condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair, &
-            condense_change, condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine
+            condense_change, condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine, &
+            load_change, copy_field, take_equations, subtract_field, zero_field
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -172,6 +173,17 @@ module condensed_contact
     logical, allocatable :: off_contact(:, :)
     real(dp), allocatable :: qnext(:), fext_last(:, :), basis(:, :), basis_q(:, :)
     integer :: nb = 0
+    !> The equations where a change of the right-hand side or a direction
+    !> of the basis is not zero (in_supp, and supp(1:nsupp) ascending):
+    !> the elements moving the prescribed values and the loaded dofs, a
+    !> few hundred of McColl's 13 547. condense_change's sums run over
+    !> them alone (the other entries are zero: the same sums).
+    logical, allocatable :: in_supp(:)
+    integer, allocatable :: supp(:)
+    integer :: nsupp = 0
+    !> (2, nn) work of load_change: dfw the bodies' forces of the moved
+    !> dofs, zero between uses; wk the change of the forces
+    real(dp), allocatable :: dfw(:, :), wk(:, :)
   end type condensed_t
 
 contains
@@ -1102,7 +1114,6 @@ contains
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: u(:, :)
     integer :: a, d, e
-    cd%u0 = u
     if (.not. allocated(cd%fw)) then
       allocate(cd%fw(2, m%nn))
       cd%fw = 0.0_dp
@@ -1120,8 +1131,24 @@ contains
         end do
       end do
     end if
-    cd%umax_rest = max(0.0_dp, maxval(abs(u), mask=cd%off_contact))
+    call keep_start(size(u), u, cd%off_contact, cd%u0, cd%umax_rest)
   end subroutine start_from
+
+  !> u0 = u, and umax the largest |u| where off (0 if none), in one pass
+  !> over the n entries of the nodal fields (copy_field's why).
+  pure subroutine keep_start(n, u, off, u0, umax)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: u(n)
+    logical, intent(in) :: off(n)
+    real(dp), intent(inout) :: u0(n)
+    real(dp), intent(out) :: umax
+    integer :: i
+    umax = 0.0_dp
+    do i = 1, n
+      u0(i) = u(i)
+      if (off(i)) umax = max(umax, abs(u(i)))
+    end do
+  end subroutine keep_start
 
   !> Purpose: the start of an increment on the contact equations alone
   !> (keep_pairing, qnext_valid): u (prescribed values in place, free
@@ -1155,25 +1182,27 @@ contains
   end function plain_norm
 
   !> Purpose: dq = C r, the condensed part of a change r(n) of the
-  !> right-hand side (overwritten): r projected on the basis of directions
-  !> condensed before (twice, Gram-Schmidt with reorthogonalisation); a
-  !> remainder above 1e-13 of |r| becomes a new direction, condensed by one
-  !> forward solve (z = L^-1 P w, L22 z2); past max_basis directions the
+  !> right-hand side: r projected on the basis of directions condensed
+  !> before (twice, Gram-Schmidt with reorthogonalisation); a remainder
+  !> above 1e-13 of |r| becomes a new direction, condensed by one forward
+  !> solve (z = L^-1 P w, L22 z2); past max_basis directions the
   !> remainder is condensed without being kept. A remainder below 1e-13
-  !> of |r| is left out (round-off of r itself).
+  !> of |r| is left out (round-off of r itself). The projections run over
+  !> the support of r and the basis (cd%supp, grown here by r's nonzero
+  !> entries): every other entry is zero in both, so the sums are those
+  !> over every equation (before, four passes over the 13 547 equations
+  !> of McColl's case per direction).
   subroutine condense_change(cd, sys, r, dq)
     type(condensed_t), intent(inout) :: cd
     type(linear_system_t), intent(inout) :: sys
-    real(dp), intent(inout) :: r(:)
+    real(dp), intent(in) :: r(:)
     real(dp), intent(out) :: dq(:)
     integer, parameter :: max_basis = 8
     real(dp) :: rnorm, rest, beta
-    real(dp), allocatable :: w(:), q(:)
+    real(dp), allocatable :: w(:), q(:), rs(:), bs(:)
     integer :: k, pass
     logical :: kept
     dq = 0.0_dp
-    rnorm = plain_norm(r)
-    if (rnorm == 0.0_dp) return
     if (allocated(cd%basis)) then
       if (size(cd%basis, 1) /= cd%n .or. size(cd%basis_q, 1) /= cd%m) deallocate(cd%basis, cd%basis_q)
     end if
@@ -1181,16 +1210,23 @@ contains
       allocate(cd%basis(cd%n, max_basis), cd%basis_q(cd%m, max_basis))
       cd%nb = 0
     end if
+    call grow_support(cd, r)
+    rs = r(cd%supp(1:cd%nsupp))
+    rnorm = plain_norm(rs)
+    if (rnorm == 0.0_dp) return
     do pass = 1, 2
       do k = 1, cd%nb
-        beta = dot_product(cd%basis(:, k), r)
-        r = r - beta * cd%basis(:, k)
+        bs = cd%basis(cd%supp(1:cd%nsupp), k)
+        beta = dot_product(bs, rs)
+        rs = rs - beta * bs
         dq = dq + beta * cd%basis_q(:, k)
       end do
     end do
-    rest = plain_norm(r)
+    rest = plain_norm(rs)
     if (rest <= 1.0e-13_dp * rnorm) return
-    w = r / rest
+    allocate(w(cd%n))
+    w = 0.0_dp
+    w(cd%supp(1:cd%nsupp)) = rs / rest
     kept = cd%nb < max_basis
     if (kept) then
       cd%nb = cd%nb + 1
@@ -1202,6 +1238,140 @@ contains
     if (kept) cd%basis_q(:, cd%nb) = q
     dq = dq + rest * q
   end subroutine condense_change
+
+  !> Purpose: cd%supp, the equations where r or a kept direction of the
+  !> basis may not be zero, grown by r's nonzero entries (listed again in
+  !> ascending order where it grew, so that sums over it keep the order of
+  !> sums over every equation); empty again while no direction is kept.
+  !> Arguments: cd the condensed solve; r(n) a change of the right-hand side.
+  subroutine grow_support(cd, r)
+    type(condensed_t), intent(inout) :: cd
+    real(dp), intent(in), contiguous :: r(:)
+    integer :: i
+    logical :: grew
+    if (allocated(cd%in_supp)) then
+      if (size(cd%in_supp) /= size(r)) deallocate(cd%in_supp, cd%supp)
+    end if
+    if (.not. allocated(cd%in_supp)) then
+      allocate(cd%in_supp(size(r)), cd%supp(size(r)))
+      cd%in_supp = .false.
+      cd%nsupp = 0
+    end if
+    if (cd%nb == 0 .and. cd%nsupp > 0) then
+      cd%in_supp = .false.
+      cd%nsupp = 0
+    end if
+    grew = .false.
+    do i = 1, size(r)
+      if (r(i) /= 0.0_dp .and. .not. cd%in_supp(i)) then
+        cd%in_supp(i) = .true.
+        grew = .true.
+      end if
+    end do
+    if (.not. grew) return
+    cd%nsupp = 0
+    do i = 1, size(r)
+      if (.not. cd%in_supp(i)) cycle
+      cd%nsupp = cd%nsupp + 1
+      cd%supp(cd%nsupp) = i
+    end do
+  end subroutine grow_support
+
+  !> Purpose: the change of the right-hand side between two increments
+  !> of a lazy start (only the dofs off the equations moved: u is u_last
+  !> on every equation), r = T^T (fext - fext_last - K_body (u - u_last))
+  !> on the equations: free_residual's of add_body_forces's forces, the
+  !> same sums, without temporaries of the whole model (the bodies'
+  !> forces of the moving elements alone, in work kept between calls).
+  !> Arguments: cd the condensed solve (fext_last, moving_elems made);
+  !> m the model; body the bodies' stiffness; dm the numbering; u the
+  !> displacements of the start, u_last those of the last converged
+  !> increment; fext the loads; r(n) returns the change.
+  subroutine load_change(cd, m, body, dm, u, u_last, fext, r)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: u(:, :), u_last(:, :), fext(:, :)
+    real(dp), intent(out) :: r(:)
+    integer :: ie, k
+    if (allocated(cd%dfw)) then
+      if (any(shape(cd%dfw) /= shape(u))) deallocate(cd%dfw, cd%wk)
+    end if
+    if (.not. allocated(cd%dfw)) then
+      allocate(cd%dfw(2, m%nn), cd%wk(2, m%nn))
+      cd%dfw = 0.0_dp
+    end if
+    call add_body_change(m, body, u, u_last, cd%dfw, cd%moving_elems)
+    call force_change(size(fext), fext, cd%fext_last, cd%dfw, cd%wk)
+    if (dm%mpc%ndep > 0) call reduce_dependent(dm, cd%wk)
+    call scatter_equations(size(dm%eq), dm%eq, cd%wk, r)
+    ! the work zero again (only the moving elements' nodes were written)
+    do ie = 1, size(cd%moving_elems)
+      do k = 1, elem_nodes(m, cd%moving_elems(ie))
+        cd%dfw(:, m%conn(k, cd%moving_elems(ie))) = 0.0_dp
+      end do
+    end do
+  end subroutine load_change
+
+  !> w = (fext - fext_last) - df, entry by entry (free_residual's
+  !> difference of the load change and the bodies' forces), over the n
+  !> entries of nodal fields taken as one sequence (copy_field's why).
+  pure subroutine force_change(n, fext, fext_last, df, w)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: fext(n), fext_last(n), df(n)
+    real(dp), intent(out) :: w(n)
+    w = (fext - fext_last) - df
+  end subroutine force_change
+
+  !> r(eq(i)) = w(i) where eq(i) > 0, over the n entries of a nodal field
+  !> and its equation numbers taken as one sequence.
+  pure subroutine scatter_equations(n, eq, w, r)
+    integer, intent(in) :: n, eq(n)
+    real(dp), intent(in) :: w(n)
+    real(dp), intent(inout) :: r(:)
+    integer :: i
+    do i = 1, n
+      if (eq(i) > 0) r(eq(i)) = w(i)
+    end do
+  end subroutine scatter_equations
+
+  !> Purpose: dst = src over the n entries of a nodal field (2 x nodes)
+  !> taken as one sequence. The iteration's fields are pointers, and an
+  !> assignment through them, or a loop over their (2, nodes) shape, went
+  !> a pair of entries at a time; a sequence is copied at memory speed.
+  pure subroutine copy_field(n, src, dst)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: src(n)
+    real(dp), intent(inout) :: dst(n)
+    dst = src
+  end subroutine copy_field
+
+  !> Purpose: f = 0 over the n entries of a nodal field (copy_field's why).
+  pure subroutine zero_field(n, f)
+    integer, intent(in) :: n
+    real(dp), intent(out) :: f(n)
+    f = 0.0_dp
+  end subroutine zero_field
+
+  !> Purpose: dst = dst - src over the n entries of a nodal field
+  !> (copy_field's why).
+  pure subroutine subtract_field(n, dst, src)
+    integer, intent(in) :: n
+    real(dp), intent(inout) :: dst(n)
+    real(dp), intent(in) :: src(n)
+    dst = dst - src
+  end subroutine subtract_field
+
+  !> Purpose: u takes src on the dofs that are equations (eq > 0), the
+  !> others kept (where (eq > 0) u = src), over the n entries of the
+  !> nodal fields (copy_field's why).
+  pure subroutine take_equations(n, eq, src, u)
+    integer, intent(in) :: n, eq(n)
+    real(dp), intent(in) :: src(n)
+    real(dp), intent(inout) :: u(n)
+    where (eq > 0) u = src
+  end subroutine take_equations
 
   !> Purpose: the CFEs' internal forces at displacements u on the contact
   !> equations, f(m) in trailing order (the contact layer also keeps each
@@ -1247,10 +1417,9 @@ contains
     real(dp), intent(in) :: du(:, :)
     real(dp), intent(inout) :: f(:, :)
     integer, intent(in), optional :: elems(:)
-    real(dp) :: ue(2 * max_en), fe(2 * max_en), a
+    real(dp) :: ue(2 * max_en)
     logical :: moved(size(du, 2)), any_moved
-    integer :: e, i, j, k, nen, nd, ie, ne
-    integer(kind=8) :: q
+    integer :: e, k, nen, ie, ne
     moved = du(1, :) /= 0.0_dp .or. du(2, :) /= 0.0_dp
     if (.not. any(moved)) return
     ne = m%ne
@@ -1265,26 +1434,64 @@ contains
         any_moved = any_moved .or. moved(m%conn(k, e))
       end do
       if (.not. any_moved) cycle
-      nd = 2 * nen
       do k = 1, nen
         ue(2 * k - 1:2 * k) = du(:, m%conn(k, e))
       end do
-      fe(1:nd) = 0.0_dp
-      ! the stored upper triangle, column by column
-      q = body%kptr(e)
-      do j = 1, nd
-        do i = 1, j
-          a = body%ke(q)
-          q = q + 1
-          fe(i) = fe(i) + a * ue(j)
-          if (i /= j) fe(j) = fe(j) + a * ue(i)
-        end do
-      end do
-      do k = 1, nen
-        f(:, m%conn(k, e)) = f(:, m%conn(k, e)) + fe(2 * k - 1:2 * k)
-      end do
+      call add_element_force(m, body, e, ue, f)
     end do
   end subroutine add_body_forces
+
+  !> Purpose: f += K_body (u - u_last) over the elements elems (ascending)
+  !> whose nodes moved: add_body_forces of du = u - u_last, the same sums
+  !> in the same order, without du over the whole model (a lazy start:
+  !> elems the moving elements).
+  subroutine add_body_change(m, body, u, u_last, f, elems)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    real(dp), intent(in) :: u(:, :), u_last(:, :)
+    real(dp), intent(inout) :: f(:, :)
+    integer, intent(in) :: elems(:)
+    real(dp) :: ue(2 * max_en)
+    integer :: e, k, nen, ie
+    do ie = 1, size(elems)
+      e = elems(ie)
+      if (.not. carries_stiffness(m, e)) cycle
+      nen = elem_nodes(m, e)
+      do k = 1, nen
+        ue(2 * k - 1:2 * k) = u(:, m%conn(k, e)) - u_last(:, m%conn(k, e))
+      end do
+      if (all(ue(1:2 * nen) == 0.0_dp)) cycle
+      call add_element_force(m, body, e, ue, f)
+    end do
+  end subroutine add_body_change
+
+  !> f += K_e ue on element e's nodes, K_e its stored upper triangle
+  !> taken column by column.
+  subroutine add_element_force(m, body, e, ue, f)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    integer, intent(in) :: e
+    real(dp), intent(in) :: ue(:)
+    real(dp), intent(inout) :: f(:, :)
+    real(dp) :: fe(2 * max_en), a
+    integer :: i, j, k, nen, nd
+    integer(kind=8) :: q
+    nen = elem_nodes(m, e)
+    nd = 2 * nen
+    fe(1:nd) = 0.0_dp
+    q = body%kptr(e)
+    do j = 1, nd
+      do i = 1, j
+        a = body%ke(q)
+        q = q + 1
+        fe(i) = fe(i) + a * ue(j)
+        if (i /= j) fe(j) = fe(j) + a * ue(i)
+      end do
+    end do
+    do k = 1, nen
+      f(:, m%conn(k, e)) = f(:, m%conn(k, e)) + fe(2 * k - 1:2 * k)
+    end do
+  end subroutine add_element_force
 
   !> Purpose: the contact equations for the current status (factored by
   !> condensed_status): S x2 = q0 - (CFE forces at the increment's start).

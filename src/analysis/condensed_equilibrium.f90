@@ -28,7 +28,8 @@ module condensed_equilibrium
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy, direct_multipliers, condensed_multipliers, condense_change, &
-                               condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine
+                               condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine, &
+                               load_change, copy_field, take_equations, subtract_field, zero_field
   use contact_status, only: status_search_t, contact_switch, contact_energy
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, stabilise_open, &
                                 set_aside_or_stop, factor_fits, factor_made, contact_force_scale
@@ -236,7 +237,7 @@ contains
       write(buf, '(i0)') path%nsolves
       call tell_note(st%obs, 'exact contact: ' // trim(buf) // ' direct multiplier solves in the increment')
     end if
-    st%eq%u_last = st%u
+    call keep_field(st%u, st%eq%u_last)
     associate(cd => st%eq%cd)
       if (cd%lazy) then
         ! the bodies' forces of u's other equations are not at hand
@@ -251,11 +252,22 @@ contains
           call s0_times(cd, cd%x2, cd%qnext)
           cd%qnext = cd%q0 - cd%qnext
         end if
-        cd%fext_last = st%fext
+        call keep_field(st%fext, cd%fext_last)
         cd%qnext_valid = .true.
       end if
     end associate
   end subroutine condensed_converged
+
+  !> dst = src, allocated to src's shape where it has another (copy_field).
+  subroutine keep_field(src, dst)
+    real(dp), intent(in) :: src(:, :)
+    real(dp), allocatable, intent(inout) :: dst(:, :)
+    if (allocated(dst)) then
+      if (any(shape(dst) /= shape(src))) deallocate(dst)
+    end if
+    if (.not. allocated(dst)) allocate(dst(size(src, 1), size(src, 2)))
+    call copy_field(size(src), src, dst)
+  end subroutine keep_field
 
   !> The start of the increment: the free equations from the last
   !> converged solution, the bodies' internal forces there (updated where
@@ -264,7 +276,7 @@ contains
     type(iteration_t), intent(inout) :: st
     real(dp), allocatable :: fbody(:, :)
     associate(eq => st%eq, m => st%m, dm => st%dm, u => st%u)
-      if (allocated(eq%u_last)) where (dm%eq > 0) u = eq%u_last
+      if (allocated(eq%u_last)) call take_equations(size(u), dm%eq, eq%u_last, u)
       call expand_dependent(dm, u)
       if (lazy_start(st)) then
         call start_on_contact_equations(st)
@@ -313,15 +325,16 @@ contains
   !> condensed before (condense_change), added to that increment's qnext.
   subroutine start_on_contact_equations(st)
     type(iteration_t), intent(inout) :: st
-    real(dp), allocatable :: df(:, :), r(:), dq(:)
+    real(dp) :: dq(st%eq%cd%m)
     associate(eq => st%eq, cd => st%eq%cd, m => st%m, dm => st%dm, u => st%u)
-      allocate(df(2, m%nn), r(cd%n), dq(cd%m))
-      df = 0.0_dp
       ! (u is u_last on every equation: the elements of the other dofs)
       call moving_elements(cd, m, dm)
-      call add_body_forces(m, st%body, u - eq%u_last, df, cd%moving_elems)
-      call free_residual(dm, st%fext - cd%fext_last, df, r)
-      call condense_change(cd, st%sys, r, dq)
+      if (allocated(eq%rhs)) then
+        if (size(eq%rhs) /= cd%n) deallocate(eq%rhs)
+      end if
+      if (.not. allocated(eq%rhs)) allocate(eq%rhs(cd%n))
+      call load_change(cd, m, st%body, dm, u, eq%u_last, st%fext, eq%rhs)
+      call condense_change(cd, st%sys, eq%rhs, dq)
       call condensed_begin_lazy(cd, m, dm, u, dq)
     end associate
   end subroutine start_on_contact_equations
@@ -348,7 +361,7 @@ contains
         e = cd%eq_at(p)
         umax = max(umax, abs(u(dm%dof_of_eq(e), dm%node_of_eq(e))))
       end do
-      rf = rf - st%fext
+      call subtract_field(size(rf), rf, st%fext)
       if (.not. allocated(cd%qnext)) allocate(cd%qnext(cd%m))
       call s0_times(cd, cd%x2, cd%qnext)
       cd%qnext = cd%q0 - cd%qnext
@@ -468,7 +481,7 @@ contains
     real(dp), intent(out) :: fc(:)
     integer :: p, e
     associate(cd => st%eq%cd, dm => st%dm)
-      st%rf = 0.0_dp
+      call zero_field(size(st%rf), st%rf)
       call contact_forces(st%m, st%cs, st%u, st%rf, st%eq%counts%coupling)
       do p = 1, cd%m
         e = cd%eq_at(p)
