@@ -91,6 +91,13 @@ module condensed_contact
     !> defer): refined false, rhs its right-hand side, for condensed_refine.
     logical :: refined = .true.
     real(dp), allocatable :: rhs(:)
+    !> S0 x2 of the refined x2 from its refinement (condensed_refine;
+    !> s0x_valid), and rres, the refinement's last measured residual
+    !> |rhs - S x| (of x2 before its last correction): the settled
+    !> balance's S0 x2 without a product of its own.
+    logical :: s0x_valid = .false.
+    real(dp), allocatable :: s0x(:)
+    real(dp) :: rres = 0.0_dp
     real(dp), allocatable :: gap_start(:)       ! (ncfe) every CFE's gap at the increment's start
     real(dp), allocatable :: u0(:, :)   ! displacements at the start of the increment
     real(dp) :: umax_rest = 0.0_dp      ! largest |u0| off the contact equations
@@ -1522,6 +1529,7 @@ contains
     cd%x2 = cd%q0 - fc
     cd%qnext_fresh = .false.
     cd%refined = .true.
+    cd%s0x_valid = .false.
     if (cd%lowrank) then
       call reference_product(cd, cd%x2, fx)
       if (later) then
@@ -1551,7 +1559,11 @@ contains
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(inout) :: u(:, :)
     if (cd%refined) return
-    call refine_lowrank(cd, cd%rhs, cd%x2)
+    if (allocated(cd%s0x)) then
+      if (size(cd%s0x) /= cd%m) deallocate(cd%s0x)
+    end if
+    if (.not. allocated(cd%s0x)) allocate(cd%s0x(cd%m))
+    call refine_lowrank(cd, cd%rhs, cd%x2, cd%s0x, cd%rres, cd%s0x_valid)
     cd%refined = .true.
     call add_contact_part(cd, dm, u)
     if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
@@ -1727,23 +1739,44 @@ contains
 
   !> x, M^-1 r for a status of the low-rank form (apply_reference),
   !> refined against S itself (lowrank_solve says how far).
-  subroutine refine_lowrank(cd, r, x)
+  !> s0x, rres, estimated: if present, S0 x of the refined x from the last
+  !> correction's product and rres = |r - S x_k| (norm2), the residual of
+  !> x_k, the solution before that correction dx = M^-1 (r - S x_k):
+  !> S0 (x_k + dx) = S0 x_k + (r - S x_k) - T dx + (M - S) dx, T the
+  !> status's tangents, and (M - S) dx (the open CFEs' share and
+  !> Woodbury's round-off, times the last correction) is left out: about
+  !> |dx|^2 / |x| of S x, round-off once the refinement has stopped on a
+  !> small or no longer halving correction (estimated true; false where
+  !> it ran out of corrections: the caller makes the product).
+  subroutine refine_lowrank(cd, r, x, s0x, rres, estimated)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(in) :: r(:)
     real(dp), intent(inout) :: x(:)
+    real(dp), intent(out), optional :: s0x(:), rres
+    logical, intent(out), optional :: estimated
     integer, parameter :: max_refine = 3
-    real(dp) :: dx(size(x)), last, now
+    real(dp) :: dx(size(x)), sx(size(x)), tdx(size(x)), last, now
     integer :: it
+    logical :: stopped
     last = huge(1.0_dp)
+    stopped = .false.
     do it = 1, max_refine
-      call status_times(cd, x, dx)
+      call status_times(cd, x, dx, sx)
       dx = r - dx
+      if (present(rres)) rres = norm2(dx)
+      if (present(s0x)) s0x = sx + dx
       call apply_reference(cd, dx)
       x = x + dx
       now = maxval(abs(dx))
-      if (.not. (now > 1.0e-8_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)) exit
+      stopped = .not. (now > 1.0e-8_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)
+      if (stopped) exit
       last = now
     end do
+    if (present(estimated)) estimated = stopped
+    if (.not. present(s0x)) return
+    tdx = 0.0_dp
+    call add_tangents_times(cd, dx, tdx)
+    s0x = s0x - tdx
   end subroutine refine_lowrank
 
   !> x := M^-1 x, M = S_ref + E dmat E^T (lowrank_solve); fx, if present,
@@ -1817,13 +1850,24 @@ contains
   end subroutine reference_product
 
   !> y = S x for the status whose tangents are kt_all: S0 (s0_times)
-  !> plus every CFE's tangent on its positions (keep_pairing: ke0 is zero).
-  subroutine status_times(cd, x, y)
+  !> plus every CFE's tangent on its positions (keep_pairing: ke0 is
+  !> zero); s0x, if present, returns S0 x.
+  subroutine status_times(cd, x, y, s0x)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(in) :: x(:)
     real(dp), intent(out) :: y(:)
-    integer :: j, a, b, pa, pb
+    real(dp), intent(out), optional :: s0x(:)
     call s0_times(cd, x, y)
+    if (present(s0x)) s0x = y
+    call add_tangents_times(cd, x, y)
+  end subroutine status_times
+
+  !> y += T x, T every CFE's tangent in kt_all on its positions.
+  subroutine add_tangents_times(cd, x, y)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(inout) :: y(:)
+    integer :: j, a, b, pa, pb
     do j = 1, size(cd%kt_ng)
       do b = 1, cd%kt_ng(j)
         pb = cd%cfe_pos(b, j)
@@ -1834,7 +1878,7 @@ contains
         end do
       end do
     end do
-  end subroutine status_times
+  end subroutine add_tangents_times
 
   !> Purpose: y = S0 x, S0 from its diagonal and strict lower triangle
   !> (with keep_pairing the bodies' Schur complement alone; sym_times).

@@ -363,12 +363,23 @@ contains
       end do
       call subtract_field(size(rf), rf, st%fext)
       if (.not. allocated(cd%qnext)) allocate(cd%qnext(cd%m))
-      call s0_times(cd, cd%x2, cd%qnext)
-      cd%qnext = cd%q0 - cd%qnext
-      cd%qnext_fresh = .true.
       ref = max(st%fext_norm, sum(abs(cs%c(1:cs%n)%force)), 1.0e-6_dp * eq%kmax * umax, tiny(1.0_dp))
-      r = norm2(cd%qnext - fc) / max(ref, eq%force_history)
-      ok = r < st%m%contact_tolerance
+      ok = .false.
+      if (cd%s0x_valid) then
+        ! S0 x2 from the refinement (condensed_refine), judged with the
+        ! residual it measured of the solution before its last correction
+        ! (at least the refined solution's, to round-off)
+        cd%qnext = cd%q0 - cd%s0x
+        r = max(norm2(cd%qnext - fc), cd%rres) / max(ref, eq%force_history)
+        ok = r < st%m%contact_tolerance
+      end if
+      if (.not. ok) then
+        call s0_times(cd, cd%x2, cd%qnext)
+        cd%qnext = cd%q0 - cd%qnext
+        r = norm2(cd%qnext - fc) / max(ref, eq%force_history)
+        ok = r < st%m%contact_tolerance
+      end if
+      cd%qnext_fresh = .true.
       if (.not. ok) return
       eq%residual = r
       st%scale = ref
