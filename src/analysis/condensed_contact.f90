@@ -30,8 +30,8 @@ module condensed_contact
   use model, only: model_t, carries_stiffness, elem_nodes, nonlinear_material, step_dloads, dload_p, edge_nodes
   use solver_codes, only: solver_cholmod, solver_umfpack, solver_mumps, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set, closed_stiffness, &
-                     open_penalty
-  use element_interface, only: cfe_in_t, cfe_out_t, max_en, act_tangent
+                     open_penalty, closed_offset, open_shift, cfe_max_nodes
+  use element_interface, only: cfe_in_t, cfe_out_t, max_en, act_tangent, act_residual
   use cfe_element, only: cfe, cfe_b_matrix
   use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, number_dofs, has_dependent, group_transform, expand_dependent, reduce_dependent
@@ -98,6 +98,13 @@ module condensed_contact
     logical :: s0x_valid = .false.
     real(dp), allocatable :: s0x(:)
     real(dp) :: rres = 0.0_dp
+    !> Each CFE's forces at the increment's start u0 (start_forces):
+    !> fe0(1:2 nen, j) for the state fe0_key(:, j) (force_key), valid
+    !> (fe0_valid) for this start and the mapping fe0_gen: a later status
+    !> of the increment evaluates only the CFEs whose state changed.
+    real(dp), allocatable :: fe0(:, :), fe0_key(:, :)
+    logical :: fe0_valid = .false.
+    integer :: fe0_gen = -1
     real(dp), allocatable :: gap_start(:)       ! (ncfe) every CFE's gap at the increment's start
     real(dp), allocatable :: u0(:, :)   ! displacements at the start of the increment
     real(dp) :: umax_rest = 0.0_dp      ! largest |u0| off the contact equations
@@ -429,6 +436,7 @@ contains
     if (.not. allocated(cd%u0)) allocate(cd%u0(2, m%nn))
     cd%u0 = 0.0_dp
     if (present(u)) cd%u0 = u
+    cd%fe0_valid = .false.
     open_set = cs
     open_set%c(1:cs%n)%closed = .false.
     open_set%stabilised = .false.
@@ -1153,6 +1161,7 @@ contains
       end do
     end if
     call keep_start(size(u), u, cd%off_contact, cd%u0, cd%umax_rest)
+    cd%fe0_valid = .false.
   end subroutine start_from
 
   !> u0 = u, and umax the largest |u| where off (0 if none), in one pass
@@ -1394,6 +1403,85 @@ contains
     where (eq > 0) u = src
   end subroutine take_equations
 
+  !> Purpose: the CFEs' forces at the increment's start u0 on the contact
+  !> equations, f(m) in trailing order, as contact_part_forces gives them
+  !> (the same element results summed in the same order: CFE by CFE, node
+  !> by node), each CFE evaluated only where its state (force_key)
+  !> differs from that of its kept forces (fe0: the statuses of an
+  !> increment differ at a few CFEs; before, every CFE at every status).
+  !> The contact layer's gaps and forces of the CFEs are not set (their
+  !> next evaluation, at the status's solution, sets them). Not with
+  !> dependent dofs at CFE nodes (contact_part_forces reduces them).
+  !> Arguments: cd the condensed solve; m the model; cs the CFEs; dm the
+  !> numbering; f the forces; ncalls counts CFE routine calls.
+  subroutine start_forces(cd, m, cs, dm, f, ncalls)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(out) :: f(:)
+    integer(kind=8), intent(inout) :: ncalls
+    type(cfe_in_t) :: ein
+    type(cfe_out_t) :: eout
+    real(dp) :: key(6)
+    integer :: j, i, nen, nd, p, e
+    integer, allocatable :: nodes(:)
+    logical :: fresh
+    nd = 2 * cfe_max_nodes(cs)
+    fresh = .not. cd%fe0_valid .or. cd%fe0_gen /= cd%map_gen
+    if (allocated(cd%fe0)) then
+      if (size(cd%fe0, 1) < nd .or. size(cd%fe0, 2) /= cs%n) deallocate(cd%fe0, cd%fe0_key)
+    end if
+    if (.not. allocated(cd%fe0)) then
+      allocate(cd%fe0(nd, cs%n), cd%fe0_key(6, cs%n))
+      fresh = .true.
+    end if
+    do j = 1, cs%n
+      key = force_key(cs%c(j), cs%stabilised)
+      if (.not. fresh) then
+        if (all(key == cd%fe0_key(:, j))) cycle
+      end if
+      call cfe_input(m, cs%c(j), cd%u0, cs%stabilised, ein, nodes)
+      call cfe(act_residual, ein, eout)
+      ncalls = ncalls + 1
+      cd%fe0(1:2 * ein%nen, j) = eout%fe(1:2 * ein%nen)
+      cd%fe0_key(:, j) = key
+    end do
+    cd%fe0_valid = .true.
+    cd%fe0_gen = cd%map_gen
+    do j = 1, cs%n
+      call cfe_nodes(m, cs%c(j), nodes, nen)
+      do i = 1, nen
+        cd%fw(:, nodes(i)) = cd%fw(:, nodes(i)) + cd%fe0(2 * i - 1:2 * i, j)
+      end do
+    end do
+    do p = 1, cd%m
+      e = cd%eq_at(p)
+      f(p) = cd%fw(dm%dof_of_eq(e), dm%node_of_eq(e))
+    end do
+    do j = 1, cs%n
+      call cfe_nodes(m, cs%c(j), nodes, nen)
+      cd%fw(:, nodes(1:nen)) = 0.0_dp
+    end do
+  end subroutine start_forces
+
+  !> Purpose: what a CFE's forces at given displacements depend on beside
+  !> its pairing (cfe_input): cfe_key's status, slip sign and penalty,
+  !> the closed force's offset (a soft law's segment, exact enforcement's
+  !> multiplier) or the open one's shift, and the friction anchor.
+  pure function force_key(c, stabilised) result(key)
+    type(cfe_t), intent(in) :: c
+    logical, intent(in) :: stabilised
+    real(dp) :: key(6)
+    key(1:4) = cfe_key(c, stabilised)
+    if (c%closed) then
+      key(5) = closed_offset(c)
+    else
+      key(5) = open_shift(c, stabilised)
+    end if
+    key(6) = c%anchor
+  end function force_key
+
   !> Purpose: the CFEs' internal forces at displacements u on the contact
   !> equations, f(m) in trailing order (the contact layer also keeps each
   !> CFE's gap and force); every CFE force lives there (B_e^T n reaches
@@ -1538,8 +1626,14 @@ contains
     later = .false.
     if (present(defer)) later = defer
     ! the CFE forces are affine in u: at the start, they are the constant part
-    call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
-    cd%gap_start = cs%c(1:cs%n)%gap
+    ! (a deferred status, which reads no CFE's gap at the start: only the
+    ! CFEs whose state changed since the last status evaluated there)
+    if (later .and. size(cd%cdep) == 0 .and. .not. any(cs%c(1:cs%n)%exact)) then
+      call start_forces(cd, m, cs, dm, fc, ncalls)
+    else
+      call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
+      cd%gap_start = cs%c(1:cs%n)%gap
+    end if
     cd%x2 = cd%q0 - fc
     cd%qnext_fresh = .false.
     cd%refined = .true.
