@@ -1164,20 +1164,30 @@ contains
     cd%fe0_valid = .false.
   end subroutine start_from
 
-  !> u0 = u, and umax the largest |u| where off (0 if none), in one pass
-  !> over the n entries of the nodal fields (copy_field's why).
+  !> u0 = u, and umax the largest |u| where off (0 if none), over the n
+  !> entries of the nodal fields (copy_field's why). The largest in four
+  !> running maxima, every fourth entry each (one running maximum waited
+  !> on its last comparison at every entry: a thirtieth of an increment
+  !> without a jump); a maximum is the same in any order.
   pure subroutine keep_start(n, u, off, u0, umax)
     integer, intent(in) :: n
     real(dp), intent(in) :: u(n)
     logical, intent(in) :: off(n)
     real(dp), intent(inout) :: u0(n)
     real(dp), intent(out) :: umax
-    integer :: i
-    umax = 0.0_dp
-    do i = 1, n
-      u0(i) = u(i)
-      if (off(i)) umax = max(umax, abs(u(i)))
+    real(dp) :: big(4)
+    integer :: i, k
+    u0 = u
+    big = 0.0_dp
+    do i = 1, n - 3, 4
+      do k = 0, 3
+        if (off(i + k)) big(k + 1) = max(big(k + 1), abs(u(i + k)))
+      end do
     end do
+    do i = n - mod(n, 4) + 1, n
+      if (off(i)) big(1) = max(big(1), abs(u(i)))
+    end do
+    umax = maxval(big)
   end subroutine keep_start
 
   !> Purpose: the start of an increment on the contact equations alone
