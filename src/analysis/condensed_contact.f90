@@ -27,11 +27,11 @@
 module condensed_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
-  use model, only: model_t, carries_stiffness, elem_nodes, nonlinear_material, step_dloads, dload_p
+  use model, only: model_t, carries_stiffness, elem_nodes, nonlinear_material, step_dloads, dload_p, edge_nodes
   use solver_codes, only: solver_cholmod, solver_umfpack, solver_mumps, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set, closed_stiffness, &
-                     open_penalty
-  use element_interface, only: cfe_in_t, cfe_out_t, max_en, act_tangent
+                     open_penalty, closed_offset, open_shift, cfe_max_nodes
+  use element_interface, only: cfe_in_t, cfe_out_t, max_en, act_tangent, act_residual
   use cfe_element, only: cfe, cfe_b_matrix
   use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
   use dof_numbering, only: dofmap_t, number_dofs, has_dependent, group_transform, expand_dependent, reduce_dependent
@@ -45,7 +45,8 @@ module condensed_contact
   public :: condensed_t, number_equations, symmetric_tangent, condensed_factor_k0, condensed_status, condensed_begin, &
             condensed_solve, condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
             condensed_energy, direct_multipliers, condensed_multipliers, condensed_repair, &
-            condense_change, condensed_begin_lazy, s0_times, moving_elements, forward_rhs
+            condense_change, condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine, &
+            load_change, copy_field, take_equations, subtract_field, zero_field
 
   !> With CONTACT SOLVE=AUTO: the condensed solve is taken when one dense
   !> factorisation of S (m^3/3 operations) costs at most this share of a
@@ -86,6 +87,24 @@ module condensed_contact
     real(dp), allocatable :: kdiag(:)   ! the diagonal of the current status (LU: each column's scale)
     real(dp), allocatable :: z(:)       ! (n) forward-solved right-hand side of the increment
     real(dp), allocatable :: q0(:), x2(:)       ! (m) condensed right-hand side, solution
+    !> A low-rank status solved without its refinement (condensed_solve's
+    !> defer): refined false, rhs its right-hand side, for condensed_refine.
+    logical :: refined = .true.
+    real(dp), allocatable :: rhs(:)
+    !> S0 x2 of the refined x2 from its refinement (condensed_refine;
+    !> s0x_valid), and rres, the refinement's last measured residual
+    !> |rhs - S x| (of x2 before its last correction): the settled
+    !> balance's S0 x2 without a product of its own.
+    logical :: s0x_valid = .false.
+    real(dp), allocatable :: s0x(:)
+    real(dp) :: rres = 0.0_dp
+    !> Each CFE's forces at the increment's start u0 (start_forces):
+    !> fe0(1:2 nen, j) for the state fe0_key(:, j) (force_key), valid
+    !> (fe0_valid) for this start and the mapping fe0_gen: a later status
+    !> of the increment evaluates only the CFEs whose state changed.
+    real(dp), allocatable :: fe0(:, :), fe0_key(:, :)
+    logical :: fe0_valid = .false.
+    integer :: fe0_gen = -1
     real(dp), allocatable :: gap_start(:)       ! (ncfe) every CFE's gap at the increment's start
     real(dp), allocatable :: u0(:, :)   ! displacements at the start of the increment
     real(dp) :: umax_rest = 0.0_dp      ! largest |u0| off the contact equations
@@ -168,6 +187,17 @@ module condensed_contact
     logical, allocatable :: off_contact(:, :)
     real(dp), allocatable :: qnext(:), fext_last(:, :), basis(:, :), basis_q(:, :)
     integer :: nb = 0
+    !> The equations where a change of the right-hand side or a direction
+    !> of the basis is not zero (in_supp, and supp(1:nsupp) ascending):
+    !> the elements moving the prescribed values and the loaded dofs, a
+    !> few hundred of McColl's 13 547. condense_change's sums run over
+    !> them alone (the other entries are zero: the same sums).
+    logical, allocatable :: in_supp(:)
+    integer, allocatable :: supp(:)
+    integer :: nsupp = 0
+    !> (2, nn) work of load_change: dfw the bodies' forces of the moved
+    !> dofs, zero between uses; wk the change of the forces
+    real(dp), allocatable :: dfw(:, :), wk(:, :)
   end type condensed_t
 
 contains
@@ -293,46 +323,86 @@ contains
     logical, intent(in) :: prescribed(:, :)
     type(mpc_t), intent(in) :: mpc
     logical, allocatable, intent(out) :: mask(:, :)
+    integer, allocatable :: rdof(:), rnode(:)
+    integer :: j, nr, r
+    allocate(mask(2, m%nn))
+    mask = .false.
+    do j = 1, cs%n
+      call cfe_reach(m, cs%c(j), prescribed, mpc, rdof, rnode, nr)
+      do r = 1, nr
+        mask(rdof(r), rnode(r)) = .true.
+      end do
+    end do
+  end subroutine contact_dof_mask
+
+  !> Purpose: the free dofs CFE c makes contact equations of
+  !> (contact_dof_mask): those on the diagonal of its closed tangent, for
+  !> a dependent dof there the free independent dofs it stands for.
+  !> Arguments: prescribed, mpc as contact_dof_mask; rdof(1:nr),
+  !> rnode(1:nr) return the dofs (a dof may repeat).
+  subroutine cfe_reach(m, cin, prescribed, mpc, rdof, rnode, nr)
+    type(model_t), intent(in) :: m
+    type(cfe_t), intent(in) :: cin
+    logical, intent(in) :: prescribed(:, :)
+    type(mpc_t), intent(in) :: mpc
+    integer, allocatable, intent(inout) :: rdof(:), rnode(:)
+    integer, intent(out) :: nr
     type(cfe_in_t) :: ein
     type(cfe_out_t) :: eout
     type(cfe_t) :: c
     real(dp) :: kmax
-    integer :: j, k, d, i, q
+    integer :: k, d, i, q, nmax
     integer, allocatable :: nodes(:)
-    allocate(mask(2, m%nn))
-    mask = .false.
-    do j = 1, cs%n
-      c = cs%c(j)
-      ! closed and (with friction) sticking: every dof its B_e^T n or
-      ! B_e^T t reaches
-      c%closed = .true.
-      c%sliding = .false.
-      ! (the tangent does not read the displacements: any array of the
-      ! nodes' shape serves, here the coordinates, not a zero copy)
-      call cfe_input(m, c, m%x, .false., ein, nodes)
-      call cfe(act_tangent, ein, eout)
-      kmax = 0.0_dp
-      do k = 1, 2 * ein%nen
-        kmax = max(kmax, abs(eout%ke(k, k)))
+    c = cin
+    ! closed and (with friction) sticking: every dof its B_e^T n or
+    ! B_e^T t reaches
+    c%closed = .true.
+    c%sliding = .false.
+    ! (the tangent does not read the displacements: any array of the
+    ! nodes' shape serves, here the coordinates, not a zero copy)
+    call cfe_input(m, c, m%x, .false., ein, nodes)
+    call cfe(act_tangent, ein, eout)
+    kmax = 0.0_dp
+    do k = 1, 2 * ein%nen
+      kmax = max(kmax, abs(eout%ke(k, k)))
+    end do
+    nmax = 2 * ein%nen
+    do k = 1, ein%nen
+      do d = 1, 2
+        i = mpc%dep(d, nodes(k))
+        if (i > 0) nmax = nmax + mpc%xt(i + 1) - mpc%xt(i)
       end do
-      do k = 1, ein%nen
-        do d = 1, 2
-          ! A normal component below 1e-12 is round-off of an axis-aligned
-          ! normal (a straight 3-node face gives (-1, +-3.6e-15) or (-1, 0)
-          ! depending on the build): it makes no contact equation.
-          if (abs(eout%ke(2 * k - 2 + d, 2 * k - 2 + d)) <= 1.0e-24_dp * kmax) cycle
-          i = mpc%dep(d, nodes(k))
-          if (i == 0) then
-            if (.not. prescribed(d, nodes(k))) mask(d, nodes(k)) = .true.
-            cycle
-          end if
-          do q = mpc%xt(i), mpc%xt(i + 1) - 1
-            if (.not. prescribed(mpc%tdof(q), mpc%tnode(q))) mask(mpc%tdof(q), mpc%tnode(q)) = .true.
-          end do
+    end do
+    if (allocated(rdof)) then
+      if (size(rdof) < nmax) deallocate(rdof, rnode)
+    end if
+    if (.not. allocated(rdof)) allocate(rdof(nmax), rnode(nmax))
+    nr = 0
+    do k = 1, ein%nen
+      do d = 1, 2
+        ! A normal component below 1e-12 is round-off of an axis-aligned
+        ! normal (a straight 3-node face gives (-1, +-3.6e-15) or (-1, 0)
+        ! depending on the build): it makes no contact equation.
+        if (abs(eout%ke(2 * k - 2 + d, 2 * k - 2 + d)) <= 1.0e-24_dp * kmax) cycle
+        i = mpc%dep(d, nodes(k))
+        if (i == 0) then
+          if (.not. prescribed(d, nodes(k))) call add(d, nodes(k))
+          cycle
+        end if
+        do q = mpc%xt(i), mpc%xt(i + 1) - 1
+          if (.not. prescribed(mpc%tdof(q), mpc%tnode(q))) call add(mpc%tdof(q), mpc%tnode(q))
         end do
       end do
     end do
-  end subroutine contact_dof_mask
+  contains
+    !> One more dof reached.
+    subroutine add(dof, node)
+      integer, intent(in) :: dof, node
+      nr = nr + 1
+      rdof(nr) = dof
+      rnode(nr) = node
+    end subroutine add
+  end subroutine cfe_reach
 
   !> Purpose: assembles K0 (the bodies and every CFE open, nominal
   !> penalty), factors it with the contact block last and forms S0; maps
@@ -366,6 +436,7 @@ contains
     if (.not. allocated(cd%u0)) allocate(cd%u0(2, m%nn))
     cd%u0 = 0.0_dp
     if (present(u)) cd%u0 = u
+    cd%fe0_valid = .false.
     open_set = cs
     open_set%c(1:cs%n)%closed = .false.
     open_set%stabilised = .false.
@@ -448,45 +519,58 @@ contains
     type(dofmap_t), intent(in) :: dm
     type(element_counts_t), intent(inout) :: counts
     logical, intent(out) :: fits
-    logical, allocatable :: mask(:, :)
+    integer, allocatable :: rdof(:), rnode(:)
+    integer :: j, nr, r
     fits = .false.
     if (.not. (cd%active .and. cd%keep_pairing) .or. .not. allocated(cd%ke0) .or. cs%n == 0) return
-    ! every free dof of the couplings' nodes in the zone: so are those their
-    ! tangents reach (contact_dof_mask's, without its CFE calls)
-    fits = nodes_in_zone(m, cs, prescribed, mpc, cd%zone)
-    if (.not. fits) then
-      call contact_dof_mask(m, cs, prescribed, mpc, mask)
-      fits = .not. any(mask .and. .not. cd%zone)
-    end if
-    if (.not. fits) return
+    ! per coupling: every free dof of its nodes in the zone, so are those
+    ! its tangent reaches (no CFE call); otherwise the dofs it reaches
+    ! (contact_dof_mask's) judged, its tangent evaluated (before, every
+    ! coupling's where one had a node's dof outside: an open coupling at
+    ! the surface's end, in McColl's case at every increment)
+    do j = 1, cs%n
+      if (nodes_in_zone(m, cs%c(j), prescribed, mpc, cd%zone)) cycle
+      call cfe_reach(m, cs%c(j), prescribed, mpc, rdof, rnode, nr)
+      do r = 1, nr
+        if (.not. cd%zone(rdof(r), rnode(r))) return
+      end do
+    end do
+    fits = .true.
     call map_cfes(cd, m, cs, dm, cs, counts, tangents=.false.)
   end subroutine condensed_repair
 
-  !> Purpose: does zone hold every dof of the CFEs' nodes that is not
+  !> Purpose: does zone hold every dof of CFE c's nodes that is not
   !> prescribed (a dependent dof: the independent dofs of its
-  !> constraint)? A superset of the dofs contact_dof_mask marks (it
-  !> leaves out those a CFE's tangent does not reach), so true here means
-  !> the mask lies in the zone too.
-  logical function nodes_in_zone(m, cs, prescribed, mpc, zone) result(inside)
+  !> constraint)? Of a master element (node-to-segment) only the nodes
+  !> of its edge count: the shape functions of the others vanish on it
+  !> (to round-off, far below cfe_reach's 1e-24 of the largest diagonal),
+  !> so B_e^T n and B_e^T t do not reach them (the module's header). A
+  !> superset of the dofs cfe_reach gives, so true here means they lie
+  !> in the zone too.
+  logical function nodes_in_zone(m, c, prescribed, mpc, zone) result(inside)
     type(model_t), intent(in) :: m
-    type(contact_set_t), intent(in) :: cs
+    type(cfe_t), intent(in) :: c
     logical, intent(in) :: prescribed(:, :), zone(:, :)
     type(mpc_t), intent(in) :: mpc
-    integer :: j, k, d, i, q, nen
+    integer :: k, d, i, q, nen
     integer, allocatable :: nodes(:)
     inside = .false.
-    do j = 1, cs%n
-      call cfe_nodes(m, cs%c(j), nodes, nen)
-      do k = 1, nen
-        do d = 1, 2
-          i = mpc%dep(d, nodes(k))
-          if (i == 0) then
-            if (.not. (prescribed(d, nodes(k)) .or. zone(d, nodes(k)))) return
-            cycle
-          end if
-          do q = mpc%xt(i), mpc%xt(i + 1) - 1
-            if (.not. (prescribed(mpc%tdof(q), mpc%tnode(q)) .or. zone(mpc%tdof(q), mpc%tnode(q)))) return
-          end do
+    call cfe_nodes(m, c, nodes, nen)
+    if (c%nm == 0 .and. c%elem > 0 .and. c%edge > 0) then
+      ! the slave nodes, then the master edge's corners and mid-side node
+      call edge_nodes(m, c%elem, c%edge, nodes(c%ns + 1), nodes(c%ns + 2), nodes(c%ns + 3))
+      nen = c%ns + 2
+      if (nodes(nen + 1) > 0) nen = nen + 1
+    end if
+    do k = 1, nen
+      do d = 1, 2
+        i = mpc%dep(d, nodes(k))
+        if (i == 0) then
+          if (.not. (prescribed(d, nodes(k)) .or. zone(d, nodes(k)))) return
+          cycle
+        end if
+        do q = mpc%xt(i), mpc%xt(i + 1) - 1
+          if (.not. (prescribed(mpc%tdof(q), mpc%tnode(q)) .or. zone(mpc%tdof(q), mpc%tnode(q)))) return
         end do
       end do
     end do
@@ -843,7 +927,10 @@ contains
     if (allocated(cd%cap_piv)) deallocate(cd%cap_piv)
     allocate(cd%cap_piv(k))
     ! (the scale of each column before the factorisation, as for S's LU)
-    colscale = [(maxval(abs(cd%cap(:, j))), j = 1, k)]
+    allocate(colscale(k))
+    do j = 1, k
+      colscale(j) = maxval(abs(cd%cap(:, j)))
+    end do
     call lu_factor(cd%cap, cd%cap_piv, info)
     if (info > 0) return
     do j = 1, k
@@ -881,16 +968,27 @@ contains
       cd%cap(:, at(cd%ref_cpos(j))) = cd%cap(:, at(cd%ref_cpos(j))) + cd%ref_cols(cd%dset, j)
     end do
   contains
-    !> cap(:, at(pb)) += sign kt(a, b) fdd(:, at(pa)) over the block.
+    !> cap(:, at(pb)) += sign kt(a, b) fdd(:, at(pa)) over the block,
+    !> each update two entries at a time (SSE2; an entry's sum is the
+    !> same sequence of operations in every build): a fifth of a
+    !> fretting increment with a jump was these updates, one entry at a
+    !> time.
     subroutine add_block(kt, pos, sign)
       real(dp), intent(in) :: kt(:, :), sign
       integer, intent(in) :: pos(:)
-      integer :: a, b
+      real(dp) :: coef
+      integer :: a, b, i, c, f
       do b = 1, size(pos)
         if (pos(b) == 0) cycle
+        c = at(pos(b))
         do a = 1, size(pos)
           if (pos(a) == 0) cycle
-          cd%cap(:, at(pos(b))) = cd%cap(:, at(pos(b))) + (sign * kt(a, b)) * fdd(:, at(pos(a)))
+          coef = sign * kt(a, b)
+          f = at(pos(a))
+          !$omp simd
+          do i = 1, size(cd%cap, 1)
+            cd%cap(i, c) = cd%cap(i, c) + coef * fdd(i, f)
+          end do
         end do
       end do
     end subroutine add_block
@@ -1048,7 +1146,6 @@ contains
     type(dofmap_t), intent(in) :: dm
     real(dp), intent(in) :: u(:, :)
     integer :: a, d, e
-    cd%u0 = u
     if (.not. allocated(cd%fw)) then
       allocate(cd%fw(2, m%nn))
       cd%fw = 0.0_dp
@@ -1066,8 +1163,35 @@ contains
         end do
       end do
     end if
-    cd%umax_rest = max(0.0_dp, maxval(abs(u), mask=cd%off_contact))
+    call keep_start(size(u), u, cd%off_contact, cd%u0, cd%umax_rest)
+    cd%fe0_valid = .false.
   end subroutine start_from
+
+  !> u0 = u, and umax the largest |u| where off (0 if none), over the n
+  !> entries of the nodal fields (copy_field's why). The largest in four
+  !> running maxima, every fourth entry each (one running maximum waited
+  !> on its last comparison at every entry: a thirtieth of an increment
+  !> without a jump); a maximum is the same in any order.
+  pure subroutine keep_start(n, u, off, u0, umax)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: u(n)
+    logical, intent(in) :: off(n)
+    real(dp), intent(inout) :: u0(n)
+    real(dp), intent(out) :: umax
+    real(dp) :: big(4)
+    integer :: i, k
+    u0 = u
+    big = 0.0_dp
+    do i = 1, n - 3, 4
+      do k = 0, 3
+        if (off(i + k)) big(k + 1) = max(big(k + 1), abs(u(i + k)))
+      end do
+    end do
+    do i = n - mod(n, 4) + 1, n
+      if (off(i)) big(1) = max(big(1), abs(u(i)))
+    end do
+    umax = maxval(big)
+  end subroutine keep_start
 
   !> Purpose: the start of an increment on the contact equations alone
   !> (keep_pairing, qnext_valid): u (prescribed values in place, free
@@ -1101,25 +1225,27 @@ contains
   end function plain_norm
 
   !> Purpose: dq = C r, the condensed part of a change r(n) of the
-  !> right-hand side (overwritten): r projected on the basis of directions
-  !> condensed before (twice, Gram-Schmidt with reorthogonalisation); a
-  !> remainder above 1e-13 of |r| becomes a new direction, condensed by one
-  !> forward solve (z = L^-1 P w, L22 z2); past max_basis directions the
+  !> right-hand side: r projected on the basis of directions condensed
+  !> before (twice, Gram-Schmidt with reorthogonalisation); a remainder
+  !> above 1e-13 of |r| becomes a new direction, condensed by one forward
+  !> solve (z = L^-1 P w, L22 z2); past max_basis directions the
   !> remainder is condensed without being kept. A remainder below 1e-13
-  !> of |r| is left out (round-off of r itself).
+  !> of |r| is left out (round-off of r itself). The projections run over
+  !> the support of r and the basis (cd%supp, grown here by r's nonzero
+  !> entries): every other entry is zero in both, so the sums are those
+  !> over every equation (before, four passes over the 13 547 equations
+  !> of McColl's case per direction).
   subroutine condense_change(cd, sys, r, dq)
     type(condensed_t), intent(inout) :: cd
     type(linear_system_t), intent(inout) :: sys
-    real(dp), intent(inout) :: r(:)
+    real(dp), intent(in) :: r(:)
     real(dp), intent(out) :: dq(:)
     integer, parameter :: max_basis = 8
     real(dp) :: rnorm, rest, beta
-    real(dp), allocatable :: w(:), q(:)
+    real(dp), allocatable :: w(:), q(:), rs(:), bs(:)
     integer :: k, pass
     logical :: kept
     dq = 0.0_dp
-    rnorm = plain_norm(r)
-    if (rnorm == 0.0_dp) return
     if (allocated(cd%basis)) then
       if (size(cd%basis, 1) /= cd%n .or. size(cd%basis_q, 1) /= cd%m) deallocate(cd%basis, cd%basis_q)
     end if
@@ -1127,16 +1253,23 @@ contains
       allocate(cd%basis(cd%n, max_basis), cd%basis_q(cd%m, max_basis))
       cd%nb = 0
     end if
+    call grow_support(cd, r)
+    rs = r(cd%supp(1:cd%nsupp))
+    rnorm = plain_norm(rs)
+    if (rnorm == 0.0_dp) return
     do pass = 1, 2
       do k = 1, cd%nb
-        beta = dot_product(cd%basis(:, k), r)
-        r = r - beta * cd%basis(:, k)
+        bs = cd%basis(cd%supp(1:cd%nsupp), k)
+        beta = dot_product(bs, rs)
+        rs = rs - beta * bs
         dq = dq + beta * cd%basis_q(:, k)
       end do
     end do
-    rest = plain_norm(r)
+    rest = plain_norm(rs)
     if (rest <= 1.0e-13_dp * rnorm) return
-    w = r / rest
+    allocate(w(cd%n))
+    w = 0.0_dp
+    w(cd%supp(1:cd%nsupp)) = rs / rest
     kept = cd%nb < max_basis
     if (kept) then
       cd%nb = cd%nb + 1
@@ -1148,6 +1281,219 @@ contains
     if (kept) cd%basis_q(:, cd%nb) = q
     dq = dq + rest * q
   end subroutine condense_change
+
+  !> Purpose: cd%supp, the equations where r or a kept direction of the
+  !> basis may not be zero, grown by r's nonzero entries (listed again in
+  !> ascending order where it grew, so that sums over it keep the order of
+  !> sums over every equation); empty again while no direction is kept.
+  !> Arguments: cd the condensed solve; r(n) a change of the right-hand side.
+  subroutine grow_support(cd, r)
+    type(condensed_t), intent(inout) :: cd
+    real(dp), intent(in), contiguous :: r(:)
+    integer :: i
+    logical :: grew
+    if (allocated(cd%in_supp)) then
+      if (size(cd%in_supp) /= size(r)) deallocate(cd%in_supp, cd%supp)
+    end if
+    if (.not. allocated(cd%in_supp)) then
+      allocate(cd%in_supp(size(r)), cd%supp(size(r)))
+      cd%in_supp = .false.
+      cd%nsupp = 0
+    end if
+    if (cd%nb == 0 .and. cd%nsupp > 0) then
+      cd%in_supp = .false.
+      cd%nsupp = 0
+    end if
+    grew = .false.
+    do i = 1, size(r)
+      if (r(i) /= 0.0_dp .and. .not. cd%in_supp(i)) then
+        cd%in_supp(i) = .true.
+        grew = .true.
+      end if
+    end do
+    if (.not. grew) return
+    cd%nsupp = 0
+    do i = 1, size(r)
+      if (.not. cd%in_supp(i)) cycle
+      cd%nsupp = cd%nsupp + 1
+      cd%supp(cd%nsupp) = i
+    end do
+  end subroutine grow_support
+
+  !> Purpose: the change of the right-hand side between two increments
+  !> of a lazy start (only the dofs off the equations moved: u is u_last
+  !> on every equation), r = T^T (fext - fext_last - K_body (u - u_last))
+  !> on the equations: free_residual's of add_body_forces's forces, the
+  !> same sums, without temporaries of the whole model (the bodies'
+  !> forces of the moving elements alone, in work kept between calls).
+  !> Arguments: cd the condensed solve (fext_last, moving_elems made);
+  !> m the model; body the bodies' stiffness; dm the numbering; u the
+  !> displacements of the start, u_last those of the last converged
+  !> increment; fext the loads; r(n) returns the change.
+  subroutine load_change(cd, m, body, dm, u, u_last, fext, r)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(in) :: u(:, :), u_last(:, :), fext(:, :)
+    real(dp), intent(out) :: r(:)
+    integer :: ie, k
+    if (allocated(cd%dfw)) then
+      if (any(shape(cd%dfw) /= shape(u))) deallocate(cd%dfw, cd%wk)
+    end if
+    if (.not. allocated(cd%dfw)) then
+      allocate(cd%dfw(2, m%nn), cd%wk(2, m%nn))
+      cd%dfw = 0.0_dp
+    end if
+    call add_body_change(m, body, u, u_last, cd%dfw, cd%moving_elems)
+    call force_change(size(fext), fext, cd%fext_last, cd%dfw, cd%wk)
+    if (dm%mpc%ndep > 0) call reduce_dependent(dm, cd%wk)
+    call scatter_equations(size(dm%eq), dm%eq, cd%wk, r)
+    ! the work zero again (only the moving elements' nodes were written)
+    do ie = 1, size(cd%moving_elems)
+      do k = 1, elem_nodes(m, cd%moving_elems(ie))
+        cd%dfw(:, m%conn(k, cd%moving_elems(ie))) = 0.0_dp
+      end do
+    end do
+  end subroutine load_change
+
+  !> w = (fext - fext_last) - df, entry by entry (free_residual's
+  !> difference of the load change and the bodies' forces), over the n
+  !> entries of nodal fields taken as one sequence (copy_field's why).
+  pure subroutine force_change(n, fext, fext_last, df, w)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: fext(n), fext_last(n), df(n)
+    real(dp), intent(out) :: w(n)
+    w = (fext - fext_last) - df
+  end subroutine force_change
+
+  !> r(eq(i)) = w(i) where eq(i) > 0, over the n entries of a nodal field
+  !> and its equation numbers taken as one sequence.
+  pure subroutine scatter_equations(n, eq, w, r)
+    integer, intent(in) :: n, eq(n)
+    real(dp), intent(in) :: w(n)
+    real(dp), intent(inout) :: r(:)
+    integer :: i
+    do i = 1, n
+      if (eq(i) > 0) r(eq(i)) = w(i)
+    end do
+  end subroutine scatter_equations
+
+  !> Purpose: dst = src over the n entries of a nodal field (2 x nodes)
+  !> taken as one sequence. The iteration's fields are pointers, and an
+  !> assignment through them, or a loop over their (2, nodes) shape, went
+  !> a pair of entries at a time; a sequence is copied at memory speed.
+  pure subroutine copy_field(n, src, dst)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: src(n)
+    real(dp), intent(inout) :: dst(n)
+    dst = src
+  end subroutine copy_field
+
+  !> Purpose: f = 0 over the n entries of a nodal field (copy_field's why).
+  pure subroutine zero_field(n, f)
+    integer, intent(in) :: n
+    real(dp), intent(out) :: f(n)
+    f = 0.0_dp
+  end subroutine zero_field
+
+  !> Purpose: dst = dst - src over the n entries of a nodal field
+  !> (copy_field's why).
+  pure subroutine subtract_field(n, dst, src)
+    integer, intent(in) :: n
+    real(dp), intent(inout) :: dst(n)
+    real(dp), intent(in) :: src(n)
+    dst = dst - src
+  end subroutine subtract_field
+
+  !> Purpose: u takes src on the dofs that are equations (eq > 0), the
+  !> others kept (where (eq > 0) u = src), over the n entries of the
+  !> nodal fields (copy_field's why).
+  pure subroutine take_equations(n, eq, src, u)
+    integer, intent(in) :: n, eq(n)
+    real(dp), intent(in) :: src(n)
+    real(dp), intent(inout) :: u(n)
+    where (eq > 0) u = src
+  end subroutine take_equations
+
+  !> Purpose: the CFEs' forces at the increment's start u0 on the contact
+  !> equations, f(m) in trailing order, as contact_part_forces gives them
+  !> (the same element results summed in the same order: CFE by CFE, node
+  !> by node), each CFE evaluated only where its state (force_key)
+  !> differs from that of its kept forces (fe0: the statuses of an
+  !> increment differ at a few CFEs; before, every CFE at every status).
+  !> The contact layer's gaps and forces of the CFEs are not set (their
+  !> next evaluation, at the status's solution, sets them). Not with
+  !> dependent dofs at CFE nodes (contact_part_forces reduces them).
+  !> Arguments: cd the condensed solve; m the model; cs the CFEs; dm the
+  !> numbering; f the forces; ncalls counts CFE routine calls.
+  subroutine start_forces(cd, m, cs, dm, f, ncalls)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(out) :: f(:)
+    integer(kind=8), intent(inout) :: ncalls
+    type(cfe_in_t) :: ein
+    type(cfe_out_t) :: eout
+    real(dp) :: key(6)
+    integer :: j, i, nen, nd, p, e
+    integer, allocatable :: nodes(:)
+    logical :: fresh
+    nd = 2 * cfe_max_nodes(cs)
+    fresh = .not. cd%fe0_valid .or. cd%fe0_gen /= cd%map_gen
+    if (allocated(cd%fe0)) then
+      if (size(cd%fe0, 1) < nd .or. size(cd%fe0, 2) /= cs%n) deallocate(cd%fe0, cd%fe0_key)
+    end if
+    if (.not. allocated(cd%fe0)) then
+      allocate(cd%fe0(nd, cs%n), cd%fe0_key(6, cs%n))
+      fresh = .true.
+    end if
+    do j = 1, cs%n
+      key = force_key(cs%c(j), cs%stabilised)
+      if (.not. fresh) then
+        if (all(key == cd%fe0_key(:, j))) cycle
+      end if
+      call cfe_input(m, cs%c(j), cd%u0, cs%stabilised, ein, nodes)
+      call cfe(act_residual, ein, eout)
+      ncalls = ncalls + 1
+      cd%fe0(1:2 * ein%nen, j) = eout%fe(1:2 * ein%nen)
+      cd%fe0_key(:, j) = key
+    end do
+    cd%fe0_valid = .true.
+    cd%fe0_gen = cd%map_gen
+    do j = 1, cs%n
+      call cfe_nodes(m, cs%c(j), nodes, nen)
+      do i = 1, nen
+        cd%fw(:, nodes(i)) = cd%fw(:, nodes(i)) + cd%fe0(2 * i - 1:2 * i, j)
+      end do
+    end do
+    do p = 1, cd%m
+      e = cd%eq_at(p)
+      f(p) = cd%fw(dm%dof_of_eq(e), dm%node_of_eq(e))
+    end do
+    do j = 1, cs%n
+      call cfe_nodes(m, cs%c(j), nodes, nen)
+      cd%fw(:, nodes(1:nen)) = 0.0_dp
+    end do
+  end subroutine start_forces
+
+  !> Purpose: what a CFE's forces at given displacements depend on beside
+  !> its pairing (cfe_input): cfe_key's status, slip sign and penalty,
+  !> the closed force's offset (a soft law's segment, exact enforcement's
+  !> multiplier) or the open one's shift, and the friction anchor.
+  pure function force_key(c, stabilised) result(key)
+    type(cfe_t), intent(in) :: c
+    logical, intent(in) :: stabilised
+    real(dp) :: key(6)
+    key(1:4) = cfe_key(c, stabilised)
+    if (c%closed) then
+      key(5) = closed_offset(c)
+    else
+      key(5) = open_shift(c, stabilised)
+    end if
+    key(6) = c%anchor
+  end function force_key
 
   !> Purpose: the CFEs' internal forces at displacements u on the contact
   !> equations, f(m) in trailing order (the contact layer also keeps each
@@ -1193,10 +1539,9 @@ contains
     real(dp), intent(in) :: du(:, :)
     real(dp), intent(inout) :: f(:, :)
     integer, intent(in), optional :: elems(:)
-    real(dp) :: ue(2 * max_en), fe(2 * max_en), a
+    real(dp) :: ue(2 * max_en)
     logical :: moved(size(du, 2)), any_moved
-    integer :: e, i, j, k, nen, nd, ie, ne
-    integer(kind=8) :: q
+    integer :: e, k, nen, ie, ne
     moved = du(1, :) /= 0.0_dp .or. du(2, :) /= 0.0_dp
     if (.not. any(moved)) return
     ne = m%ne
@@ -1211,34 +1556,76 @@ contains
         any_moved = any_moved .or. moved(m%conn(k, e))
       end do
       if (.not. any_moved) cycle
-      nd = 2 * nen
       do k = 1, nen
         ue(2 * k - 1:2 * k) = du(:, m%conn(k, e))
       end do
-      fe(1:nd) = 0.0_dp
-      ! the stored upper triangle, column by column
-      q = body%kptr(e)
-      do j = 1, nd
-        do i = 1, j
-          a = body%ke(q)
-          q = q + 1
-          fe(i) = fe(i) + a * ue(j)
-          if (i /= j) fe(j) = fe(j) + a * ue(i)
-        end do
-      end do
-      do k = 1, nen
-        f(:, m%conn(k, e)) = f(:, m%conn(k, e)) + fe(2 * k - 1:2 * k)
-      end do
+      call add_element_force(m, body, e, ue, f)
     end do
   end subroutine add_body_forces
+
+  !> Purpose: f += K_body (u - u_last) over the elements elems (ascending)
+  !> whose nodes moved: add_body_forces of du = u - u_last, the same sums
+  !> in the same order, without du over the whole model (a lazy start:
+  !> elems the moving elements).
+  subroutine add_body_change(m, body, u, u_last, f, elems)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    real(dp), intent(in) :: u(:, :), u_last(:, :)
+    real(dp), intent(inout) :: f(:, :)
+    integer, intent(in) :: elems(:)
+    real(dp) :: ue(2 * max_en)
+    integer :: e, k, nen, ie
+    do ie = 1, size(elems)
+      e = elems(ie)
+      if (.not. carries_stiffness(m, e)) cycle
+      nen = elem_nodes(m, e)
+      do k = 1, nen
+        ue(2 * k - 1:2 * k) = u(:, m%conn(k, e)) - u_last(:, m%conn(k, e))
+      end do
+      if (all(ue(1:2 * nen) == 0.0_dp)) cycle
+      call add_element_force(m, body, e, ue, f)
+    end do
+  end subroutine add_body_change
+
+  !> f += K_e ue on element e's nodes, K_e its stored upper triangle
+  !> taken column by column.
+  subroutine add_element_force(m, body, e, ue, f)
+    type(model_t), intent(in) :: m
+    type(body_t), intent(in) :: body
+    integer, intent(in) :: e
+    real(dp), intent(in) :: ue(:)
+    real(dp), intent(inout) :: f(:, :)
+    real(dp) :: fe(2 * max_en), a
+    integer :: i, j, k, nen, nd
+    integer(kind=8) :: q
+    nen = elem_nodes(m, e)
+    nd = 2 * nen
+    fe(1:nd) = 0.0_dp
+    q = body%kptr(e)
+    do j = 1, nd
+      do i = 1, j
+        a = body%ke(q)
+        q = q + 1
+        fe(i) = fe(i) + a * ue(j)
+        if (i /= j) fe(j) = fe(j) + a * ue(i)
+      end do
+    end do
+    do k = 1, nen
+      f(:, m%conn(k, e)) = f(:, m%conn(k, e)) + fe(2 * k - 1:2 * k)
+    end do
+  end subroutine add_element_force
 
   !> Purpose: the contact equations for the current status (factored by
   !> condensed_status): S x2 = q0 - (CFE forces at the increment's start).
   !> u(contact equations) returns the start of the increment plus x2,
   !> enough for every gap (with the dependent dofs at CFE nodes); the
   !> caller keeps the other equations at the start until
-  !> condensed_recover. finite says whether x2 is.
-  subroutine condensed_solve(cd, m, cs, dm, u, finite, ncalls)
+  !> condensed_recover. finite says whether x2 is. defer, if true, leaves
+  !> a low-rank solution unrefined (cd%refined false; Woodbury's answer,
+  !> about 3e-13 of x from the dense factor's in McColl's case): enough to
+  !> decide the next status; the status that settles is refined
+  !> (condensed_refine) before anything is kept of it.
+  subroutine condensed_solve(cd, m, cs, dm, u, finite, ncalls, defer)
     type(condensed_t), intent(inout) :: cd
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(inout) :: cs
@@ -1246,15 +1633,33 @@ contains
     real(dp), intent(inout) :: u(:, :)
     logical, intent(out) :: finite
     integer(kind=8), intent(inout) :: ncalls
+    logical, intent(in), optional :: defer
     real(dp) :: fc(cd%m), fx(cd%m)
+    logical :: later
+    later = .false.
+    if (present(defer)) later = defer
     ! the CFE forces are affine in u: at the start, they are the constant part
-    call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
-    cd%gap_start = cs%c(1:cs%n)%gap
+    ! (a deferred status, which reads no CFE's gap at the start: only the
+    ! CFEs whose state changed since the last status evaluated there)
+    if (later .and. size(cd%cdep) == 0 .and. .not. any(cs%c(1:cs%n)%exact)) then
+      call start_forces(cd, m, cs, dm, fc, ncalls)
+    else
+      call contact_part_forces(cd, m, cs, dm, cd%u0, fc, ncalls)
+      cd%gap_start = cs%c(1:cs%n)%gap
+    end if
     cd%x2 = cd%q0 - fc
     cd%qnext_fresh = .false.
+    cd%refined = .true.
+    cd%s0x_valid = .false.
     if (cd%lowrank) then
       call reference_product(cd, cd%x2, fx)
-      call lowrank_solve(cd, cd%x2, fx)
+      if (later) then
+        cd%rhs = cd%x2
+        call apply_reference(cd, cd%x2, fx)
+        cd%refined = .false.
+      else
+        call lowrank_solve(cd, cd%x2, fx)
+      end if
     else
       call solve_s(cd, cd%x2)
     end if
@@ -1262,6 +1667,28 @@ contains
     call add_contact_part(cd, dm, u)
     if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
   end subroutine condensed_solve
+
+  !> Purpose: the refinement condensed_solve deferred (defer): x2
+  !> refined against S as lowrank_solve refines (the same steps on the
+  !> same numbers: the settled status's answer is the one an undeferred
+  !> solve gives), u's contact equations (and the dependent dofs at CFE
+  !> nodes) moved to it. Nothing where x2 is refined already.
+  !> Arguments: cd the condensed solve; dm the numbering; u the
+  !> displacements of the last condensed_solve.
+  subroutine condensed_refine(cd, dm, u)
+    type(condensed_t), intent(inout) :: cd
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(inout) :: u(:, :)
+    if (cd%refined) return
+    if (allocated(cd%s0x)) then
+      if (size(cd%s0x) /= cd%m) deallocate(cd%s0x)
+    end if
+    if (.not. allocated(cd%s0x)) allocate(cd%s0x(cd%m))
+    call refine_lowrank(cd, cd%rhs, cd%x2, cd%s0x, cd%rres, cd%s0x_valid)
+    cd%refined = .true.
+    call add_contact_part(cd, dm, u)
+    if (size(cd%cdep) > 0) call expand_dependent(dm, u, cd%cdep)
+  end subroutine condensed_refine
 
   !> Purpose: does exact enforcement take its multipliers directly
   !> (condensed_multipliers) in this contact set: some CFE is exact and
@@ -1425,22 +1852,53 @@ contains
     type(condensed_t), intent(in) :: cd
     real(dp), intent(inout) :: x(:)
     real(dp), intent(in), optional :: fx(:)
-    integer, parameter :: max_refine = 3
-    real(dp) :: r(size(x)), dx(size(x)), last, now
-    integer :: it
+    real(dp) :: r(size(x))
     r = x
     call apply_reference(cd, x, fx)
+    call refine_lowrank(cd, r, x)
+  end subroutine lowrank_solve
+
+  !> x, M^-1 r for a status of the low-rank form (apply_reference),
+  !> refined against S itself (lowrank_solve says how far).
+  !> s0x, rres, estimated: if present, S0 x of the refined x from the last
+  !> correction's product and rres = |r - S x_k| (norm2), the residual of
+  !> x_k, the solution before that correction dx = M^-1 (r - S x_k):
+  !> S0 (x_k + dx) = S0 x_k + (r - S x_k) - T dx + (M - S) dx, T the
+  !> status's tangents, and (M - S) dx (the open CFEs' share and
+  !> Woodbury's round-off, times the last correction) is left out: about
+  !> |dx|^2 / |x| of S x, round-off once the refinement has stopped on a
+  !> small or no longer halving correction (estimated true; false where
+  !> it ran out of corrections: the caller makes the product).
+  subroutine refine_lowrank(cd, r, x, s0x, rres, estimated)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(in) :: r(:)
+    real(dp), intent(inout) :: x(:)
+    real(dp), intent(out), optional :: s0x(:), rres
+    logical, intent(out), optional :: estimated
+    integer, parameter :: max_refine = 3
+    real(dp) :: dx(size(x)), sx(size(x)), tdx(size(x)), last, now
+    integer :: it
+    logical :: stopped
     last = huge(1.0_dp)
+    stopped = .false.
     do it = 1, max_refine
-      call status_times(cd, x, dx)
+      call status_times(cd, x, dx, sx)
       dx = r - dx
+      if (present(rres)) rres = norm2(dx)
+      if (present(s0x)) s0x = sx + dx
       call apply_reference(cd, dx)
       x = x + dx
       now = maxval(abs(dx))
-      if (.not. (now > 1.0e-8_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)) exit
+      stopped = .not. (now > 1.0e-8_dp * maxval(abs(x)) .and. now <= 0.5_dp * last)
+      if (stopped) exit
       last = now
     end do
-  end subroutine lowrank_solve
+    if (present(estimated)) estimated = stopped
+    if (.not. present(s0x)) return
+    tdx = 0.0_dp
+    call add_tangents_times(cd, dx, tdx)
+    s0x = s0x - tdx
+  end subroutine refine_lowrank
 
   !> x := M^-1 x, M = S_ref + E dmat E^T (lowrank_solve); fx, if present,
   !> is S_ref^-1 x.
@@ -1513,13 +1971,24 @@ contains
   end subroutine reference_product
 
   !> y = S x for the status whose tangents are kt_all: S0 (s0_times)
-  !> plus every CFE's tangent on its positions (keep_pairing: ke0 is zero).
-  subroutine status_times(cd, x, y)
+  !> plus every CFE's tangent on its positions (keep_pairing: ke0 is
+  !> zero); s0x, if present, returns S0 x.
+  subroutine status_times(cd, x, y, s0x)
     type(condensed_t), intent(in) :: cd
     real(dp), intent(in) :: x(:)
     real(dp), intent(out) :: y(:)
-    integer :: j, a, b, pa, pb
+    real(dp), intent(out), optional :: s0x(:)
     call s0_times(cd, x, y)
+    if (present(s0x)) s0x = y
+    call add_tangents_times(cd, x, y)
+  end subroutine status_times
+
+  !> y += T x, T every CFE's tangent in kt_all on its positions.
+  subroutine add_tangents_times(cd, x, y)
+    type(condensed_t), intent(in) :: cd
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(inout) :: y(:)
+    integer :: j, a, b, pa, pb
     do j = 1, size(cd%kt_ng)
       do b = 1, cd%kt_ng(j)
         pb = cd%cfe_pos(b, j)
@@ -1530,7 +1999,7 @@ contains
         end do
       end do
     end do
-  end subroutine status_times
+  end subroutine add_tangents_times
 
   !> Purpose: y = S0 x, S0 from its diagonal and strict lower triangle
   !> (with keep_pairing the bodies' Schur complement alone; sym_times).

@@ -28,9 +28,11 @@ module condensed_equilibrium
   use condensed_contact, only: condensed_factor_k0, condensed_status, condensed_begin, condensed_solve, &
                                condensed_recover, condensed_correct, contact_part_forces, add_body_forces, &
                                condensed_energy, direct_multipliers, condensed_multipliers, condense_change, &
-                               condensed_begin_lazy, s0_times, moving_elements, forward_rhs
+                               condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine, &
+                               load_change, copy_field, take_equations, subtract_field, zero_field
+  use contact_status, only: status_search_t, contact_switch, contact_energy
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, stabilise_open, &
-                                set_aside_or_stop, factor_fits, factor_made
+                                set_aside_or_stop, factor_fits, factor_made, contact_force_scale
   use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
   use analysis_events, only: tell_note, wall_time
   use newton_control, only: newton_give_up, converged_body_forces, converged_forces_at, not_finite, &
@@ -121,7 +123,10 @@ contains
       call check_finite(st%m, st%is, st%inc, st%u)
       return
     end if
-    call condensed_solve(st%eq%cd, st%m, st%cs, st%dm, st%u, finite, st%eq%counts%coupling)
+    ! (a status whose energy the search does not read is decided on the
+    ! unrefined low-rank solution: the one that settles is refined,
+    ! settle_refined)
+    call condensed_solve(st%eq%cd, st%m, st%cs, st%dm, st%u, finite, st%eq%counts%coupling, defer=energy_free(st))
     if (.not. finite) call check_finite(st%m, st%is, st%inc, st%u)
     if (path%augmented) return
     call condensed_multipliers(st%eq%cd, st%m, st%cs, st%dm, st%u, nactive, solved)
@@ -143,12 +148,21 @@ contains
     class(condensed_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
     call contact_part_forces(st%eq%cd, st%m, st%cs, st%dm, st%u, path%fold, st%eq%counts%coupling)
-    if (st%eq%cd%keep_pairing .and. .not. st%body%nonlinear .and. frictional_set(st%cs)) then
+    if (energy_free(st)) then
       st%energy = 0.0_dp
       return
     end if
     st%energy = condensed_energy(st%eq%cd, st%dm, st%cs, st%u)
   end subroutine condensed_solution_energy
+
+  !> Purpose: does the status search of this increment read no energy of
+  !> the bodies' part (a frictional set paired at every increment of a
+  !> linear step: condensed_solution_energy)? Its statuses may then be
+  !> decided on unrefined low-rank solutions (settle_refined).
+  logical function energy_free(st)
+    type(iteration_t), intent(in) :: st
+    energy_free = st%eq%cd%keep_pairing .and. .not. st%body%nonlinear .and. frictional_set(st%cs)
+  end function energy_free
 
   !> Purpose: the out-of-balance after the switch: of the change of the
   !> CFE forces where a status changed (the next solve starts from the
@@ -156,6 +170,10 @@ contains
   subroutine condensed_residual(path, st)
     class(condensed_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
+    if (st%nchanged == 0 .and. .not. path%whole .and. .not. st%eq%cd%refined) then
+      call settle_refined(path, st)
+      return
+    end if
     if (st%nchanged > 0) then
       if (path%whole) st%u = st%eq%cd%u0
       path%whole = .false.
@@ -164,6 +182,35 @@ contains
       call settled_residual(st, path%whole)
     end if
   end subroutine condensed_residual
+
+  !> Purpose: the status settled on an unrefined low-rank solution
+  !> (condensed_solve's defer): the solution refined, the CFEs evaluated
+  !> there and the statuses judged again (one more pivot of the search);
+  !> a status the refinement changes (a coupling within 1e-12 of its
+  !> limit) goes on as a change, with the out-of-balance of the change;
+  !> otherwise the search is as the first pivot left it and the settled
+  !> status's out-of-balance is made (settled_residual, from these CFE
+  !> forces).
+  subroutine settle_refined(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    type(status_search_t) :: kept
+    real(dp) :: fc(st%eq%cd%m), t0
+    call condensed_refine(st%eq%cd, st%dm, st%u)
+    t0 = wall_time()
+    call contact_at_u(st, fc)
+    st%eq%timing%recovery = st%eq%timing%recovery + (wall_time() - t0)
+    st%energy = contact_energy(st%cs)
+    kept = st%eq%search
+    call contact_switch(st%m, st%cs, st%eq%search, contact_force_scale(st%eq, st%cs, st%fext_norm), st%energy, &
+                        st%nchanged, st%eq%changed)
+    if (st%nchanged > 0) then
+      st%eq%residual = change_residual(st, fc)
+      return
+    end if
+    st%eq%search = kept
+    call settled_residual(st, path%whole, fc)
+  end subroutine settle_refined
 
   !> Purpose: a status changed outside the switch: nothing to do, the
   !> next solve makes its forces.
@@ -190,7 +237,7 @@ contains
       write(buf, '(i0)') path%nsolves
       call tell_note(st%obs, 'exact contact: ' // trim(buf) // ' direct multiplier solves in the increment')
     end if
-    st%eq%u_last = st%u
+    call keep_field(st%u, st%eq%u_last)
     associate(cd => st%eq%cd)
       if (cd%lazy) then
         ! the bodies' forces of u's other equations are not at hand
@@ -205,11 +252,22 @@ contains
           call s0_times(cd, cd%x2, cd%qnext)
           cd%qnext = cd%q0 - cd%qnext
         end if
-        cd%fext_last = st%fext
+        call keep_field(st%fext, cd%fext_last)
         cd%qnext_valid = .true.
       end if
     end associate
   end subroutine condensed_converged
+
+  !> dst = src, allocated to src's shape where it has another (copy_field).
+  subroutine keep_field(src, dst)
+    real(dp), intent(in) :: src(:, :)
+    real(dp), allocatable, intent(inout) :: dst(:, :)
+    if (allocated(dst)) then
+      if (any(shape(dst) /= shape(src))) deallocate(dst)
+    end if
+    if (.not. allocated(dst)) allocate(dst(size(src, 1), size(src, 2)))
+    call copy_field(size(src), src, dst)
+  end subroutine keep_field
 
   !> The start of the increment: the free equations from the last
   !> converged solution, the bodies' internal forces there (updated where
@@ -218,7 +276,7 @@ contains
     type(iteration_t), intent(inout) :: st
     real(dp), allocatable :: fbody(:, :)
     associate(eq => st%eq, m => st%m, dm => st%dm, u => st%u)
-      if (allocated(eq%u_last)) where (dm%eq > 0) u = eq%u_last
+      if (allocated(eq%u_last)) call take_equations(size(u), dm%eq, eq%u_last, u)
       call expand_dependent(dm, u)
       if (lazy_start(st)) then
         call start_on_contact_equations(st)
@@ -267,15 +325,16 @@ contains
   !> condensed before (condense_change), added to that increment's qnext.
   subroutine start_on_contact_equations(st)
     type(iteration_t), intent(inout) :: st
-    real(dp), allocatable :: df(:, :), r(:), dq(:)
+    real(dp) :: dq(st%eq%cd%m)
     associate(eq => st%eq, cd => st%eq%cd, m => st%m, dm => st%dm, u => st%u)
-      allocate(df(2, m%nn), r(cd%n), dq(cd%m))
-      df = 0.0_dp
       ! (u is u_last on every equation: the elements of the other dofs)
       call moving_elements(cd, m, dm)
-      call add_body_forces(m, st%body, u - eq%u_last, df, cd%moving_elems)
-      call free_residual(dm, st%fext - cd%fext_last, df, r)
-      call condense_change(cd, st%sys, r, dq)
+      if (allocated(eq%rhs)) then
+        if (size(eq%rhs) /= cd%n) deallocate(eq%rhs)
+      end if
+      if (.not. allocated(eq%rhs)) allocate(eq%rhs(cd%n))
+      call load_change(cd, m, st%body, dm, u, eq%u_last, st%fext, eq%rhs)
+      call condense_change(cd, st%sys, eq%rhs, dq)
       call condensed_begin_lazy(cd, m, dm, u, dq)
     end associate
   end subroutine start_on_contact_equations
@@ -288,28 +347,39 @@ contains
   !> bodies' part is added where the increment is recovered,
   !> condensed_complete). ok false where it is not below the tolerance:
   !> the caller recovers the whole solution as the full path does.
-  subroutine settled_on_contact_equations(st, ok)
+  !> Arguments: fc the CFE forces at u on the contact equations, rf
+  !> holding them on every dof (contact_at_u).
+  subroutine settled_on_contact_equations(st, fc, ok)
     type(iteration_t), intent(inout) :: st
+    real(dp), intent(in) :: fc(:)
     logical, intent(out) :: ok
-    real(dp) :: fc(st%eq%cd%m), ref, umax, r
+    real(dp) :: ref, umax, r
     integer :: p, e
     associate(eq => st%eq, cd => st%eq%cd, cs => st%cs, dm => st%dm, u => st%u, rf => st%rf)
-      rf = 0.0_dp
-      call contact_forces(st%m, cs, u, rf, eq%counts%coupling)
       umax = cd%umax_rest
       do p = 1, cd%m
         e = cd%eq_at(p)
-        fc(p) = rf(dm%dof_of_eq(e), dm%node_of_eq(e))
         umax = max(umax, abs(u(dm%dof_of_eq(e), dm%node_of_eq(e))))
       end do
-      rf = rf - st%fext
+      call subtract_field(size(rf), rf, st%fext)
       if (.not. allocated(cd%qnext)) allocate(cd%qnext(cd%m))
-      call s0_times(cd, cd%x2, cd%qnext)
-      cd%qnext = cd%q0 - cd%qnext
-      cd%qnext_fresh = .true.
       ref = max(st%fext_norm, sum(abs(cs%c(1:cs%n)%force)), 1.0e-6_dp * eq%kmax * umax, tiny(1.0_dp))
-      r = norm2(cd%qnext - fc) / max(ref, eq%force_history)
-      ok = r < st%m%contact_tolerance
+      ok = .false.
+      if (cd%s0x_valid) then
+        ! S0 x2 from the refinement (condensed_refine), judged with the
+        ! residual it measured of the solution before its last correction
+        ! (at least the refined solution's, to round-off)
+        cd%qnext = cd%q0 - cd%s0x
+        r = max(norm2(cd%qnext - fc), cd%rres) / max(ref, eq%force_history)
+        ok = r < st%m%contact_tolerance
+      end if
+      if (.not. ok) then
+        call s0_times(cd, cd%x2, cd%qnext)
+        cd%qnext = cd%q0 - cd%qnext
+        r = norm2(cd%qnext - fc) / max(ref, eq%force_history)
+        ok = r < st%m%contact_tolerance
+      end if
+      cd%qnext_fresh = .true.
       if (.not. ok) return
       eq%residual = r
       st%scale = ref
@@ -375,16 +445,24 @@ contains
   !> The status has settled: the other equations (unless u already holds
   !> them: whole), then forces, reactions and the out-of-balance as the
   !> full path has them; on the contact equations alone where the
-  !> increment may be (lazy_path) and is in balance there.
-  subroutine settled_residual(st, whole)
+  !> increment may be (lazy_path) and is in balance there. fc, if
+  !> present, the CFE forces at u on the contact equations, rf holding
+  !> them on every dof (contact_at_u; otherwise evaluated here).
+  subroutine settled_residual(st, whole, fc)
     type(iteration_t), intent(inout) :: st
     logical, intent(inout) :: whole
-    real(dp) :: t0
+    real(dp), intent(in), optional :: fc(:)
+    real(dp) :: t0, fcu(st%eq%cd%m)
     logical :: ok
     t0 = wall_time()
     st%eq%cd%lazy = .false.
     if (.not. whole .and. lazy_path(st)) then
-      call settled_on_contact_equations(st, ok)
+      if (present(fc)) then
+        fcu = fc
+      else
+        call contact_at_u(st, fcu)
+      end if
+      call settled_on_contact_equations(st, fcu, ok)
       st%eq%timing%recovery = st%eq%timing%recovery + (wall_time() - t0)
       if (ok) return
       st%eq%cd%lazy = .false.
@@ -406,6 +484,22 @@ contains
       eq%timing%recovery = eq%timing%recovery + (wall_time() - t0)
     end associate
   end subroutine settled_residual
+
+  !> The CFE forces at u: st%rf on every dof (zero elsewhere; the contact
+  !> layer keeps each CFE's gap and force), fc on the contact equations.
+  subroutine contact_at_u(st, fc)
+    type(iteration_t), intent(inout) :: st
+    real(dp), intent(out) :: fc(:)
+    integer :: p, e
+    associate(cd => st%eq%cd, dm => st%dm)
+      call zero_field(size(st%rf), st%rf)
+      call contact_forces(st%m, st%cs, st%u, st%rf, st%eq%counts%coupling)
+      do p = 1, cd%m
+        e = cd%eq_at(p)
+        fc(p) = st%rf(dm%dof_of_eq(e), dm%node_of_eq(e))
+      end do
+    end associate
+  end subroutine contact_at_u
 
   !> u += K^-1 (f_ext - f_int(u)) on the free equations, f_int - f_ext
   !> being st%rf of the u given.
