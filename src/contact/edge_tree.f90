@@ -27,7 +27,7 @@ module edge_tree
   use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_length
   implicit none
   private
-  public :: edge_tree_t, surface_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates, &
+  public :: edge_tree_t, surface_tree, refit_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates, &
             sort_ints
 
   !> A projection this far outside [0, 1] along an edge still counts: it
@@ -56,6 +56,9 @@ module edge_tree
     !> every coordinate finite: else the searches look at every edge (a
     !> projection onto an edge with a NaN is judged there as before)
     logical :: finite = .true.
+    !> spread_ratio when the tree was built (refit_tree builds it again
+    !> once its nodes' boxes have loosened by half)
+    real(dp) :: spread0 = 0.0_dp
   end type edge_tree_t
 
 contains
@@ -67,40 +70,149 @@ contains
     real(dp), intent(in) :: x(:, :)
     type(surface_t), intent(in) :: ms
     type(edge_tree_t), intent(out) :: tree
-    type(edge_t) :: ed
-    real(dp) :: p(2), d0(2), d1(2), c(2), pts(2, 3), grow, scale
-    integer :: j, np
+    integer :: j
     tree%n = size(ms%elem)
     allocate(tree%ebox(4, tree%n), tree%ed(tree%n))
-    scale = 0.0_dp
-    tree%straight = .true.
     do j = 1, tree%n
-      ed = get_edge(m, x, ms%elem(j), ms%edge(j))
-      tree%ed(j) = ed
-      tree%straight = tree%straight .and. ed%nn == 2
-      tree%longest = max(tree%longest, edge_length(ed))
-      pts(:, 1:2) = ed%x(:, 1:2)
-      np = 2
-      if (ed%nn == 3) then
-        ! the Bezier control point of the quadratic edge
-        c = 2.0_dp * ed%x(:, 3) - 0.5_dp * (ed%x(:, 1) + ed%x(:, 2))
-        pts(:, 3) = c
-        np = 3
-      end if
-      call edge_at(ed, 0.0_dp, p, d0)
-      call edge_at(ed, 1.0_dp, p, d1)
-      ! the feet at t in [-edge_tol, 1 + edge_tol]: |p'| bounds the extension
-      grow = 2.0_dp * edge_tol * max(norm2(d0), norm2(d1))
-      tree%ebox(1:2, j) = minval(pts(:, 1:np), dim=2) - grow
-      tree%ebox(3:4, j) = maxval(pts(:, 1:np), dim=2) + grow
-      scale = max(scale, maxval(abs(pts(:, 1:np))))
+      tree%ed(j) = get_edge(m, x, ms%elem(j), ms%edge(j))
+    end do
+    call edge_boxes(tree)
+    call build_tree(tree)
+    tree%spread0 = spread_ratio(tree)
+  end subroutine surface_tree
+
+  !> Purpose: the tree of surface ms moved to configuration x: its edges
+  !> take the nodes' coordinates in x, their boxes are made again and
+  !> every tree node's box is the union of its children's (a refit: the
+  !> grouping of the edges stays). The candidates of a radius are then
+  !> those of a tree built on x (the edges whose box is within it, in
+  !> index order: the grouping only prunes), so a search answers as on a
+  !> new tree, to the bit (the root box and the mean box size are the
+  !> same numbers too), without its sort: UPDATE SEARCH pairs again at
+  !> every increment, and the sort was two thirds of a new tree. The
+  !> tree is built again where the grouping has become loose (its nodes'
+  !> boxes, against its edges', have grown by half since it was built:
+  !> the surface deformed, not only moved) or where it is not that of ms
+  !> (its edge count).
+  !> Arguments: tree in: a tree of ms (surface_tree), or an empty one;
+  !> out: the tree of ms in x.
+  subroutine refit_tree(m, x, ms, tree)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :)
+    type(surface_t), intent(in) :: ms
+    type(edge_tree_t), intent(inout) :: tree
+    integer :: j, k
+    if (tree%n /= size(ms%elem) .or. tree%n == 0 .or. .not. allocated(tree%ed) .or. .not. allocated(tree%perm)) then
+      call surface_tree(m, x, ms, tree)
+      return
+    end if
+    do j = 1, tree%n
+      do k = 1, tree%ed(j)%nn
+        tree%ed(j)%x(:, k) = x(:, tree%ed(j)%node(k))
+      end do
+    end do
+    call edge_boxes(tree)
+    tree%step = sum(tree%ebox(3:4, :) - tree%ebox(1:2, :)) / (2 * tree%n)
+    call refit_boxes(tree)
+    if (.not. spread_ratio(tree) <= 1.5_dp * tree%spread0) then
+      deallocate(tree%perm, tree%box, tree%first, tree%last, tree%left)
+      call build_tree(tree)
+      tree%spread0 = spread_ratio(tree)
+    end if
+  end subroutine refit_tree
+
+  !> Purpose: the boxes of the tree's edges tree%ed (in their
+  !> configuration), and whether all are straight, the longest chord and
+  !> whether every box is finite. Each box holds the corners and, for a
+  !> 3-node edge, the Bezier control point, grown by the edge_tol extension
+  !> and a rounding margin.
+  subroutine edge_boxes(tree)
+    type(edge_tree_t), intent(inout) :: tree
+    real(dp) :: p(2), d0(2), d1(2), pts(2, 3), lo(2), hi(2), grow, scale, len
+    integer :: j, np, q
+    logical :: fin
+    scale = 0.0_dp
+    fin = .true.
+    tree%straight = .true.
+    tree%longest = 0.0_dp
+    do j = 1, tree%n
+      associate(ed => tree%ed(j))
+        len = edge_length(ed)
+        tree%straight = tree%straight .and. ed%nn == 2
+        tree%longest = max(tree%longest, len)
+        pts(:, 1:2) = ed%x(:, 1:2)
+        np = 2
+        if (ed%nn == 3) then
+          ! the Bezier control point of the quadratic edge
+          pts(:, 3) = 2.0_dp * ed%x(:, 3) - 0.5_dp * (ed%x(:, 1) + ed%x(:, 2))
+          np = 3
+          call edge_at(ed, 0.0_dp, p, d0)
+          call edge_at(ed, 1.0_dp, p, d1)
+          ! the feet at t in [-edge_tol, 1 + edge_tol]: |p'| bounds the extension
+          grow = 2.0_dp * edge_tol * max(norm2(d0), norm2(d1))
+        else
+          ! (p' is the chord)
+          grow = 2.0_dp * edge_tol * len
+        end if
+      end associate
+      lo = pts(:, 1)
+      hi = pts(:, 1)
+      do q = 1, np
+        lo = min(lo, pts(:, q))
+        hi = max(hi, pts(:, q))
+        scale = max(scale, abs(pts(1, q)), abs(pts(2, q)))
+        fin = fin .and. abs(pts(1, q)) <= huge(1.0_dp) .and. abs(pts(2, q)) <= huge(1.0_dp)
+      end do
+      tree%ebox(1:2, j) = lo - grow
+      tree%ebox(3:4, j) = hi + grow
     end do
     ! rounding of the projection: far below any edge of a sound mesh
     tree%ebox(1:2, :) = tree%ebox(1:2, :) - 1.0e-10_dp * scale
     tree%ebox(3:4, :) = tree%ebox(3:4, :) + 1.0e-10_dp * scale
-    tree%finite = all(abs(tree%ebox) <= huge(1.0_dp))
-    call build_tree(tree)
-  end subroutine surface_tree
+    tree%finite = fin .and. abs(scale) <= huge(1.0_dp) .and. all(abs(tree%ebox) <= huge(1.0_dp))
+  end subroutine edge_boxes
+
+  !> Purpose: every tree node's box from its edges' boxes (a leaf) or its
+  !> children's (the same numbers as build_tree's: min and max are exact).
+  !> Children are numbered after their parent, so a pass from the last
+  !> node to the first meets them first.
+  subroutine refit_boxes(tree)
+    type(edge_tree_t), intent(inout) :: tree
+    integer :: k, a, b, l, i
+    do k = tree%nnode, 1, -1
+      a = tree%first(k)
+      b = tree%last(k)
+      l = tree%left(k)
+      if (b < a) then
+        tree%box(:, k) = [huge(1.0_dp), huge(1.0_dp), -huge(1.0_dp), -huge(1.0_dp)]
+      else if (l == 0) then
+        tree%box(:, k) = tree%ebox(:, tree%perm(a))
+        do i = a + 1, b
+          tree%box(1:2, k) = min(tree%box(1:2, k), tree%ebox(1:2, tree%perm(i)))
+          tree%box(3:4, k) = max(tree%box(3:4, k), tree%ebox(3:4, tree%perm(i)))
+        end do
+      else
+        tree%box(1:2, k) = min(tree%box(1:2, l), tree%box(1:2, l + 1))
+        tree%box(3:4, k) = max(tree%box(3:4, l), tree%box(3:4, l + 1))
+      end if
+    end do
+  end subroutine refit_boxes
+
+  !> Purpose: how loosely the tree groups its edges: the sum of its nodes'
+  !> box sizes (width plus height) over the sum of its edges'. Neither a
+  !> rigid motion nor a uniform stretch of the surface changes it.
+  pure real(dp) function spread_ratio(tree) result(q)
+    type(edge_tree_t), intent(in) :: tree
+    real(dp) :: se
+    integer :: k
+    q = 0.0_dp
+    do k = 1, tree%nnode
+      if (tree%last(k) < tree%first(k)) cycle
+      q = q + (tree%box(3, k) - tree%box(1, k)) + (tree%box(4, k) - tree%box(2, k))
+    end do
+    se = sum(tree%ebox(3:4, :) - tree%ebox(1:2, :))
+    q = q / se
+  end function spread_ratio
 
   !> Purpose: a tree over boxes given by the caller (ebox(1:2, j) the lower
   !> and ebox(3:4, j) the upper corner of item j), for tree_candidates:
@@ -335,8 +447,13 @@ contains
   !> through it are skipped) and skip_elem a slave element (its edges are
   !> skipped), 0 for none; dmax search distance, tbest the projection's
   !> position along the edge; tree, if present, the tree of ms in x
-  !> (surface_tree): the same answer from the edges near xs only.
-  subroutine nearest_edge(m, x, ms, xs, skip_node, skip_elem, dmax, best, tbest, tree)
+  !> (surface_tree): the same answer from the edges near xs only; hint,
+  !> with the tree, an edge to try first (the point's edge of the last
+  !> search; 0 for none): where it takes the point at |d|, the first
+  !> radius is |d| (every edge nearer has its box within it), so that a
+  !> point that stays on its edge is answered from the few edges whose
+  !> boxes reach it. The answer is the same with any hint.
+  subroutine nearest_edge(m, x, ms, xs, skip_node, skip_elem, dmax, best, tbest, tree, hint)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), xs(2), dmax
     type(surface_t), intent(in) :: ms
@@ -344,6 +461,7 @@ contains
     integer, intent(out) :: best
     real(dp), intent(out) :: tbest
     type(edge_tree_t), intent(in), optional :: tree
+    integer, intent(in), optional :: hint
     integer, allocatable :: cand(:)
     integer :: j, ncand
     real(dp) :: dbest, r, rall, rlim
@@ -367,6 +485,15 @@ contains
     rlim = huge(1.0_dp)
     if (tree%straight) rlim = max(dmax, 0.5_dp * tree%longest)
     r = box_distance(tree%box(:, 1), xs) + tree%step
+    if (present(hint)) then
+      if (hint > 0 .and. hint <= tree%n) then
+        call judge(m, x, ms, hint, xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
+        if (best > 0) r = min(r, dbest)
+        best = 0
+        tbest = 0.0_dp
+        dbest = huge(1.0_dp)
+      end if
+    end if
     do while (r < rall)
       call tree_candidates(tree, xs, r, cand, ncand)
       do j = 1, ncand
