@@ -30,7 +30,7 @@ module condensed_contact
   use model, only: model_t, carries_stiffness, elem_nodes, nonlinear_material, step_dloads, dload_p
   use solver_codes, only: solver_cholmod, solver_umfpack, solver_mumps, contact_solve_full, contact_solve_condensed
   use contact, only: cfe_t, contact_set_t, cfe_input, cfe_nodes, contact_forces, frictional_set, closed_stiffness, &
-                     open_penalty
+                     open_penalty, coupling_weights
   use element_interface, only: cfe_in_t, cfe_out_t, max_en, act_tangent
   use cfe_element, only: cfe, cfe_b_matrix
   use assembly, only: body_t, element_counts_t, assemble_stiffness, free_residual
@@ -462,11 +462,12 @@ contains
     call map_cfes(cd, m, cs, dm, cs, counts, tangents=.false.)
   end subroutine condensed_repair
 
-  !> Purpose: does zone hold every dof of the CFEs' nodes that is not
-  !> prescribed (a dependent dof: the independent dofs of its
-  !> constraint)? A superset of the dofs contact_dof_mask marks (it
-  !> leaves out those a CFE's tangent does not reach), so true here means
-  !> the mask lies in the zone too.
+  !> Purpose: does zone hold every dof of the CFEs' nodes of non-zero
+  !> weight that is not prescribed (a dependent dof: the independent dofs
+  !> of its constraint)? A superset of the dofs contact_dof_mask marks (it
+  !> leaves out those a CFE's tangent does not reach: a node of weight
+  !> zero, a master element's node off the face, has a zero diagonal
+  !> there), so true here means the mask lies in the zone too.
   logical function nodes_in_zone(m, cs, prescribed, mpc, zone) result(inside)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(in) :: cs
@@ -474,10 +475,12 @@ contains
     type(mpc_t), intent(in) :: mpc
     integer :: j, k, d, i, q, nen
     integer, allocatable :: nodes(:)
+    real(dp), allocatable :: w(:)
     inside = .false.
     do j = 1, cs%n
-      call cfe_nodes(m, cs%c(j), nodes, nen)
+      call coupling_weights(m, cs%c(j), nodes, w, nen)
       do k = 1, nen
+        if (w(k) == 0.0_dp) cycle
         do d = 1, 2
           i = mpc%dep(d, nodes(k))
           if (i == 0) then
