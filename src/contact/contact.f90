@@ -31,7 +31,7 @@ module contact
   use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted, coarse_straight_slave
   use element_interface, only: cfe_in_t, cfe_out_t, max_slave, act_residual
   use cfe_element, only: cfe
-  use contact_wear, only: wear_t, wear_setup, wear_add, wear_at, wear_node_areas
+  use contact_wear, only: wear_t, wear_link_t, wear_setup, wear_add, wear_at, wear_node_areas
   implicit none
   private
   public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
@@ -350,9 +350,15 @@ contains
     integer, allocatable :: unc(:), uncp(:)
     integer :: ip, nunc, nunc_p
     real(dp) :: dmax
-    allocate(cs%c(16), unc(16), uncp(16))
     nunc = 0
     nunc_p = 0
+    ! (about as many couplings as the last search's)
+    if (present(prior)) then
+      allocate(cs%c(max(16, prior%n + prior%n / 8)))
+    else
+      allocate(cs%c(16))
+    end if
+    allocate(unc(16), uncp(16))
     if (present(prior)) then
       if (allocated(prior%memo)) then
         if (size(prior%memo) == size(m%pairs)) call move_alloc(prior%memo, cs%memo)
@@ -433,8 +439,7 @@ contains
         c = cfe_t()
         c%ns = 1
         c%snode(1) = s
-        call make_cfe(m, x, ip, m%x(:, s), x(:, s), ms%elem(best), ms%edge(best), tbest, mo%area(k), mo%h(k), &
-                      mo%emod(k), c)
+        call make_cfe(m, x, ip, m%x(:, s), x(:, s), mo%tree%ed(best), tbest, mo%area(k), mo%h(k), mo%emod(k), c)
         call add_cfe(cs, c)
       end do
     end associate
@@ -698,7 +703,7 @@ contains
             ncoupled = ncoupled + 1
             w = edge_weights(ed, t)
             c = cfe_t(ns=3, snode=ed%node, sw=w, selem=sl%elem(f), sedge=sl%edge(f), sip=npts)
-            call make_cfe(m, x, ip, pref, p, ms%elem(best), ms%edge(best), tbest, area, h, em, c)
+            call make_cfe(m, x, ip, pref, p, tree%ed(best), tbest, area, h, em, c)
             call add_cfe(cs, c)
           end do
         end do
@@ -725,17 +730,24 @@ contains
 
   !> Purpose: completes CFE c, whose slave side (nodes, weights) is set:
   !> its coupling point at xs_ref (reference) and xs (configuration x) on
-  !> edge `edge` of master element e at position t, with its area, node
-  !> spacing h and modulus emod (0 area: a lone node).
-  subroutine make_cfe(m, x, ip, xs_ref, xs, e, edge, t, area, h, emod, c)
+  !> master edge ed (get_edge in x: the search tree's) at position t,
+  !> with its area, node spacing h and modulus emod (0 area: a lone node).
+  subroutine make_cfe(m, x, ip, xs_ref, xs, ed, t, area, h, emod, c)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), xs_ref(2), xs(2), t, area, h, emod
-    integer, intent(in) :: ip, e, edge
+    integer, intent(in) :: ip
+    type(edge_t), intent(in) :: ed
     type(cfe_t), intent(inout) :: c
-    type(edge_t) :: ed, ref
+    type(edge_t) :: ref
     real(dp) :: ab(2), tvec(2), hm, em, len, p(2), dpdt(2), w(3)
-    ed = get_edge(m, x, e, edge)
-    ref = get_edge(m, m%x, e, edge)
+    integer :: e, edge, j
+    e = ed%elem
+    edge = ed%k
+    ! the same edge on the reference coordinates
+    ref = ed
+    do j = 1, ed%nn
+      ref%x(:, j) = m%x(:, ed%node(j))
+    end do
     c%pair = ip
     c%elem = e
     c%edge = edge
@@ -845,6 +857,7 @@ contains
     if (allocated(cs%memo)) call move_alloc(cs%memo, old%memo)
     old%stages = cs%stages
     if (allocated(cs%wear%pairs)) call move_alloc(cs%wear%pairs, old%wear%pairs)
+    if (allocated(cs%wear%link)) call move_alloc(cs%wear%link, old%wear%link)
     ! (the wear links once, below, with the depths so far: not a fresh wear
     ! state to throw away, every surface's areas made again)
     call contact_search(m, x, cs, wear_later=allocated(old%wear%pairs), prior=old)
@@ -876,6 +889,7 @@ contains
     ! the worn depths so far, read by the new couplings
     if (allocated(old%wear%pairs)) then
       call move_alloc(old%wear%pairs, cs%wear%pairs)
+      if (allocated(old%wear%link)) call move_alloc(old%wear%link, cs%wear%link)
       call attach_wear(m, cs)
     end if
     if (present(changed)) changed = nchg
@@ -1536,8 +1550,7 @@ contains
     if (.not. any(m%pairs%wear)) return
     if (.not. allocated(cs%wear%pairs)) call wear_setup(m, cs%wear)
     cs%wear%on = .true.
-    if (allocated(cs%wear%link)) deallocate(cs%wear%link)
-    allocate(cs%wear%link(cs%n))
+    call size_links(cs%wear%link, cs%n)
     do j = 1, cs%n
       ! its nodes and weights (coupling_weights), slave nodes first
       call coupling_weights(m, cs%c(j), nodes, w, nen)
@@ -1551,6 +1564,29 @@ contains
     end do
     call refresh_wear(cs)
   end subroutine attach_wear
+
+  !> Purpose: link(1:n) for n coupling elements, the arrays of the links
+  !> there were kept (a link's assignment then reallocates them only where
+  !> its node count changed: a re-search at every increment made two
+  !> arrays per coupling anew).
+  !> Arguments: link the wear's links (any, or none, before); n.
+  subroutine size_links(link, n)
+    type(wear_link_t), allocatable, intent(inout) :: link(:)
+    integer, intent(in) :: n
+    type(wear_link_t), allocatable :: more(:)
+    integer :: j
+    if (allocated(link)) then
+      if (size(link) == n) return
+    end if
+    allocate(more(n))
+    if (allocated(link)) then
+      do j = 1, min(n, size(link))
+        call move_alloc(link(j)%node, more(j)%node)
+        call move_alloc(link(j)%w, more(j)%w)
+      end do
+    end if
+    call move_alloc(more, link)
+  end subroutine size_links
 
   !> Purpose: coupling element c's nodes (cfe_nodes) and the weights of its
   !> B_e (eq. 4) without their signs: slave nodes first (the slave weights

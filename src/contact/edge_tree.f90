@@ -361,7 +361,12 @@ contains
       do i = tree%first(k), tree%last(k)
         j = tree%perm(i)
         if (.not. box_distance(tree%ebox(:, j), p) <= r) cycle
-        call append(cand, ncand, j)
+        if (ncand < size(cand)) then
+          ncand = ncand + 1
+          cand(ncand) = j
+        else
+          call append(cand, ncand, j)
+        end if
       end do
     end do
     call sort_ints(cand(1:ncand))
@@ -463,8 +468,8 @@ contains
     type(edge_tree_t), intent(in), optional :: tree
     integer, intent(in), optional :: hint
     integer, allocatable :: cand(:)
-    integer :: j, ncand
-    real(dp) :: dbest, r, rall, rlim
+    integer :: j, ncand, hbest
+    real(dp) :: dbest, r, rall, rlim, htbest, hdbest
     best = 0
     tbest = 0.0_dp
     dbest = huge(1.0_dp)
@@ -485,18 +490,24 @@ contains
     rlim = huge(1.0_dp)
     if (tree%straight) rlim = max(dmax, 0.5_dp * tree%longest)
     r = box_distance(tree%box(:, 1), xs) + tree%step
+    ! the hint's verdict, judged once: the best so far of every pass below
+    ! (judge keeps the lowest index of the least |d| whatever the order)
+    hbest = 0
+    htbest = 0.0_dp
+    hdbest = huge(1.0_dp)
     if (present(hint)) then
       if (hint > 0 .and. hint <= tree%n) then
-        call judge(m, x, ms, hint, xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
-        if (best > 0) r = min(r, dbest)
-        best = 0
-        tbest = 0.0_dp
-        dbest = huge(1.0_dp)
+        call judge(m, x, ms, hint, xs, skip_node, skip_elem, dmax, hbest, htbest, hdbest, tree)
+        if (hbest > 0) r = min(r, hdbest)
       end if
     end if
     do while (r < rall)
+      best = hbest
+      tbest = htbest
+      dbest = hdbest
       call tree_candidates(tree, xs, r, cand, ncand)
       do j = 1, ncand
+        if (cand(j) == hbest) cycle
         call judge(m, x, ms, cand(j), xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
       end do
       ! every edge with |d| <= r was judged
@@ -525,7 +536,9 @@ contains
   end function reach_all
 
   !> Purpose: whether edge j of ms takes point xs, and whether it is nearer
-  !> than the best so far (best, tbest, dbest = |d|, updated): its
+  !> than the best so far (best, tbest, dbest = |d|, updated; as near and
+  !> of a lower index also counts, so that the lowest index of the least
+  !> |d| wins in any order of judging): its
   !> projection falls on it (within edge_tol), xs is not behind it by more
   !> than half its length (the far side of the master body) nor farther
   !> than dmax in front. Edges of skip_elem and through skip_node are not.
@@ -555,7 +568,7 @@ contains
     if (t < -edge_tol .or. t > 1.0_dp + edge_tol) return
     t = min(max(t, 0.0_dp), 1.0_dp)
     if (d < -0.5_dp * edge_length(ed) .or. d > dmax) return
-    if (abs(d) < dbest) then
+    if (abs(d) < dbest .or. (abs(d) == dbest .and. j < best)) then
       dbest = abs(d)
       best = j
       tbest = t
