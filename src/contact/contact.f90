@@ -189,9 +189,11 @@ module contact
     real(dp), allocatable :: area(:), h(:), emod(:)
     integer, allocatable :: face(:)
     type(edge_tree_t) :: tree
+    integer, allocatable :: cand(:)        ! nearest_edge's work list
   end type pair_memo_t
 
   type :: contact_set_t
+    !> The couplings are c(1:n) (c may be longer after a re-search).
     integer :: n = 0
     type(cfe_t), allocatable :: c(:)
     !> Slave nodes of each pair that found no master segment.
@@ -376,7 +378,9 @@ contains
         call couple_slave_nodes(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
       end if
     end do
-    cs%c = cs%c(1:cs%n)
+    ! (a re-search keeps the array's slack: cs%c(1:cs%n) are read, never
+    ! the whole array, and the trimmed copy was a tenth of a re-search)
+    if (.not. present(prior)) cs%c = cs%c(1:cs%n)
     call start_soft(m, cs)
     if (.not. allocated(cs%notes)) allocate(cs%notes(0))
     cs%uncoupled = unc(1:nunc)
@@ -429,7 +433,7 @@ contains
       call refit_tree(m, x, ms, mo%tree)
       do k = 1, size(sl%nodes)
         s = sl%nodes(k)
-        call nearest_edge(m, x, ms, x(:, s), s, 0, dmax, best, tbest, mo%tree, mo%face(k))
+        call nearest_edge(m, x, ms, x(:, s), s, 0, dmax, best, tbest, mo%tree, mo%face(k), mo%cand)
         mo%face(k) = best
         if (best == 0) then
           call append(unc, nunc, s)
@@ -846,7 +850,7 @@ contains
     type(contact_set_t) :: old
     integer, allocatable :: head(:), next(:)
     logical, allocatable :: matched(:)
-    integer :: j, q, nchg
+    integer :: j, q, nchg, klo, khi
     logical :: stabilised, reevaluate
     reevaluate = .false.
     if (present(moved)) reevaluate = moved
@@ -863,7 +867,9 @@ contains
     call contact_search(m, x, cs, wear_later=allocated(old%wear%pairs), prior=old)
     cs%stabilised = stabilised
     cs%stages = old%stages
-    allocate(head(m%nn), next(old%n), matched(old%n))
+    ! (the chains' heads over the key nodes' range, not every node)
+    call key_range(old, cs, klo, khi)
+    allocate(head(klo:khi), next(old%n), matched(old%n))
     head = 0
     matched = .false.
     do q = old%n, 1, -1
@@ -1012,6 +1018,28 @@ contains
     cs%uncoupled = pack(cs%uncoupled, keep)
     cs%uncoupled_pair = pack(cs%uncoupled_pair, keep)
   end subroutine drop_uncoupled
+
+  !> Purpose: the least and largest key node (key_node) of the couplings of
+  !> sets a and b (1 and 0 where there are none).
+  pure subroutine key_range(a, b, lo, hi)
+    type(contact_set_t), intent(in) :: a, b
+    integer, intent(out) :: lo, hi
+    integer :: j
+    lo = huge(1)
+    hi = -huge(1)
+    do j = 1, a%n
+      lo = min(lo, key_node(a%c(j)))
+      hi = max(hi, key_node(a%c(j)))
+    end do
+    do j = 1, b%n
+      lo = min(lo, key_node(b%c(j)))
+      hi = max(hi, key_node(b%c(j)))
+    end do
+    if (hi < lo) then
+      lo = 1
+      hi = 0
+    end if
+  end subroutine key_range
 
   !> The node a CFE is filed under when old and new couplings are matched:
   !> its first slave node, or for a coupling of the master-mesh multiplier

@@ -458,7 +458,7 @@ contains
   !> radius is |d| (every edge nearer has its box within it), so that a
   !> point that stays on its edge is answered from the few edges whose
   !> boxes reach it. The answer is the same with any hint.
-  subroutine nearest_edge(m, x, ms, xs, skip_node, skip_elem, dmax, best, tbest, tree, hint)
+  subroutine nearest_edge(m, x, ms, xs, skip_node, skip_elem, dmax, best, tbest, tree, hint, work)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), xs(2), dmax
     type(surface_t), intent(in) :: ms
@@ -467,9 +467,11 @@ contains
     real(dp), intent(out) :: tbest
     type(edge_tree_t), intent(in), optional :: tree
     integer, intent(in), optional :: hint
+    integer, allocatable, intent(inout), optional :: work(:)
     integer, allocatable :: cand(:)
-    integer :: j, ncand, hbest
-    real(dp) :: dbest, r, rall, rlim, htbest, hdbest
+    integer :: j, hs
+    real(dp) :: dbest, rall
+    logical :: found
     best = 0
     tbest = 0.0_dp
     dbest = huge(1.0_dp)
@@ -484,6 +486,39 @@ contains
       end do
       return
     end if
+    hs = 0
+    if (present(hint)) hs = hint
+    if (present(work)) call move_alloc(work, cand)
+    call tree_search(m, x, ms, xs, skip_node, skip_elem, dmax, tree, hs, rall, cand, best, tbest, found)
+    if (present(work)) call move_alloc(cand, work)
+    if (found) return
+    ! a radius that takes in every edge (or one that is not finite)
+    do j = 1, size(ms%elem)
+      call judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
+    end do
+  end subroutine nearest_edge
+
+  !> Purpose: nearest_edge's search on the tree: the edges whose boxes are
+  !> within a radius r of xs are judged, r growing until the best |d| is
+  !> at most r (then every nearer edge was judged) or r passes the
+  !> farthest an edge takes a point from (none takes it).
+  !> Arguments: hint an edge to try first (0: none); rall a radius that
+  !> takes in every edge; cand a work list; best, tbest the answer where
+  !> found, which is false where r reached rall first (best 0: the caller
+  !> judges every edge).
+  subroutine tree_search(m, x, ms, xs, skip_node, skip_elem, dmax, tree, hint, rall, cand, best, tbest, found)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), xs(2), dmax, rall
+    type(surface_t), intent(in) :: ms
+    integer, intent(in) :: skip_node, skip_elem, hint
+    type(edge_tree_t), intent(in) :: tree
+    integer, allocatable, intent(inout) :: cand(:)
+    integer, intent(out) :: best
+    real(dp), intent(out) :: tbest
+    logical, intent(out) :: found
+    integer :: j, ncand, hbest
+    real(dp) :: dbest, r, rlim, htbest, hdbest
+    found = .true.
     ! no edge takes the point at |d| > rlim (judge): a point farther than
     ! that from every edge (a slave node beyond the search distance) is
     ! answered without judging all of them
@@ -495,11 +530,9 @@ contains
     hbest = 0
     htbest = 0.0_dp
     hdbest = huge(1.0_dp)
-    if (present(hint)) then
-      if (hint > 0 .and. hint <= tree%n) then
-        call judge(m, x, ms, hint, xs, skip_node, skip_elem, dmax, hbest, htbest, hdbest, tree)
-        if (hbest > 0) r = min(r, hdbest)
-      end if
+    if (hint > 0 .and. hint <= tree%n) then
+      call judge(m, x, ms, hint, xs, skip_node, skip_elem, dmax, hbest, htbest, hdbest, tree)
+      if (hbest > 0) r = min(r, hdbest)
     end if
     do while (r < rall)
       best = hbest
@@ -514,15 +547,13 @@ contains
       if (best > 0 .and. dbest <= r) return
       best = 0
       tbest = 0.0_dp
-      dbest = huge(1.0_dp)
       if (r >= rlim) return
       r = 2.0_dp * r + tree%step
     end do
-    ! a radius that takes in every edge (or one that is not finite)
-    do j = 1, size(ms%elem)
-      call judge(m, x, ms, j, xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
-    end do
-  end subroutine nearest_edge
+    best = 0
+    tbest = 0.0_dp
+    found = .false.
+  end subroutine tree_search
 
   !> Purpose: the farthest distance from p to a point of the tree's root
   !> box: a radius that takes in every edge.
