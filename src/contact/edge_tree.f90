@@ -24,7 +24,7 @@ module edge_tree
   use kinds, only: dp
   use growable, only: append
   use model, only: model_t, surface_t
-  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, edge_length
+  use contact_geometry, only: edge_t, get_edge, edge_at, project_to_edge, project_to_chord, edge_length
   implicit none
   private
   public :: edge_tree_t, surface_tree, refit_tree, boxes_tree, nearest_edge, edge_tol, tree_candidates, slab_candidates, &
@@ -48,6 +48,9 @@ module edge_tree
     !> the edges themselves (surface_tree; not for boxes_tree's items), so
     !> that a search judges them without making each again (get_edge)
     type(edge_t), allocatable :: ed(:)
+    !> each straight edge's unit tangent and length (chord(1:2, j) and
+    !> chord(3, j), for its projections: project_to_chord)
+    real(dp), allocatable :: chord(:, :)
     !> every edge straight (2 nodes), and the longest chord: an edge that
     !> takes a point at |d| then has the foot within |d| of it, and |d| is
     !> at most the larger of the search distance and half the chord (judge)
@@ -131,6 +134,7 @@ contains
     real(dp) :: p(2), d0(2), d1(2), pts(2, 3), lo(2), hi(2), grow, scale, len
     integer :: j, np, q
     logical :: fin
+    if (.not. allocated(tree%chord)) allocate(tree%chord(3, tree%n))
     scale = 0.0_dp
     fin = .true.
     tree%straight = .true.
@@ -153,6 +157,8 @@ contains
         else
           ! (p' is the chord)
           grow = 2.0_dp * edge_tol * len
+          tree%chord(1:2, j) = (ed%x(:, 2) - ed%x(:, 1)) / len
+          tree%chord(3, j) = len
         end if
       end associate
       lo = pts(:, 1)
@@ -335,6 +341,19 @@ contains
     box_distance = sqrt(dx * dx + dy * dy)
   end function box_distance
 
+  !> Purpose: is box b (xmin, ymin, xmax, ymax) within distance r of point
+  !> p? The squared distances are compared (no root per box of a search).
+  !> A box whose edge takes a point at |d| <= r holds the foot with the
+  !> rounding margin around it (surface_tree), so the last bits of either
+  !> comparison cannot leave out an edge the search needs.
+  pure logical function box_within(b, p, r2)
+    real(dp), intent(in) :: b(4), p(2), r2     ! r2 = r**2
+    real(dp) :: dx, dy
+    dx = max(b(1) - p(1), 0.0_dp, p(1) - b(3))
+    dy = max(b(2) - p(2), 0.0_dp, p(2) - b(4))
+    box_within = dx * dx + dy * dy <= r2
+  end function box_within
+
   !> Purpose: the edges whose box is within distance r of point p, in
   !> ascending order of their index (the order of a search over all).
   !> Arguments: cand(1:ncand) returns them (grown as needed).
@@ -344,15 +363,17 @@ contains
     integer, allocatable, intent(inout) :: cand(:)
     integer, intent(out) :: ncand
     integer :: stack(128), ns, k, i, j
+    real(dp) :: r2
     if (.not. allocated(cand)) allocate(cand(32))   ! (callers read cand(1:ncand))
     ncand = 0
-    if (tree%n == 0) return
+    if (tree%n == 0 .or. .not. r >= 0.0_dp) return
+    r2 = r * r
     ns = 1
     stack(1) = 1
     do while (ns > 0)
       k = stack(ns)
       ns = ns - 1
-      if (.not. box_distance(tree%box(:, k), p) <= r) cycle
+      if (.not. box_within(tree%box(:, k), p, r2)) cycle
       if (tree%left(k) > 0) then
         stack(ns + 1:ns + 2) = [tree%left(k), tree%left(k) + 1]
         ns = ns + 2
@@ -360,7 +381,7 @@ contains
       end if
       do i = tree%first(k), tree%last(k)
         j = tree%perm(i)
-        if (.not. box_distance(tree%ebox(:, j), p) <= r) cycle
+        if (.not. box_within(tree%ebox(:, j), p, r2)) cycle
         if (ncand < size(cand)) then
           ncand = ncand + 1
           cand(ncand) = j
@@ -582,27 +603,54 @@ contains
     integer, intent(inout) :: best
     real(dp), intent(inout) :: tbest, dbest
     type(edge_tree_t), intent(in), optional :: tree
-    type(edge_t) :: ed
-    real(dp) :: nvec(2), t, d
     if (ms%elem(j) == skip_elem) return
     if (present(tree)) then
       if (allocated(tree%ed)) then
-        ed = tree%ed(j)
-      else
-        ed = get_edge(m, x, ms%elem(j), ms%edge(j))
+        ! the tree's edge, and a straight one's chord (edge_boxes)
+        if (tree%ed(j)%nn == 2) then
+          call judge_edge(tree%ed(j), j, xs, skip_node, dmax, best, tbest, dbest, tree%chord(:, j))
+        else
+          call judge_edge(tree%ed(j), j, xs, skip_node, dmax, best, tbest, dbest)
+        end if
+        return
       end if
-    else
-      ed = get_edge(m, x, ms%elem(j), ms%edge(j))
     end if
+    call judge_edge(get_edge(m, x, ms%elem(j), ms%edge(j)), j, xs, skip_node, dmax, best, tbest, dbest)
+  end subroutine judge
+
+  !> Purpose: judge's verdict on edge ed (index j): its projection of xs
+  !> (project_to_edge; for a straight edge given chord = its unit tangent
+  !> and length, the same numbers from them) must fall on it, xs not
+  !> behind it by more than half its length nor farther than dmax in
+  !> front, nor the edge through skip_node.
+  subroutine judge_edge(ed, j, xs, skip_node, dmax, best, tbest, dbest, chord)
+    type(edge_t), intent(in) :: ed
+    integer, intent(in) :: j, skip_node
+    real(dp), intent(in) :: xs(2), dmax
+    integer, intent(inout) :: best
+    real(dp), intent(inout) :: tbest, dbest
+    real(dp), intent(in), optional :: chord(3)
+    real(dp) :: nvec(2), t, d, len
     if (any(ed%node(1:ed%nn) == skip_node)) return
-    call project_to_edge(ed, xs, t, nvec, d)
+    if (present(chord)) then
+      call project_to_chord(ed%x(:, 1), chord(1:2), chord(3), xs, t, nvec, d)
+      len = chord(3)
+    else
+      call project_to_edge(ed, xs, t, nvec, d)
+      len = -1.0_dp
+    end if
     if (t < -edge_tol .or. t > 1.0_dp + edge_tol) return
     t = min(max(t, 0.0_dp), 1.0_dp)
-    if (d < -0.5_dp * edge_length(ed) .or. d > dmax) return
+    if (d < 0.0_dp) then
+      ! (the chord's length where the point is behind the edge)
+      if (len < 0.0_dp) len = edge_length(ed)
+      if (d < -0.5_dp * len) return
+    end if
+    if (d > dmax) return
     if (abs(d) < dbest .or. (abs(d) == dbest .and. j < best)) then
       dbest = abs(d)
       best = j
       tbest = t
     end if
-  end subroutine judge
+  end subroutine judge_edge
 end module edge_tree
