@@ -7,8 +7,10 @@ tests/unit/test_fretting_search.f90 moves random master surfaces through
 histories (a rough profile of 2-node edges slid back and forth by 2.5
 edges as in a fretting cycle, with and without a search distance, and
 stretched by half; a circle of 3-node edges slid; a polyline whose edges
-are all given twice; a flat surface whose 2000 edges are dealt out to
-random places) with every node perturbed, and at each configuration asks
+are all given twice; a channel of two facing strips closing in, whose
+points' last edges on the lower strip stop being the nearest; a flat
+surface whose 2000 edges are dealt out to random places) with every node
+perturbed, and at each configuration asks
 nearest_edge for random points with the kept tree (hints: the point's edge
 of the configuration before, a random edge, none, one out of range) and
 over every edge: the edge and the position along it must be the same bit
@@ -37,5 +39,5 @@ def test_kept_tree_and_hints_answer_as_the_search_over_all_edges():
     failed = [ln for ln in lines if ln.startswith("FAIL ")]
     assert not failed, "\n".join(failed)
     # every case ran (a crash part-way would leave some out)
-    assert len(lines) == 6, f"expected 6 results, got {len(lines)}:\n{run.stdout}\n{run.stderr}"
+    assert len(lines) == 7, f"expected 7 results, got {len(lines)}:\n{run.stdout}\n{run.stderr}"
     assert run.returncode == 0, run.stderr

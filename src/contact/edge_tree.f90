@@ -62,6 +62,16 @@ module edge_tree
     !> spread_ratio when the tree was built (refit_tree builds it again
     !> once its nodes' boxes have loosened by half)
     real(dp) :: spread0 = 0.0_dp
+    !> the largest magnitude of a coordinate of the edges (edge_boxes)
+    real(dp) :: scale = 0.0_dp
+    !> The neighbours of each edge (refit_tree's, for the hints of a
+    !> re-search): nbr(nbr_first(h):nbr_first(h + 1) - 1) are the other
+    !> edges whose boxes were within gap of edge h's box when they were
+    !> listed, with the boxes then (ebox_ref); eps bounds how far a box
+    !> coordinate has moved since, apart from a common translation.
+    integer, allocatable :: nbr_first(:), nbr(:)
+    real(dp), allocatable :: ebox_ref(:, :)
+    real(dp) :: gap = 0.0_dp, eps = huge(1.0_dp)
   end type edge_tree_t
 
 contains
@@ -122,7 +132,81 @@ contains
       call build_tree(tree)
       tree%spread0 = spread_ratio(tree)
     end if
+    ! the neighbour lists, listed again once the boxes have moved (apart
+    ! from a common translation) by a sixth of the gap they were listed with
+    tree%eps = box_motion(tree)
+    if (.not. tree%eps <= tree%gap / 6.0_dp) call list_neighbours(tree)
   end subroutine refit_tree
+
+  !> Purpose: how far the edges' boxes have moved since their neighbours
+  !> were listed (ebox_ref), apart from the translation of the first box's
+  !> lower corner: the largest change of a box coordinate (huge without
+  !> lists).
+  pure real(dp) function box_motion(tree) result(eps)
+    type(edge_tree_t), intent(in) :: tree
+    real(dp) :: v(2)
+    integer :: j
+    eps = huge(1.0_dp)
+    if (.not. allocated(tree%nbr_first) .or. tree%n == 0) return
+    if (size(tree%ebox_ref, 2) /= tree%n) return
+    v = tree%ebox(1:2, 1) - tree%ebox_ref(1:2, 1)
+    eps = 0.0_dp
+    do j = 1, tree%n
+      eps = max(eps, abs(tree%ebox(1, j) - tree%ebox_ref(1, j) - v(1)), abs(tree%ebox(2, j) - tree%ebox_ref(2, j) - v(2)), &
+                abs(tree%ebox(3, j) - tree%ebox_ref(3, j) - v(1)), abs(tree%ebox(4, j) - tree%ebox_ref(4, j) - v(2)))
+    end do
+    if (.not. eps <= huge(1.0_dp)) eps = huge(1.0_dp)
+  end function box_motion
+
+  !> Purpose: the neighbour lists of the tree's edges (edge_tree_t's nbr):
+  !> for each edge the other edges whose boxes lie within the gap of its
+  !> box, the gap four mean box sizes (a little more in the comparison,
+  !> for its rounding: a few edges each way along a surface, and a sixth of
+  !> it the motion the lists outlast), the boxes kept as ebox_ref.
+  subroutine list_neighbours(tree)
+    type(edge_tree_t), intent(inout) :: tree
+    integer :: stack(128), ns, k, i, e, h, nn
+    real(dp) :: g2
+    tree%gap = 4.0_dp * tree%step
+    g2 = (tree%gap * (1.0_dp + 1.0e-9_dp) + 1.0e-13_dp * tree%scale)**2
+    tree%ebox_ref = tree%ebox
+    if (allocated(tree%nbr_first)) deallocate(tree%nbr_first)
+    allocate(tree%nbr_first(tree%n + 1))
+    if (.not. allocated(tree%nbr)) allocate(tree%nbr(4 * tree%n))
+    nn = 0
+    do h = 1, tree%n
+      tree%nbr_first(h) = nn + 1
+      ns = 1
+      stack(1) = 1
+      do while (ns > 0)
+        k = stack(ns)
+        ns = ns - 1
+        if (.not. box_gap2(tree%box(:, k), tree%ebox(:, h)) <= g2) cycle
+        if (tree%left(k) > 0) then
+          stack(ns + 1:ns + 2) = [tree%left(k), tree%left(k) + 1]
+          ns = ns + 2
+          cycle
+        end if
+        do i = tree%first(k), tree%last(k)
+          e = tree%perm(i)
+          if (e == h .or. .not. box_gap2(tree%ebox(:, e), tree%ebox(:, h)) <= g2) cycle
+          call append(tree%nbr, nn, e)
+        end do
+      end do
+    end do
+    tree%nbr_first(tree%n + 1) = nn + 1
+    tree%eps = 0.0_dp
+  end subroutine list_neighbours
+
+  !> Purpose: the squared distance between boxes a and b (xmin, ymin,
+  !> xmax, ymax); 0 where they meet.
+  pure real(dp) function box_gap2(a, b) result(g2)
+    real(dp), intent(in) :: a(4), b(4)
+    real(dp) :: dx, dy
+    dx = max(a(1) - b(3), 0.0_dp, b(1) - a(3))
+    dy = max(a(2) - b(4), 0.0_dp, b(2) - a(4))
+    g2 = dx * dx + dy * dy
+  end function box_gap2
 
   !> Purpose: the boxes of the tree's edges tree%ed (in their
   !> configuration), and whether all are straight, the longest chord and
@@ -176,6 +260,7 @@ contains
     tree%ebox(1:2, :) = tree%ebox(1:2, :) - 1.0e-10_dp * scale
     tree%ebox(3:4, :) = tree%ebox(3:4, :) + 1.0e-10_dp * scale
     tree%finite = fin .and. abs(scale) <= huge(1.0_dp) .and. all(abs(tree%ebox) <= huge(1.0_dp))
+    tree%scale = scale
   end subroutine edge_boxes
 
   !> Purpose: every tree node's box from its edges' boxes (a leaf) or its
@@ -555,6 +640,10 @@ contains
       call judge(m, x, ms, hint, xs, skip_node, skip_elem, dmax, hbest, htbest, hdbest, tree)
       if (hbest > 0) r = min(r, hdbest)
     end if
+    if (hbest > 0) then
+      call hint_neighbours(m, x, ms, xs, skip_node, skip_elem, dmax, tree, hbest, htbest, hdbest, best, tbest)
+      if (best > 0) return
+    end if
     do while (r < rall)
       best = hbest
       tbest = htbest
@@ -575,6 +664,44 @@ contains
     tbest = 0.0_dp
     found = .false.
   end subroutine tree_search
+
+  !> Purpose: tree_search's answer from the neighbours of the hint's edge h
+  !> (nbr), which takes xs at |d| = dh, where they hold every edge whose
+  !> box is within dh of xs: such a box is within 2 dh of h's box (which
+  !> holds the foot), and the boxes have moved by at most eps since they
+  !> were listed (apart from a common translation, which moves no distance
+  !> between them), so it was within 2 dh + 2 sqrt(2) eps of h's then: in
+  !> the list where that is at most the gap it was listed with (2.1 dh +
+  !> 3 eps and a rounding margin: not the last bits). Those whose box is
+  !> within dh are judged (judge keeps the lowest index of the least |d| in
+  !> any order). best 0: the lists do not answer (the caller's tree search).
+  !> Arguments: h, th, dh the hint's verdict (judge); best, tbest returned.
+  subroutine hint_neighbours(m, x, ms, xs, skip_node, skip_elem, dmax, tree, h, th, dh, best, tbest)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: x(:, :), xs(2), dmax, th, dh
+    type(surface_t), intent(in) :: ms
+    integer, intent(in) :: skip_node, skip_elem, h
+    type(edge_tree_t), intent(in) :: tree
+    integer, intent(out) :: best
+    real(dp), intent(out) :: tbest
+    real(dp) :: dbest, r2
+    integer :: q, e
+    best = 0
+    tbest = 0.0_dp
+    if (.not. allocated(tree%nbr_first)) return
+    ! (each term on its own first: no overflow of a huge one)
+    if (.not. (dh <= tree%gap .and. tree%eps <= tree%gap .and. tree%scale <= huge(1.0_dp) / 2)) return
+    if (.not. 2.1_dp * dh + 3.0_dp * tree%eps + 1.0e-12_dp * tree%scale <= tree%gap) return
+    best = h
+    tbest = th
+    dbest = dh
+    r2 = dh * dh
+    do q = tree%nbr_first(h), tree%nbr_first(h + 1) - 1
+      e = tree%nbr(q)
+      if (box_within(tree%ebox(:, e), xs, r2)) &
+        call judge(m, x, ms, e, xs, skip_node, skip_elem, dmax, best, tbest, dbest, tree)
+    end do
+  end subroutine hint_neighbours
 
   !> Purpose: the farthest distance from p to a point of the tree's root
   !> box: a radius that takes in every edge.

@@ -4,10 +4,12 @@
 !> first (nearest_edge's hint), must answer as a search over every edge
 !> does: the same edge and the same position along it, bit for bit, on
 !> every configuration of a history. The histories move random master
-!> surfaces rigidly, perturb their nodes, stretch them, and shuffle their
-!> edges (which loosens the refit tree's grouping until it is built
-!> again: the candidates of a point must stay few). Hints are the point's
-!> edge of the configuration before, a random edge, none, or out of range.
+!> surfaces rigidly, perturb their nodes, stretch them, close a channel
+!> of two facing strips (a point's last edge, far along the surface from
+!> the new nearest one, must not answer from its neighbour list), and
+!> shuffle their edges (which loosens the refit tree's grouping until it
+!> is built again). Hints are the point's edge of the configuration
+!> before, a random edge, none, or out of range.
 !> Run by tests/test_fretting_search.py (make build/tests/test_fretting_search).
 program test_fretting_search
   use kinds, only: dp
@@ -21,6 +23,7 @@ program test_fretting_search
   call profile_history()
   call circle_history()
   call ties_history()
+  call channel_history()
   call shuffled_history()
   if (failures() > 0) stop 1
 
@@ -245,6 +248,51 @@ contains
     ! (no jitter: the copies stay equal)
     call history('edges given twice, slid (ties)', m, ms, 40, [2.5_dp, 0.0_dp], 0.0_dp, 0.0_dp, huge(1.0_dp))
   end subroutine ties_history
+
+  !> A channel: two straight strips of 200 edges facing each other, 6
+  !> apart, the upper one closing in to 2 apart over 40 configurations,
+  !> points between them: a point's edge of the configuration before (on
+  !> the lower strip, taking it at |d| of a few edge lengths) is no longer
+  !> the nearest once the upper strip passes it, and the upper edge is far
+  !> from it along the surface (no neighbour of it).
+  subroutine channel_history()
+    integer, parameter :: nh = 200
+    real(dp) :: a(2, 2 * nh), b(2, 2 * nh), pts(2, 1500)
+    real(dp), allocatable :: x(:, :)
+    type(model_t) :: m
+    type(surface_t) :: ms
+    type(edge_tree_t) :: tree
+    integer :: i, k, last(1500)
+    logical :: ok
+    character(len=200) :: msg, why
+    do i = 1, nh
+      ! the lower strip right to left (normal +y), the upper left to right
+      a(:, i) = [real(nh - i + 1, dp), 0.0_dp]
+      b(:, i) = [real(nh - i, dp), 0.0_dp]
+      a(:, nh + i) = [real(i - 1, dp), 6.0_dp]
+      b(:, nh + i) = [real(i, dp), 6.0_dp]
+    end do
+    call make_model(a, b, 0.5_dp * (a + b), .false., m, ms)
+    do i = 1, size(pts, 2)
+      pts(:, i) = [real(nh, dp) * rnd(), 0.2_dp + 1.6_dp * rnd()]
+    end do
+    last = 0
+    ok = .true.
+    msg = ''
+    do k = 0, 40
+      x = m%x
+      do i = nh + 1, 2 * nh
+        x(2, m%conn(1:4, i)) = x(2, m%conn(1:4, i)) - 0.1_dp * k
+      end do
+      call compare_on(m, x, ms, tree, pts, huge(1.0_dp), last, ok, msg)
+      if (.not. ok) then
+        why = msg
+        write(msg, '(a,i0,a,a)') 'configuration ', k, ': ', trim(why)
+        exit
+      end if
+    end do
+    call report('a channel closing', ok, trim(msg))
+  end subroutine channel_history
 
   !> A flat surface of 2000 edges whose edges are then dealt out to random
   !> places along it (every element keeps its shape): the refit tree's
