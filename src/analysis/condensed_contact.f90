@@ -611,10 +611,18 @@ contains
         call cfe_nodes(m, open_set%c(j), nodes, nen)
         if (has_dependent(dm, nodes(1:nen))) then
           call group_transform(dm, nodes(1:nen), geq, t)
+          ng = size(geq)
         else
-          geq = reshape(dm%eq(:, nodes(1:nen)), [2 * nen])
+          ! (each node's two equations in place: no temporary per CFE)
+          ng = 2 * nen
+          if (allocated(geq)) then
+            if (size(geq) < ng) deallocate(geq)
+          end if
+          if (.not. allocated(geq)) allocate(geq(ng))
+          do p = 1, nen
+            geq(2 * p - 1:2 * p) = dm%eq(:, nodes(p))
+          end do
         end if
-        ng = size(geq)
       end if
       do p = 1, ng
         if (geq(p) > 0) cd%cfe_pos(p, j) = cd%pos(geq(p))

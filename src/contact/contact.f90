@@ -27,17 +27,17 @@ module contact
                               edge_weights, area_factor, edge_length
   use shape_functions, only: gauss_line, shape_at
   use contact_mortar, only: face_cuts, edge_tol, mortar_t, mortar_integrals
-  use edge_tree, only: edge_tree_t, surface_tree, nearest_edge, sort_ints
+  use edge_tree, only: edge_tree_t, refit_tree, nearest_edge, sort_ints
   use contact_master_multipliers, only: master_space_t, master_space_integrals, master_space_wanted, coarse_straight_slave
   use element_interface, only: cfe_in_t, cfe_out_t, max_slave, act_residual
   use cfe_element, only: cfe
-  use contact_wear, only: wear_t, wear_setup, wear_add, wear_at, wear_node_areas
+  use contact_wear, only: wear_t, wear_link_t, wear_setup, wear_add, wear_at, wear_node_areas
   implicit none
   private
   public :: cfe_t, contact_set_t, contact_search, contact_research, cfe_input, contact_forces, &
-            coupling_node, cfe_nodes, cfe_max_nodes, cfe_label, open_penalty, contact_commit, frictional_set, status_codes, &
-            reset_stabilisation, restabilise, open_shift, closed_offset, closed_stiffness, set_segment, soft_segment_at, &
-            soft_energy
+            coupling_node, cfe_nodes, coupling_weights, cfe_max_nodes, cfe_label, open_penalty, contact_commit, &
+            frictional_set, status_codes, reset_stabilisation, restabilise, open_shift, closed_offset, closed_stiffness, &
+            set_segment, soft_segment_at, soft_energy
 
   !> Automatic penalty per unit area = factor * E / h (see docs/contact.md).
   real(dp), parameter :: auto_penalty_factor = 1.0e3_dp
@@ -177,7 +177,23 @@ module contact
     real(dp) :: carried = 0.0_dp, lead = 0.0_dp
   end type stabilisation_stages_t
 
+  !> What a search of one pair keeps for the next (contact_research, at
+  !> every increment with UPDATE SEARCH): the slave nodes' tributary areas,
+  !> spacings and moduli (of the reference configuration: the same at
+  !> every search), the master face each slave node found (0: none; the
+  !> next search's hint, edge_tree's nearest_edge) and the master
+  !> surface's edge tree (refit to the next configuration, refit_tree).
+  !> None of them changes an answer.
+  type :: pair_memo_t
+    logical :: lengths = .false.
+    real(dp), allocatable :: area(:), h(:), emod(:)
+    integer, allocatable :: face(:)
+    type(edge_tree_t) :: tree
+    integer, allocatable :: cand(:)        ! nearest_edge's work list
+  end type pair_memo_t
+
   type :: contact_set_t
+    !> The couplings are c(1:n) (c may be longer after a re-search).
     integer :: n = 0
     type(cfe_t), allocatable :: c(:)
     !> Slave nodes of each pair that found no master segment.
@@ -199,6 +215,8 @@ module contact
     !> Archard wear of the pairs with *WEAR (contact_wear): the worn
     !> depths, committed with the friction history (contact_commit).
     type(wear_t) :: wear
+    !> Per pair, what the next search reuses (pair_memo_t).
+    type(pair_memo_t), allocatable :: memo(:)
   end type contact_set_t
 
 contains
@@ -323,17 +341,32 @@ contains
   !> SEARCH); the status starts closed where the point is on or behind the
   !> master edge. wear_later, if present and true (contact_research, which
   !> brings the worn depths so far), leaves the wear links to the caller.
-  subroutine contact_search(m, x, cs, wear_later)
+  !> prior, if present, is the last search's set (contact_research): its
+  !> memo (pair_memo_t: the same answers, sooner) moves to cs.
+  subroutine contact_search(m, x, cs, wear_later, prior)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :)
     type(contact_set_t), intent(out) :: cs
     logical, intent(in), optional :: wear_later
+    type(contact_set_t), intent(inout), optional :: prior
     integer, allocatable :: unc(:), uncp(:)
     integer :: ip, nunc, nunc_p
     real(dp) :: dmax
-    allocate(cs%c(16), unc(16), uncp(16))
     nunc = 0
     nunc_p = 0
+    ! (about as many couplings as the last search's)
+    if (present(prior)) then
+      allocate(cs%c(max(16, prior%n + prior%n / 8)))
+    else
+      allocate(cs%c(16))
+    end if
+    allocate(unc(16), uncp(16))
+    if (present(prior)) then
+      if (allocated(prior%memo)) then
+        if (size(prior%memo) == size(m%pairs)) call move_alloc(prior%memo, cs%memo)
+      end if
+    end if
+    if (.not. allocated(cs%memo)) allocate(cs%memo(size(m%pairs)))
     do ip = 1, size(m%pairs)
       dmax = m%pairs(ip)%search_distance
       if (dmax < 0.0_dp) dmax = huge(1.0_dp)
@@ -345,7 +378,9 @@ contains
         call couple_slave_nodes(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
       end if
     end do
-    cs%c = cs%c(1:cs%n)
+    ! (a re-search keeps the array's slack: cs%c(1:cs%n) are read, never
+    ! the whole array, and the trimmed copy was a tenth of a re-search)
+    if (.not. present(prior)) cs%c = cs%c(1:cs%n)
     call start_soft(m, cs)
     if (.not. allocated(cs%notes)) allocate(cs%notes(0))
     cs%uncoupled = unc(1:nunc)
@@ -374,6 +409,8 @@ contains
   end function quadratic_faces
 
   !> Node-to-segment: one CFE per slave node, with its tributary area.
+  !> The pair's memo cs%memo(ip) keeps the tributary lengths, each node's
+  !> master face and the master tree from one search to the next.
   subroutine couple_slave_nodes(m, x, ip, dmax, cs, unc, nunc, uncp, nunc_p)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), dmax
@@ -381,18 +418,23 @@ contains
     type(contact_set_t), intent(inout) :: cs
     integer, allocatable, intent(inout) :: unc(:), uncp(:)
     integer, intent(inout) :: nunc, nunc_p
-    real(dp), allocatable :: area(:), h(:), emod(:)
     integer :: k, s, best
     real(dp) :: tbest
     type(cfe_t) :: c
-    type(edge_tree_t) :: tree
-    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
-      allocate(area(size(sl%nodes)), h(size(sl%nodes)), emod(size(sl%nodes)))
-      call tributary_lengths(m, sl%nodes, area, h, emod)
-      call surface_tree(m, x, ms, tree)
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface), &
+              mo => cs%memo(ip))
+      if (.not. mo%lengths) then
+        allocate(mo%area(size(sl%nodes)), mo%h(size(sl%nodes)), mo%emod(size(sl%nodes)))
+        call tributary_lengths(m, sl%nodes, mo%area, mo%h, mo%emod)
+        allocate(mo%face(size(sl%nodes)))
+        mo%face = 0
+        mo%lengths = .true.
+      end if
+      call refit_tree(m, x, ms, mo%tree)
       do k = 1, size(sl%nodes)
         s = sl%nodes(k)
-        call nearest_edge(m, x, ms, x(:, s), s, 0, dmax, best, tbest, tree)
+        call nearest_edge(m, x, ms, x(:, s), s, 0, dmax, best, tbest, mo%tree, mo%face(k), mo%cand)
+        mo%face(k) = best
         if (best == 0) then
           call append(unc, nunc, s)
           call append(uncp, nunc_p, ip)
@@ -401,7 +443,7 @@ contains
         c = cfe_t()
         c%ns = 1
         c%snode(1) = s
-        call make_cfe(m, x, ip, m%x(:, s), x(:, s), ms%elem(best), ms%edge(best), tbest, area(k), h(k), emod(k), c)
+        call make_cfe(m, x, ip, m%x(:, s), x(:, s), mo%tree%ed(best), tbest, mo%area(k), mo%h(k), mo%emod(k), c)
         call add_cfe(cs, c)
       end do
     end associate
@@ -643,10 +685,10 @@ contains
     real(dp), allocatable :: cuts(:)
     real(dp) :: tg(3), wg(3), t, w(3), p(2), pref(2), dpdt(2), tbest, area, h, em
     integer :: f, ncut, iv, ig, best, npts, ncoupled
-    type(edge_tree_t) :: tree
     call gauss_line(2, tg, wg)
-    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface))
-      call surface_tree(m, x, ms, tree)
+    associate(sl => m%surfaces(m%pairs(ip)%slave_surface), ms => m%surfaces(m%pairs(ip)%master_surface), &
+              tree => cs%memo(ip)%tree)
+      call refit_tree(m, x, ms, tree)
       do f = 1, size(sl%elem)
         ed = get_edge(m, x, sl%elem(f), sl%edge(f))
         ref = get_edge(m, m%x, sl%elem(f), sl%edge(f))
@@ -665,7 +707,7 @@ contains
             ncoupled = ncoupled + 1
             w = edge_weights(ed, t)
             c = cfe_t(ns=3, snode=ed%node, sw=w, selem=sl%elem(f), sedge=sl%edge(f), sip=npts)
-            call make_cfe(m, x, ip, pref, p, ms%elem(best), ms%edge(best), tbest, area, h, em, c)
+            call make_cfe(m, x, ip, pref, p, tree%ed(best), tbest, area, h, em, c)
             call add_cfe(cs, c)
           end do
         end do
@@ -692,17 +734,24 @@ contains
 
   !> Purpose: completes CFE c, whose slave side (nodes, weights) is set:
   !> its coupling point at xs_ref (reference) and xs (configuration x) on
-  !> edge `edge` of master element e at position t, with its area, node
-  !> spacing h and modulus emod (0 area: a lone node).
-  subroutine make_cfe(m, x, ip, xs_ref, xs, e, edge, t, area, h, emod, c)
+  !> master edge ed (get_edge in x: the search tree's) at position t,
+  !> with its area, node spacing h and modulus emod (0 area: a lone node).
+  subroutine make_cfe(m, x, ip, xs_ref, xs, ed, t, area, h, emod, c)
     type(model_t), intent(in) :: m
     real(dp), intent(in) :: x(:, :), xs_ref(2), xs(2), t, area, h, emod
-    integer, intent(in) :: ip, e, edge
+    integer, intent(in) :: ip
+    type(edge_t), intent(in) :: ed
     type(cfe_t), intent(inout) :: c
-    type(edge_t) :: ed, ref
+    type(edge_t) :: ref
     real(dp) :: ab(2), tvec(2), hm, em, len, p(2), dpdt(2), w(3)
-    ed = get_edge(m, x, e, edge)
-    ref = get_edge(m, m%x, e, edge)
+    integer :: e, edge, j
+    e = ed%elem
+    edge = ed%k
+    ! the same edge on the reference coordinates
+    ref = ed
+    do j = 1, ed%nn
+      ref%x(:, j) = m%x(:, ed%node(j))
+    end do
     c%pair = ip
     c%elem = e
     c%edge = edge
@@ -801,8 +850,7 @@ contains
     type(contact_set_t) :: old
     integer, allocatable :: head(:), next(:)
     logical, allocatable :: matched(:)
-    real(dp), allocatable :: u(:, :)
-    integer :: j, q, nchg
+    integer :: j, q, nchg, klo, khi
     logical :: stabilised, reevaluate
     reevaluate = .false.
     if (present(moved)) reevaluate = moved
@@ -810,16 +858,18 @@ contains
     stabilised = cs%stabilised
     call move_alloc(cs%c, old%c)
     old%n = cs%n
+    if (allocated(cs%memo)) call move_alloc(cs%memo, old%memo)
     old%stages = cs%stages
     if (allocated(cs%wear%pairs)) call move_alloc(cs%wear%pairs, old%wear%pairs)
+    if (allocated(cs%wear%link)) call move_alloc(cs%wear%link, old%wear%link)
     ! (the wear links once, below, with the depths so far: not a fresh wear
     ! state to throw away, every surface's areas made again)
-    call contact_search(m, x, cs, wear_later=allocated(old%wear%pairs))
+    call contact_search(m, x, cs, wear_later=allocated(old%wear%pairs), prior=old)
     cs%stabilised = stabilised
     cs%stages = old%stages
-    allocate(head(m%nn), next(old%n), matched(old%n))
-    ! the displacements of x, once (not a temporary per coupling)
-    u = x - m%x
+    ! (the chains' heads over the key nodes' range, not every node)
+    call key_range(old, cs, klo, khi)
+    allocate(head(klo:khi), next(old%n), matched(old%n))
     head = 0
     matched = .false.
     do q = old%n, 1, -1
@@ -839,12 +889,13 @@ contains
         cycle
       end if
       matched(q) = .true.
-      call carry_history(m, x, u, old%c(q), reevaluate, cs%c(j))
+      call carry_history(m, x, old%c(q), reevaluate, cs%c(j))
     end do
     call keep_lost_couplings(old, matched, reevaluate, cs, nchg)
     ! the worn depths so far, read by the new couplings
     if (allocated(old%wear%pairs)) then
       call move_alloc(old%wear%pairs, cs%wear%pairs)
+      if (allocated(old%wear%link)) call move_alloc(old%wear%link, cs%wear%link)
       call attach_wear(m, cs)
     end if
     if (present(changed)) changed = nchg
@@ -854,11 +905,11 @@ contains
   !> coupling of the same slave point (contact_research): its status,
   !> multiplier and friction history, or, within an increment's iterations
   !> (reevaluate), the old coupling whole where it is closed and stays.
-  !> Arguments: x the configuration searched, u = x - m%x; oc the old
+  !> Arguments: x the configuration searched; oc the old
   !> coupling; c the new one, completed.
-  subroutine carry_history(m, x, u, oc, reevaluate, c)
+  subroutine carry_history(m, x, oc, reevaluate, c)
     type(model_t), intent(in) :: m
-    real(dp), intent(in) :: x(:, :), u(:, :)
+    real(dp), intent(in) :: x(:, :)
     type(cfe_t), intent(in) :: oc
     logical, intent(in) :: reevaluate
     type(cfe_t), intent(inout) :: c
@@ -893,8 +944,8 @@ contains
     c%slip_total = oc%slip_total
     if (c%mu > 0.0_dp) then
       old_slide = oc%slide
-      if (reevaluate) old_slide = current_slide(m, oc, u)
-      c%anchor = current_slide(m, c, u) - (old_slide - oc%anchor)
+      if (reevaluate) old_slide = current_slide(m, oc, x)
+      c%anchor = current_slide(m, c, x) - (old_slide - oc%anchor)
     end if
   end subroutine carry_history
 
@@ -968,6 +1019,28 @@ contains
     cs%uncoupled_pair = pack(cs%uncoupled_pair, keep)
   end subroutine drop_uncoupled
 
+  !> Purpose: the least and largest key node (key_node) of the couplings of
+  !> sets a and b (1 and 0 where there are none).
+  pure subroutine key_range(a, b, lo, hi)
+    type(contact_set_t), intent(in) :: a, b
+    integer, intent(out) :: lo, hi
+    integer :: j
+    lo = huge(1)
+    hi = -huge(1)
+    do j = 1, a%n
+      lo = min(lo, key_node(a%c(j)))
+      hi = max(hi, key_node(a%c(j)))
+    end do
+    do j = 1, b%n
+      lo = min(lo, key_node(b%c(j)))
+      hi = max(hi, key_node(b%c(j)))
+    end do
+    if (hi < lo) then
+      lo = 1
+      hi = 0
+    end if
+  end subroutine key_range
+
   !> The node a CFE is filed under when old and new couplings are matched:
   !> its first slave node, or for a coupling of the master-mesh multiplier
   !> (ns = 0) the master node that carries the multiplier.
@@ -980,17 +1053,45 @@ contains
     end if
   end function key_node
 
-  !> t.[[U]] of CFE c at displacements u.
-  real(dp) function current_slide(m, c, u) result(slide)
+  !> Purpose: t.[[U]] of CFE c in configuration x (its displacements
+  !> x - m%x at its nodes). A node-to-segment or slave-face coupling sums
+  !> eq. (8)'s B_e D_e in the element's order (cfe_b_matrix's weights, the
+  !> products of each component in dof order) without its element arrays:
+  !> the re-search evaluates every coupling at every increment; a
+  !> segment-to-segment one calls the element routine.
+  !> Arguments: m the model; c the coupling; x the configuration.
+  real(dp) function current_slide(m, c, x) result(slide)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
-    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(in) :: x(:, :)
     type(cfe_in_t) :: ein
     type(cfe_out_t) :: eout
     integer, allocatable :: nodes(:)
-    call cfe_input(m, c, u, .false., ein, nodes)
-    call cfe(act_residual, ein, eout)
-    slide = eout%slide
+    real(dp) :: n(max_nodes), dn(2, max_nodes), rel(2), jump(2), tvec(2)
+    integer :: k, nen, a
+    if (c%nm > 0 .or. c%ns < 1) then
+      call cfe_input(m, c, x, .false., ein, nodes)
+      nen = ein%nen
+      do k = 1, nen
+        ein%ue(2 * k - 1:2 * k) = x(:, nodes(k)) - m%x(:, nodes(k))
+      end do
+      call cfe(act_residual, ein, eout)
+      slide = eout%slide
+      return
+    end if
+    call shape_at(catalogue(m%etype(c%elem))%shape, c%xi, n, dn)
+    rel = 0.0_dp
+    do k = 1, c%ns
+      a = c%snode(k)
+      rel = rel + c%sw(k) * (x(:, a) - m%x(:, a))
+    end do
+    do k = 1, elem_nodes(m, c%elem)
+      a = m%conn(k, c%elem)
+      rel = rel + (-n(k)) * (x(:, a) - m%x(:, a))
+    end do
+    jump = rel + c%gap0
+    tvec = [-c%normal(2), c%normal(1)]
+    slide = dot_product(tvec, jump)
   end function current_slide
 
   !> Normal penalty of one CFE (force per unit normal relative displacement):
@@ -1463,21 +1564,27 @@ contains
 
   !> Purpose: the wear of contact set cs after a search (contact_search,
   !> contact_research): its state where it has none yet (zero depths),
-  !> every coupling element's link (its nodes and weights, wear_link),
+  !> every coupling element's link (its nodes and weights as the wear
+  !> shares its volumes and reads its depths: coupling_weights),
   !> a slave node surface's areas (the first search's), and the worn
   !> depths applied to the gaps (refresh_wear). Nothing without *WEAR.
   subroutine attach_wear(m, cs)
     type(model_t), intent(in) :: m
     type(contact_set_t), intent(inout) :: cs
-    integer :: j, ip
+    integer, allocatable :: nodes(:)
+    real(dp), allocatable :: w(:)
+    integer :: j, ip, nen
     if (size(m%pairs) == 0) return
     if (.not. any(m%pairs%wear)) return
     if (.not. allocated(cs%wear%pairs)) call wear_setup(m, cs%wear)
     cs%wear%on = .true.
-    if (allocated(cs%wear%link)) deallocate(cs%wear%link)
-    allocate(cs%wear%link(cs%n))
+    call size_links(cs%wear%link, cs%n)
     do j = 1, cs%n
-      call wear_link(m, cs%c(j), cs%wear%link(j)%node, cs%wear%link(j)%w, cs%wear%link(j)%nsl)
+      ! its nodes and weights (coupling_weights), slave nodes first
+      call coupling_weights(m, cs%c(j), nodes, w, nen)
+      cs%wear%link(j)%node = nodes(1:nen)
+      cs%wear%link(j)%w = w(1:nen)
+      cs%wear%link(j)%nsl = cs%c(j)%ns + cs%c(j)%nsl
     end do
     do ip = 1, size(m%pairs)
       if (m%pairs(ip)%wear .and. m%surfaces(m%pairs(ip)%slave_surface)%kind /= surf_element) &
@@ -1486,26 +1593,50 @@ contains
     call refresh_wear(cs)
   end subroutine attach_wear
 
-  !> Purpose: coupling element c's nodes and weights as the wear shares
-  !> its volumes and reads its depths: slave nodes first (nsl: the slave
-  !> weights sw, or the master-mesh multiplier's S_mj / D_m), then the
-  !> master side's (the shape functions at X_C, or the mortar weights),
-  !> the weights of its B_e (eq. 4) without their signs.
-  !> Arguments: m the model; c the element; node, w, nsl returned.
-  subroutine wear_link(m, c, node, w, nsl)
+  !> Purpose: link(1:n) for n coupling elements, the arrays of the links
+  !> there were kept (a link's assignment then reallocates them only where
+  !> its node count changed: a re-search at every increment made two
+  !> arrays per coupling anew).
+  !> Arguments: link the wear's links (any, or none, before); n.
+  subroutine size_links(link, n)
+    type(wear_link_t), allocatable, intent(inout) :: link(:)
+    integer, intent(in) :: n
+    type(wear_link_t), allocatable :: more(:)
+    integer :: j
+    if (allocated(link)) then
+      if (size(link) == n) return
+    end if
+    allocate(more(n))
+    if (allocated(link)) then
+      do j = 1, min(n, size(link))
+        call move_alloc(link(j)%node, more(j)%node)
+        call move_alloc(link(j)%w, more(j)%w)
+      end do
+    end if
+    call move_alloc(more, link)
+  end subroutine size_links
+
+  !> Purpose: coupling element c's nodes (cfe_nodes) and the weights of its
+  !> B_e (eq. 4) without their signs: slave nodes first (the slave weights
+  !> sw, or the master-mesh multiplier's S_mj / D_m), then the master
+  !> side's (the shape functions at X_C, or the mortar weights). A node of
+  !> weight zero (a master element's node off the face) is reached by no
+  !> force or tangent of the element.
+  !> Arguments: nodes(1:nen), w(1:nen) returned (both reallocated where
+  !> shorter than nen, as cfe_nodes: a caller keeps them for many CFEs).
+  subroutine coupling_weights(m, c, nodes, w, nen)
     type(model_t), intent(in) :: m
     type(cfe_t), intent(in) :: c
-    integer, allocatable, intent(out) :: node(:)
-    real(dp), allocatable, intent(out) :: w(:)
-    integer, intent(out) :: nsl
-    integer, allocatable :: nodes(:)
+    integer, allocatable, intent(inout) :: nodes(:)
+    real(dp), allocatable, intent(inout) :: w(:)
+    integer, intent(out) :: nen
     real(dp) :: n(max_nodes), dn(2, max_nodes)
-    integer :: nen
     call cfe_nodes(m, c, nodes, nen)
-    node = nodes(1:nen)
-    allocate(w(nen))
+    if (allocated(w)) then
+      if (size(w) < nen) deallocate(w)
+    end if
+    if (.not. allocated(w)) allocate(w(size(nodes)))
     w(1:c%ns) = c%sw(1:c%ns)
-    nsl = c%ns + c%nsl
     if (c%nm > 0) then
       w(c%ns + 1:nen) = c%mw(1:c%nm)
       ! the master-mesh multiplier (ns = 0): its slave nodes' weights are
@@ -1515,7 +1646,7 @@ contains
       call shape_at(catalogue(m%etype(c%elem))%shape, c%xi, n, dn)
       w(c%ns + 1:nen) = n(1:nen - c%ns)
     end if
-  end subroutine wear_link
+  end subroutine coupling_weights
 
   !> Purpose: every coupling element's gap takes the worn depths at its
   !> point (contact_wear's wear_at): its initial gap [[U]]_0 moves by

@@ -12,7 +12,7 @@ module contact_geometry
   use shape_functions, only: line_shape, gauss_line
   implicit none
   private
-  public :: edge_t, get_edge, edge_at, project_to_edge, edge_areas, edge_natural, edge_weights, piece_point, &
+  public :: edge_t, get_edge, edge_at, project_to_edge, project_to_chord, edge_areas, edge_natural, edge_weights, piece_point, &
             area_factor, edge_length, surface_areas
 
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
@@ -92,12 +92,11 @@ contains
     ab = ed%x(:, 2) - ed%x(:, 1)
     len = norm2(ab)
     tvec = ab / len
-    t = dot_product(xs - ed%x(:, 1), tvec) / len
     if (ed%nn == 2) then
-      nvec = [tvec(2), -tvec(1)]
-      d = dot_product(xs - ed%x(:, 1), nvec)
+      call project_to_chord(ed%x(:, 1), tvec, len, xs, t, nvec, d)
       return
     end if
+    t = dot_product(xs - ed%x(:, 1), tvec) / len
     ! p'' = 4 (x_a + x_b - 2 x_mid), constant along the quadratic edge
     dp2 = 4.0_dp * (ed%x(:, 1) + ed%x(:, 2) - 2.0_dp * ed%x(:, 3))
     do it = 1, 30
@@ -113,6 +112,17 @@ contains
     nvec = [dp1(2), -dp1(1)] / norm2(dp1)
     d = dot_product(xs - p, nvec)
   end subroutine project_to_edge
+
+  !> Purpose: the projection of xs onto the straight edge from x1 with unit
+  !> tangent tvec and length len (project_to_edge's numbers, from the
+  !> chord made once: the search's tree keeps it per edge).
+  pure subroutine project_to_chord(x1, tvec, len, xs, t, nvec, d)
+    real(dp), intent(in) :: x1(2), tvec(2), len, xs(2)
+    real(dp), intent(out) :: t, nvec(2), d
+    t = dot_product(xs - x1, tvec) / len
+    nvec = [tvec(2), -tvec(1)]
+    d = dot_product(xs - x1, nvec)
+  end subroutine project_to_chord
 
   !> Purpose: Gauss point xg (weight wg, on [-1, 1]) of the piece [t0, t1]
   !> of edge ref (the reference configuration): its position t on the
