@@ -30,9 +30,9 @@ module condensed_equilibrium
                                condensed_energy, direct_multipliers, condensed_multipliers, condense_change, &
                                condensed_begin_lazy, s0_times, moving_elements, forward_rhs, condensed_refine, &
                                load_change, copy_field, take_equations, subtract_field, zero_field
-  use contact_status, only: status_search_t, contact_switch, contact_energy
+  use contact_status, only: contact_energy
   use equilibrium_common, only: equilibrium_t, relative_residual, check_finite, describe, singular, stabilise_open, &
-                                set_aside_or_stop, factor_fits, factor_made, contact_force_scale
+                                set_aside_or_stop, factor_fits, factor_made
   use iteration_state, only: iteration_t, linear_path_t, give_up_verdict => give_up
   use analysis_events, only: tell_note, wall_time
   use newton_control, only: newton_give_up, converged_body_forces, converged_forces_at, not_finite, &
@@ -50,6 +50,7 @@ module condensed_equilibrium
     real(dp), allocatable :: fold(:)    ! the CFE forces on the contact equations before the switch
     logical :: whole = .false.          ! u holds every equation's solution (recovered)
     integer :: nsolves = 0              ! direct multiplier solves of the increment
+    real(dp), allocatable :: frefined(:) ! the CFE forces at the refined solution (settle_refined)
   contains
     procedure :: begin => condensed_begin_increment
     procedure :: factor => condensed_factor
@@ -59,6 +60,7 @@ module condensed_equilibrium
     procedure :: status_changed => condensed_status_changed
     procedure :: restart => condensed_restart
     procedure :: converged => condensed_converged
+    procedure :: rejudged => condensed_rejudged
   end type condensed_path_t
 
   !> The condensed path of a Newton increment: the bodies' tangent at the
@@ -194,23 +196,32 @@ contains
   subroutine settle_refined(path, st)
     class(condensed_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
-    type(status_search_t) :: kept
-    real(dp) :: fc(st%eq%cd%m), t0
+    real(dp) :: t0
     call condensed_refine(st%eq%cd, st%dm, st%u)
     t0 = wall_time()
-    call contact_at_u(st, fc)
+    if (allocated(path%frefined)) then
+      if (size(path%frefined) /= st%eq%cd%m) deallocate(path%frefined)
+    end if
+    if (.not. allocated(path%frefined)) allocate(path%frefined(st%eq%cd%m))
+    call contact_at_u(st, path%frefined)
     st%eq%timing%recovery = st%eq%timing%recovery + (wall_time() - t0)
     st%energy = contact_energy(st%cs)
-    kept = st%eq%search
-    call contact_switch(st%m, st%cs, st%eq%search, contact_force_scale(st%eq, st%cs, st%fext_norm), st%energy, &
-                        st%nchanged, st%eq%changed)
+    ! (the statuses judged again by the loop: equilibrium_loop's rejudge)
+    st%rejudge = .true.
+  end subroutine settle_refined
+
+  !> Purpose: the loop judged the statuses again on the refined solution
+  !> (settle_refined): the out-of-balance of the change where one
+  !> changed, else of the settled status, from the CFE forces there.
+  subroutine condensed_rejudged(path, st)
+    class(condensed_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
     if (st%nchanged > 0) then
-      st%eq%residual = change_residual(st, fc)
+      st%eq%residual = change_residual(st, path%frefined)
       return
     end if
-    st%eq%search = kept
-    call settled_residual(st, path%whole, fc)
-  end subroutine settle_refined
+    call settled_residual(st, path%whole, path%frefined)
+  end subroutine condensed_rejudged
 
   !> Purpose: a status changed outside the switch: nothing to do, the
   !> next solve makes its forces.

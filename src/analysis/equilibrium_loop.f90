@@ -18,7 +18,8 @@ module equilibrium_loop
   use strings, only: itoa
   use model, only: elem_label, node_label, model_t
   use contact, only: contact_set_t
-  use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations
+  use contact_status, only: contact_switch, begin_status_search, contact_energy, augment_multipliers, max_augmentations, &
+                            status_search_t
   use dof_numbering, only: dofmap_t, expand_dependent, follow_rotations
   use equilibrium_common, only: report_iteration, contact_force_scale, take_back, next_stage
   use newton_control, only: newton_t, newton_begin, newton_test, newton_converged, newton_give_up, bad_element, &
@@ -226,6 +227,24 @@ contains
     st%nchanged = st%nchanged + st%nsearched
   end subroutine pivot_statuses
 
+  !> Step: the path made its settled solution better (condensed: the
+  !> refinement of a status decided on an unrefined low-rank solution)
+  !> and asks for its statuses to be judged again there (st%energy, the
+  !> CFEs evaluated): one more pivot of the search, which is left as the
+  !> first pivot left it where nothing changes; the path's rejudged makes
+  !> the out-of-balance (of the change, or of the settled status).
+  subroutine rejudge(path, st)
+    class(linear_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+    type(status_search_t) :: kept
+    st%rejudge = .false.
+    kept = st%eq%search
+    call contact_switch(st%m, st%cs, st%eq%search, contact_force_scale(st%eq, st%cs, st%fext_norm), st%energy, &
+                        st%nchanged, st%eq%changed)
+    if (st%nchanged == 0) st%eq%search = kept
+    call path%rejudged(st)
+  end subroutine rejudge
+
   !> Step: the out-of-balance of the new status and whether it passes the
   !> test (a linear step: below the contact tolerance; a nonlinear one:
   !> CalculiX's tests, newton_judge).
@@ -233,6 +252,7 @@ contains
     class(linear_path_t), intent(inout) :: path
     type(iteration_t), intent(inout) :: st
     call path%residual(st)
+    if (st%rejudge) call rejudge(path, st)
     st%eq%iterations = st%eq%iterations + 1
     if (st%body%nonlinear) then
       call newton_judge(st)

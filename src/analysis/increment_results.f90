@@ -82,7 +82,6 @@ contains
     type(body_t), intent(in), optional :: body
     real(dp), intent(in), optional :: dt
     logical, intent(in), optional :: lean
-    integer :: s, q, a
     logical :: written, copy
     res%step = is
     if (present(body)) res%nonlinear = body%nonlinear
@@ -95,29 +94,7 @@ contains
     if (present(dt)) written = written_here(m, is, inc, t, total_time, dt)
     copy = .true.
     if (present(lean)) copy = .not. lean .or. written .or. size(set_ids) > 0
-    if (copy) then
-      res%u = u
-      res%rf = rf
-    else
-      allocate(res%u(2, 0), res%rf(2, 0))
-    end if
-    ! A node with *TRANSFORM whose dofs cards named depends on the node
-    ! carrying its local displacements, where its supports act: its own
-    ! reaction is theirs, turned to global axes (the sums of the prescribed
-    ! sets, which hold the node, are global, as CalculiX prints them).
-    if (allocated(m%local_node) .and. size(res%rf, 2) > 0) then
-      do a = 1, size(m%local_node)
-        if (m%local_node(a) > 0) res%rf(:, a) = matmul(node_axes(m, a), rf(:, m%local_node(a)))
-      end do
-    end if
-    res%set_ids = set_ids
-    allocate(res%set_sums(2, size(set_ids)))
-    do s = 1, size(set_ids)
-      res%set_sums(:, s) = 0.0_dp
-      do q = 1, size(m%nsets(set_ids(s))%items)
-        res%set_sums(:, s) = res%set_sums(:, s) + res%rf(:, m%nsets(set_ids(s))%items(q))
-      end do
-    end do
+    call nodal_results(m, u, rf, set_ids, copy, res)
     ! Stresses and strains only where a request asks for them and the
     ! increment's output is written (FREQUENCY=, TIME POINTS=: every
     ! writer that prints them follows output_due); the increments between
@@ -155,6 +132,41 @@ contains
     res%nclosed = count(cs%c(1:cs%n)%closed)
     call check_finite(m, res)
   end subroutine compute_increment_results
+
+  !> Purpose: the nodal results: u and rf (where copy; empty otherwise,
+  !> an unwritten increment's that no writer reads), rf turned to global
+  !> axes at *TRANSFORM nodes, the reaction sums of the node sets set_ids.
+  subroutine nodal_results(m, u, rf, set_ids, copy, res)
+    type(model_t), intent(in) :: m
+    real(dp), intent(in) :: u(:, :), rf(:, :)
+    integer, intent(in) :: set_ids(:)
+    logical, intent(in) :: copy
+    type(increment_results_t), intent(inout) :: res
+    integer :: s, q, a
+    if (copy) then
+      res%u = u
+      res%rf = rf
+    else
+      allocate(res%u(2, 0), res%rf(2, 0))
+    end if
+    ! A node with *TRANSFORM whose dofs cards named depends on the node
+    ! carrying its local displacements, where its supports act: its own
+    ! reaction is theirs, turned to global axes (the sums of the prescribed
+    ! sets, which hold the node, are global, as CalculiX prints them).
+    if (allocated(m%local_node) .and. size(res%rf, 2) > 0) then
+      do a = 1, size(m%local_node)
+        if (m%local_node(a) > 0) res%rf(:, a) = matmul(node_axes(m, a), rf(:, m%local_node(a)))
+      end do
+    end if
+    res%set_ids = set_ids
+    allocate(res%set_sums(2, size(set_ids)))
+    do s = 1, size(set_ids)
+      res%set_sums(:, s) = 0.0_dp
+      do q = 1, size(m%nsets(set_ids(s))%items)
+        res%set_sums(:, s) = res%set_sums(:, s) + res%rf(:, m%nsets(set_ids(s))%items(q))
+      end do
+    end do
+  end subroutine nodal_results
 
   !> Purpose: the stresses (and strains, PEEQ) of the increment at the
   !> integration points, the nodes and as element averages.

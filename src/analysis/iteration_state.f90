@@ -66,6 +66,10 @@ module iteration_state
     integer :: nchanged = 0             ! statuses changed in this iteration
     real(dp) :: scale = 0.0_dp          ! the force scale of the last residual (relative_residual)
     logical :: converged = .false.      ! the out-of-balance passes the test
+    !> the path's residual asks the loop to judge the statuses again on a
+    !> solution it has just made better (the loop's rejudge; the path's
+    !> rejudged then makes the out-of-balance)
+    logical :: rejudge = .false.
     integer :: naug = 0                 ! augmentations of the multipliers (exact enforcement)
     !> Newton on the condensed path: this iteration only searched the
     !> contact status of the linearised problem (its solution is not
@@ -115,6 +119,9 @@ module iteration_state
     procedure(path_step), deferred :: restart
     !> the increment converged: what the path keeps of it
     procedure(path_step), deferred :: converged
+    !> after the loop judged the statuses again (st%rejudge): the
+    !> out-of-balance; nothing where the path never asks
+    procedure :: rejudged => no_rejudge
   end type linear_path_t
 
   abstract interface
@@ -124,4 +131,12 @@ module iteration_state
       type(iteration_t), intent(inout) :: st
     end subroutine path_step
   end interface
+
+contains
+
+  !> Purpose: the rejudged step of a path that never sets st%rejudge.
+  subroutine no_rejudge(path, st)
+    class(linear_path_t), intent(inout) :: path
+    type(iteration_t), intent(inout) :: st
+  end subroutine no_rejudge
 end module iteration_state

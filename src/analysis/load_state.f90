@@ -158,7 +158,6 @@ contains
       end if
     end associate
     call prescribed_sets(m, ls)
-    call active_dofs(ls)
   end subroutine begin_step
 
   !> Purpose: ls%active, the dofs values_at computes (the others are zero
@@ -466,7 +465,9 @@ contains
     if (immediate) ls%bc_start(bc%dof, bc%node) = bc%value
   end subroutine prescribe
 
-  !> Node sets named by active boundary conditions, for reaction sums.
+  !> Purpose: the lists a step's conditions give: the node sets named by
+  !> active boundary conditions (reaction sums) and, by active_dofs, the
+  !> dofs values_at computes.
   subroutine prescribed_sets(m, ls)
     type(model_t), intent(in) :: m
     type(load_state_t), intent(inout) :: ls
@@ -481,6 +482,7 @@ contains
       end do
     end do
     ls%set_ids = pack([(s, s = 1, size(m%nsets))], used)
+    call active_dofs(ls)
   end subroutine prescribed_sets
 
   !> Purpose: prescribed displacements into u (free dofs set to zero, the
