@@ -1445,7 +1445,7 @@ contains
     type(cfe_in_t) :: ein
     type(cfe_out_t) :: eout
     real(dp) :: key(6)
-    integer :: j, i, nen, nd, p, e
+    integer :: j, i, nen, nd
     integer, allocatable :: nodes(:)
     logical :: fresh
     nd = 2 * cfe_max_nodes(cs)
@@ -1476,6 +1476,20 @@ contains
         cd%fw(:, nodes(i)) = cd%fw(:, nodes(i)) + cd%fe0(2 * i - 1:2 * i, j)
       end do
     end do
+    call take_contact_part(cd, m, cs, dm, f)
+  end subroutine start_forces
+
+  !> Purpose: f(m) = the work field cd%fw on the contact equations, in
+  !> trailing order; fw zeroed again at the CFEs' nodes (the only ones
+  !> written into it: it stays zero between calls).
+  subroutine take_contact_part(cd, m, cs, dm, f)
+    type(condensed_t), intent(inout) :: cd
+    type(model_t), intent(in) :: m
+    type(contact_set_t), intent(in) :: cs
+    type(dofmap_t), intent(in) :: dm
+    real(dp), intent(out) :: f(:)
+    integer :: p, e, j, nen
+    integer, allocatable :: nodes(:)
     do p = 1, cd%m
       e = cd%eq_at(p)
       f(p) = cd%fw(dm%dof_of_eq(e), dm%node_of_eq(e))
@@ -1484,7 +1498,7 @@ contains
       call cfe_nodes(m, cs%c(j), nodes, nen)
       cd%fw(:, nodes(1:nen)) = 0.0_dp
     end do
-  end subroutine start_forces
+  end subroutine take_contact_part
 
   !> Purpose: what a CFE's forces at given displacements depend on beside
   !> its pairing (cfe_input): cfe_key's status, slip sign and penalty,
@@ -1515,19 +1529,11 @@ contains
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(out) :: f(:)
     integer(kind=8), intent(inout) :: ncalls
-    integer :: p, e, j, k, q, nen
-    integer, allocatable :: nodes(:)
+    integer :: j, k, q
     call contact_forces(m, cs, u, cd%fw, ncalls)
     ! forces on dependent dofs act on their independent dofs
     if (size(cd%cdep) > 0) call reduce_dependent(dm, cd%fw, cd%cdep)
-    do p = 1, cd%m
-      e = cd%eq_at(p)
-      f(p) = cd%fw(dm%dof_of_eq(e), dm%node_of_eq(e))
-    end do
-    do j = 1, cs%n
-      call cfe_nodes(m, cs%c(j), nodes, nen)
-      cd%fw(:, nodes(1:nen)) = 0.0_dp
-    end do
+    call take_contact_part(cd, m, cs, dm, f)
     do j = 1, size(cd%cdep)
       k = cd%cdep(j)
       do q = dm%mpc%xt(k), dm%mpc%xt(k + 1) - 1
